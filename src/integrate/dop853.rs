@@ -1,0 +1,549 @@
+//! DOP853: Dormand–Prince 8(5,3) with 7th-order dense output.
+//!
+//! References:
+//! - P. J. Prince, J. R. Dormand, "High order embedded Runge–Kutta formulae",
+//!   J. Comput. Appl. Math. 7 (1981) 67–75 (the 8th-order family).
+//! - E. Hairer, S. P. Nørsett, G. Wanner, *Solving Ordinary Differential
+//!   Equations I*, 2nd ed., Springer 1993, §II.10 and the code `dop853.f`:
+//!   the 5th- and 3rd-order error estimators combined as
+//!   `err = |h| e5² / sqrt(N (e5² + 0.01 e3²))`, the three extra stages of the
+//!   dense output, and the controller (safety 0.9, step ratio in
+//!   [1/3, 6], no Lund stabilisation).
+//! - scipy `integrate/_ivp/rk.py` (`DOP853`) and `dop853_coefficients.py`,
+//!   the source of the tableau in `dop853_tableau.rs`.
+//!
+//! The project's default method: at the tight tolerances the impact times need
+//! (rtol 1e-10) it uses fewer evaluations than DOPRI5, and its dense output is
+//! accurate enough for root finding to machine precision.
+
+use super::dop853_tableau::{A, B, C, D, E3, E5, N_DENSE_ROWS, N_STAGES, N_STAGES_EXTENDED};
+use super::dopri5::{
+    Controller, H_FALLBACK, MAX_REJECTIONS, all_finite, combine, err_scale, h_min, hinit, next_step_size,
+};
+use super::stepper::{Rhs, StepError, StepStats, Stepper, Tolerances};
+
+/// Index of the FSAL stage `f(t + h, y_new)`.
+const FSAL: usize = N_STAGES;
+
+/// Hairer's DOP853 stepper.
+///
+/// Adaptive, 8th order, 12 evaluations of `f` per accepted step (11 stages
+/// plus the FSAL stage, which is evaluated only once the step is accepted),
+/// 11 per rejected attempt, and 3 more the first time dense output is asked
+/// for after a step.
+#[derive(Clone, Debug)]
+pub struct Dop853<const N: usize> {
+    tol: Tolerances,
+    ctrl: Controller,
+    t: f64,
+    t_old: f64,
+    y: [f64; N],
+    y_old: [f64; N],
+    /// Stages of the last accepted step, in the tableau's 0-based layout:
+    /// `k[0] = f(t_old, y_old)`, `k[12] = f(t, y)`, `k[13..16]` the extra
+    /// dense-output stages once computed.
+    k: [[f64; N]; N_STAGES_EXTENDED],
+    /// Coefficients of the dense polynomial in scipy's `F` form, valid when
+    /// `dense_ready`.
+    cont: [[f64; N]; 3 + N_DENSE_ROWS],
+    /// The extra stages and `cont` have been computed for the last step.
+    dense_ready: bool,
+    /// `k[12]` holds `f(t, y)` and must become `k[0]` before the next step
+    /// (deferred so dense output still sees the old `k[0]`).
+    fsal_pending: bool,
+    /// A step has been taken since the last restart.
+    has_step: bool,
+    /// `restart` has been called at least once.
+    started: bool,
+    /// Size of the last accepted step.
+    h_used: f64,
+    /// Proposed size of the next step; 0 until the first `hinit`.
+    h_next: f64,
+    stats: StepStats,
+}
+
+impl<const N: usize> Dop853<N> {
+    /// A stepper with the given tolerances. Call [`Stepper::restart`] before
+    /// the first step (a step without it starts from `t = 0`, `y = 0`).
+    pub fn new(tol: Tolerances) -> Self {
+        Self {
+            tol,
+            // Hairer's defaults for DOP853: SAFE = 0.9, FAC1 = 0.333,
+            // FAC2 = 6, BETA = 0, EXPO1 = 1/8 - BETA * 0.2.
+            ctrl: Controller::new(0.9, 0.333, 6.0, 0.0, 1.0 / 8.0),
+            t: 0.0,
+            t_old: 0.0,
+            y: [0.0; N],
+            y_old: [0.0; N],
+            k: [[0.0; N]; N_STAGES_EXTENDED],
+            cont: [[0.0; N]; 3 + N_DENSE_ROWS],
+            dense_ready: false,
+            fsal_pending: false,
+            has_step: false,
+            started: false,
+            h_used: 0.0,
+            h_next: 0.0,
+            stats: StepStats::default(),
+        }
+    }
+
+    /// Evaluates `f` into stage `i` and counts it.
+    fn eval<F: Rhs<N>>(&mut self, f: &F, t: f64, y: &[f64; N], i: usize) {
+        f.eval(t, y, &mut self.k[i]);
+        self.stats.rhs_evals += 1;
+    }
+
+    /// One attempt of size `h` ending at `t_new`: fills `k[1..12]` and
+    /// `y_new`, returns Hairer's combined error norm.
+    fn attempt<F: Rhs<N>>(&mut self, f: &F, h: f64, t_new: f64, y_new: &mut [f64; N]) -> Result<f64, StepError> {
+        let t = self.t;
+        let mut ys = [0.0; N];
+        for i in 1..N_STAGES {
+            combine(&self.y, h, &A[i][..i], &self.k[..i], &mut ys);
+            if !all_finite(&ys) {
+                return Err(StepError::NonFinite { t });
+            }
+            let ti = if C[i] == 1.0 { t_new } else { t + C[i] * h };
+            self.eval(f, ti, &ys, i);
+            if !all_finite(&self.k[i]) {
+                return Err(StepError::NonFinite { t });
+            }
+        }
+        combine(&self.y, h, &B, &self.k[..N_STAGES], y_new);
+        if !all_finite(y_new) {
+            return Err(StepError::NonFinite { t });
+        }
+        let (mut e5sq, mut e3sq) = (0.0, 0.0);
+        for (n, (y_old, y_new)) in self.y.iter().zip(y_new.iter()).enumerate() {
+            let (mut e5, mut e3) = (0.0, 0.0);
+            for ((kj, e5j), e3j) in self.k.iter().zip(&E5).zip(&E3) {
+                e5 += e5j * kj[n];
+                e3 += e3j * kj[n];
+            }
+            let sk = err_scale(&self.tol, *y_old, *y_new);
+            e5sq += (e5 / sk).powi(2);
+            e3sq += (e3 / sk).powi(2);
+        }
+        let mut deno = e5sq + 0.01 * e3sq;
+        if deno <= 0.0 {
+            deno = 1.0; // both estimates zero: err = 0 (Hairer)
+        }
+        Ok(h.abs() * e5sq * (1.0 / (N.max(1) as f64 * deno)).sqrt())
+    }
+
+    /// Computes the three extra stages and the dense coefficients, once per
+    /// step (scipy `_dense_output_impl`, Hairer's block after label 40).
+    fn prepare_dense<F: Rhs<N>>(&mut self, f: &F) {
+        let h = self.h_used;
+        let mut ys = [0.0; N];
+        for s in FSAL + 1..N_STAGES_EXTENDED {
+            combine(&self.y_old, h, &A[s][..s], &self.k[..s], &mut ys);
+            self.eval(f, self.t_old + C[s] * h, &ys, s);
+        }
+        let (f_old, f_new) = (self.k[0], self.k[FSAL]);
+        for n in 0..N {
+            let dy = self.y[n] - self.y_old[n];
+            self.cont[0][n] = dy;
+            self.cont[1][n] = h * f_old[n] - dy;
+            self.cont[2][n] = 2.0 * dy - h * (f_new[n] + f_old[n]);
+            for (r, drow) in D.iter().enumerate() {
+                let mut s = 0.0;
+                for (dj, kj) in drow.iter().zip(&self.k) {
+                    if *dj != 0.0 {
+                        s += dj * kj[n];
+                    }
+                }
+                self.cont[3 + r][n] = h * s;
+            }
+        }
+        self.dense_ready = true;
+    }
+
+    /// The dense polynomial at `theta`, Horner-like in `θ` and `1 - θ`
+    /// alternately: `y_old + θ(F0 + (1-θ)(F1 + θ(F2 + (1-θ)(F3 + ...))))`.
+    fn interpolate(&self, theta: f64, out: &mut [f64; N]) {
+        let th1 = 1.0 - theta;
+        for n in 0..N {
+            let mut acc = 0.0;
+            for (i, c) in self.cont.iter().enumerate().rev() {
+                acc += c[n];
+                acc *= if i % 2 == 0 { theta } else { th1 };
+            }
+            out[n] = self.y_old[n] + acc;
+        }
+    }
+}
+
+impl<const N: usize> Stepper<N> for Dop853<N> {
+    fn name(&self) -> &'static str {
+        "dop853"
+    }
+
+    /// Starts at `(t, y)`: evaluates `f(t, y)` (discarding FSAL and dense
+    /// data) and, on the very first restart only, estimates the initial step
+    /// with Hairer's `hinit` (one more evaluation). Later restarts keep the
+    /// last step-size estimate.
+    fn restart<F: Rhs<N>>(&mut self, f: &F, t: f64, y: &[f64; N]) {
+        self.t = t;
+        self.t_old = t;
+        self.y = *y;
+        self.y_old = *y;
+        self.eval(f, t, y, 0);
+        self.fsal_pending = false;
+        self.dense_ready = false;
+        self.has_step = false;
+        self.started = true;
+        self.h_used = 0.0;
+        self.ctrl.reset();
+        if self.h_next <= 0.0 {
+            let (y0, f0) = (self.y, self.k[0]);
+            if let Some(h) = hinit(f, t, &y0, &f0, 8, &self.tol, &mut self.stats.rhs_evals) {
+                self.h_next = h;
+            }
+        }
+    }
+
+    fn step<F: Rhs<N>>(&mut self, f: &F, t_stop: f64) -> Result<(), StepError> {
+        if t_stop.is_nan() || t_stop <= self.t {
+            return Err(StepError::StepSizeUnderflow {
+                t: self.t,
+                h: t_stop - self.t,
+            });
+        }
+        if !self.started {
+            let y = self.y;
+            self.restart(f, self.t, &y);
+        }
+        if self.fsal_pending {
+            self.k[0] = self.k[FSAL];
+            self.fsal_pending = false;
+        }
+        // The stages of the last step are being overwritten: until this step
+        // is accepted, dense output only knows the current point (this
+        // matters if the step fails).
+        self.has_step = false;
+        self.t_old = self.t;
+        self.y_old = self.y;
+        self.dense_ready = false;
+        if !all_finite(&self.k[0]) || !all_finite(&self.y) {
+            return Err(StepError::NonFinite { t: self.t });
+        }
+        let mut h = if self.h_next > 0.0 { self.h_next } else { H_FALLBACK };
+        let mut after_reject = false;
+        let mut rejections = 0;
+        let mut y_new = [0.0; N];
+        loop {
+            let h_proposed = h;
+            let h_cap = h.min(self.tol.h_max);
+            let dist = t_stop - self.t;
+            let (h_try, mut clamped) = if h_cap >= dist { (dist, true) } else { (h_cap, false) };
+            if !clamped && (h_try.is_nan() || h_try < h_min(self.t)) {
+                return Err(StepError::StepSizeUnderflow { t: self.t, h: h_try });
+            }
+            let mut t_new = if clamped { t_stop } else { self.t + h_try };
+            if t_new >= t_stop {
+                t_new = t_stop;
+                clamped = true;
+            }
+            let err = self.attempt(f, h_try, t_new, &mut y_new)?;
+            let d = self.ctrl.decide(err, h_try, after_reject);
+            if d.accept {
+                // The FSAL stage is needed only by an accepted step (Hairer
+                // evaluates it after the error test too).
+                self.eval(f, t_new, &y_new, FSAL);
+                if !all_finite(&self.k[FSAL]) {
+                    return Err(StepError::NonFinite { t: self.t });
+                }
+                self.h_next = next_step_size(&d, h_try, clamped, h_proposed, self.tol.h_max);
+                self.t = t_new;
+                self.y = y_new;
+                self.h_used = h_try;
+                self.fsal_pending = true;
+                self.has_step = true;
+                self.stats.accepted += 1;
+                return Ok(());
+            }
+            self.stats.rejected += 1;
+            rejections += 1;
+            if rejections >= MAX_REJECTIONS {
+                return Err(StepError::StepSizeUnderflow { t: self.t, h: d.h_new });
+            }
+            after_reject = true;
+            h = d.h_new;
+        }
+    }
+
+    fn t(&self) -> f64 {
+        self.t
+    }
+
+    fn y(&self) -> &[f64; N] {
+        &self.y
+    }
+
+    fn t_prev(&self) -> f64 {
+        self.t_old
+    }
+
+    /// 7th-order dense output. The first call after a step evaluates the
+    /// three extra stages (counted in `rhs_evals`); later calls on the same
+    /// step are free. Returns the stored end states bit for bit at `t_prev()`
+    /// and `t()` without evaluating anything, and `y()` when no step has been
+    /// taken since the last restart. Outside `[t_prev(), t()]` the polynomial
+    /// extrapolates.
+    fn dense<F: Rhs<N>>(&mut self, f: &F, t: f64, out: &mut [f64; N]) {
+        if !self.has_step || t == self.t {
+            *out = self.y;
+        } else if t == self.t_old {
+            *out = self.y_old;
+        } else {
+            if !self.dense_ready {
+                self.prepare_dense(f);
+            }
+            self.interpolate((t - self.t_old) / self.h_used, out);
+        }
+    }
+
+    fn stats(&self) -> StepStats {
+        self.stats
+    }
+
+    fn step_size(&self) -> f64 {
+        self.h_next
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::dopri5::Dopri5;
+    use super::super::dopri5::tests::{
+        assert_rel_close, cosine, decay, norm_err, observed_orders, osc, osc_exact, run,
+    };
+    use super::*;
+
+    fn tol(rtol: f64, atol: f64) -> Tolerances {
+        Tolerances {
+            rtol,
+            atol,
+            ..Tolerances::default()
+        }
+    }
+
+    #[test]
+    fn decay_cosine_and_oscillator_match_closed_forms() {
+        let tl = tol(1e-8, 1e-10);
+        let mut s = Dop853::new(tl);
+        run(&mut s, &decay, [1.0], 2.0, |t| [(-t).exp()]);
+        let e = norm_err(s.y(), &[(-2.0f64).exp()], &tl);
+        assert!(e < 10.0, "decay: {e}");
+
+        let mut s = Dop853::new(tl);
+        run(&mut s, &cosine, [0.0], 10.0, |t| [t.sin()]);
+        let e = norm_err(s.y(), &[10.0f64.sin()], &tl);
+        assert!(e < 10.0, "cosine: {e}");
+
+        let mut s = Dop853::new(tl);
+        run(&mut s, &osc, [0.0, 1.0], 10.0, osc_exact);
+        let e = norm_err(s.y(), &osc_exact(10.0), &tl);
+        assert!(e < 100.0, "oscillator: {e}");
+    }
+
+    #[test]
+    fn tight_tolerance_reaches_1e8_relative_over_20() {
+        let mut s = Dop853::new(tol(1e-10, 1e-10));
+        let worst = run(&mut s, &osc, [0.0, 1.0], 20.0, osc_exact);
+        assert!(worst < 1e-8, "worst relative error {worst:e}");
+    }
+
+    #[test]
+    fn error_decreases_with_rtol() {
+        let mut loose = Dop853::new(tol(1e-6, 1e-6));
+        let e6 = run(&mut loose, &osc, [0.0, 1.0], 20.0, osc_exact);
+        let mut tight = Dop853::new(tol(1e-10, 1e-10));
+        let e10 = run(&mut tight, &osc, [0.0, 1.0], 20.0, osc_exact);
+        eprintln!("dop853 oscillator 0..20: rtol 1e-6 -> {e6:e}, 1e-10 -> {e10:e}");
+        assert!(e6 / e10 > 1e3, "{e6:e} / {e10:e}");
+    }
+
+    #[test]
+    fn local_and_dense_orders() {
+        let mk = |h| {
+            Dop853::new(Tolerances {
+                rtol: 1.0,
+                atol: 1.0,
+                h_max: h,
+                h_fixed: 0.0,
+            })
+        };
+        let (p_end, p_mid) = observed_orders(mk, 0.8);
+        eprintln!("dop853 local order {p_end:.2}, dense order {p_mid:.2}");
+        // Local error O(h^9) for the 8th-order solution, O(h^8) for the
+        // 7th-order interpolant.
+        assert!((8.4..9.8).contains(&p_end), "end {p_end}");
+        assert!((7.4..8.8).contains(&p_mid), "mid {p_mid}");
+    }
+
+    #[test]
+    fn dense_matches_step_ends_and_closed_form() {
+        let mut s = Dop853::new(tol(1e-6, 1e-6));
+        s.restart(&osc, 0.0, &[0.0, 1.0]);
+        for _ in 0..5 {
+            s.step(&osc, 20.0).unwrap();
+        }
+        let before = s.stats().rhs_evals;
+        let mut out = [0.0; 2];
+        // End points: exact, and no extra stages needed.
+        s.dense(&osc, s.t(), &mut out);
+        assert_eq!(&out, s.y());
+        s.dense(&osc, s.t_prev(), &mut out);
+        assert_eq!(out, s.y_old);
+        assert_eq!(s.stats().rhs_evals, before);
+        // Interior points: the extra stages cost 3 evaluations, once.
+        let (a, b) = (s.t_prev(), s.t());
+        for i in 1..10 {
+            let t = a + (b - a) * f64::from(i) / 10.0;
+            s.dense(&osc, t, &mut out);
+            let e = norm_err(&out, &osc_exact(t), &tol(1e-6, 1e-6));
+            assert!(e < 10.0, "t = {t}: {e}");
+        }
+        assert_eq!(s.stats().rhs_evals, before + 3);
+        // The polynomial itself at θ = 0 and θ = 1.
+        let mut p = [0.0; 2];
+        s.interpolate(0.0, &mut p);
+        assert_rel_close(&p, &s.y_old, 1e-14);
+        s.interpolate(1.0, &mut p);
+        assert_rel_close(&p, &s.y, 1e-14);
+        // A new step invalidates the extra stages.
+        s.step(&osc, 20.0).unwrap();
+        let before = s.stats().rhs_evals;
+        s.dense(&osc, 0.5 * (s.t_prev() + s.t()), &mut out);
+        assert_eq!(s.stats().rhs_evals, before + 3);
+    }
+
+    #[test]
+    fn lands_exactly_on_t_stop() {
+        let mut s = Dop853::new(tol(1e-8, 1e-8));
+        s.restart(&osc, 0.0, &[0.0, 1.0]);
+        let stops = [0.1, 0.1 + 1e-13, 1.0 / 3.0, 2.7, 2.7 + f64::EPSILON * 4.0];
+        for &ts in &stops {
+            while s.t() < ts {
+                s.step(&osc, ts).unwrap();
+            }
+            assert_eq!(s.t(), ts);
+        }
+        assert!(matches!(
+            s.step(&osc, s.t() - 1.0),
+            Err(StepError::StepSizeUnderflow { .. })
+        ));
+    }
+
+    #[test]
+    fn restart_keeps_step_size_and_discards_fsal() {
+        let mut s = Dop853::new(tol(1e-8, 1e-8));
+        s.restart(&osc, 0.0, &[0.0, 1.0]);
+        assert_eq!(s.stats().rhs_evals, 2);
+        s.step(&osc, 1.0).unwrap();
+        let h = s.step_size();
+        let before = s.stats().rhs_evals;
+        let g = |_t: f64, _y: &[f64; 2], d: &mut [f64; 2]| *d = [1.0, 2.0];
+        s.restart(&g, s.t(), &[5.0, 5.0]);
+        assert_eq!(s.stats().rhs_evals, before + 1, "no second hinit");
+        assert_eq!(s.step_size(), h);
+        let t0 = s.t();
+        s.step(&g, t0 + 0.5).unwrap();
+        let dt = s.t() - t0;
+        assert!((s.y()[0] - (5.0 + dt)).abs() < 1e-13);
+        assert!((s.y()[1] - (5.0 + 2.0 * dt)).abs() < 1e-13);
+    }
+
+    #[test]
+    fn nan_rhs_is_reported() {
+        let bad = |t: f64, y: &[f64; 1], d: &mut [f64; 1]| {
+            d[0] = if t > 0.5 { f64::NAN } else { -y[0] };
+        };
+        let mut s = Dop853::new(Tolerances::default());
+        s.restart(&bad, 0.0, &[1.0]);
+        let r = loop {
+            if let Err(e) = s.step(&bad, 10.0) {
+                break e;
+            }
+        };
+        assert!(matches!(r, StepError::NonFinite { .. }), "{r:?}");
+        // A failed step leaves a valid, degenerate dense interval at t.
+        assert_eq!(s.t_prev(), s.t());
+        let mut out = [0.0];
+        s.dense(&bad, s.t() - 0.01, &mut out);
+        assert_eq!(&out, s.y());
+    }
+
+    #[test]
+    fn fewer_evaluations_than_dopri5_at_tight_tolerance() {
+        let tl = tol(1e-10, 1e-10);
+        let mut a = Dop853::new(tl);
+        run(&mut a, &osc, [0.0, 1.0], 20.0, osc_exact);
+        let mut b = Dopri5::new(tl);
+        run(&mut b, &osc, [0.0, 1.0], 20.0, osc_exact);
+        let (na, nb) = (a.stats().rhs_evals, b.stats().rhs_evals);
+        eprintln!("rhs evaluations over 0..20 at 1e-10: dop853 {na}, dopri5 {nb}");
+        assert!(na < nb, "dop853 {na} vs dopri5 {nb}");
+    }
+
+    #[test]
+    fn mirrored_state_gives_identical_steps_and_dense() {
+        let f = |t: f64, y: &[f64; 2], d: &mut [f64; 2]| {
+            d[0] = y[1];
+            d[1] = -y[0].sin() - 0.1 * y[1] + 0.5 * t.cos();
+        };
+        let fm = |t: f64, y: &[f64; 2], d: &mut [f64; 2]| {
+            d[0] = y[1];
+            d[1] = -y[0].sin() - 0.1 * y[1] - 0.5 * t.cos();
+        };
+        let mut a = Dop853::new(Tolerances::default());
+        let mut b = Dop853::new(Tolerances::default());
+        a.restart(&f, 0.0, &[0.3, 0.0]);
+        b.restart(&fm, 0.0, &[-0.3, -0.0]);
+        let (mut ya, mut yb) = ([0.0; 2], [0.0; 2]);
+        for _ in 0..50 {
+            a.step(&f, 30.0).unwrap();
+            b.step(&fm, 30.0).unwrap();
+            assert_eq!(a.t(), b.t());
+            assert_eq!(a.y()[0], -b.y()[0]);
+            let tm = 0.3 * a.t_prev() + 0.7 * a.t();
+            a.dense(&f, tm, &mut ya);
+            b.dense(&fm, tm, &mut yb);
+            assert_eq!(ya[0], -yb[0]);
+            assert_eq!(ya[1], -yb[1]);
+        }
+    }
+
+    #[test]
+    fn clamped_step_keeps_estimate() {
+        let mut s = Dop853::new(tol(1e-8, 1e-8));
+        s.restart(&osc, 0.0, &[0.0, 1.0]);
+        for _ in 0..5 {
+            s.step(&osc, 100.0).unwrap();
+        }
+        let h = s.step_size();
+        let t = s.t();
+        s.step(&osc, t + h * 1e-3).unwrap();
+        assert_eq!(s.step_size(), h);
+    }
+
+    #[test]
+    fn blow_up_is_an_error_not_a_hang() {
+        // y' = y^2, y(0) = 1: y = 1 / (1 - t), singular at t = 1.
+        let f = |_t: f64, y: &[f64; 1], d: &mut [f64; 1]| d[0] = y[0] * y[0];
+        let mut s = Dop853::new(Tolerances::default());
+        s.restart(&f, 0.0, &[1.0]);
+        let r = loop {
+            if let Err(e) = s.step(&f, 2.0) {
+                break e;
+            }
+        };
+        assert!(s.t() < 1.1, "{}", s.t());
+        assert!(
+            matches!(r, StepError::StepSizeUnderflow { .. } | StepError::NonFinite { .. }),
+            "{r:?}"
+        );
+    }
+}

@@ -1,0 +1,706 @@
+//! The hybrid (event-driven) driver: step, detect, locate, reset, restart.
+//!
+//! This is the role of scipy's `solve_ivp` event handling and SciML's
+//! continuous callbacks, written for piecewise-smooth systems with many modes.
+//!
+//! Contract with a [`HybridSystem`]:
+//! - Each mode has up to [`MAX_GUARDS`] guard functions `g_i(t, y)`. The mode's
+//!   domain is `{ g_i > 0 for all i }`; an event is a crossing of one guard
+//!   from `> 0` to `<= 0`. Direction is therefore built into the sign of `g`.
+//! - After every accepted step the driver evaluates every guard at
+//!   [`SUBINTERVALS`]` + 1` points of the dense output, looks for sign changes,
+//!   and on sub-intervals where a guard stays positive but dips (the parabola
+//!   through three samples has an interior minimum well below the samples)
+//!   it minimises the guard on the dense output, so a shallow double crossing
+//!   inside one step (grazing) is not missed.
+//! - A guard that is `<= 0` at the start of a segment (on the surface just
+//!   crossed, e.g. `Θ = 0` right after an impact) is *unarmed*: it cannot fire
+//!   until it has been positive. If it starts at exactly `0` and goes negative
+//!   within the first sub-interval, its maximum there is searched: a positive
+//!   bump followed by a return is an event; no bump is not. This is the
+//!   "no re-fire at the root just handled" rule (SciML `repeat_nudge`)
+//!   without an arbitrary time nudge.
+//! - The earliest root is solved by Brent's method on the dense output to
+//!   `max(4 ε |t|, 1e-15)`; the state there goes to [`HybridSystem::jump`],
+//!   which returns the new mode and state (possibly at a later time, for
+//!   impact accumulation); the stepper is then restarted (FSAL invalidated).
+//! - *Observer* guards are located the same way but cause no jump: the system
+//!   is told the time and state (used for exact extrema of `|Θ|`).
+//! - Section (strobe) times are step stops: the step lands on them bit-exactly,
+//!   so section points are step-end values, never interpolated across a jump.
+//! - Every loop is bounded by [`Limits`]; exceeding a bound is a typed error.
+//!
+//! For the fixed-step `ralston` method (the paper's), events are located the
+//! paper's way instead: a guard sign change at the end of a step undoes the
+//! step and retries with the step divided by 10 until `|g| < 1e-6`.
+
+use super::root::{brent_min, brent_root};
+use super::stepper::{StepError, Stepper};
+
+/// Most guards a mode may have.
+pub const MAX_GUARDS: usize = 8;
+
+/// Sub-intervals per step at which guards are sampled on the dense output.
+/// Eight keeps a DOP853 step's interior sample spacing well below the
+/// curvature scale of the guards while costing only 7 dense evaluations.
+pub const SUBINTERVALS: usize = 8;
+
+/// Guard tolerance of the paper's step-cutting event location (`|Θ| < 1e-6`).
+pub const PAPER_GUARD_TOL: f64 = 1e-6;
+
+/// Smallest step the paper's step cutting may reach before it accepts the
+/// crossing anyway.
+const PAPER_MIN_STEP: f64 = 1e-13;
+
+/// What a system does at an event.
+#[derive(Clone, Copy, Debug)]
+pub struct Jump<M, R, const N: usize> {
+    /// Mode after the event.
+    pub mode: M,
+    /// Time at which integration resumes (`>=` the event time; later only
+    /// when an accumulation of impacts was summed in closed form).
+    pub t: f64,
+    /// State after the reset map.
+    pub y: [f64; N],
+    /// Records the system wants reported for this event, in time order
+    /// (an impact followed by the accumulation point it starts).
+    pub records: [Option<R>; 2],
+}
+
+/// A piecewise-smooth system with modes, guards and reset maps.
+pub trait HybridSystem<const N: usize> {
+    /// Discrete mode.
+    type Mode: Copy + PartialEq + std::fmt::Debug;
+    /// Event record handed to the [`Observer`].
+    type Record;
+    /// Error a reset map may return.
+    type Error: From<DriverError>;
+
+    /// Vector field of `mode`.
+    fn rhs(&self, mode: Self::Mode, t: f64, y: &[f64; N], dydt: &mut [f64; N]);
+
+    /// Writes the guard values of `mode` into `g` and returns how many there
+    /// are (at most [`MAX_GUARDS`]).
+    fn guards(&self, mode: Self::Mode, t: f64, y: &[f64; N], g: &mut [f64; MAX_GUARDS]) -> usize;
+
+    /// Whether guard `index` of `mode` only observes (no jump).
+    fn is_observer(&self, mode: Self::Mode, index: usize) -> bool;
+
+    /// Called at the root of an observer guard.
+    fn observe(&mut self, mode: Self::Mode, index: usize, t: f64, y: &[f64; N]);
+
+    /// The reset map for guard `index` of `mode`, crossed at `(t, y)`.
+    fn jump(
+        &mut self,
+        mode: Self::Mode,
+        index: usize,
+        t: f64,
+        y: &[f64; N],
+    ) -> Result<Jump<Self::Mode, Self::Record, N>, Self::Error>;
+
+    /// Whether `mode` ends the run.
+    fn is_terminal(&self, mode: Self::Mode) -> bool;
+
+    /// The first time after `t` at which the vector field has a kink (a
+    /// recorded ground motion's samples, a pulse's end). Steps stop there.
+    fn next_breakpoint(&self, t: f64) -> Option<f64>;
+}
+
+/// Receives what the driver produces.
+pub trait Observer<M, R, const N: usize> {
+    /// A state on the regular output grid.
+    fn sample(&mut self, t: f64, mode: M, y: &[f64; N]);
+    /// A point of the stroboscopic section, `k` counting from 0 at `t = 0`.
+    fn section(&mut self, k: u64, t: f64, mode: M, y: &[f64; N]);
+    /// An event, with the mode before it and the state just before the jump.
+    fn event(&mut self, t: f64, before: M, y_before: &[f64; N], record: R);
+}
+
+/// Loop bounds. Exceeding one is an error, never a hang.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct Limits {
+    /// Most accepted steps in one run. Default 10⁹: a 10⁶ τ run at the
+    /// paper's fixed step 0.004 needs 2.5·10⁸.
+    pub max_steps: u64,
+    /// Most events in one run. Default 10⁸: a chaotic run makes about one
+    /// impact per unit τ, so 10⁸ is far beyond any run this tool makes.
+    pub max_events: u64,
+}
+
+impl Default for Limits {
+    fn default() -> Self {
+        Self {
+            max_steps: 1_000_000_000,
+            max_events: 100_000_000,
+        }
+    }
+}
+
+/// Errors of the driver itself.
+#[derive(Clone, Copy, Debug, PartialEq, thiserror::Error)]
+pub enum DriverError {
+    /// The stepper failed.
+    #[error(transparent)]
+    Step(#[from] StepError),
+    /// More steps than [`Limits::max_steps`].
+    #[error("more than {limit} steps by t = {t}")]
+    TooManySteps {
+        /// Time reached.
+        t: f64,
+        /// The limit.
+        limit: u64,
+    },
+    /// More events than [`Limits::max_events`].
+    #[error("more than {limit} events by t = {t}")]
+    TooManyEvents {
+        /// Time reached.
+        t: f64,
+        /// The limit.
+        limit: u64,
+    },
+    /// A reset map returned a time before the event.
+    #[error("reset map moved time backwards at t = {t}")]
+    TimeReversal {
+        /// Event time.
+        t: f64,
+    },
+}
+
+/// Regular output and stroboscopic section requested from the driver.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Outputs {
+    /// Spacing of regular samples; `None` for none (Poincaré-only runs keep
+    /// no history).
+    pub sample_dt: Option<f64>,
+    /// Period of the stroboscopic section; `None` for none.
+    pub section_period: Option<f64>,
+}
+
+/// How a call to [`Driver::advance`] ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Advance {
+    /// Reached the requested time.
+    Reached,
+    /// Entered a terminal mode.
+    Terminal,
+}
+
+/// The event-driven integrator: owns a stepper and a system.
+pub struct Driver<S, Sys, const N: usize>
+where
+    Sys: HybridSystem<N>,
+{
+    stepper: S,
+    system: Sys,
+    mode: Sys::Mode,
+    limits: Limits,
+    outputs: Outputs,
+    steps: u64,
+    events: u64,
+    /// Index of the next regular sample (`t = k · sample_dt`).
+    next_sample: u64,
+    /// Index of the next section point (`t = k · period`).
+    next_section: u64,
+    /// Guard values at the start of the current segment.
+    g_start: [f64; MAX_GUARDS],
+    n_guards: usize,
+    /// Whether each guard has been positive since the last restart.
+    armed: [bool; MAX_GUARDS],
+}
+
+impl<S, Sys, const N: usize> Driver<S, Sys, N>
+where
+    S: Stepper<N>,
+    Sys: HybridSystem<N>,
+{
+    /// Starts at `(t0, y0)` in `mode`. Section and sample indices start at the
+    /// first grid points `>= t0`.
+    pub fn new(
+        mut stepper: S,
+        system: Sys,
+        mode: Sys::Mode,
+        t0: f64,
+        y0: [f64; N],
+        limits: Limits,
+        outputs: Outputs,
+    ) -> Self {
+        {
+            let f = |t: f64, y: &[f64; N], dy: &mut [f64; N]| system.rhs(mode, t, y, dy);
+            stepper.restart(&f, t0, &y0);
+        }
+        let first = |dt: Option<f64>| match dt {
+            Some(dt) if dt > 0.0 => (t0 / dt).ceil().max(0.0) as u64,
+            _ => 0,
+        };
+        let mut d = Self {
+            stepper,
+            system,
+            mode,
+            limits,
+            outputs,
+            steps: 0,
+            events: 0,
+            next_sample: first(outputs.sample_dt),
+            next_section: first(outputs.section_period),
+            g_start: [0.0; MAX_GUARDS],
+            n_guards: 0,
+            armed: [false; MAX_GUARDS],
+        };
+        d.refresh_guards();
+        d
+    }
+
+    /// Current time.
+    pub fn t(&self) -> f64 {
+        self.stepper.t()
+    }
+    /// Current state.
+    pub fn y(&self) -> &[f64; N] {
+        self.stepper.y()
+    }
+    /// Current mode.
+    pub fn mode(&self) -> Sys::Mode {
+        self.mode
+    }
+    /// The system.
+    pub fn system(&self) -> &Sys {
+        &self.system
+    }
+    /// The system, mutably (e.g. to change a parameter between calls).
+    pub fn system_mut(&mut self) -> &mut Sys {
+        &mut self.system
+    }
+    /// The stepper (for its statistics).
+    pub fn stepper(&self) -> &S {
+        &self.stepper
+    }
+    /// Accepted steps so far, as counted by the driver.
+    pub fn steps(&self) -> u64 {
+        self.steps
+    }
+    /// Events so far.
+    pub fn events(&self) -> u64 {
+        self.events
+    }
+
+    /// Restarts from a new state and mode (e.g. after the user edits it).
+    pub fn reinit(&mut self, mode: Sys::Mode, t: f64, y: [f64; N]) {
+        self.mode = mode;
+        let sys = &self.system;
+        let f = |tt: f64, yy: &[f64; N], dy: &mut [f64; N]| sys.rhs(mode, tt, yy, dy);
+        self.stepper.restart(&f, t, &y);
+        self.refresh_guards();
+    }
+
+    fn refresh_guards(&mut self) {
+        let (t, y) = (self.stepper.t(), *self.stepper.y());
+        self.n_guards = self.system.guards(self.mode, t, &y, &mut self.g_start);
+        for i in 0..MAX_GUARDS {
+            self.armed[i] = i < self.n_guards && self.g_start[i] > 0.0;
+        }
+    }
+
+    /// Integrates until `t_end`, a terminal mode, or an error, reporting to
+    /// `obs`. Can be called again with a later `t_end` to continue.
+    pub fn advance<O>(&mut self, t_end: f64, obs: &mut O) -> Result<Advance, Sys::Error>
+    where
+        O: Observer<Sys::Mode, Sys::Record, N>,
+    {
+        self.emit_current(obs);
+        loop {
+            if self.system.is_terminal(self.mode) {
+                return Ok(Advance::Terminal);
+            }
+            let t = self.stepper.t();
+            if t >= t_end {
+                return Ok(Advance::Reached);
+            }
+            if self.steps >= self.limits.max_steps {
+                return Err(DriverError::TooManySteps {
+                    t,
+                    limit: self.limits.max_steps,
+                }
+                .into());
+            }
+            let t_stop = self.next_stop(t, t_end);
+            if self.stepper.locates_by_root() {
+                self.root_step(t_stop, obs)?;
+            } else {
+                self.cutting_step(t_stop, obs)?;
+            }
+        }
+    }
+
+    /// The next time a step must land on: the end, a section time or a kink.
+    fn next_stop(&self, t: f64, t_end: f64) -> f64 {
+        let mut stop = t_end;
+        if let Some(p) = self.outputs.section_period {
+            let ts = self.next_section as f64 * p;
+            if ts > t && ts < stop {
+                stop = ts;
+            }
+        }
+        if let Some(tb) = self.system.next_breakpoint(t)
+            && tb > t
+            && tb < stop
+        {
+            stop = tb;
+        }
+        stop
+    }
+
+    /// One step of an adaptive method, with events located by root finding.
+    fn root_step<O>(&mut self, t_stop: f64, obs: &mut O) -> Result<(), Sys::Error>
+    where
+        O: Observer<Sys::Mode, Sys::Record, N>,
+    {
+        let mode = self.mode;
+        let n = self.n_guards;
+        let mut armed = self.armed;
+        let mut observed = [(0.0, [0.0; N]); MAX_GUARDS];
+        let mut is_observed = [false; MAX_GUARDS];
+        let g_end;
+        let best = {
+            let sys = &self.system;
+            let stepper = &mut self.stepper;
+            let f = |tt: f64, yy: &[f64; N], dy: &mut [f64; N]| sys.rhs(mode, tt, yy, dy);
+            stepper.step(&f, t_stop).map_err(DriverError::from)?;
+            self.steps += 1;
+
+            let t0 = stepper.t_prev();
+            let t1 = stepper.t();
+            // Guard samples on the dense output.
+            let mut ts = [0.0; SUBINTERVALS + 1];
+            let mut gs = [[0.0; MAX_GUARDS]; SUBINTERVALS + 1];
+            ts[0] = t0;
+            gs[0] = self.g_start;
+            let mut yj = [0.0; N];
+            for j in 1..=SUBINTERVALS {
+                if j == SUBINTERVALS {
+                    ts[j] = t1;
+                    yj = *stepper.y();
+                } else {
+                    ts[j] = t0 + (t1 - t0) * (j as f64 / SUBINTERVALS as f64);
+                    stepper.dense(&f, ts[j], &mut yj);
+                }
+                sys.guards(mode, ts[j], &yj, &mut gs[j]);
+            }
+            g_end = gs[SUBINTERVALS];
+
+            // Earliest bracket per guard, then its root.
+            let mut best: Option<(f64, usize)> = None;
+            let mut roots = [None; MAX_GUARDS];
+            for i in 0..n {
+                let mut value = |tt: f64| {
+                    let mut yy = [0.0; N];
+                    let mut g = [0.0; MAX_GUARDS];
+                    stepper.dense(&f, tt, &mut yy);
+                    sys.guards(mode, tt, &yy, &mut g);
+                    g[i]
+                };
+                let Some((a, b)) = bracket(i, &ts, &gs, &mut armed[i], &mut value) else {
+                    continue;
+                };
+                let ga = value(a);
+                let gb = value(b);
+                let root = if ga > 0.0 && gb <= 0.0 {
+                    let xtol = (4.0 * f64::EPSILON * a.abs().max(b.abs())).max(1e-15);
+                    match brent_root(&mut value, a, b, ga, gb, xtol, 200) {
+                        Ok((r, _)) => r,
+                        Err(_) => b,
+                    }
+                } else {
+                    b
+                };
+                roots[i] = Some(root);
+                if !sys.is_observer(mode, i) && best.is_none_or(|(tb, _)| root < tb) {
+                    best = Some((root, i));
+                }
+            }
+            // Observers located before the event (or anywhere, without one).
+            let t_cut = best.map_or(t1, |(tb, _)| tb);
+            for i in 0..n {
+                if let Some(to) = roots[i]
+                    && sys.is_observer(mode, i)
+                    && to <= t_cut
+                {
+                    stepper.dense(&f, to, &mut observed[i].1);
+                    observed[i].0 = to;
+                    is_observed[i] = true;
+                }
+            }
+            best
+        };
+        for i in 0..n {
+            if is_observed[i] {
+                let (to, yo) = observed[i];
+                self.system.observe(mode, i, to, &yo);
+            }
+        }
+
+        match best {
+            None => {
+                let t1 = self.stepper.t();
+                self.armed = armed;
+                self.emit_samples_dense(t1, obs);
+                self.g_start = g_end;
+                for i in 0..n {
+                    if self.g_start[i] > 0.0 {
+                        self.armed[i] = true;
+                    } else if self.system.is_observer(mode, i) {
+                        // An observer re-arms only once it is positive again.
+                        self.armed[i] = false;
+                    }
+                }
+                self.emit_section_if_hit(t1, obs);
+                Ok(())
+            }
+            Some((t_ev, i)) => {
+                let mut y_ev = [0.0; N];
+                {
+                    let sys = &self.system;
+                    let f = |tt: f64, yy: &[f64; N], dy: &mut [f64; N]| sys.rhs(mode, tt, yy, dy);
+                    self.stepper.dense(&f, t_ev, &mut y_ev);
+                }
+                self.emit_samples_dense(t_ev, obs);
+                self.apply_jump(i, t_ev, y_ev, obs)
+            }
+        }
+    }
+
+    /// One step of the paper's fixed-step method, with events located by
+    /// undoing the step and retrying with a step ten times smaller.
+    fn cutting_step<O>(&mut self, t_stop: f64, obs: &mut O) -> Result<(), Sys::Error>
+    where
+        O: Observer<Sys::Mode, Sys::Record, N>,
+    {
+        let mode = self.mode;
+        let n = self.n_guards;
+        let mut g1 = [0.0; MAX_GUARDS];
+        loop {
+            let sys = &self.system;
+            let f = |tt: f64, yy: &[f64; N], dy: &mut [f64; N]| sys.rhs(mode, tt, yy, dy);
+            self.stepper.step(&f, t_stop).map_err(DriverError::from)?;
+            self.steps += 1;
+            let t1 = self.stepper.t();
+            let y1 = *self.stepper.y();
+            sys.guards(mode, t1, &y1, &mut g1);
+            let crossing = (0..n).find(|&i| self.armed[i] && !sys.is_observer(mode, i) && g1[i] <= 0.0);
+            match crossing {
+                Some(i) if g1[i].abs() >= PAPER_GUARD_TOL && self.stepper.step_size() > PAPER_MIN_STEP => {
+                    if !self.stepper.undo_and_shrink(10.0) {
+                        // A stepper that cannot undo: accept the crossing here.
+                        return self.finish_cutting(i, t1, y1, obs);
+                    }
+                }
+                Some(i) => return self.finish_cutting(i, t1, y1, obs),
+                None => {
+                    for (i, &gi) in g1.iter().enumerate().take(n) {
+                        if self.system.is_observer(mode, i) && self.armed[i] && gi <= 0.0 {
+                            self.system.observe(mode, i, t1, &y1);
+                        }
+                        if gi > 0.0 {
+                            self.armed[i] = true;
+                        } else if self.system.is_observer(mode, i) {
+                            self.armed[i] = false;
+                        }
+                    }
+                    self.g_start = g1;
+                    self.emit_samples_dense(t1, obs);
+                    self.emit_section_if_hit(t1, obs);
+                    return Ok(());
+                }
+            }
+        }
+    }
+
+    fn finish_cutting<O>(&mut self, i: usize, t1: f64, y1: [f64; N], obs: &mut O) -> Result<(), Sys::Error>
+    where
+        O: Observer<Sys::Mode, Sys::Record, N>,
+    {
+        self.emit_samples_dense(t1, obs);
+        self.stepper.reset_step_size();
+        self.apply_jump(i, t1, y1, obs)
+    }
+
+    fn apply_jump<O>(&mut self, i: usize, t_ev: f64, y_ev: [f64; N], obs: &mut O) -> Result<(), Sys::Error>
+    where
+        O: Observer<Sys::Mode, Sys::Record, N>,
+    {
+        self.events += 1;
+        if self.events > self.limits.max_events {
+            return Err(DriverError::TooManyEvents {
+                t: t_ev,
+                limit: self.limits.max_events,
+            }
+            .into());
+        }
+        let before = self.mode;
+        let jump = self.system.jump(before, i, t_ev, &y_ev)?;
+        if jump.t < t_ev {
+            return Err(DriverError::TimeReversal { t: t_ev }.into());
+        }
+        for rec in jump.records.into_iter().flatten() {
+            obs.event(t_ev, before, &y_ev, rec);
+        }
+        self.mode = jump.mode;
+        // Outputs inside a closed-form skip (impact accumulation) see the
+        // state the block is put in.
+        if jump.t > t_ev {
+            self.emit_constant(t_ev, jump.t, &jump.y, obs);
+        }
+        let mode = self.mode;
+        let sys = &self.system;
+        let f = |tt: f64, yy: &[f64; N], dy: &mut [f64; N]| sys.rhs(mode, tt, yy, dy);
+        self.stepper.restart(&f, jump.t, &jump.y);
+        self.refresh_guards();
+        // A section time that coincides with the event (or was skipped over)
+        // reports the post-jump state.
+        self.emit_section_if_hit(jump.t, obs);
+        Ok(())
+    }
+
+    /// Regular samples up to and including `t_to`, from the last step's
+    /// dense output.
+    fn emit_samples_dense<O>(&mut self, t_to: f64, obs: &mut O)
+    where
+        O: Observer<Sys::Mode, Sys::Record, N>,
+    {
+        let Some(dt) = self.outputs.sample_dt else {
+            return;
+        };
+        let mode = self.mode;
+        let sys = &self.system;
+        let f = |tt: f64, yy: &[f64; N], dy: &mut [f64; N]| sys.rhs(mode, tt, yy, dy);
+        let t_end = self.stepper.t();
+        let mut y = [0.0; N];
+        loop {
+            let ts = self.next_sample as f64 * dt;
+            if ts > t_to {
+                break;
+            }
+            if ts == t_end {
+                y = *self.stepper.y();
+            } else {
+                self.stepper.dense(&f, ts, &mut y);
+            }
+            obs.sample(ts, mode, &y);
+            self.next_sample += 1;
+        }
+    }
+
+    /// Outputs due exactly at the current time (the start of a run).
+    fn emit_current<O>(&mut self, obs: &mut O)
+    where
+        O: Observer<Sys::Mode, Sys::Record, N>,
+    {
+        let t = self.stepper.t();
+        let y = *self.stepper.y();
+        if let Some(dt) = self.outputs.sample_dt
+            && self.next_sample as f64 * dt == t
+        {
+            obs.sample(t, self.mode, &y);
+            self.next_sample += 1;
+        }
+        self.emit_section_if_hit(t, obs);
+    }
+
+    /// Samples and section points in `(t_from, t_to)` of a constant state.
+    fn emit_constant<O>(&mut self, _t_from: f64, t_to: f64, y: &[f64; N], obs: &mut O)
+    where
+        O: Observer<Sys::Mode, Sys::Record, N>,
+    {
+        if let Some(dt) = self.outputs.sample_dt {
+            while (self.next_sample as f64 * dt) < t_to {
+                obs.sample(self.next_sample as f64 * dt, self.mode, y);
+                self.next_sample += 1;
+            }
+        }
+        if let Some(p) = self.outputs.section_period {
+            while (self.next_section as f64 * p) < t_to {
+                obs.section(self.next_section, self.next_section as f64 * p, self.mode, y);
+                self.next_section += 1;
+            }
+        }
+    }
+
+    /// Reports the section point if the current time is the next section time.
+    fn emit_section_if_hit<O>(&mut self, t: f64, obs: &mut O)
+    where
+        O: Observer<Sys::Mode, Sys::Record, N>,
+    {
+        let Some(p) = self.outputs.section_period else {
+            return;
+        };
+        let ts = self.next_section as f64 * p;
+        if ts == t {
+            let y = *self.stepper.y();
+            obs.section(self.next_section, t, self.mode, &y);
+            self.next_section += 1;
+        } else if ts < t {
+            // Only reachable if a jump moved time past a section time; those
+            // points were emitted by `emit_constant`.
+            while (self.next_section as f64 * p) < t {
+                self.next_section += 1;
+            }
+        }
+    }
+}
+
+/// The bracket `[a, b]` of the first crossing of guard `i` in one step, if
+/// any, including dips between samples. `value` evaluates guard `i` on the
+/// step's dense output.
+fn bracket<V: FnMut(f64) -> f64>(
+    i: usize,
+    ts: &[f64; SUBINTERVALS + 1],
+    gs: &[[f64; MAX_GUARDS]; SUBINTERVALS + 1],
+    armed: &mut bool,
+    value: &mut V,
+) -> Option<(f64, f64)> {
+    for j in 0..SUBINTERVALS {
+        let (ga, gb) = (gs[j][i], gs[j + 1][i]);
+        if !*armed {
+            if ga > 0.0 {
+                *armed = true;
+            } else {
+                if gb > 0.0 {
+                    *armed = true;
+                    continue;
+                }
+                // Starts on the surface and is behind it at the next sample:
+                // a bump above zero in between is a real departure and return
+                // (grazing right after a reset). No bump is no event.
+                if ga == 0.0 {
+                    let (tm, gm) = brent_min(|tt| -value(tt), ts[j], ts[j + 1], 0.0, 100);
+                    if -gm > 0.0 && tm < ts[j + 1] {
+                        return Some((tm, ts[j + 1]));
+                    }
+                }
+                continue;
+            }
+        }
+        if ga > 0.0 && gb <= 0.0 {
+            return Some((ts[j], ts[j + 1]));
+        }
+        // Dip check on the parabola through samples j, j+1, j+2.
+        if j + 2 <= SUBINTERVALS {
+            let gc = gs[j + 2][i];
+            if ga > 0.0 && gb > 0.0 && gc > 0.0 {
+                let curv = ga - 2.0 * gb + gc;
+                if curv > 0.0 {
+                    // Vertex offset from sample j+1, in sample spacings.
+                    let u = 0.5 * (ga - gc) / curv;
+                    let gmin = gb - 0.125 * (ga - gc) * (ga - gc) / curv;
+                    let lowest = ga.min(gb).min(gc);
+                    if u.abs() < 1.0 && gmin < 0.1 * lowest {
+                        let (tm, gm) = brent_min(&mut *value, ts[j], ts[j + 2], 0.0, 100);
+                        if gm <= 0.0 {
+                            return Some((ts[j], tm));
+                        }
+                    }
+                }
+            }
+        }
+    }
+    None
+}

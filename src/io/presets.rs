@@ -1,0 +1,34 @@
+//! The presets shipped in `assets/presets/`, compiled into the binary so
+//! `--preset NAME` works from any directory.
+
+/// `(name, TOML text)` of every preset.
+pub const PRESETS: &[(&str, &str)] = &[
+    ("default", include_str!("../../assets/presets/default.toml")),
+    ("fig3", include_str!("../../assets/presets/fig3.toml")),
+    ("fig4", include_str!("../../assets/presets/fig4.toml")),
+    ("fig5", include_str!("../../assets/presets/fig5.toml")),
+    ("fig6", include_str!("../../assets/presets/fig6.toml")),
+    ("fig7", include_str!("../../assets/presets/fig7.toml")),
+    ("fig8", include_str!("../../assets/presets/fig8.toml")),
+    ("fig9", include_str!("../../assets/presets/fig9.toml")),
+    ("fig10", include_str!("../../assets/presets/fig10.toml")),
+    ("fig11", include_str!("../../assets/presets/fig11.toml")),
+    ("fig12", include_str!("../../assets/presets/fig12.toml")),
+    ("fig13", include_str!("../../assets/presets/fig13.toml")),
+    ("fig14", include_str!("../../assets/presets/fig14.toml")),
+    ("fig15", include_str!("../../assets/presets/fig15.toml")),
+    ("fig16", include_str!("../../assets/presets/fig16.toml")),
+    ("fig17", include_str!("../../assets/presets/fig17.toml")),
+    ("fig18", include_str!("../../assets/presets/fig18.toml")),
+    ("fig19", include_str!("../../assets/presets/fig19.toml")),
+];
+
+/// The TOML text of preset `name`.
+pub fn get(name: &str) -> Option<&'static str> {
+    PRESETS.iter().find(|(n, _)| *n == name).map(|(_, t)| *t)
+}
+
+/// All preset names.
+pub fn names() -> Vec<&'static str> {
+    PRESETS.iter().map(|(n, _)| *n).collect()
+}

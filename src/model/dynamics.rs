@@ -1,0 +1,185 @@
+//! Equations of motion of each contact mode, in normalised variables.
+//!
+//! Derivations: `docs/model.md` §3–5. Variables: τ = p t, Θ = θ/ψ,
+//! X = x_G/R, w = ψΘ' = θ̇/p. Forcing per unit weight: `a = a_h/g`,
+//! `b = 1 + a_v/g`. Contact forces per unit weight: `f = F/(mg)` (horizontal,
+//! on the block), `n = N/(mg)`.
+//!
+//! Contract: every function is written as `sign × (mirror-symmetric terms)`,
+//! so that mirroring the problem (Θ, X, a_h → −Θ, −X, −a_h, pivot and slip
+//! flipped) negates the odd outputs and keeps the even ones **bit for bit**.
+//! The functions use `u = sΘ` (not `|Θ|`) so they stay smooth slightly past
+//! Θ = 0, where the integrator's stages and the root finder evaluate them.
+
+use super::geometry::{GAMMA, Geometry};
+use super::mode::Sign;
+
+/// Base acceleration at one instant, per unit g.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Forcing {
+    /// a_h/g.
+    pub a: f64,
+    /// a_v/g (upward positive).
+    pub av: f64,
+}
+
+impl Forcing {
+    /// b = 1 + a_v/g: effective gravity per unit g.
+    #[inline]
+    pub fn b(&self) -> f64 {
+        1.0 + self.av
+    }
+}
+
+/// Accelerations and contact forces of one mode at one state.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Accel {
+    /// Θ''.
+    pub theta_ddot: f64,
+    /// X''.
+    pub x_ddot: f64,
+    /// Normal force per unit weight, n = N/(mg).
+    pub normal: f64,
+    /// Horizontal contact force on the block per unit weight, f = F/(mg).
+    pub friction: f64,
+}
+
+/// Angle quantities of a tilted block: φ = ψ(1 − sΘ) and its sine/cosine.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Tilt {
+    /// sin φ.
+    pub sn: f64,
+    /// cos φ.
+    pub c: f64,
+}
+
+impl Tilt {
+    /// Tilt about pivot `s` at angle `theta` (Θ).
+    #[inline]
+    pub fn new(geo: &Geometry, s: Sign, theta: f64) -> Self {
+        let phi = geo.psi * (1.0 - s.value() * theta);
+        let (sn, c) = phi.sin_cos();
+        Self { sn, c }
+    }
+}
+
+/// Rocking about a stuck corner (not printed in the paper; docs/model.md §3.1):
+/// ψΘ'' = −(s b sin φ + a cos φ).
+#[inline]
+pub fn rock(geo: &Geometry, pivot: Sign, theta: f64, theta_dot: f64, fo: Forcing) -> Accel {
+    rock_at(geo, pivot, Tilt::new(geo, pivot, theta), theta_dot, fo)
+}
+
+/// [`rock`] with the tilt already computed.
+#[inline]
+pub fn rock_at(geo: &Geometry, pivot: Sign, tilt: Tilt, theta_dot: f64, fo: Forcing) -> Accel {
+    let s = pivot.value();
+    let Tilt { sn, c } = tilt;
+    let b = fo.b();
+    let w = geo.psi * theta_dot;
+    let wdd = -(s * b * sn + fo.a * c);
+    let ww = w * w;
+    Accel {
+        theta_ddot: wdd / geo.psi,
+        x_ddot: c * wdd + s * sn * ww,
+        normal: b + GAMMA * (s * sn * wdd - c * ww),
+        friction: fo.a + GAMMA * (c * wdd + s * sn * ww),
+    }
+}
+
+/// Rocking about a corner that slips in direction `slip` against kinetic
+/// friction `mu_k` (paper eqs. 9–10/30–31, corrected; docs/model.md §3.2):
+/// ψΘ'' = −k (b − γ c w²)/((1−γ) + γ(sin²φ − sσμ_k sin φ cos φ)),
+/// k = s sin φ − σ μ_k cos φ.
+#[inline]
+pub fn slide_rock(
+    geo: &Geometry,
+    pivot: Sign,
+    slip: Sign,
+    mu_k: f64,
+    theta: f64,
+    theta_dot: f64,
+    fo: Forcing,
+) -> Accel {
+    slide_rock_at(geo, pivot, slip, mu_k, Tilt::new(geo, pivot, theta), theta_dot, fo)
+}
+
+/// [`slide_rock`] with the tilt already computed.
+#[inline]
+pub fn slide_rock_at(
+    geo: &Geometry,
+    pivot: Sign,
+    slip: Sign,
+    mu_k: f64,
+    tilt: Tilt,
+    theta_dot: f64,
+    fo: Forcing,
+) -> Accel {
+    let s = pivot.value();
+    let sigma = slip.value();
+    let Tilt { sn, c } = tilt;
+    let b = fo.b();
+    let w = geo.psi * theta_dot;
+    let ww = w * w;
+    let k = s * sn - sigma * mu_k * c;
+    let den = (1.0 - GAMMA) + GAMMA * (sn * sn - s * sigma * mu_k * sn * c);
+    let wdd = -k * (b - GAMMA * c * ww) / den;
+    let normal = b + GAMMA * (s * sn * wdd - c * ww);
+    let friction = -sigma * mu_k * normal;
+    Accel {
+        theta_ddot: wdd / geo.psi,
+        x_ddot: (friction - fo.a) / GAMMA,
+        normal,
+        friction,
+    }
+}
+
+/// Flat block sliding in direction `slip`: X'' = −(σ μ_k b + a)/γ.
+#[inline]
+pub fn slide(slip: Sign, mu_k: f64, fo: Forcing) -> Accel {
+    let b = fo.b();
+    let friction = -slip.value() * mu_k * b;
+    Accel {
+        theta_ddot: 0.0,
+        x_ddot: (friction - fo.a) / GAMMA,
+        normal: b,
+        friction,
+    }
+}
+
+/// Flat block stuck to the base: the base supplies f = a, n = b.
+#[inline]
+pub fn rest(fo: Forcing) -> Accel {
+    Accel {
+        theta_ddot: 0.0,
+        x_ddot: 0.0,
+        normal: fo.b(),
+        friction: fo.a,
+    }
+}
+
+/// Slip velocity of the pivot corner, X_p' = X' − cos φ · w.
+#[inline]
+pub fn pivot_slip_velocity(geo: &Geometry, pivot: Sign, theta: f64, theta_dot: f64, x_dot: f64) -> f64 {
+    let Tilt { c, .. } = Tilt::new(geo, pivot, theta);
+    x_dot - c * geo.psi * theta_dot
+}
+
+/// Slip acceleration of the pivot corner, X_p'' = X'' − (c wdd + s sin φ w²),
+/// used to check that a slip direction entered at zero slip velocity is
+/// consistent.
+#[inline]
+pub fn pivot_slip_accel(geo: &Geometry, pivot: Sign, theta: f64, theta_dot: f64, acc: &Accel) -> f64 {
+    let s = pivot.value();
+    let Tilt { sn, c } = Tilt::new(geo, pivot, theta);
+    let w = geo.psi * theta_dot;
+    acc.x_ddot - (c * geo.psi * acc.theta_ddot + s * sn * w * w)
+}
+
+/// Lowest angular acceleration, on side `s`, of a flat block at rest that is
+/// released: κ_s = b sin ψ + s a cos ψ = −s ψΘ''(Θ = 0). The base lifts the
+/// block about corner `s` when κ_s < 0 (paper eq. 1 with |a_h| and a_v).
+#[inline]
+pub fn restoring(geo: &Geometry, pivot: Sign, fo: Forcing) -> f64 {
+    fo.b() * geo.sin_psi + pivot.value() * fo.a * geo.cos_psi
+}

@@ -1,0 +1,253 @@
+//! Impact laws at Θ = 0: the lifted corner strikes the base.
+//!
+//! Derivation: `docs/model.md` §6. Velocities are normalised by R p
+//! (X', Y') and angular velocity by p (w = ψΘ'). The striking corner is on
+//! side `s'` (the old pivot's opposite); flat, it sits at R(s' sin ψ, −cos ψ)
+//! from the centre of mass. An impulse π = P/(mRp) there changes
+//! ΔX' = π_x, ΔY' = π_y, Δw = −3(s' sin ψ π_y + cos ψ π_x) (mR²/I_G = 3),
+//! and the corner's velocity V_c = (X' − C w, Y' − s' S w) by
+//! `M π` with M = [[1+3C², 3s'SC], [3s'SC, 1+3S²]], det M = 4.
+//!
+//! Every law returns the post-impact velocities and whether the new pivot
+//! slips or leaves the base. Written as sign × symmetric terms, so mirrored
+//! impacts give exactly mirrored results.
+
+use super::geometry::Geometry;
+use super::mode::Sign;
+
+/// Which impact law (MODEL-DECISIONS "Impact at Θ = 0").
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum ImpactLaw {
+    /// Angular momentum about the striking corner is conserved and the new
+    /// pivot sticks: Θ'₊ = (1 − 1.5 sin²ψ) Θ'₋ when the block rocked without
+    /// slip (Housner 1963); with pre-impact slip the slip velocity enters.
+    Housner,
+    /// Θ'₊ = r Θ'₋ with a given ratio, new pivot stuck. The paper's
+    /// e = 0.925 (sec. 4.1) is this `r`.
+    Ratio {
+        /// Angular velocity ratio, in [0, 1].
+        r: f64,
+    },
+    /// Impulse–momentum law (paper eqs. 17–27, Shenton–Jones type):
+    /// vertical restitution `e` of the striking corner and Coulomb friction
+    /// during the impact, which can make the corner slip.
+    Impulse {
+        /// Vertical restitution of the striking corner, in [0, 1].
+        e: f64,
+        /// Static friction coefficient at impact μ̄_s (`inf`: no slip).
+        mu_s: f64,
+        /// Kinetic friction coefficient at impact μ̄_k (<= μ̄_s).
+        mu_k: f64,
+    },
+}
+
+impl ImpactLaw {
+    /// Config name: `housner`, `ratio`, `impulse`.
+    pub fn name(&self) -> &'static str {
+        match self {
+            ImpactLaw::Housner => "housner",
+            ImpactLaw::Ratio { .. } => "ratio",
+            ImpactLaw::Impulse { .. } => "impulse",
+        }
+    }
+}
+
+/// Velocities just before an impact (at Θ = 0).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PreImpact {
+    /// Side of the striking corner, s' (the new pivot).
+    pub striking: Sign,
+    /// w = ψΘ' before.
+    pub w: f64,
+    /// X' before.
+    pub x_dot: f64,
+    /// Y' before (vertical velocity of G / R p).
+    pub y_dot: f64,
+}
+
+/// Velocities just after an impact.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PostImpact {
+    /// w = ψΘ' after.
+    pub w: f64,
+    /// X' after.
+    pub x_dot: f64,
+    /// Y' after.
+    pub y_dot: f64,
+    /// Slip direction of the new pivot after the impact (`None`: it sticks).
+    pub slip: Option<Sign>,
+    /// The striking corner leaves the base (vertical restitution e > 0).
+    pub lifts_off: bool,
+    /// Normalised impulse (π_x, π_y) at the striking corner.
+    pub impulse: (f64, f64),
+    /// Both bottom corners struck at once and the block landed flat
+    /// (w = 0, Y' = 0); see [`flat_landing`].
+    pub flat: bool,
+}
+
+/// Whether a tangential impulse `t` is inside the friction cone of normal
+/// impulse `n >= 0` with coefficient `mu` (infinite `mu`: always, even for
+/// `n = 0`, where `mu * n` would be NaN).
+#[inline]
+fn within_cone(t: f64, mu: f64, n: f64) -> bool {
+    mu.is_infinite() || t.abs() <= mu * n
+}
+
+/// Velocity of the striking corner, (V_cx, V_cy).
+#[inline]
+pub fn corner_velocity(geo: &Geometry, pre: &PreImpact) -> (f64, f64) {
+    let sp = pre.striking.value();
+    (pre.x_dot - geo.cos_psi * pre.w, pre.y_dot - sp * geo.sin_psi * pre.w)
+}
+
+/// Applies impulse `(px, py)` at the striking corner.
+#[inline]
+fn apply(geo: &Geometry, pre: &PreImpact, px: f64, py: f64) -> (f64, f64, f64) {
+    let sp = pre.striking.value();
+    let (s, c) = (geo.sin_psi, geo.cos_psi);
+    let w = pre.w - 3.0 * (sp * s * py + c * px);
+    (w, pre.x_dot + px, pre.y_dot + py)
+}
+
+/// Impulse that changes the corner velocity by `(dvx, dvy)`: π = M⁻¹ ΔV.
+#[inline]
+fn stick_impulse(geo: &Geometry, sp: f64, dvx: f64, dvy: f64) -> (f64, f64) {
+    let (s, c) = (geo.sin_psi, geo.cos_psi);
+    let m_off = 3.0 * sp * s * c;
+    let px = ((1.0 + 3.0 * s * s) * dvx - m_off * dvy) / 4.0;
+    let py = ((1.0 + 3.0 * c * c) * dvy - m_off * dvx) / 4.0;
+    (px, py)
+}
+
+/// The impulse law: vertical restitution `e`, friction `mu_s`/`mu_k` at the
+/// striking corner. Sticks if the stick impulse lies in the static friction
+/// cone; otherwise slips in the direction consistent with kinetic friction.
+pub fn impulse_law(geo: &Geometry, pre: &PreImpact, e: f64, mu_s: f64, mu_k: f64) -> PostImpact {
+    let sp = pre.striking.value();
+    let (s, c) = (geo.sin_psi, geo.cos_psi);
+    let (vcx, vcy) = corner_velocity(geo, pre);
+    let dvy = -(1.0 + e) * vcy;
+    let (px, py) = stick_impulse(geo, sp, -vcx, dvy);
+    let lifts_off = e > 0.0;
+    if within_cone(px, mu_s, py) {
+        let (w, x_dot, y_dot) = apply(geo, pre, px, py);
+        return PostImpact {
+            w,
+            x_dot,
+            y_dot,
+            slip: None,
+            lifts_off,
+            impulse: (px, py),
+            flat: false,
+        };
+    }
+    // Slip: π_x = −σ μ_k π_y, with σ the sign of the corner's slip after
+    // the impact. Friction opposes the slip the stick impulse prevented, so
+    // try σ = −sign(π_x,stick) first, then the other direction.
+    let first = Sign::of(-px);
+    for sigma in [first, first.flip()] {
+        let sg = sigma.value();
+        // ΔV_cy = (1+3S²)π_y + 3s'SC π_x with π_x = −σ μ_k π_y.
+        let den = (1.0 + 3.0 * s * s) - 3.0 * sp * s * c * sg * mu_k;
+        // μ_k is finite here (μ_k <= μ_s and the stick impulse left the
+        // finite cone), so `den` is a number; <= 0 would need μ_k > 4/3.
+        if den <= 0.0 {
+            continue;
+        }
+        let py = dvy / den;
+        let px = -sg * mu_k * py;
+        let vcx_after = vcx + (1.0 + 3.0 * c * c) * px + 3.0 * sp * s * c * py;
+        if sg * vcx_after >= 0.0 {
+            let (w, x_dot, y_dot) = apply(geo, pre, px, py);
+            return PostImpact {
+                w,
+                x_dot,
+                y_dot,
+                slip: if vcx_after == 0.0 { None } else { Some(sigma) },
+                lifts_off,
+                impulse: (px, py),
+                flat: false,
+            };
+        }
+    }
+    // No consistent slip direction (impossible for μ_k <= μ_s and a
+    // physical geometry, kept as a safe fallback): the corner sticks.
+    let (w, x_dot, y_dot) = apply(geo, pre, px, py);
+    PostImpact {
+        w,
+        x_dot,
+        y_dot,
+        slip: None,
+        lifts_off,
+        impulse: (px, py),
+        flat: false,
+    }
+}
+
+/// Housner's law, generalised to pre-impact slip: a perfectly plastic,
+/// sticking impact at the striking corner (the impulse law with e = 0 and
+/// infinite friction), so angular momentum about that corner is conserved.
+pub fn housner(geo: &Geometry, pre: &PreImpact) -> PostImpact {
+    impulse_law(geo, pre, 0.0, f64::INFINITY, f64::INFINITY)
+}
+
+/// The ratio law: w₊ = r w₋, new pivot stuck (X'₊ = cos ψ w₊,
+/// Y'₊ = s' sin ψ w₊).
+pub fn ratio(geo: &Geometry, pre: &PreImpact, r: f64) -> PostImpact {
+    let sp = pre.striking.value();
+    let w = r * pre.w;
+    let x_dot = geo.cos_psi * w;
+    let y_dot = sp * geo.sin_psi * w;
+    PostImpact {
+        w,
+        x_dot,
+        y_dot,
+        slip: None,
+        lifts_off: false,
+        impulse: (x_dot - pre.x_dot, y_dot - pre.y_dot),
+        flat: false,
+    }
+}
+
+/// Whether a single-corner impact result would drive the old pivot into
+/// the base: with the striking corner stuck, the old pivot's vertical
+/// velocity after is 2 s' sin ψ w₊ (docs/model.md §6.4), so it penetrates
+/// when s' w₊ < 0. This happens when a large slip velocity before the
+/// impact reverses the rotation (Housner's law with slip:
+/// w₊ = (1 − 1.5 sin²ψ) w₋ + ¾ cos ψ V_cx₋).
+pub fn reverses(pre: &PreImpact, post: &PostImpact) -> bool {
+    !post.lifts_off && pre.striking.value() * post.w < 0.0
+}
+
+/// Both bottom corners strike at once, perfectly plastically: rotation and
+/// vertical velocity stop (total vertical impulse π_y = −Y'₋), and the
+/// horizontal velocity is stopped by friction if |X'₋| <= μ_s π_y, or
+/// reduced by μ_k π_y otherwise (the block then slides flat).
+pub fn flat_landing(pre: &PreImpact, mu_s: f64, mu_k: f64) -> PostImpact {
+    let py = (-pre.y_dot).max(0.0);
+    let (px, slip) = if within_cone(pre.x_dot, mu_s, py) {
+        (-pre.x_dot, None)
+    } else {
+        let px = -pre.x_dot.signum() * mu_k * py;
+        let after = pre.x_dot + px;
+        (px, if after == 0.0 { None } else { Some(Sign::of(after)) })
+    };
+    PostImpact {
+        w: 0.0,
+        x_dot: pre.x_dot + px,
+        y_dot: 0.0,
+        slip,
+        lifts_off: false,
+        impulse: (px, py),
+        flat: true,
+    }
+}
+
+/// Applies `law`.
+pub fn apply_law(geo: &Geometry, law: &ImpactLaw, pre: &PreImpact) -> PostImpact {
+    match *law {
+        ImpactLaw::Housner => housner(geo, pre),
+        ImpactLaw::Ratio { r } => ratio(geo, pre, r),
+        ImpactLaw::Impulse { e, mu_s, mu_k } => impulse_law(geo, pre, e, mu_s, mu_k),
+    }
+}

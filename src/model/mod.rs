@@ -1,0 +1,19 @@
+//! The block model: EQUATIONS ONLY. No integrator, threads, I/O or GUI types.
+//!
+//! Conventions (MODEL-DECISIONS): θ > 0 is a clockwise rotation about the
+//! right bottom corner; τ = p t, Θ = θ/ψ, X = x_G/R; base accelerations
+//! per unit g. Derivations and the paper's equation numbers: `docs/model.md`.
+
+pub mod dynamics;
+pub mod energy;
+pub mod excitation;
+pub mod geometry;
+pub mod impact;
+pub mod mode;
+pub mod system;
+
+pub use excitation::{Excitation, Harmonic};
+pub use geometry::Geometry;
+pub use impact::ImpactLaw;
+pub use mode::{Mode, Sign};
+pub use system::{BlockSystem, EventKind, EventRecord, FlightPolicy, Model};

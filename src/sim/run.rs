@@ -1,0 +1,315 @@
+//! One simulation run from an initial state to `tau_end` or a terminal mode.
+
+use std::time::Instant;
+
+use serde::Serialize;
+
+use super::collect::{Collector, HistoryRow, SectionRow};
+use crate::integrate::hybrid::{Driver, Limits, Outputs};
+use crate::integrate::{Dop853, Dopri5, Ralston, StepStats, Stepper, Tolerances};
+use crate::model::dynamics::Tilt;
+use crate::model::system::{EventRecord, FRICTION_LOSS, ModelError, N, Tally, WORK};
+use crate::model::{BlockSystem, Mode, Model, Sign};
+
+/// Integration method (config `run.method`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Method {
+    /// Dormand–Prince 8(5,3) with 7th-order dense output (default: fewest
+    /// evaluations at the tight tolerances exact event location needs).
+    Dop853,
+    /// Dormand–Prince 5(4) with 4th-order dense output.
+    Dopri5,
+    /// The paper's Ralston RK2, fixed step 0.004, step cut by 10 at a sign
+    /// change until |Θ| < 1e-6.
+    Ralston,
+}
+
+impl Method {
+    /// Config name.
+    pub fn name(self) -> &'static str {
+        match self {
+            Method::Dop853 => "dop853",
+            Method::Dopri5 => "dopri5",
+            Method::Ralston => "ralston",
+        }
+    }
+}
+
+/// Initial state (config `initial.*`).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct InitialState {
+    /// Θ at τ = 0.
+    pub theta: f64,
+    /// Θ' at τ = 0.
+    pub theta_dot: f64,
+    /// X' of the centre of mass at τ = 0. `None`: the value for which the
+    /// contact corner does not slip (0 for a flat block).
+    pub x_dot: Option<f64>,
+}
+
+/// How to run (config `run.*`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RunOptions {
+    /// End of the run, τ.
+    pub tau_end: f64,
+    /// Method.
+    pub method: Method,
+    /// Tolerances (and the fixed step for `ralston`).
+    pub tol: Tolerances,
+    /// Spacing of the time history; `None` keeps no history.
+    pub output_dt: Option<f64>,
+    /// Whether to take the stroboscopic section (harmonic excitation only).
+    pub section: bool,
+    /// Loop bounds.
+    pub limits: Limits,
+}
+
+/// How a run ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Outcome {
+    /// Still moving at `tau_end`.
+    Running,
+    /// At rest at `tau_end`.
+    Rest,
+    /// Tumbled.
+    Tumbled,
+    /// Flight.
+    Flight,
+}
+
+/// The energy audit, per m g R (docs/model.md §7):
+/// `final − initial = work_base − loss_friction − loss_impact + residual`.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct EnergyAudit {
+    /// Mechanical energy (kinetic + potential) at the start.
+    pub initial: f64,
+    /// Mechanical energy at the end.
+    pub r#final: f64,
+    /// Work done on the block by the base's pseudo-forces.
+    pub work_base: f64,
+    /// Energy dissipated by sliding friction.
+    pub loss_friction: f64,
+    /// Energy lost at impacts.
+    pub loss_impact: f64,
+    /// What the balance leaves unexplained (integration error).
+    pub residual: f64,
+    /// `|residual|` relative to the largest term of the balance.
+    pub relative_residual: f64,
+}
+
+/// Everything a run produces.
+#[derive(Clone, Debug)]
+pub struct RunResult {
+    /// How it ended.
+    pub outcome: Outcome,
+    /// τ at which it ended (the tumble or flight time for those outcomes).
+    pub tau_end: f64,
+    /// τ of the tumble, if any.
+    pub tumble_tau: Option<f64>,
+    /// τ at which |θ| reached π/2 (only when `tumble_theta` >= π/(2ψ)).
+    pub side_landing_tau: Option<f64>,
+    /// τ of flight, if any.
+    pub flight_tau: Option<f64>,
+    /// Largest |Θ| reached.
+    pub max_abs_theta: f64,
+    /// Events in time order.
+    pub events: Vec<EventRecord>,
+    /// Stroboscopic section points.
+    pub section: Vec<SectionRow>,
+    /// Regular time history.
+    pub history: Vec<HistoryRow>,
+    /// Time spent in rest, slide, rock and slide-rock.
+    pub mode_time: [f64; 4],
+    /// The energy audit.
+    pub energy: EnergyAudit,
+    /// Stepper work counters.
+    pub stats: StepStats,
+    /// Wall time of the solver, s.
+    pub wall_s: f64,
+    /// Tallies of the model (impacts, flight violations).
+    pub tally: Tally,
+    /// Final mode.
+    pub final_mode: Mode,
+    /// Final state.
+    pub final_state: [f64; N],
+}
+
+/// Errors of a run.
+#[derive(Clone, Copy, Debug, PartialEq, thiserror::Error)]
+pub enum SimError {
+    /// The model or driver failed.
+    #[error(transparent)]
+    Model(#[from] ModelError),
+    /// The initial state is not admissible.
+    #[error("initial state: {0}")]
+    Initial(&'static str),
+}
+
+/// The mode and full state a run starts in, before settling.
+pub fn initial_mode(model: &Model, init: &InitialState) -> Result<(Mode, [f64; N]), SimError> {
+    let geo = &model.geo;
+    let mut y = [0.0; N];
+    y[0] = init.theta;
+    y[1] = init.theta_dot;
+    let sliding_allowed = model.mu_s.is_finite();
+    if init.theta == 0.0 && init.theta_dot == 0.0 {
+        let x_dot = init.x_dot.unwrap_or(0.0);
+        y[3] = x_dot;
+        if x_dot == 0.0 {
+            return Ok((Mode::Rest, y));
+        }
+        if !sliding_allowed {
+            return Err(SimError::Initial(
+                "initial.x_dot must be 0 for a flat block when friction is infinite (no sliding)",
+            ));
+        }
+        return Ok((Mode::Slide { slip: Sign::of(x_dot) }, y));
+    }
+    let pivot = if init.theta != 0.0 {
+        Sign::of(init.theta)
+    } else {
+        Sign::of(init.theta_dot)
+    };
+    let tilt = Tilt::new(geo, pivot, init.theta);
+    let stuck = tilt.c * geo.psi * init.theta_dot;
+    let x_dot = init.x_dot.unwrap_or(stuck);
+    y[3] = x_dot;
+    let slip = x_dot - stuck;
+    if slip == 0.0 {
+        Ok((Mode::Rock { pivot }, y))
+    } else if sliding_allowed {
+        Ok((
+            Mode::SlideRock {
+                pivot,
+                slip: Sign::of(slip),
+            },
+            y,
+        ))
+    } else {
+        Err(SimError::Initial(
+            "initial.x_dot must equal the no-slip value cos(ψ(1−|Θ|))·ψΘ' when friction is infinite",
+        ))
+    }
+}
+
+/// Runs `model` from `init` with `opts`.
+pub fn simulate(model: Model, init: &InitialState, opts: &RunOptions) -> Result<RunResult, SimError> {
+    let (mode0, y0) = initial_mode(&model, init)?;
+    match opts.method {
+        Method::Dop853 => run_with(Dop853::new(opts.tol), model, mode0, y0, opts),
+        Method::Dopri5 => run_with(Dopri5::new(opts.tol), model, mode0, y0, opts),
+        Method::Ralston => run_with(Ralston::new(opts.tol), model, mode0, y0, opts),
+    }
+}
+
+fn run_with<S: Stepper<N>>(
+    stepper: S,
+    model: Model,
+    mode0: Mode,
+    mut y0: [f64; N],
+    opts: &RunOptions,
+) -> Result<RunResult, SimError> {
+    let start = Instant::now();
+    let section_period = if opts.section {
+        model.excitation.forcing_period()
+    } else {
+        None
+    };
+    let mut system = BlockSystem::new(model);
+    let mode0 = system.settle(mode0, 0.0, &mut y0);
+    let e0 = system.energy(mode0, &y0);
+    let outputs = Outputs {
+        sample_dt: opts.output_dt,
+        section_period,
+    };
+    let mut driver = Driver::new(stepper, system, mode0, 0.0, y0, opts.limits, outputs);
+    let mut obs = Collector {
+        keep_history: opts.output_dt.is_some(),
+        max_abs_theta: y0[0].abs(),
+        ..Collector::default()
+    };
+    driver.advance(opts.tau_end, &mut obs)?;
+    let wall_s = start.elapsed().as_secs_f64();
+
+    let final_mode = driver.mode();
+    let y = *driver.y();
+    let t_final = driver.t();
+    let system = driver.system();
+    let tally = system.tally;
+
+    // Time per mode, from the event sequence.
+    let mut mode_time = [0.0; 4];
+    let mut t_last = 0.0;
+    let mut current = mode0;
+    for ev in &obs.events {
+        if current.index() < 4 {
+            mode_time[current.index()] += ev.tau - t_last;
+        }
+        t_last = ev.tau;
+        current = ev.after;
+    }
+    if current.index() < 4 {
+        mode_time[current.index()] += (t_final - t_last).max(0.0);
+    }
+
+    let find = |kind| obs.events.iter().find(|e| e.kind == kind).map(|e| e.tau);
+    let tumble_tau = find(crate::model::EventKind::Tumble);
+    let side_landing_tau = if system.tumble_angle() >= system.model.geo.side_theta() {
+        tumble_tau
+    } else {
+        None
+    };
+    let flight_tau = if final_mode == Mode::Flight {
+        obs.events.last().map(|e| e.tau)
+    } else {
+        None
+    };
+    let outcome = match final_mode {
+        Mode::Tumbled => Outcome::Tumbled,
+        Mode::Flight => Outcome::Flight,
+        Mode::Rest => Outcome::Rest,
+        Mode::Slide { .. } | Mode::Rock { .. } | Mode::SlideRock { .. } => Outcome::Running,
+    };
+
+    let e_final = system.energy(final_mode, &y);
+    let (work, friction, impact) = (y[WORK], y[FRICTION_LOSS], tally.impact_loss);
+    let residual = (e_final - e0) - (work - friction - impact);
+    let scale = e0
+        .abs()
+        .max(e_final.abs())
+        .max(work.abs())
+        .max(friction.abs())
+        .max(impact.abs());
+    let energy = EnergyAudit {
+        initial: e0,
+        r#final: e_final,
+        work_base: work,
+        loss_friction: friction,
+        loss_impact: impact,
+        residual,
+        relative_residual: if scale > 0.0 { residual.abs() / scale } else { 0.0 },
+    };
+    let max_abs_theta = obs.max_abs_theta.max(tally.max_abs_theta).max(y[0].abs());
+    let mut stats = driver.stepper().stats();
+    stats.accepted = stats.accepted.max(driver.steps());
+    Ok(RunResult {
+        outcome,
+        tau_end: t_final,
+        tumble_tau,
+        side_landing_tau,
+        flight_tau,
+        max_abs_theta,
+        events: obs.events,
+        section: obs.section,
+        history: obs.history,
+        mode_time,
+        energy,
+        stats,
+        wall_s,
+        tally,
+        final_mode,
+        final_state: y,
+    })
+}

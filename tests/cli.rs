@@ -1,0 +1,241 @@
+//! The `rocking` binary as a user runs it.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn rocking() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_rocking"))
+}
+
+fn tmpdir(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("rocking-cli-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).expect("temp dir");
+    d
+}
+
+fn read_csv(path: &Path) -> (Vec<String>, Vec<Vec<String>>) {
+    let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let mut lines = text.lines();
+    let header = lines.next().expect("header").split(',').map(String::from).collect();
+    let rows = lines.map(|l| l.split(',').map(String::from).collect()).collect();
+    (header, rows)
+}
+
+const MODES: [&str; 6] = ["rest", "slide", "rock", "slide-rock", "tumbled", "flight"];
+
+#[test]
+fn batch_fig12_writes_every_file_with_its_columns() {
+    let dir = tmpdir("fig12");
+    let out = dir.join("out");
+    let o = rocking()
+        .args(["--batch", "--preset", "fig12", "--set", "run.tau_end=120", "--out"])
+        .arg(&out)
+        .output()
+        .expect("runs");
+    assert!(o.status.success(), "stderr: {}", String::from_utf8_lossy(&o.stderr));
+
+    let (h, rows) = read_csv(&out.join("events.csv"));
+    assert_eq!(
+        h,
+        [
+            "tau",
+            "kind",
+            "mode_before",
+            "mode_after",
+            "theta",
+            "theta_dot_before",
+            "theta_dot_after",
+            "x_dot"
+        ]
+    );
+    assert!(rows.len() > 20);
+    let kinds = ["uplift", "slip", "stick", "impact", "rest", "tumble", "flight"];
+    let mut last = f64::NEG_INFINITY;
+    for r in &rows {
+        assert_eq!(r.len(), 8);
+        let tau: f64 = r[0].parse().expect("tau");
+        assert!(tau > last, "event times increase");
+        last = tau;
+        assert!(kinds.contains(&r[1].as_str()), "kind {}", r[1]);
+        assert!(MODES.contains(&r[2].as_str()) && MODES.contains(&r[3].as_str()));
+        for c in &r[4..] {
+            assert!(c.parse::<f64>().expect("number").is_finite());
+        }
+    }
+    assert!(rows.iter().any(|r| r[1] == "impact") && rows.iter().any(|r| r[3] == "slide-rock"));
+
+    let (h, rows) = read_csv(&out.join("poincare.csv"));
+    assert_eq!(h, ["k", "tau", "theta", "theta_dot", "x", "x_dot", "mode"]);
+    let period = std::f64::consts::TAU / 8.0;
+    assert!(rows.len() >= 150);
+    for (i, r) in rows.iter().enumerate() {
+        let k: u64 = r[0].parse().expect("k");
+        assert_eq!(k, i as u64);
+        let tau: f64 = r[1].parse().expect("tau");
+        assert_eq!(tau, k as f64 * period, "strobe time is 2πk/Ω exactly");
+        assert!(MODES.contains(&r[6].as_str()));
+    }
+
+    let (h, rows) = read_csv(&out.join("history.csv"));
+    assert_eq!(h, ["tau", "theta", "theta_dot", "x", "x_dot", "mode"]);
+    assert_eq!(rows.len(), 6001, "τ 0..120 every 0.02");
+    for r in &rows {
+        for c in &r[..5] {
+            assert!(c.parse::<f64>().expect("number").is_finite());
+        }
+    }
+
+    let s: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).expect("summary")).expect("json");
+    for key in [
+        "outcome",
+        "tau_end",
+        "tumble_tau",
+        "max_abs_theta",
+        "impacts",
+        "mode_time",
+        "energy",
+        "solver",
+        "config",
+        "version",
+    ] {
+        assert!(s.get(key).is_some(), "summary.json lacks {key}");
+    }
+    assert_eq!(s["config"]["friction"]["static"], 0.4);
+    assert_eq!(s["config"]["run"]["tau_end"], 120.0);
+    assert_eq!(s["config"]["impact"]["law"], "ratio");
+    for k in ["rest", "slide", "rock", "slide-rock"] {
+        assert!(s["mode_time"][k].is_number());
+    }
+    for k in [
+        "initial",
+        "final",
+        "work_base",
+        "loss_friction",
+        "loss_impact",
+        "residual",
+    ] {
+        assert!(s["energy"][k].is_number(), "energy.{k}");
+    }
+    assert!(s["energy"]["relative_residual"].as_f64().expect("residual") < 1e-6);
+    for k in ["steps", "rhs_evals", "wall_s"] {
+        assert!(s["solver"][k].is_number());
+    }
+
+    // The summary repeats the run.
+    let again = dir.join("again");
+    let o = rocking()
+        .args(["--batch", "--config"])
+        .arg(out.join("summary.json"))
+        .arg("--out")
+        .arg(&again)
+        .output()
+        .expect("runs");
+    assert!(o.status.success(), "stderr: {}", String::from_utf8_lossy(&o.stderr));
+    for f in ["events.csv", "poincare.csv", "history.csv"] {
+        assert_eq!(
+            std::fs::read(out.join(f)).expect("first"),
+            std::fs::read(again.join(f)).expect("second"),
+            "{f} differs when repeated from summary.json"
+        );
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Runs `--batch` with `args`; it must fail with exit code 2, a one-line
+/// error containing `needle`, and write nothing.
+fn rejects(args: &[&str], needle: &str) {
+    let dir = tmpdir(&needle.replace(['/', ' ', '.', '"'], "_"));
+    let out = dir.join("out");
+    let o = rocking()
+        .arg("--batch")
+        .args(args)
+        .arg("--out")
+        .arg(&out)
+        .output()
+        .expect("runs");
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "args {args:?}: stderr {err}");
+    assert!(
+        err.contains(needle),
+        "args {args:?}: error {err:?} does not name {needle:?}"
+    );
+    assert_eq!(err.trim().lines().count(), 1, "one-line error, got {err:?}");
+    assert!(!out.exists(), "args {args:?}: output directory was created");
+    let leftovers: Vec<_> = std::fs::read_dir(&dir).expect("dir").collect();
+    assert!(leftovers.is_empty(), "args {args:?}: left {leftovers:?}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn bad_input_is_refused_with_exit_2_and_nothing_written() {
+    rejects(&["--set", "block.widht=2"], "block.widht");
+    rejects(&["--set", "block.width=-1"], "block.width");
+    rejects(&["--set", "block.height=abc"], "block.height");
+    rejects(
+        &["--set", "friction.static=0.3", "--set", "friction.kinetic=0.4"],
+        "friction.kinetic",
+    );
+    rejects(&["--set", "impact.r=1.5"], "impact.r");
+    rejects(&["--set", "impact.law=elastic"], "impact.law");
+    rejects(&["--set", "run.rtol=0"], "run.rtol");
+    rejects(&["--set", "run.atol=2"], "run.atol");
+    rejects(&["--set", "excitation.a_h=nan"], "excitation.a_h");
+    rejects(&["--set", "excitation.omega_h=inf"], "excitation.omega_h");
+    rejects(&["--set", "run.method=euler"], "run.method");
+    rejects(&["--set", "nosuch.key=1"], "nosuch");
+    rejects(&["--set", "justakey"], "KEY=VALUE");
+    rejects(&["--preset", "fig99"], "fig99");
+    rejects(&["--config", "/nonexistent/rocking.toml"], "/nonexistent/rocking.toml");
+    rejects(
+        &[
+            "--set",
+            "excitation.kind=record",
+            "--set",
+            "excitation.file_h=/nonexistent.AT2",
+        ],
+        "/nonexistent.AT2",
+    );
+}
+
+#[test]
+fn malformed_files_are_named_with_their_line() {
+    let dir = tmpdir("malformed");
+    let cfg = dir.join("bad.toml");
+    std::fs::write(&cfg, "[block]\nwidth = 1.0\nheight = = 4\n").expect("write");
+    rejects(&["--config", cfg.to_str().expect("utf8")], "bad.toml:3");
+    let cfg2 = dir.join("rec.toml");
+    let bad = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/bad_line.txt");
+    std::fs::write(&cfg2, format!("[excitation]\nkind = \"record\"\nfile_h = \"{bad}\"\n")).expect("write");
+    rejects(&["--config", cfg2.to_str().expect("utf8")], "bad_line.txt:4");
+    rejects(&["--config", dir.to_str().expect("utf8")], "is a directory");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn record_run_from_an_at2_file() {
+    let dir = tmpdir("record");
+    let out = dir.join("out");
+    let at2 = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/sample.AT2");
+    let o = rocking()
+        .args(["--batch", "--set", "excitation.kind=record", "--set"])
+        .arg(format!("excitation.file_h=\"{at2}\""))
+        .args([
+            "--set",
+            "excitation.scale_h=3",
+            "--set",
+            "block.width=0.5",
+            "--set",
+            "block.height=1.0",
+        ])
+        .args(["--set", "run.tau_end=10", "--out"])
+        .arg(&out)
+        .output()
+        .expect("runs");
+    assert!(o.status.success(), "stderr: {}", String::from_utf8_lossy(&o.stderr));
+    let s: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).expect("summary")).expect("json");
+    assert_eq!(s["config"]["excitation"]["kind"], "record");
+    let _ = std::fs::remove_dir_all(&dir);
+}
