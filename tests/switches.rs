@@ -185,7 +185,7 @@ fn passivity_without_excitation() {
                 mu_k: mu.1,
             },
             // The ratio law is passive only when the corner cannot slip
-            // before the impact (docs/model.md §6.3).
+            // before the impact (docs/model.md §7.4).
             _ => ImpactLaw::Ratio { r: rng.range(0.0, 1.0) },
         };
         let mu = if matches!(law, ImpactLaw::Ratio { .. }) {

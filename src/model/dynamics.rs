@@ -1,6 +1,6 @@
 //! Equations of motion of each contact mode, in normalised variables.
 //!
-//! Derivations: `docs/model.md` §3–5. Variables: τ = p t, Θ = θ/ψ,
+//! Derivations: `docs/model.md` §3–6. Variables: τ = p t, Θ = θ/ψ,
 //! X = x_G/R, w = ψΘ' = θ̇/p. Forcing per unit weight: `a = a_h/g`,
 //! `b = 1 + a_v/g`. Contact forces per unit weight: `f = F/(mg)` (horizontal,
 //! on the block), `n = N/(mg)`.
@@ -63,7 +63,7 @@ impl Tilt {
     }
 }
 
-/// Rocking about a stuck corner (not printed in the paper; docs/model.md §3.1):
+/// Rocking about a stuck corner (not printed in the paper; docs/model.md §3):
 /// ψΘ'' = −(s b sin φ + a cos φ).
 #[inline]
 pub fn rock(geo: &Geometry, pivot: Sign, theta: f64, theta_dot: f64, fo: Forcing) -> Accel {
@@ -88,7 +88,7 @@ pub fn rock_at(geo: &Geometry, pivot: Sign, tilt: Tilt, theta_dot: f64, fo: Forc
 }
 
 /// Rocking about a corner that slips in direction `slip` against kinetic
-/// friction `mu_k` (paper eqs. 9–10/30–31, corrected; docs/model.md §3.2):
+/// friction `mu_k` (paper eqs. 9–10/30–31, corrected; docs/model.md §4):
 /// ψΘ'' = −k (b − γ c w²)/((1−γ) + γ(sin²φ − sσμ_k sin φ cos φ)),
 /// k = s sin φ − σ μ_k cos φ.
 #[inline]

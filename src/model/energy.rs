@@ -2,7 +2,7 @@
 //!
 //! T = ½γ(X'² + Y'²) + (γ/6) w² (γ = R p²/g; I_G = mR²/3), V = Y = y_G/R.
 //! The base's pseudo-forces do work at the rate −a X' − (a_v/g) Y' per unit
-//! τ; friction dissipates −f X_p'. See docs/model.md §7.
+//! τ; friction dissipates −f X_p'. See docs/model.md §8.
 
 use super::dynamics::Tilt;
 use super::geometry::{GAMMA, Geometry};

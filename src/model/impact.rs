@@ -1,6 +1,6 @@
 //! Impact laws at Θ = 0: the lifted corner strikes the base.
 //!
-//! Derivation: `docs/model.md` §6. Velocities are normalised by R p
+//! Derivation: `docs/model.md` §7. Velocities are normalised by R p
 //! (X', Y') and angular velocity by p (w = ψΘ'). The striking corner is on
 //! side `s'` (the old pivot's opposite); flat, it sits at R(s' sin ψ, −cos ψ)
 //! from the centre of mass. An impulse π = P/(mRp) there changes
@@ -211,7 +211,7 @@ pub fn ratio(geo: &Geometry, pre: &PreImpact, r: f64) -> PostImpact {
 
 /// Whether a single-corner impact result would drive the old pivot into
 /// the base: with the striking corner stuck, the old pivot's vertical
-/// velocity after is 2 s' sin ψ w₊ (docs/model.md §6.4), so it penetrates
+/// velocity after is 2 s' sin ψ w₊ (docs/model.md §7.5), so it penetrates
 /// when s' w₊ < 0. This happens when a large slip velocity before the
 /// impact reverses the rotation (Housner's law with slip:
 /// w₊ = (1 − 1.5 sin²ψ) w₋ + ¾ cos ψ V_cx₋).

@@ -242,7 +242,7 @@ impl BlockSystem {
                     if fo.b() <= 0.0 && self.stops_at_flight() {
                         Some(Mode::Flight)
                     } else if mu_k > geo.tan_psi {
-                        // Tips about the leading corner (docs/model.md §3.3).
+                        // Tips about the leading corner (docs/model.md §5).
                         y[THETA] = 0.0;
                         y[THETA_DOT] = 0.0;
                         Some(Mode::SlideRock { pivot: slip, slip })
@@ -307,7 +307,7 @@ impl BlockSystem {
         mode
     }
 
-    /// The impact reset map (docs/model.md §6) with MODEL-DECISIONS'
+    /// The impact reset map (docs/model.md §7) with MODEL-DECISIONS'
     /// accumulation rule.
     fn impact(&mut self, before: Mode, pivot: Sign, t: f64, y: &[f64; N]) -> Jump<Mode, EventRecord, N> {
         let geo = self.model.geo;
@@ -320,6 +320,18 @@ impl BlockSystem {
             y_dot: pivot.value() * geo.sin_psi * w,
         };
         let mut post = impact::apply_law(&geo, &self.model.law, &pre);
+        if post.impulse.1 < 0.0 && post.slip.is_none() {
+            // With infinite friction at impact, stopping a large pre-impact
+            // slip can need a pulling normal impulse, which a contact cannot
+            // give: the corner slips, with the block's own friction
+            // (docs/model.md §7.3). Pre-impact slip needs finite friction,
+            // so these coefficients are finite here.
+            let e = match self.model.law {
+                ImpactLaw::Impulse { e, .. } => e,
+                ImpactLaw::Housner | ImpactLaw::Ratio { .. } => 0.0,
+            };
+            post = impact::impulse_law(&geo, &pre, e, self.model.mu_s, self.model.mu_k);
+        }
         if impact::reverses(&pre, &post) {
             let (mu_s, mu_k) = match self.model.law {
                 ImpactLaw::Impulse { mu_s, mu_k, .. } => (mu_s, mu_k),
@@ -400,7 +412,7 @@ impl BlockSystem {
     }
 
     /// Impact accumulation (MODEL-DECISIONS): the remaining impacts are
-    /// summed in closed form (docs/model.md §8) and the block put flat.
+    /// summed in closed form (docs/model.md §10) and the block put flat.
     fn accumulate(
         &mut self,
         mut record: EventRecord,

@@ -79,7 +79,7 @@ pub enum Outcome {
     Flight,
 }
 
-/// The energy audit, per m g R (docs/model.md §7):
+/// The energy audit, per m g R (docs/model.md §8):
 /// `final − initial = work_base − loss_friction − loss_impact + residual`.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct EnergyAudit {
