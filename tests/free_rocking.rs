@@ -155,16 +155,29 @@ fn papers_ralston_method_converges_to_the_quadrature() {
     let first = quarter_period(geo.psi, 0.5);
     let mut errors = Vec::new();
     for step in [0.004, 0.002] {
-        let m = model(b, h, ImpactLaw::Housner, (f64::INFINITY, f64::INFINITY), Excitation::None);
+        let m = model(
+            b,
+            h,
+            ImpactLaw::Housner,
+            (f64::INFINITY, f64::INFINITY),
+            Excitation::None,
+        );
         let mut o = opts(3.0, 1e-10, None);
         o.method = rocking::sim::Method::Ralston;
         o.tol.h_fixed = step;
         let res = run(m, 0.5, 0.0, &o);
-        let ev = res.events.iter().find(|e| e.kind == EventKind::Impact).expect("an impact");
+        let ev = res
+            .events
+            .iter()
+            .find(|e| e.kind == EventKind::Impact)
+            .expect("an impact");
         errors.push((ev.tau - first).abs());
     }
     assert!(errors[0] < 1e-4, "Ralston at 0.004: impact time error {:e}", errors[0]);
     let ratio = errors[0] / errors[1];
-    assert!(ratio > 2.5, "halving the step only cut the error by {ratio} ({errors:?})");
+    assert!(
+        ratio > 2.5,
+        "halving the step only cut the error by {ratio} ({errors:?})"
+    );
     eprintln!("ralston first-impact errors at h = 0.004, 0.002: {errors:?}");
 }
