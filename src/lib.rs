@@ -11,9 +11,13 @@
 //! knows nothing of blocks) → [`sim`] (runs a model with a method) →
 //! [`io`] and the `rocking` binary.
 
+pub mod analysis;
 pub mod integrate;
 pub mod io;
 pub mod model;
+pub mod plot;
 pub mod sim;
 
 pub mod cli;
+#[cfg(feature = "gui")]
+pub mod gui;

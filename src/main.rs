@@ -5,6 +5,12 @@ use rocking::cli::{self, Cli, EXIT_BAD_INPUT, EXIT_RUN_FAILED, batch::BatchError
 
 fn main() {
     let cli = Cli::parse();
+    if let Some(command) = &cli.command {
+        match command.run() {
+            Ok(()) => return,
+            Err(e) => std::process::exit(cli::report(&e)),
+        }
+    }
     if cli.list_presets {
         for (name, text) in rocking::io::presets::PRESETS {
             let title = text.lines().next().unwrap_or("").trim_start_matches('#').trim();
@@ -13,10 +19,7 @@ fn main() {
         return;
     }
     if !cli.batch {
-        eprintln!(
-            "error: this build has no window yet; run headless with `rocking --batch [--preset NAME | --config FILE] [--set KEY=VALUE]... [--out DIR]` (see --help)"
-        );
-        std::process::exit(EXIT_BAD_INPUT);
+        open_window(&cli);
     }
     match cli::batch::run(&cli) {
         Ok(()) => {}
@@ -29,4 +32,34 @@ fn main() {
             std::process::exit(EXIT_RUN_FAILED);
         }
     }
+}
+
+/// `rocking` without `--batch`: the desktop app on the chosen scene
+/// (the `default` preset unless `--preset`/`--config`/`--set` say otherwise).
+#[cfg(feature = "gui")]
+fn open_window(cli: &Cli) -> ! {
+    let scene = rocking::gui::Settings::from_cli(cli.preset.as_deref(), cli.config.as_deref(), &cli.sets);
+    let (settings, config) = match scene {
+        Ok(s) => s,
+        Err(e) => {
+            eprintln!("error: {e}");
+            std::process::exit(EXIT_BAD_INPUT);
+        }
+    };
+    match rocking::gui::run(settings, config) {
+        Ok(()) => std::process::exit(0),
+        Err(e) => {
+            eprintln!("error: {e}");
+            std::process::exit(EXIT_RUN_FAILED);
+        }
+    }
+}
+
+/// `rocking` without `--batch` in a build without the `gui` feature.
+#[cfg(not(feature = "gui"))]
+fn open_window(_cli: &Cli) -> ! {
+    eprintln!(
+        "error: this build has no window yet; run headless with `rocking --batch [--preset NAME | --config FILE] [--set KEY=VALUE]... [--out DIR]` (see --help)"
+    );
+    std::process::exit(EXIT_BAD_INPUT);
 }

@@ -4,6 +4,7 @@ use anyhow::Context as _;
 
 use super::Cli;
 use crate::io::config::{self, Config};
+use crate::analysis::lyapunov::{self, Lyapunov, LyapunovError, LyapunovOptions, Method};
 use crate::io::output;
 use crate::sim;
 
@@ -28,7 +29,11 @@ pub fn run(cli: &Cli) -> Result<(), BatchError> {
     let res = sim::simulate(model, &cfg.initial(), &cfg.run_options())
         .context("simulation failed")
         .map_err(BatchError::Run)?;
-    let summary = output::summary_json(&cfg, &res);
+    let mut summary = output::summary_json(&cfg, &res);
+    let exponents = if cfg.lyapunov { Some(lyapunov_summary(&cfg)?) } else { None };
+    if let (Some(l), Some(obj)) = (&exponents, summary.as_object_mut()) {
+        obj.insert("lyapunov".to_string(), l.summary());
+    }
     let summary_text = serde_json::to_string_pretty(&summary)
         .context("serialising summary.json")
         .map_err(BatchError::Run)?;
@@ -62,6 +67,37 @@ pub fn run(cli: &Cli) -> Result<(), BatchError> {
             res.section.len(),
             res.history.len()
         );
+        match &exponents {
+            Some(Lyapunov::Exponents(r)) => println!(
+                "lyapunov ({}): largest {:.4} ± {:.4} per tau, {:.4} per cycle; spectrum {:?}",
+                r.method.name(),
+                r.largest_per_tau,
+                r.stderr,
+                r.per_cycle,
+                r.spectrum
+            ),
+            Some(Lyapunov::None {
+                method, no_exponent, ..
+            }) => println!("lyapunov ({}): no exponent ({})", method.name(), no_exponent.name()),
+            None => {}
+        }
     }
     Ok(())
+}
+
+/// The Lyapunov exponents of `cfg`'s run (`analysis.lyapunov`), over the
+/// run's own `tau_end` ([`LyapunovOptions::for_config`]). A run too short
+/// for them is bad input.
+fn lyapunov_summary(cfg: &Config) -> Result<Lyapunov, BatchError> {
+    let model = cfg.model().map_err(|e| BatchError::Input(e.into()))?;
+    let method = Method::from_name(&cfg.lyapunov_method).unwrap_or(Method::Tangent);
+    let opts = LyapunovOptions::for_config(cfg, method);
+    lyapunov::lyapunov(&model, &cfg.initial(), &opts).map_err(|e| match e {
+        LyapunovError::NotHarmonic | LyapunovError::Option { .. } | LyapunovError::TooShort { .. } => {
+            BatchError::Input(anyhow::anyhow!("analysis.lyapunov: {e}"))
+        }
+        LyapunovError::Initial(_) | LyapunovError::Run(_) => {
+            BatchError::Run(anyhow::Error::new(e).context("lyapunov exponents failed"))
+        }
+    })
 }

@@ -1,10 +1,15 @@
-//! The `rocking` command line: `--batch` runs one simulation headless.
+//! The `rocking` command line: `--batch` runs one simulation headless;
+//! the subcommands `sweep`, `merge` and `map` run the analyses headless.
 
 pub mod batch;
+pub mod map;
+pub mod merge;
+pub mod staging;
+pub mod sweep;
 
 use std::path::PathBuf;
 
-use clap::Parser;
+use clap::{Parser, Subcommand};
 
 /// Exit code for bad input (config, files, arguments), as clap uses.
 pub const EXIT_BAD_INPUT: i32 = 2;
@@ -14,7 +19,7 @@ pub const EXIT_RUN_FAILED: i32 = 1;
 /// rocking — exact simulator of a rigid block that rocks, slides,
 /// slide-rocks, lifts off and tumbles on a shaken base.
 #[derive(Debug, Parser)]
-#[command(name = "rocking", version, about, long_about = None)]
+#[command(name = "rocking", version, about, long_about = None, args_conflicts_with_subcommands = true)]
 pub struct Cli {
     /// Run one simulation without a window and write summary.json,
     /// events.csv, poincare.csv and history.csv into --out.
@@ -38,4 +43,42 @@ pub struct Cli {
     /// Print nothing but errors.
     #[arg(long, short)]
     pub quiet: bool,
+    /// A headless analysis instead of `--batch` or the window.
+    #[command(subcommand)]
+    pub command: Option<Command>,
+}
+
+/// The subcommands.
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Bifurcation diagram: sweep one config key, classify each value's
+    /// steady response and collect its Poincaré points (points.csv,
+    /// classes.csv, sweep.json, bifurcation.png/svg).
+    Sweep(sweep::SweepArgs),
+    /// Join the shards of a `sweep --shard K/N` into the files one run writes.
+    Merge(merge::MergeArgs),
+    /// Outcome map over two config keys (map.csv, map.png/svg, map.json).
+    Map(map::MapArgs),
+}
+
+impl Command {
+    /// Runs the subcommand.
+    pub fn run(&self) -> Result<(), batch::BatchError> {
+        match self {
+            Command::Sweep(args) => sweep::run(args),
+            Command::Merge(args) => merge::run(args),
+            Command::Map(args) => map::run(args),
+        }
+    }
+}
+
+/// Prints `error: …` for a failed command and returns its exit code
+/// ([`EXIT_BAD_INPUT`] or [`EXIT_RUN_FAILED`]).
+pub fn report(e: &batch::BatchError) -> i32 {
+    let (e, code) = match e {
+        batch::BatchError::Input(e) => (e, EXIT_BAD_INPUT),
+        batch::BatchError::Run(e) => (e, EXIT_RUN_FAILED),
+    };
+    eprintln!("error: {e:#}");
+    code
 }

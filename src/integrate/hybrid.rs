@@ -485,7 +485,14 @@ where
             let t1 = self.stepper.t();
             let y1 = *self.stepper.y();
             sys.guards(mode, t1, &y1, &mut g1);
-            let crossing = (0..n).find(|&i| self.armed[i] && !sys.is_observer(mode, i) && g1[i] <= 0.0);
+            // A guard that started on its surface (g = 0, just reset) and
+            // ends the step behind it went out and back within the step: a
+            // crossing too (after an impact with a tiny Θ', the block can
+            // lift and fall back inside one fixed step).
+            let crossing = (0..n).find(|&i| {
+                !sys.is_observer(mode, i)
+                    && ((self.armed[i] && g1[i] <= 0.0) || (self.g_start[i] == 0.0 && g1[i] < 0.0))
+            });
             match crossing {
                 Some(i) if g1[i].abs() >= PAPER_GUARD_TOL && self.stepper.step_size() > PAPER_MIN_STEP => {
                     if !self.stepper.undo_and_shrink(10.0) {

@@ -48,7 +48,15 @@ pub const KNOWN_KEYS: &[(&str, &[&str])] = &[
             "max_events",
         ],
     ),
+    ("analysis", &["lyapunov", "lyapunov_method"]),
 ];
+
+/// Largest kinetic friction coefficient accepted (exclusive): the
+/// slide-rock denominator (1−γ) + γ(sin²φ − sσμ_k sin φ cos φ) stays
+/// positive for every block and angle exactly when μ_k < 4/3; beyond it
+/// slide-rock has no unique solution (the Painlevé paradox), and the
+/// slipping impact's denominator fails at the same bound.
+pub const MU_K_LIMIT: f64 = 4.0 / 3.0;
 
 /// Kind of excitation (`excitation.kind`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -142,6 +150,28 @@ pub struct Config {
     pub max_steps: u64,
     /// `run.max_events`. Default 10⁸.
     pub max_events: u64,
+    /// `analysis.lyapunov`: `--batch` also computes Lyapunov exponents
+    /// (`summary.json` key `lyapunov`). Default false: they need a second,
+    /// tangent-augmented integration of the whole run. Harmonic excitation
+    /// only (the exponents of the periodically forced system).
+    pub lyapunov: bool,
+    /// `analysis.lyapunov_method`: `tangent` (the whole spectrum),
+    /// `benettin` (two trajectories) or `both` (both on one trajectory,
+    /// with their paired difference). Default `tangent`.
+    pub lyapunov_method: String,
+}
+
+/// `section.key` as a boolean, or `None` if absent (a non-table section is
+/// reported by [`TableReader::reject_unknown`]).
+fn boolean(table: &Table, section: &str, key: &str) -> Result<Option<bool>, ConfigError> {
+    match table.get(section).and_then(|s| s.as_table()).and_then(|s| s.get(key)) {
+        None => Ok(None),
+        Some(toml::Value::Boolean(b)) => Ok(Some(*b)),
+        Some(other) => Err(ConfigError::key(
+            &format!("{section}.{key}"),
+            format!("expected true or false, found {other}"),
+        )),
+    }
 }
 
 /// Where a config came from, for resolving relative record paths.
@@ -262,6 +292,12 @@ impl Config {
             "finite when friction.static is finite",
             mu_k,
         )?;
+        check(
+            "friction.kinetic",
+            mu_k < MU_K_LIMIT || mu_s.is_infinite(),
+            "< 4/3 (larger kinetic friction makes slide-rock ill-posed: the Painlevé paradox, docs/model.md §4)",
+            mu_k,
+        )?;
 
         let law = r
             .choice("impact", "law", &["housner", "ratio", "impulse"])?
@@ -275,6 +311,12 @@ impl Config {
         check("impact.static", impact_mu_s >= 0.0, ">= 0 or inf", impact_mu_s)?;
         let impact_mu_k = r.number("impact", "kinetic", true)?.unwrap_or(mu_k.min(impact_mu_s));
         check("impact.kinetic", impact_mu_k >= 0.0, ">= 0 or inf", impact_mu_k)?;
+        check(
+            "impact.kinetic",
+            impact_mu_k < MU_K_LIMIT || impact_mu_s.is_infinite(),
+            "< 4/3 (larger kinetic friction makes the slipping impact ill-posed, docs/model.md §7.2)",
+            impact_mu_k,
+        )?;
         check(
             "impact.kinetic",
             impact_mu_k <= impact_mu_s,
@@ -412,6 +454,18 @@ impl Config {
             check("initial.x_dot", x.abs() <= 1e6, "|X'| <= 1e6", x)?;
         }
 
+        let lyapunov = boolean(table, "analysis", "lyapunov")?.unwrap_or(false);
+        let lyapunov_method = r
+            .choice("analysis", "lyapunov_method", &["tangent", "benettin", "both"])?
+            .unwrap_or("tangent")
+            .to_string();
+        if lyapunov && kind != ExcitationKind::Harmonic {
+            return Err(ConfigError::key(
+                "analysis.lyapunov",
+                "needs excitation.kind = \"harmonic\" (the exponents of the periodically forced block)",
+            ));
+        }
+
         r.reject_unknown(KNOWN_KEYS)?;
         Ok(Self {
             width,
@@ -450,6 +504,8 @@ impl Config {
             zeno_eps,
             max_steps,
             max_events,
+            lyapunov,
+            lyapunov_method,
         })
     }
 
@@ -599,6 +655,7 @@ impl Config {
                 "flight": match self.flight { FlightPolicy::Stop => "stop", FlightPolicy::Ignore => "ignore" },
                 "zeno_eps": self.zeno_eps, "max_steps": self.max_steps, "max_events": self.max_events,
             },
+            "analysis": { "lyapunov": self.lyapunov, "lyapunov_method": self.lyapunov_method },
         })
     }
 }

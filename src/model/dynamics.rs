@@ -134,6 +134,14 @@ pub fn slide_rock_at(
     }
 }
 
+/// The slide-rock denominator D = (1−γ) + γ(sin²φ − sσμ_k sin φ cos φ).
+/// Slide-rock is well posed only while D > 0 (docs/model.md §4.2).
+#[inline]
+pub fn slide_rock_denominator(geo: &Geometry, pivot: Sign, slip: Sign, mu_k: f64, theta: f64) -> f64 {
+    let Tilt { sn, c } = Tilt::new(geo, pivot, theta);
+    (1.0 - GAMMA) + GAMMA * (sn * sn - pivot.value() * slip.value() * mu_k * sn * c)
+}
+
 /// Flat block sliding in direction `slip`: X'' = −(σ μ_k b + a)/γ.
 #[inline]
 pub fn slide(slip: Sign, mu_k: f64, fo: Forcing) -> Accel {

@@ -16,11 +16,14 @@ pub fn height(geo: &Geometry, mode: Mode, theta: f64, theta_dot: f64) -> (f64, f
         Mode::Rest | Mode::Slide { .. } => (geo.cos_psi, 0.0),
         Mode::Tumbled | Mode::Flight => {
             // Terminal states keep the geometry of the last contact: tilted
-            // if Θ ≠ 0.
-            if theta == 0.0 {
-                (geo.cos_psi, 0.0)
-            } else {
+            // about the side Θ is on, or, at Θ = 0, about the side Θ' moves
+            // to (the block left the base rotating); flat if neither.
+            if theta != 0.0 {
                 tilted_height(geo, Sign::of(theta), theta, theta_dot)
+            } else if theta_dot != 0.0 {
+                tilted_height(geo, Sign::of(theta_dot), theta, theta_dot)
+            } else {
+                (geo.cos_psi, 0.0)
             }
         }
     }

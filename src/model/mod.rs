@@ -11,6 +11,7 @@ pub mod geometry;
 pub mod impact;
 pub mod mode;
 pub mod system;
+pub mod variational;
 
 pub use excitation::{Excitation, Harmonic};
 pub use geometry::Geometry;

@@ -141,6 +141,9 @@ pub struct Tally {
     pub max_abs_theta: f64,
     /// Impacts.
     pub impacts: u64,
+    /// Y' with which an impact threw the block off the base (flight by
+    /// vertical restitution), kept for the final energy.
+    pub lift_off_y_dot: Option<f64>,
 }
 
 /// The block as a [`HybridSystem`].
@@ -205,6 +208,19 @@ impl BlockSystem {
         energy::total(&self.model.geo, mode, y[THETA], y[THETA_DOT], y[X_DOT])
     }
 
+    /// Mechanical energy at the end of a run: as [`energy`](Self::energy),
+    /// except that a block thrown off the base by an impact keeps the
+    /// vertical velocity it left with.
+    pub fn final_energy(&self, mode: Mode, y: &[f64; N]) -> f64 {
+        match (mode, self.tally.lift_off_y_dot) {
+            (Mode::Flight, Some(y_dot)) => {
+                let geo = &self.model.geo;
+                energy::kinetic(geo, y[X_DOT], y_dot, y[THETA_DOT]) + geo.cos_psi
+            }
+            _ => self.energy(mode, y),
+        }
+    }
+
     /// Brings a freshly entered mode to a consistent one at the same
     /// instant: a rock mode whose friction demand exceeds the cone slips, a
     /// rest whose base lifts it rocks, a flat slide with μ_k > tan ψ tips,
@@ -256,7 +272,12 @@ impl BlockSystem {
                         Some(Mode::Flight)
                     } else if y[THETA] == 0.0 && y[THETA_DOT] == 0.0 && pivot.value() * acc.theta_ddot < 0.0 {
                         Some(Mode::Rest)
-                    } else if mu_s.is_finite() && acc.friction.abs() > mu_s * acc.normal {
+                    } else if mu_s.is_finite()
+                        && acc.friction.abs() > mu_s * acc.normal
+                        && dynamics::slide_rock_denominator(&geo, pivot, Sign::of(-acc.friction), mu_k, y[THETA]) > 0.0
+                    {
+                        // (With D <= 0 slip has no unique motion, the
+                        // Painlevé case: the corner stays stuck.)
                         let tilt = Tilt::new(&geo, pivot, y[THETA]);
                         y[X_DOT] = tilt.c * geo.psi * y[THETA_DOT];
                         Some(Mode::SlideRock {
@@ -383,7 +404,11 @@ impl BlockSystem {
             x_dot: yn[X_DOT],
         };
         if mode == Mode::Flight {
-            // Kinetic energy after, with the lifted-off vertical velocity.
+            // Kinetic energy after, with the lifted-off vertical velocity,
+            // which the state vector does not hold: keep it for the audit.
+            yn[X_DOT] = post.x_dot;
+            record.x_dot = post.x_dot;
+            self.tally.lift_off_y_dot = Some(post.y_dot);
             let e_after = energy::kinetic(&geo, post.x_dot, post.y_dot, yn[THETA_DOT]);
             self.tally.impact_loss += e_before - e_after;
             return Jump {
@@ -396,6 +421,24 @@ impl BlockSystem {
 
         if !post.flat && yn[THETA_DOT].abs() < self.model.zeno_eps {
             return self.accumulate(record, e_before, t, &pre, &post, yn);
+        }
+        if post.flat && yn[X_DOT].abs() < self.model.zeno_eps * geo.psi {
+            // A flat landing that leaves almost no motion ends a different
+            // accumulation (landing, tipping, sticking, landing …, each
+            // cycle smaller): the block is put to rest, with the same
+            // threshold as for rocking (|X'| ≈ ψ|Θ'| cos ψ).
+            self.tally.impact_loss += e_before;
+            yn[X_DOT] = 0.0;
+            let mode = self.settle(Mode::Rest, t, &mut yn);
+            record.kind = EventKind::Rest;
+            record.after = mode;
+            record.x_dot = yn[X_DOT];
+            return Jump {
+                mode,
+                t,
+                y: yn,
+                records: [Some(record), None],
+            };
         }
         let (_, y_dot_after) = energy::height(&geo, mode, 0.0, yn[THETA_DOT]);
         let e_after = energy::kinetic(&geo, yn[X_DOT], y_dot_after, yn[THETA_DOT]);
@@ -429,9 +472,18 @@ impl BlockSystem {
         let k_after = dynamics::restoring(&geo, striking.flip(), fo);
         // All kinetic energy left is lost in the accumulation (the slip of
         // the corner, if any, continues as flat sliding).
+        // A slip slower than the accumulation threshold (|X'| < ψ zeno_eps,
+        // the rocking threshold's horizontal counterpart) is summed away
+        // too: otherwise a block with μ_k > tan ψ would slide, tip and
+        // accumulate again in an endless cascade of ever smaller cycles.
         let slip_velocity = match (post.slip, self.friction_finite()) {
             (Some(_), true) => post.x_dot - geo.cos_psi * post.w,
             _ => 0.0,
+        };
+        let slip_velocity = if slip_velocity.abs() < self.model.zeno_eps * geo.psi {
+            0.0
+        } else {
+            slip_velocity
         };
         self.tally.impact_loss += e_before - energy::kinetic(&geo, slip_velocity, 0.0, 0.0);
         yn[THETA] = 0.0;

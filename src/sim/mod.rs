@@ -5,7 +5,9 @@
 //! knows nothing of files or windows.
 
 mod collect;
+pub mod protocol;
 mod run;
+pub mod runner;
 
 pub use collect::{HistoryRow, SectionRow};
 pub use run::{EnergyAudit, InitialState, Method, Outcome, RunOptions, RunResult, SimError, initial_mode, simulate};

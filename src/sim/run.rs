@@ -273,7 +273,7 @@ fn run_with<S: Stepper<N>>(
         Mode::Slide { .. } | Mode::Rock { .. } | Mode::SlideRock { .. } => Outcome::Running,
     };
 
-    let e_final = system.energy(final_mode, &y);
+    let e_final = system.final_energy(final_mode, &y);
     let (work, friction, impact) = (y[WORK], y[FRICTION_LOSS], tally.impact_loss);
     let residual = (e_final - e0) - (work - friction - impact);
     let scale = e0

@@ -1,0 +1,501 @@
+//! Lyapunov exponents of the block, two independent ways that must agree,
+//! both correct across impacts and mode switches.
+//!
+//! - **Tangent dynamics** ([`Method::Tangent`]): the variational equations
+//!   of each mode (`model::variational`) are integrated with the state; at
+//!   every event — impact and every mode switch — the tangent vectors are
+//!   mapped by the saltation matrix `S = J_R + (f⁺ − J_R f⁻) n_yᵀ / (n_y·f⁻
+//!   + ∂g/∂τ)` (Müller 1995; Leine & Nijmeijer 2004); once per forcing
+//!   period they are re-orthonormalised by QR and `ln R_ii` accumulated
+//!   (Benettin et al. 1980). This gives the whole spectrum.
+//! - **Two trajectories** ([`Method::Benettin`]): a fiducial and a
+//!   perturbed run, renormalised only on the stroboscopic section
+//!   `τ_k = 2πk/Ω_h`, where both are smooth. This gives the largest
+//!   exponent and is independent of the Jacobians.
+//!
+//! # Phase space and what the spectrum contains
+//!
+//! The forced block's state is `(Θ, Θ', X, X')` (plus the phase of the
+//! forcing). Exponents are computed in `z = (Θ, Θ', X')`:
+//! - `X` is a **neutral** direction: nothing depends on it (translation
+//!   along the base), so its exponent is exactly 0. It is not computed and
+//!   not listed in [`LyapunovResult::spectrum`].
+//! - `X'` is free only while the pivot slips. Rock slaves it to
+//!   `cos φ · ψΘ'`, and every sticking impact (the `ratio` and `housner`
+//!   laws) resets it from `Θ'` alone, so a perturbation of the slip
+//!   velocity is annihilated in finite time: its exponent is −∞. Such
+//!   directions are counted in [`LyapunovResult::collapsed`] instead of
+//!   being given a number. Without sliding (`μ_s = ∞`) the spectrum is the
+//!   two exponents of `(Θ, Θ')`.
+//! - A response that passes through rest or flat sliding (an impact
+//!   accumulation, a flat landing) forgets every perturbation of `Θ` in
+//!   finite time: it has no finite exponent ([`NoExponent::FlatPhases`]).
+//!   Tumbling and flight end the motion ([`NoExponent::Tumbled`],
+//!   [`NoExponent::Flight`]). These are typed results, never NaN.
+//!
+//! # Units
+//!
+//! Exponents are per unit τ (`τ = p t`), natural log
+//! ([`LyapunovResult::largest_per_tau`]), and per excitation cycle
+//! (`× 2π/Ω_h`, [`LyapunovResult::per_cycle`]). The paper does not state
+//! its units.
+//!
+//! # Error bars
+//!
+//! The accumulation window (after the transient) is split into batches;
+//! the standard error is that of the batch means (`batch.rs`).
+//!
+//! The generic machinery ([`TangentSystem`], [`tangent_exponents`],
+//! [`benettin`]) works for any hybrid system that provides Jacobians and is
+//! tested on systems with known exponents.
+
+mod batch;
+mod benettin;
+mod block;
+mod qr;
+mod run;
+mod tangent;
+
+use serde::Serialize;
+use serde_json::{Value as Json, json};
+
+pub use batch::{Accumulator, CONVERGENCE_POINTS, Estimate, standard_error};
+pub use qr::{Square, qr};
+pub use run::{Outcome, Request, Schedule, exponents};
+pub use tangent::{Augmented, TangentError, TangentSystem};
+
+use crate::integrate::Tolerances;
+use crate::integrate::hybrid::Limits;
+use crate::io::config::Config;
+use crate::model::system::{ModelError, N};
+use crate::model::variational::{self, DIM};
+use crate::model::{BlockSystem, Mode, Model};
+use crate::sim::{self, InitialState, SimError};
+
+/// Which way to compute the exponents.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Method {
+    /// Variational equations with saltation matrices and QR: the whole
+    /// spectrum (default: it needs no separation parameter and resolves
+    /// every exponent).
+    Tangent,
+    /// Two trajectories renormalised on the stroboscopic section: the
+    /// largest exponent, as an independent check.
+    Benettin,
+    /// Both, on one fiducial trajectory: the tangent result with the
+    /// two-trajectory estimate and their paired difference
+    /// ([`LyapunovResult::check`]).
+    Both,
+}
+
+impl Method {
+    /// Name used in configs and outputs: `tangent`, `benettin`, `both`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Method::Tangent => "tangent",
+            Method::Benettin => "benettin",
+            Method::Both => "both",
+        }
+    }
+
+    /// The method called `name`, if any.
+    pub fn from_name(name: &str) -> Option<Self> {
+        match name {
+            "tangent" => Some(Method::Tangent),
+            "benettin" => Some(Method::Benettin),
+            "both" => Some(Method::Both),
+            _ => None,
+        }
+    }
+}
+
+/// Options of [`lyapunov`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LyapunovOptions {
+    /// Method.
+    pub method: Method,
+    /// Discarded start, τ (rounded up to whole forcing periods). Default
+    /// 600, the paper's own transient before its Poincaré points: the
+    /// chaotic transients of its presets last a few hundred τ.
+    pub transient_tau: f64,
+    /// End of the run, τ (rounded down to whole forcing periods). Default
+    /// 2600, i.e. 2000 τ of accumulation: about 2500 periods at Ω = 8,
+    /// which brings the batch-means error of a chaotic response to ~0.015.
+    pub total_tau: f64,
+    /// Relative tolerance of the integrator (DOP853). Default 1e-11: the
+    /// two-trajectory method measures separations of `separation` = 1e-7,
+    /// so the integration error per period must stay far below that.
+    pub rtol: f64,
+    /// Absolute tolerance. Default 1e-13 (see `rtol`).
+    pub atol: f64,
+    /// Batches for the error estimate. Default 16: enough for a usable
+    /// standard deviation of the batch means, while each batch stays long
+    /// (≥ 100 periods by default) compared with the decorrelation time.
+    pub batches: usize,
+    /// Separation of the two trajectories in `(Θ, Θ', X')` after each
+    /// renormalisation (Benettin only). Default 1e-7: small enough for the
+    /// linear regime (the attractor's size is ~1), large enough that the
+    /// integration error (~1e-11 relative) is a 1e-4 part of it.
+    pub separation: f64,
+    /// Loop bounds of the driver.
+    pub limits: Limits,
+}
+
+impl Default for LyapunovOptions {
+    fn default() -> Self {
+        Self {
+            method: Method::Tangent,
+            transient_tau: 600.0,
+            total_tau: 2600.0,
+            rtol: 1e-11,
+            atol: 1e-13,
+            batches: 16,
+            separation: 1e-7,
+            limits: Limits::default(),
+        }
+    }
+}
+
+impl LyapunovOptions {
+    /// Options for a configured run: the run's `tau_end` and loop limits,
+    /// the transient of [`Default`] or half the run, whichever is shorter,
+    /// and `method`.
+    pub fn for_config(cfg: &Config, method: Method) -> Self {
+        let d = Self::default();
+        Self {
+            method,
+            transient_tau: d.transient_tau.min(0.5 * cfg.tau_end),
+            total_tau: cfg.tau_end,
+            limits: Limits {
+                max_steps: cfg.max_steps,
+                max_events: cfg.max_events,
+            },
+            ..d
+        }
+    }
+
+    fn validate(&self) -> Result<(), LyapunovError> {
+        let bad = |field: &'static str, reason: &'static str| Err(LyapunovError::Option { field, reason });
+        if !(self.transient_tau.is_finite() && self.transient_tau >= 0.0) {
+            return bad("transient_tau", "must be a finite number >= 0");
+        }
+        if !(self.total_tau.is_finite() && self.total_tau > self.transient_tau) {
+            return bad("total_tau", "must be finite and greater than transient_tau");
+        }
+        if !(self.rtol > 0.0 && self.rtol <= 1e-3) {
+            return bad("rtol", "must be in (0, 1e-3]");
+        }
+        if !(self.atol > 0.0 && self.atol.is_finite()) {
+            return bad("atol", "must be a finite number > 0");
+        }
+        if self.batches < 2 {
+            return bad("batches", "must be at least 2");
+        }
+        if !(self.separation > 0.0 && self.separation <= 1e-3) {
+            return bad("separation", "must be in (0, 1e-3]");
+        }
+        Ok(())
+    }
+}
+
+/// Exponents of a response that has them.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct LyapunovResult {
+    /// How they were computed.
+    pub method: Method,
+    /// Largest exponent per unit τ (natural log).
+    pub largest_per_tau: f64,
+    /// Largest exponent per excitation cycle (`× 2π/Ω_h`).
+    pub per_cycle: f64,
+    /// Standard error of `largest_per_tau` (batch means), per τ.
+    pub stderr: f64,
+    /// Standard error of `per_cycle`.
+    pub stderr_per_cycle: f64,
+    /// Tangent only: the finite exponents of `(Θ, Θ', X')` per τ, largest
+    /// first. The neutral direction `X` (exponent exactly 0) is not listed;
+    /// directions annihilated in finite time are counted in `collapsed`.
+    /// Empty for the two-trajectory method.
+    pub spectrum: Vec<f64>,
+    /// Standard errors of `spectrum`.
+    pub spectrum_stderr: Vec<f64>,
+    /// Tangent only: directions of `(Θ, Θ', X')` whose exponent is −∞ (the
+    /// slip velocity when the pivot sticks at impacts or in rock). 0 for
+    /// the two-trajectory method.
+    pub collapsed: usize,
+    /// `(τ, running estimate of the largest exponent per τ)`.
+    pub convergence: Vec<(f64, f64)>,
+    /// Start of the accumulation window, τ.
+    pub tau_start: f64,
+    /// End of the accumulation window, τ.
+    pub tau_end: f64,
+    /// Renormalisation interval (the forcing period 2π/Ω_h), τ.
+    pub period: f64,
+    /// Renormalisations in the window.
+    pub renormalisations: u64,
+    /// Batches behind the error estimates.
+    pub batches: usize,
+    /// [`Method::Both`] only: the two-trajectory estimate on the same
+    /// fiducial trajectory and its paired difference from the tangent one.
+    pub check: Option<Agreement>,
+}
+
+/// The two methods compared on one fiducial trajectory.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Agreement {
+    /// Two-trajectory largest exponent per τ.
+    pub benettin_per_tau: f64,
+    /// Its standard error (batch means), per τ.
+    pub benettin_stderr: f64,
+    /// Tangent minus two-trajectory, per τ.
+    pub difference: f64,
+    /// Standard error of the difference from the paired batch means (both
+    /// estimates share the trajectory, so this is much smaller than either
+    /// error alone when the methods agree).
+    pub difference_stderr: f64,
+}
+
+/// Why a response has no finite exponent.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum NoExponent {
+    /// The block tumbled.
+    Tumbled,
+    /// The block left the base (with `flight = stop`).
+    Flight,
+    /// The block is at rest at the end.
+    Rest,
+    /// The response passes through rest or flat sliding, where every
+    /// perturbation of Θ dies out in finite time (exponent −∞).
+    FlatPhases,
+}
+
+impl NoExponent {
+    /// Name used in outputs.
+    pub fn name(self) -> &'static str {
+        match self {
+            NoExponent::Tumbled => "tumbled",
+            NoExponent::Flight => "flight",
+            NoExponent::Rest => "rest",
+            NoExponent::FlatPhases => "flat-phases",
+        }
+    }
+}
+
+/// The answer of [`lyapunov`].
+#[derive(Clone, Debug, PartialEq, Serialize)]
+#[serde(untagged)]
+pub enum Lyapunov {
+    /// Finite exponents.
+    Exponents(LyapunovResult),
+    /// None, and why.
+    None {
+        /// The method that was asked for.
+        method: Method,
+        /// Why there is no exponent.
+        no_exponent: NoExponent,
+        /// τ at which this was established (tumble or flight time, or the
+        /// end of the window).
+        tau: f64,
+    },
+}
+
+impl Lyapunov {
+    /// The largest exponent per τ, if there is one.
+    pub fn largest_per_tau(&self) -> Option<f64> {
+        match self {
+            Lyapunov::Exponents(r) => Some(r.largest_per_tau),
+            Lyapunov::None { .. } => None,
+        }
+    }
+
+    /// Compact JSON for `summary.json`: `method`, `largest_per_tau`,
+    /// `per_cycle`, `stderr`, `spectrum` and the window, without the
+    /// convergence history; or `method`, `no_exponent`, `tau`.
+    pub fn summary(&self) -> Json {
+        match self {
+            Lyapunov::Exponents(r) => json!({
+                "method": r.method.name(),
+                "largest_per_tau": r.largest_per_tau,
+                "per_cycle": r.per_cycle,
+                "stderr": r.stderr,
+                "stderr_per_cycle": r.stderr_per_cycle,
+                "spectrum": r.spectrum,
+                "spectrum_stderr": r.spectrum_stderr,
+                "collapsed": r.collapsed,
+                "neutral": "X (exponent 0, not listed)",
+                "units": "per unit tau, natural log; per_cycle = per_tau * 2pi/omega_h",
+                "tau_start": r.tau_start,
+                "tau_end": r.tau_end,
+                "batches": r.batches,
+                "check": r.check,
+            }),
+            Lyapunov::None {
+                method,
+                no_exponent,
+                tau,
+            } => json!({
+                "method": method.name(),
+                "no_exponent": no_exponent.name(),
+                "tau": tau,
+            }),
+        }
+    }
+}
+
+/// Why [`lyapunov`] could not run.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum LyapunovError {
+    /// Exponents of the forced system need a forcing period.
+    #[error("lyapunov exponents need harmonic excitation (excitation.kind = \"harmonic\" with omega_h > 0)")]
+    NotHarmonic,
+    /// An option is out of range.
+    #[error("lyapunov option {field} {reason}")]
+    Option {
+        /// The option.
+        field: &'static str,
+        /// What is wrong with it.
+        reason: &'static str,
+    },
+    /// The window holds fewer than two forcing periods.
+    #[error("lyapunov: total_tau - transient_tau must span at least 2 forcing periods ({period} τ each)")]
+    TooShort {
+        /// The forcing period, τ.
+        period: f64,
+    },
+    /// The initial state is not admissible.
+    #[error(transparent)]
+    Initial(#[from] SimError),
+    /// The integration failed.
+    #[error("lyapunov run failed: {0}")]
+    Run(#[from] TangentError<ModelError>),
+}
+
+/// The Lyapunov exponents of `model` started from `init` (see the module
+/// docs for the phase space, units and typed non-results).
+pub fn lyapunov(model: &Model, init: &InitialState, opts: &LyapunovOptions) -> Result<Lyapunov, LyapunovError> {
+    opts.validate()?;
+    let period = model.excitation.forcing_period().ok_or(LyapunovError::NotHarmonic)?;
+    if variational::forcing_rate(&model.excitation, 0.0).is_none() {
+        return Err(LyapunovError::NotHarmonic);
+    }
+    let (mode0, mut y0) = sim::initial_mode(model, init)?;
+    let mut sys = BlockSystem::new(model.clone());
+    let mode0 = sys.settle(mode0, 0.0, &mut y0);
+    let transient = (opts.transient_tau / period).ceil() as u64;
+    let total = (opts.total_tau / period).floor() as u64;
+    if total < transient + 2 {
+        return Err(LyapunovError::TooShort { period });
+    }
+    let schedule = Schedule {
+        period,
+        transient,
+        total,
+        batches: opts.batches,
+    };
+    let tol = Tolerances {
+        rtol: opts.rtol,
+        atol: opts.atol,
+        ..Tolerances::default()
+    };
+    let method = opts.method;
+    let request = Request {
+        tangent: matches!(method, Method::Tangent | Method::Both),
+        separation: matches!(method, Method::Benettin | Method::Both).then_some(opts.separation),
+    };
+    let none = |no_exponent, tau| Lyapunov::None {
+        method,
+        no_exponent,
+        tau,
+    };
+    let outcome = exponents::<_, N, DIM, { N + DIM * DIM }>(sys, mode0, y0, &schedule, tol, opts.limits, request)?;
+    let (tangent, benettin, min_dim, final_mode) = match outcome {
+        Outcome::Estimate {
+            tangent,
+            benettin,
+            min_dim,
+            final_mode,
+        } => (tangent, benettin, min_dim, final_mode),
+        Outcome::Terminal { mode, t } => {
+            let reason = match mode {
+                Mode::Flight => NoExponent::Flight,
+                Mode::Tumbled | Mode::Rest | Mode::Slide { .. } | Mode::Rock { .. } | Mode::SlideRock { .. } => {
+                    NoExponent::Tumbled
+                }
+            };
+            return Ok(none(reason, t));
+        }
+        Outcome::Collapsed { t } => return Ok(none(NoExponent::FlatPhases, t)),
+    };
+    // Fewer than the two directions of (Θ, Θ'): the response went flat.
+    if min_dim < 2 {
+        let reason = if final_mode == Mode::Rest {
+            NoExponent::Rest
+        } else {
+            NoExponent::FlatPhases
+        };
+        return Ok(none(reason, opts.total_tau.min(total as f64 * period)));
+    }
+    let finite = min_dim.min(DIM);
+    let result = match (tangent, benettin) {
+        (Some(t), b) => {
+            let check = b.map(|b| {
+                let diffs: Vec<f64> = t.batch_means.iter().zip(&b.batch_means).map(|(x, y)| x - y).collect();
+                Agreement {
+                    benettin_per_tau: b.exponents[0],
+                    benettin_stderr: b.stderr[0],
+                    difference: t.exponents[0] - b.exponents[0],
+                    difference_stderr: standard_error(&diffs),
+                }
+            });
+            LyapunovResult {
+                method,
+                largest_per_tau: t.exponents[0],
+                per_cycle: t.exponents[0] * period,
+                stderr: t.stderr[0],
+                stderr_per_cycle: t.stderr[0] * period,
+                spectrum: t.exponents[..finite].to_vec(),
+                spectrum_stderr: t.stderr[..finite].to_vec(),
+                collapsed: DIM - finite,
+                convergence: t.convergence,
+                tau_start: t.t_start,
+                tau_end: t.t_end,
+                period,
+                renormalisations: t.renormalisations,
+                batches: t.batches,
+                check,
+            }
+        }
+        (None, Some(b)) => LyapunovResult {
+            method,
+            largest_per_tau: b.exponents[0],
+            per_cycle: b.exponents[0] * period,
+            stderr: b.stderr[0],
+            stderr_per_cycle: b.stderr[0] * period,
+            spectrum: Vec::new(),
+            spectrum_stderr: Vec::new(),
+            collapsed: 0,
+            convergence: b.convergence,
+            tau_start: b.t_start,
+            tau_end: b.t_end,
+            period,
+            renormalisations: b.renormalisations,
+            batches: b.batches,
+            check: None,
+        },
+        (None, None) => return Err(LyapunovError::Option {
+            field: "method",
+            reason: "asked for no estimate",
+        }),
+    };
+    Ok(Lyapunov::Exponents(result))
+}
+
+/// The largest exponent per τ of a configured run by tangent dynamics
+/// (for outcome maps), with [`LyapunovOptions::for_config`]; `None` when
+/// the response has no finite exponent or the run fails.
+pub fn largest_for_config(cfg: &Config) -> Option<f64> {
+    let model = cfg.model().ok()?;
+    let opts = LyapunovOptions::for_config(cfg, Method::Tangent);
+    lyapunov(&model, &cfg.initial(), &opts).ok()?.largest_per_tau()
+}

@@ -1,0 +1,26 @@
+//! Analyses of the block's response: the stroboscopic (Poincaré) section,
+//! the classification of a steady response, power spectra, bifurcation
+//! (orbit) diagrams over one parameter and outcome maps over two.
+//!
+//! Contract:
+//! - The numerical machinery (classification, spectra, sweeps over a grid)
+//!   is generic: it works on plain point sets, sample vectors and closures,
+//!   and is tested on systems with known answers (the logistic map, an
+//!   irrational rotation, a linear forced oscillator, sums of sines).
+//!   The block enters only through [`steady`], which runs one configuration
+//!   and hands its section points to the classifier.
+//! - Nothing here draws, writes files or names a GUI type.
+//! - Sweeps are deterministic: the same inputs give bit-identical results
+//!   for any number of threads (results are collected by index).
+//! - Non-finite input is an error, never a NaN in a result.
+//!
+//! Layers: `model → integrate → sim → analysis → (cli, gui)`; this module
+//! also reads [`crate::io::config`] to vary one configuration key at a time.
+
+pub mod classify;
+pub mod lyapunov;
+pub mod orbit_diagram;
+pub mod outcome_map;
+pub mod section;
+pub mod spectrum;
+pub mod steady;

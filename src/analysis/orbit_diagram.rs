@@ -1,0 +1,464 @@
+//! Bifurcation (orbit) diagrams: sweep one parameter over a grid, and for
+//! each value collect the Poincaré points after a transient and classify
+//! the response.
+//!
+//! The machinery is generic: [`sweep`] runs any closure
+//! `value, seed → (result, next seed)` over a [`Plan`], so it is tested on
+//! the logistic map as well as used on the block ([`block_sweep`]).
+//!
+//! Every sweep documents, in its [`Plan`] and the block's
+//! [`Window`]:
+//! - **values**: `from + i·step` for i = 0, 1, … while the value is below
+//!   `to` plus half a step (so `to` is included despite rounding), computed
+//!   from i, never accumulated;
+//! - **transient and samples**: for the block, section points at
+//!   τ_k = 2πk/Ω_h with transient ≤ τ_k ≤ tau_end (the paper: 600–800);
+//! - **seeding**: without continuation every value starts from the
+//!   configuration's own initial state (the paper: from rest), and values
+//!   run in parallel on the current rayon pool, results collected by index,
+//!   so the output is bit-identical for any number of threads. With
+//!   continuation (`up` or `down`) each value starts from the previous
+//!   value's last section point (excitation phase 0, so the restart at
+//!   τ = 0 is in phase; exact when Ω_v is a multiple of Ω_h), which follows
+//!   one attractor through hysteresis; the values are then necessarily
+//!   computed one after another, in increasing (`up`) or decreasing
+//!   (`down`) order. After a tumbled or flight value, the next value starts
+//!   again from the configuration's initial state;
+//! - **sharding**: `Shard { index: K, count: N }` computes the values whose
+//!   index i satisfies i mod N = K, K counted from 0 (as Slurm's
+//!   `--array=0-(N-1)` numbers its tasks). Shards cannot be combined with
+//!   continuation, whose values depend on each other.
+//!
+//! Results are always returned in increasing index (value) order, whatever
+//! the direction of computation.
+
+use indicatif::ProgressBar;
+use rayon::prelude::*;
+
+use super::classify::{ClassifyOptions, Response};
+use super::steady::{LyapunovFn, ParamBase, SteadyError, Window, check_config, seeded, steady_response};
+use crate::io::config::Config;
+use crate::sim::{InitialState, SectionRow};
+
+/// Most values one sweep may have (a guard against a step typed too small).
+pub const MAX_VALUES: usize = 10_000_000;
+
+/// The values of a sweep: `from + i·step` for every i with
+/// `from + i·step < to + step/2`, so `to` is included despite rounding (and
+/// a last value less than half a step beyond `to` is too).
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct Grid {
+    /// First value.
+    pub from: f64,
+    /// Last value (included within half a step).
+    pub to: f64,
+    /// Spacing, > 0.
+    pub step: f64,
+    /// Number of values.
+    pub count: usize,
+}
+
+/// Errors in a sweep's definition, each naming the CLI flag.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("{0}")]
+pub struct PlanError(pub String);
+
+impl Grid {
+    /// Validates and counts the values.
+    pub fn new(from: f64, to: f64, step: f64) -> Result<Self, PlanError> {
+        let bad = |flag: &str, v: f64, what: &str| Err(PlanError(format!("{flag} {v}: {what}")));
+        if !from.is_finite() {
+            return bad("--from", from, "must be finite");
+        }
+        if !to.is_finite() {
+            return bad("--to", to, "must be finite");
+        }
+        if !step.is_finite() || step <= 0.0 {
+            return bad("--step", step, "must be finite and > 0");
+        }
+        if to < from {
+            return bad("--to", to, &format!("must be >= --from {from}"));
+        }
+        // The last index is the largest i with from + i·step < to + step/2.
+        let n = ((to - from) / step - 0.5).ceil().max(0.0);
+        if n.partial_cmp(&(MAX_VALUES as f64)) != Some(std::cmp::Ordering::Less) {
+            return bad("--step", step, &format!("gives more than {MAX_VALUES} values"));
+        }
+        let count = n as usize + 1;
+        let grid = Self { from, to, step, count };
+        // Distinct values are needed to tell them apart in the outputs.
+        if count > 1 && grid.value(1) == grid.value(0) {
+            return bad(
+                "--step",
+                step,
+                &format!("is below the resolution of the values near {from}"),
+            );
+        }
+        Ok(grid)
+    }
+
+    /// Value `i`: `from + i·step`.
+    pub fn value(&self, i: usize) -> f64 {
+        self.from + i as f64 * self.step
+    }
+
+    /// All values in order.
+    pub fn values(&self) -> Vec<f64> {
+        (0..self.count).map(|i| self.value(i)).collect()
+    }
+}
+
+/// How each value is seeded (see the module docs).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Continuation {
+    /// Every value from the configuration's initial state, in parallel.
+    None,
+    /// Each value from the previous (smaller) value's final section state.
+    Up,
+    /// Each value from the previous (larger) value's final section state.
+    Down,
+}
+
+impl Continuation {
+    /// Name used on the command line and in `sweep.json`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Continuation::None => "none",
+            Continuation::Up => "up",
+            Continuation::Down => "down",
+        }
+    }
+}
+
+/// One shard of a sweep: the values with index ≡ `index` (mod `count`),
+/// `index` counted from 0.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+pub struct Shard {
+    /// K, 0 ≤ K < N.
+    pub index: usize,
+    /// N ≥ 1.
+    pub count: usize,
+}
+
+impl Shard {
+    /// Parses `K/N` (0 ≤ K < N).
+    pub fn parse(text: &str) -> Result<Self, PlanError> {
+        let bad = |what: &str| Err(PlanError(format!("--shard {text}: {what}")));
+        let Some((k, n)) = text.split_once('/') else {
+            return bad("expected K/N, e.g. 0/4 (K counts from 0)");
+        };
+        let (Ok(index), Ok(count)) = (k.trim().parse::<usize>(), n.trim().parse::<usize>()) else {
+            return bad("expected K/N with non-negative integers, e.g. 0/4");
+        };
+        if count == 0 {
+            return bad("N must be >= 1");
+        }
+        if index >= count {
+            return bad(&format!("K must be < N (K counts from 0: 0..={})", count - 1));
+        }
+        Ok(Self { index, count })
+    }
+}
+
+/// What a sweep computes: its values, seeding and shard.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct Plan {
+    /// The values.
+    pub grid: Grid,
+    /// Seeding.
+    pub continuation: Continuation,
+    /// Only this shard's values, if set.
+    pub shard: Option<Shard>,
+}
+
+impl Plan {
+    /// A plan; sharding a continuation sweep is an error.
+    pub fn new(grid: Grid, continuation: Continuation, shard: Option<Shard>) -> Result<Self, PlanError> {
+        if shard.is_some() && continuation != Continuation::None {
+            return Err(PlanError(format!(
+                "--shard cannot be combined with --continuation {}: each value is seeded from the previous one, so the values cannot be split",
+                continuation.name()
+            )));
+        }
+        Ok(Self {
+            grid,
+            continuation,
+            shard,
+        })
+    }
+
+    /// The indices this plan computes, increasing.
+    pub fn indices(&self) -> Vec<usize> {
+        match self.shard {
+            None => (0..self.grid.count).collect(),
+            Some(s) => (s.index..self.grid.count).step_by(s.count).collect(),
+        }
+    }
+}
+
+/// One computed value of a sweep.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Computed<T> {
+    /// Index in the grid.
+    pub index: usize,
+    /// The value.
+    pub value: f64,
+    /// What the closure returned for it.
+    pub result: T,
+}
+
+/// A failed value of a sweep: the first failure in index order (or in
+/// computation order with continuation).
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[error("value {value}: {error}")]
+pub struct SweepError<E: std::fmt::Display> {
+    /// Index in the grid.
+    pub index: usize,
+    /// The value.
+    pub value: f64,
+    /// The closure's error.
+    pub error: E,
+}
+
+/// Runs `f(value, seed)` for every value of `plan` and returns the results in
+/// increasing index order. `f` returns its result and the seed for the next
+/// value (used only with continuation). `progress` is advanced once per
+/// value (pass [`ProgressBar::hidden`] for none).
+pub fn sweep<T, S, E, F>(plan: &Plan, progress: &ProgressBar, f: F) -> Result<Vec<Computed<T>>, SweepError<E>>
+where
+    F: Fn(f64, Option<&S>) -> Result<(T, Option<S>), E> + Sync,
+    T: Send,
+    S: Send,
+    E: Send + std::fmt::Display,
+{
+    let indices = plan.indices();
+    let grid = plan.grid;
+    let run_one = |i: usize, seed: Option<&S>| {
+        let value = grid.value(i);
+        let out = f(value, seed).map_err(|error| SweepError { index: i, value, error });
+        progress.inc(1);
+        out.map(|(result, next)| {
+            (
+                Computed {
+                    index: i,
+                    value,
+                    result,
+                },
+                next,
+            )
+        })
+    };
+    match plan.continuation {
+        Continuation::None => {
+            let results: Vec<_> = indices.par_iter().map(|&i| run_one(i, None)).collect();
+            results.into_iter().map(|r| r.map(|(c, _)| c)).collect()
+        }
+        Continuation::Up | Continuation::Down => {
+            let mut order = indices;
+            if plan.continuation == Continuation::Down {
+                order.reverse();
+            }
+            let mut out = Vec::with_capacity(order.len());
+            let mut seed: Option<S> = None;
+            for i in order {
+                let (c, next) = run_one(i, seed.as_ref())?;
+                seed = next;
+                out.push(c);
+            }
+            if plan.continuation == Continuation::Down {
+                out.reverse();
+            }
+            Ok(out)
+        }
+    }
+}
+
+/// A run of consecutive values with the same response, for summaries.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ResponseRange {
+    /// First value of the run.
+    pub from: f64,
+    /// Last value of the run.
+    pub to: f64,
+    /// Its response.
+    pub response: Response,
+}
+
+/// Groups consecutive `(value, response)` pairs with equal responses.
+pub fn response_ranges(values: &[(f64, Response)]) -> Vec<ResponseRange> {
+    let mut out: Vec<ResponseRange> = Vec::new();
+    for &(value, response) in values {
+        match out.last_mut() {
+            Some(last) if last.response == response => last.to = value,
+            _ => out.push(ResponseRange {
+                from: value,
+                to: value,
+                response,
+            }),
+        }
+    }
+    out
+}
+
+/// One value of a block's bifurcation diagram.
+#[derive(Clone, Debug, PartialEq)]
+pub struct BifurcationValue {
+    /// The parameter value.
+    pub value: f64,
+    /// The steady response.
+    pub response: Response,
+    /// Largest |Θ| over the run, transient included.
+    pub max_abs_theta: f64,
+    /// Largest Lyapunov exponent per unit τ, when available.
+    pub lyapunov: Option<f64>,
+    /// Section points after the transient (none for tumbled or flight).
+    pub points: Vec<SectionRow>,
+}
+
+/// What a block sweep needs besides its plan.
+#[derive(Clone, Copy)]
+pub struct BlockSweep<'a> {
+    /// The configuration the parameter is set in.
+    pub base: &'a ParamBase,
+    /// The dotted key swept, e.g. `excitation.a_v`.
+    pub param: &'a str,
+    /// Transient and end of each run.
+    pub window: Window,
+    /// Classifier thresholds.
+    pub classify: ClassifyOptions,
+    /// Largest Lyapunov exponent per configuration, if available.
+    pub lyapunov: Option<&'a LyapunovFn<'a>>,
+}
+
+impl BlockSweep<'_> {
+    /// Resolves and checks every value's configuration before anything
+    /// runs, so that a bad key, an out-of-range value, a non-harmonic
+    /// excitation or a window too short is reported at once.
+    pub fn configs(&self, plan: &Plan) -> Result<Vec<Config>, SweepError<SteadyError>> {
+        plan.indices()
+            .into_iter()
+            .map(|i| {
+                let value = plan.grid.value(i);
+                let fail = |error| SweepError { index: i, value, error };
+                let cfg = self.base.resolve(&[(self.param, value)]).map_err(|e| fail(e.into()))?;
+                check_config(&cfg, &self.window, &self.classify).map_err(fail)?;
+                Ok(cfg)
+            })
+            .collect()
+    }
+}
+
+/// The bifurcation diagram of the block over `plan` (module docs).
+pub fn block_sweep(
+    spec: &BlockSweep<'_>,
+    plan: &Plan,
+    progress: &ProgressBar,
+) -> Result<Vec<BifurcationValue>, SweepError<SteadyError>> {
+    spec.configs(plan)?;
+    let computed = sweep(plan, progress, |value, seed: Option<&InitialState>| {
+        let cfg = spec.base.resolve(&[(spec.param, value)])?;
+        let cfg = match seed {
+            Some(s) => seeded(&cfg, s),
+            None => cfg,
+        };
+        let s = steady_response(&cfg, &spec.window, &spec.classify, spec.lyapunov)?;
+        let next = s.seed;
+        Ok((
+            BifurcationValue {
+                value,
+                response: s.response,
+                max_abs_theta: s.max_abs_theta,
+                lyapunov: s.lyapunov,
+                points: s.points,
+            },
+            next,
+        ))
+    })?;
+    Ok(computed.into_iter().map(|c| c.result).collect())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn grid_includes_to_within_half_a_step() {
+        let g = Grid::new(0.0, 3.0, 0.02).unwrap();
+        assert_eq!(g.count, 151);
+        assert_eq!(g.value(150), 150.0 * 0.02);
+        assert_eq!(Grid::new(0.0, 1.0, 0.3).unwrap().count, 4);
+        // Exactly half a step beyond `to` is out; less than half a step is in.
+        assert_eq!(Grid::new(0.0, 1.0, 0.4).unwrap().count, 3);
+        assert_eq!(Grid::new(0.0, 1.0, 0.6).unwrap().count, 3);
+        assert_eq!(Grid::new(0.0, 0.3, 1.0).unwrap().count, 1);
+        assert_eq!(Grid::new(1.0, 1.0, 0.5).unwrap().count, 1);
+        assert!(Grid::new(0.0, 1.0, 0.0).unwrap_err().0.starts_with("--step"));
+        assert!(Grid::new(1.0, 0.0, 0.1).unwrap_err().0.starts_with("--to"));
+        assert!(Grid::new(f64::NAN, 0.0, 0.1).unwrap_err().0.starts_with("--from"));
+        assert!(Grid::new(1e20, 2e20, 1.0).unwrap_err().0.starts_with("--step"));
+    }
+
+    #[test]
+    fn shards_partition_the_indices() {
+        let g = Grid::new(0.0, 1.0, 0.1).unwrap();
+        let mut all: Vec<usize> = (0..3)
+            .flat_map(|k| {
+                Plan::new(g, Continuation::None, Some(Shard { index: k, count: 3 }))
+                    .unwrap()
+                    .indices()
+            })
+            .collect();
+        all.sort_unstable();
+        assert_eq!(all, (0..11).collect::<Vec<_>>());
+        assert_eq!(Shard::parse("1/4").unwrap(), Shard { index: 1, count: 4 });
+        for bad in ["4/4", "1", "a/2", "0/0", "-1/3"] {
+            assert!(Shard::parse(bad).unwrap_err().0.starts_with("--shard"), "{bad}");
+        }
+        assert!(Plan::new(g, Continuation::Up, Some(Shard { index: 0, count: 2 })).is_err());
+    }
+
+    #[test]
+    fn continuation_passes_seeds_in_sweep_order() {
+        let g = Grid::new(0.0, 4.0, 1.0).unwrap();
+        let bar = ProgressBar::hidden();
+        let f = |v: f64, seed: Option<&Vec<f64>>| -> Result<(Vec<f64>, Option<Vec<f64>>), String> {
+            let mut seen = seed.cloned().unwrap_or_default();
+            seen.push(v);
+            Ok((seen.clone(), Some(seen)))
+        };
+        let up = sweep(&Plan::new(g, Continuation::Up, None).unwrap(), &bar, f).unwrap();
+        assert_eq!(up[4].result, vec![0.0, 1.0, 2.0, 3.0, 4.0]);
+        let down = sweep(&Plan::new(g, Continuation::Down, None).unwrap(), &bar, f).unwrap();
+        assert_eq!(down[0].result, vec![4.0, 3.0, 2.0, 1.0, 0.0]);
+        assert_eq!(down.iter().map(|c| c.index).collect::<Vec<_>>(), vec![0, 1, 2, 3, 4]);
+        let none = sweep(&Plan::new(g, Continuation::None, None).unwrap(), &bar, f).unwrap();
+        assert_eq!(none[3].result, vec![3.0]);
+    }
+
+    #[test]
+    fn the_first_failure_in_index_order_is_reported() {
+        let g = Grid::new(0.0, 9.0, 1.0).unwrap();
+        let plan = Plan::new(g, Continuation::None, None).unwrap();
+        let e = sweep(&plan, &ProgressBar::hidden(), |v, _: Option<&()>| {
+            if v >= 3.0 {
+                Err(format!("bad {v}"))
+            } else {
+                Ok(((), None))
+            }
+        })
+        .unwrap_err();
+        assert_eq!((e.index, e.error.as_str()), (3, "bad 3"));
+        assert_eq!(e.to_string(), "value 3: bad 3");
+    }
+
+    #[test]
+    fn ranges_group_equal_neighbours() {
+        let p1 = Response::Periodic { period: 1 };
+        let p2 = Response::Periodic { period: 2 };
+        let r = response_ranges(&[(0.0, p1), (0.1, p1), (0.2, p2), (0.3, Response::Tumbled), (0.4, p2)]);
+        assert_eq!(r.len(), 4);
+        assert_eq!((r[0].from, r[0].to, r[0].response), (0.0, 0.1, p1));
+        assert_eq!((r[3].from, r[3].to), (0.4, 0.4));
+    }
+}

@@ -1,0 +1,156 @@
+//! An output directory that appears whole or not at all, for outputs that
+//! include binary files (PNG figures).
+//!
+//! [`io::output::write_all`](crate::io::output::write_all) takes text only;
+//! the figures are written by plotters straight to a path. So the files go
+//! into a staging directory beside the target — text through
+//! [`Staging::text`], figures through the paths [`Staging::path`] hands out —
+//! and [`Staging::commit`] moves them into place at the end, as `write_all`
+//! does. Dropping an uncommitted staging removes it, so an error midway
+//! leaves nothing behind. CSV text is refused if it holds a non-finite
+//! number, as in `write_all`.
+
+use std::path::{Path, PathBuf};
+
+use crate::io::output::OutputError;
+
+/// A staging directory for the files of one output directory.
+#[derive(Debug)]
+pub struct Staging {
+    dir: PathBuf,
+    staging: PathBuf,
+    names: Vec<String>,
+    committed: bool,
+}
+
+fn io_err(path: &Path) -> impl FnOnce(std::io::Error) -> OutputError + '_ {
+    move |source| OutputError::Io {
+        path: path.display().to_string(),
+        source,
+    }
+}
+
+impl Staging {
+    /// Starts staging the files of `dir` (which may exist; files of the same
+    /// name are replaced at commit, others are left alone).
+    pub fn new(dir: &Path) -> Result<Self, OutputError> {
+        if dir.exists() && !dir.is_dir() {
+            return Err(OutputError::NotADirectory(dir.display().to_string()));
+        }
+        let parent = match dir.parent() {
+            Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
+            _ => PathBuf::from("."),
+        };
+        std::fs::create_dir_all(&parent).map_err(io_err(&parent))?;
+        let base = dir
+            .file_name()
+            .map_or_else(|| "out".into(), |n| n.to_string_lossy().into_owned());
+        let staging = parent.join(format!(".{base}.staging-{}", std::process::id()));
+        if staging.exists() {
+            std::fs::remove_dir_all(&staging).map_err(io_err(&staging))?;
+        }
+        std::fs::create_dir_all(&staging).map_err(io_err(&staging))?;
+        Ok(Self {
+            dir: dir.to_path_buf(),
+            staging,
+            names: Vec::new(),
+            committed: false,
+        })
+    }
+
+    /// The staging path of file `name`, registered for the commit.
+    pub fn path(&mut self, name: &str) -> PathBuf {
+        if !self.names.iter().any(|n| n == name) {
+            self.names.push(name.to_string());
+        }
+        self.staging.join(name)
+    }
+
+    /// Writes a text file. A `.csv` containing `NaN` or `inf` is refused
+    /// (CSV cells here are numbers and lower-case names, none of which
+    /// contains either).
+    pub fn text(&mut self, name: &str, text: &str) -> Result<(), OutputError> {
+        if name.ends_with(".csv") && (text.contains("NaN") || text.contains("inf")) {
+            return Err(OutputError::NonFinite(name.to_string()));
+        }
+        let p = self.path(name);
+        std::fs::write(&p, text).map_err(io_err(&p))
+    }
+
+    /// Moves every registered file into the target directory.
+    pub fn commit(mut self) -> Result<(), OutputError> {
+        for name in &self.names {
+            let p = self.staging.join(name);
+            if !p.is_file() {
+                return Err(OutputError::Io {
+                    path: p.display().to_string(),
+                    source: std::io::Error::new(std::io::ErrorKind::NotFound, "was never written"),
+                });
+            }
+        }
+        if !self.dir.exists() {
+            std::fs::rename(&self.staging, &self.dir).map_err(io_err(&self.dir))?;
+        } else {
+            for name in &self.names {
+                let (from, to) = (self.staging.join(name), self.dir.join(name));
+                std::fs::rename(&from, &to).map_err(io_err(&to))?;
+            }
+            std::fs::remove_dir(&self.staging).map_err(io_err(&self.staging))?;
+        }
+        self.committed = true;
+        Ok(())
+    }
+}
+
+impl Drop for Staging {
+    fn drop(&mut self) {
+        if !self.committed {
+            // Best effort: an error here leaves only a hidden staging
+            // directory, never a half-written output.
+            let _ = std::fs::remove_dir_all(&self.staging);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn tmp(name: &str) -> PathBuf {
+        let d = std::env::temp_dir().join(format!("rocking-staging-{name}-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&d);
+        d
+    }
+
+    #[test]
+    fn commit_creates_the_directory_whole() {
+        let root = tmp("commit");
+        let out = root.join("out");
+        let mut s = Staging::new(&out).unwrap();
+        s.text("a.csv", "x\n1\n").unwrap();
+        std::fs::write(s.path("b.bin"), [0u8, 159, 255]).unwrap();
+        assert!(!out.exists());
+        s.commit().unwrap();
+        assert_eq!(std::fs::read(out.join("b.bin")).unwrap(), vec![0u8, 159, 255]);
+        assert_eq!(std::fs::read_to_string(out.join("a.csv")).unwrap(), "x\n1\n");
+        assert_eq!(std::fs::read_dir(&root).unwrap().count(), 1);
+        let _ = std::fs::remove_dir_all(&root);
+    }
+
+    #[test]
+    fn dropping_or_a_nan_leaves_nothing() {
+        let root = tmp("drop");
+        let out = root.join("out");
+        {
+            let mut s = Staging::new(&out).unwrap();
+            assert!(matches!(s.text("a.csv", "x\nNaN\n"), Err(OutputError::NonFinite(_))));
+        }
+        assert!(!out.exists());
+        assert_eq!(std::fs::read_dir(&root).unwrap().count(), 0);
+        let mut s = Staging::new(&out).unwrap();
+        let _ = s.path("never.png");
+        assert!(s.commit().is_err());
+        assert!(!out.exists());
+        let _ = std::fs::remove_dir_all(&root);
+    }
+}

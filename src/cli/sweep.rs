@@ -1,0 +1,422 @@
+//! `rocking sweep`: the bifurcation diagram of one parameter.
+//!
+//! Writes into `--out`:
+//! - `points.csv`: `value,k,tau,theta,theta_dot`, every Poincaré point at
+//!   τ_k ≥ transient, values increasing (none for tumbled or flight values);
+//! - `classes.csv`: `value,outcome,period,max_abs_theta,lyapunov`, one row
+//!   per value; `period` only for `periodic` (the paper's (1,period) mode),
+//!   `lyapunov` empty unless an exponent was computed;
+//! - `sweep.json`: the base configuration, the sweep (parameter, grid,
+//!   window, continuation, shard, classifier thresholds) and the crate
+//!   version — what `rocking merge` checks shards against;
+//! - `bifurcation.png`, `bifurcation.svg` (not for a shard: the merge draws
+//!   them).
+//!
+//! Bad input exits 2 with a one-line error naming the flag or key, before
+//! anything runs or is written; the directory appears whole or not at all.
+
+use std::fmt::Write as _;
+use std::io::IsTerminal as _;
+use std::path::PathBuf;
+use std::time::Instant;
+
+use anyhow::Context as _;
+use indicatif::{ProgressBar, ProgressStyle};
+use serde_json::{Value as Json, json};
+
+use super::batch::BatchError;
+use super::staging::Staging;
+use crate::analysis::classify::{ClassifyOptions, Response};
+use crate::analysis::orbit_diagram::{
+    BifurcationValue, BlockSweep, Continuation, Grid, Plan, Shard, block_sweep, response_ranges,
+};
+use crate::analysis::steady::{LyapunovFn, ParamBase, Window, check_key};
+use crate::io::config::Config;
+use crate::io::output;
+use crate::plot::Figure as _;
+use crate::plot::bifurcation::BifurcationFigure;
+use crate::plot::labels::{fixed_parameters, grid_decimals, grid_num, num, param_label, param_symbol};
+
+/// Continuation as a command-line value.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum ContinuationArg {
+    /// Every value from the configuration's initial state (parallel).
+    None,
+    /// Each value from the previous smaller value's final state.
+    Up,
+    /// Each value from the previous larger value's final state.
+    Down,
+}
+
+impl From<ContinuationArg> for Continuation {
+    fn from(c: ContinuationArg) -> Self {
+        match c {
+            ContinuationArg::None => Continuation::None,
+            ContinuationArg::Up => Continuation::Up,
+            ContinuationArg::Down => Continuation::Down,
+        }
+    }
+}
+
+/// Arguments of `rocking sweep`.
+#[derive(Debug, Clone, clap::Args)]
+pub struct SweepArgs {
+    /// A preset (default, fig3 … fig19); the default preset if neither this
+    /// nor --config is given.
+    #[arg(long, value_name = "NAME")]
+    pub preset: Option<String>,
+    /// A config file: TOML, or a summary.json / sweep.json to reuse its config.
+    #[arg(long, value_name = "FILE")]
+    pub config: Option<PathBuf>,
+    /// Override one key, e.g. --set excitation.a_h=2 (repeatable).
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    pub sets: Vec<String>,
+    /// The config key swept, e.g. excitation.a_v.
+    #[arg(long, value_name = "KEY")]
+    pub param: String,
+    /// First value.
+    #[arg(long, value_name = "A", allow_negative_numbers = true)]
+    pub from: f64,
+    /// Last value (included within half a step).
+    #[arg(long, value_name = "B", allow_negative_numbers = true)]
+    pub to: f64,
+    /// Spacing of the values (> 0); value i is A + i·S.
+    #[arg(long, value_name = "S", allow_negative_numbers = true)]
+    pub step: f64,
+    /// Section points before this τ are discarded (the paper's 600).
+    #[arg(long, value_name = "T", default_value_t = 600.0, allow_negative_numbers = true)]
+    pub transient: f64,
+    /// End of each run, τ (default: the config's run.tau_end, 800 in the
+    /// paper presets).
+    #[arg(long = "tau-end", value_name = "T", allow_negative_numbers = true)]
+    pub tau_end: Option<f64>,
+    /// Seed each value from the previous one's final state, sweeping up or
+    /// down (sequential), or not at all (parallel).
+    #[arg(long, value_enum, default_value = "none")]
+    pub continuation: ContinuationArg,
+    /// Compute only values i with i mod N = K (K from 0), for cluster array
+    /// jobs; join the shards with `rocking merge`.
+    #[arg(long, value_name = "K/N")]
+    pub shard: Option<String>,
+    /// Worker threads (default: one per core). The output does not depend on it.
+    #[arg(long, value_name = "N")]
+    pub threads: Option<usize>,
+    /// Output directory.
+    #[arg(long, value_name = "DIR")]
+    pub out: PathBuf,
+    /// Print nothing but errors.
+    #[arg(long, short)]
+    pub quiet: bool,
+}
+
+/// Everything about a sweep except its results: what `sweep.json` records
+/// and what the figure's titles are made from.
+#[derive(Clone, Debug)]
+pub struct SweepMeta {
+    /// The swept key.
+    pub param: String,
+    /// Its values.
+    pub grid: Grid,
+    /// Seeding.
+    pub continuation: Continuation,
+    /// Transient and run end.
+    pub window: Window,
+    /// Classifier thresholds.
+    pub classify: ClassifyOptions,
+    /// The base configuration (run.tau_end set to the window's end).
+    pub config: Config,
+}
+
+impl SweepMeta {
+    /// `sweep.json` for this sweep and `shard` (keys sorted, so the text is
+    /// a function of the content).
+    pub fn to_json(&self, shard: Option<Shard>) -> Json {
+        json!({
+            "command": "rocking sweep",
+            "version": env!("CARGO_PKG_VERSION"),
+            "param": self.param,
+            "grid": self.grid,
+            "continuation": self.continuation,
+            "shard": shard,
+            "window": self.window,
+            "classify": self.classify,
+            "config": self.config.to_json(),
+            "units": "tau = p t, theta = θ/ψ, theta_dot = dΘ/dτ; lyapunov per unit τ; config: the base configuration, `param` takes each value in turn",
+        })
+    }
+
+    /// The bifurcation figure of `values` (responses) and `points` (value, Θ).
+    pub fn figure<'a>(&self, values: &'a [(f64, Response)], points: &'a [(f64, f64)]) -> BifurcationFigure<'a> {
+        let sym = param_symbol(&self.param);
+        let d = grid_decimals(self.grid.from, self.grid.step);
+        let seeding = match self.continuation {
+            Continuation::None => "every value from the initial state".to_string(),
+            Continuation::Up => "continuation upwards".to_string(),
+            Continuation::Down => "continuation downwards".to_string(),
+        };
+        BifurcationFigure {
+            title: format!(
+                "Bifurcation diagram over {sym}: {}",
+                fixed_parameters(&self.config, &[&self.param])
+            ),
+            subtitle: format!(
+                "Θ at τ_k = 2πk/Ω_h for {} ≤ τ_k ≤ {}; {sym} = {} … {} step {}; {seeding}",
+                num(self.window.transient),
+                num(self.window.tau_end),
+                grid_num(self.grid.from, d),
+                grid_num(self.grid.value(self.grid.count - 1), d),
+                num(self.grid.step)
+            ),
+            x_label: param_label(&self.param),
+            values,
+            points,
+            step: self.grid.step,
+        }
+    }
+}
+
+/// A number for CSV: shortest round-trip form (as `io::output` writes).
+fn cell(x: f64) -> String {
+    format!("{x:?}")
+}
+
+/// The header of `classes.csv`.
+pub const CLASSES_HEADER: &str = "value,outcome,period,max_abs_theta,lyapunov";
+/// The header of `points.csv`.
+pub const POINTS_HEADER: &str = "value,k,tau,theta,theta_dot";
+
+/// The `classes.csv` row of one value (no newline).
+pub fn class_row(v: &BifurcationValue) -> String {
+    format!(
+        "{},{},{},{},{}",
+        cell(v.value),
+        v.response.name(),
+        v.response.period().map_or(String::new(), |k| k.to_string()),
+        cell(v.max_abs_theta),
+        v.lyapunov.map_or(String::new(), cell)
+    )
+}
+
+/// `classes.csv` of `values`.
+pub fn classes_csv(values: &[BifurcationValue]) -> String {
+    let mut s = format!("{CLASSES_HEADER}\n");
+    for v in values {
+        s.push_str(&class_row(v));
+        s.push('\n');
+    }
+    s
+}
+
+/// `points.csv` of `values`.
+pub fn points_csv(values: &[BifurcationValue]) -> String {
+    let mut s = format!("{POINTS_HEADER}\n");
+    for v in values {
+        let value = cell(v.value);
+        for p in &v.points {
+            let _ = writeln!(
+                s,
+                "{value},{},{},{},{}",
+                p.k,
+                cell(p.tau),
+                cell(p.theta),
+                cell(p.theta_dot)
+            );
+        }
+    }
+    s
+}
+
+/// A progress bar on a terminal's stderr, hidden otherwise (or when quiet).
+pub fn progress_bar(len: usize, what: &str, quiet: bool) -> ProgressBar {
+    if quiet || !std::io::stderr().is_terminal() {
+        return ProgressBar::hidden();
+    }
+    let bar = ProgressBar::new(len as u64);
+    let template = format!("{{bar:40}} {{pos}}/{{len}} {what} {{elapsed_precise}} (eta {{eta}})");
+    if let Ok(style) = ProgressStyle::with_template(&template) {
+        bar.set_style(style);
+    }
+    bar
+}
+
+/// A rayon pool of `threads` workers (default: one per core), named.
+pub fn thread_pool(threads: Option<usize>) -> Result<rayon::ThreadPool, BatchError> {
+    if threads == Some(0) {
+        return Err(BatchError::Input(anyhow::anyhow!("--threads 0: must be >= 1")));
+    }
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads.unwrap_or(0))
+        .thread_name(|i| format!("sweep-{i}"))
+        .build()
+        .context("starting the worker threads")
+        .map_err(BatchError::Run)
+}
+
+fn input(e: impl Into<anyhow::Error>) -> BatchError {
+    BatchError::Input(e.into())
+}
+
+/// Everything `run` checked and resolved before computing.
+struct Prepared {
+    base: ParamBase,
+    meta: SweepMeta,
+    plan: Plan,
+    shard: Option<Shard>,
+}
+
+fn prepare(args: &SweepArgs) -> Result<Prepared, BatchError> {
+    let base = ParamBase::load(args.preset.as_deref(), args.config.as_deref(), &args.sets).map_err(input)?;
+    check_key(&args.param).map_err(|e| input(anyhow::anyhow!("--param {e}")))?;
+    if args.param == "run.tau_end" {
+        return Err(input(anyhow::anyhow!(
+            "--param run.tau_end: the run length is set by --tau-end, it cannot be swept"
+        )));
+    }
+    let continuation = Continuation::from(args.continuation);
+    if continuation != Continuation::None && args.param.starts_with("initial.") {
+        return Err(input(anyhow::anyhow!(
+            "--param {}: continuation replaces the initial state, so an initial.* key cannot be swept with --continuation {}",
+            args.param,
+            continuation.name()
+        )));
+    }
+    let grid = Grid::new(args.from, args.to, args.step).map_err(input)?;
+    let shard = args.shard.as_deref().map(Shard::parse).transpose().map_err(input)?;
+    let plan = Plan::new(grid, continuation, shard).map_err(input)?;
+    let mut config = base.resolve(&[]).map_err(input)?;
+    let window = Window {
+        transient: args.transient,
+        tau_end: args.tau_end.unwrap_or(config.tau_end),
+    };
+    window.validate().map_err(|e| input(anyhow::anyhow!(e)))?;
+    config.tau_end = window.tau_end;
+    let meta = SweepMeta {
+        param: args.param.clone(),
+        grid,
+        continuation,
+        window,
+        classify: ClassifyOptions::default(),
+        config,
+    };
+    Ok(Prepared {
+        base,
+        meta,
+        plan,
+        shard,
+    })
+}
+
+/// Runs `rocking sweep` without Lyapunov exponents.
+pub fn run(args: &SweepArgs) -> Result<(), BatchError> {
+    run_with(args, None)
+}
+
+/// Runs `rocking sweep`; `lyapunov`, if given, fills the `lyapunov` column
+/// and decides between quasiperiodic and chaotic.
+pub fn run_with(args: &SweepArgs, lyapunov: Option<&LyapunovFn<'_>>) -> Result<(), BatchError> {
+    let Prepared {
+        base,
+        meta,
+        plan,
+        shard,
+    } = prepare(args)?;
+    let spec = BlockSweep {
+        base: &base,
+        param: &meta.param,
+        window: meta.window,
+        classify: meta.classify,
+        lyapunov,
+    };
+    spec.configs(&plan)
+        .map_err(|e| input(anyhow::anyhow!("--param {} = {}: {}", meta.param, e.value, e.error)))?;
+    let pool = thread_pool(args.threads)?;
+    output::check_writable(&args.out)
+        .with_context(|| "--out: cannot write the output directory".to_string())
+        .map_err(BatchError::Input)?;
+
+    let start = Instant::now();
+    let bar = progress_bar(plan.indices().len(), "values", args.quiet);
+    let values = pool
+        .install(|| block_sweep(&spec, &plan, &bar))
+        .map_err(|e| BatchError::Run(anyhow::anyhow!("{} = {}: {}", meta.param, e.value, e.error)))?;
+    bar.finish_and_clear();
+    let wall = start.elapsed().as_secs_f64();
+
+    let mut staging = Staging::new(&args.out).context("--out").map_err(BatchError::Run)?;
+    let write = |staging: &mut Staging| -> anyhow::Result<()> {
+        staging.text("classes.csv", &classes_csv(&values))?;
+        staging.text("points.csv", &points_csv(&values))?;
+        staging.text(
+            "sweep.json",
+            &(serde_json::to_string_pretty(&meta.to_json(shard))? + "\n"),
+        )?;
+        if shard.is_none() {
+            let classes: Vec<(f64, Response)> = values.iter().map(|v| (v.value, v.response)).collect();
+            let points: Vec<(f64, f64)> = values
+                .iter()
+                .flat_map(|v| v.points.iter().map(move |p| (v.value, p.theta)))
+                .collect();
+            let fig = meta.figure(&classes, &points);
+            fig.write_png(&staging.path("bifurcation.png"))?;
+            staging.text("bifurcation.svg", &fig.to_svg()?)?;
+        }
+        Ok(())
+    };
+    write(&mut staging)
+        .and_then(|()| Ok(staging.commit()?))
+        .with_context(|| format!("writing {}", args.out.display()))
+        .map_err(BatchError::Run)?;
+
+    if !args.quiet {
+        let npoints: usize = values.iter().map(|v| v.points.len()).sum();
+        let d = grid_decimals(meta.grid.from, meta.grid.step);
+        println!(
+            "swept {} = {} … {} ({} values{}) in {wall:.1} s; {npoints} Poincaré points",
+            meta.param,
+            grid_num(meta.grid.from, d),
+            grid_num(meta.grid.value(meta.grid.count - 1), d),
+            values.len(),
+            shard.map_or(String::new(), |s| format!(", shard {}/{}", s.index, s.count)),
+        );
+        let pairs: Vec<(f64, Response)> = values.iter().map(|v| (v.value, v.response)).collect();
+        for r in response_ranges(&pairs) {
+            println!("  {} … {}: {}", grid_num(r.from, d), grid_num(r.to, d), r.response);
+        }
+        println!("wrote {}", args.out.display());
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::{Mode, Sign};
+    use crate::sim::SectionRow;
+
+    #[test]
+    fn csv_rows_use_round_trip_numbers_and_empty_cells() {
+        let v = BifurcationValue {
+            value: 0.1 + 0.2,
+            response: Response::Periodic { period: 2 },
+            max_abs_theta: 0.25,
+            lyapunov: None,
+            points: vec![SectionRow {
+                k: 3,
+                tau: 2.5,
+                theta: -0.125,
+                theta_dot: 1.0,
+                x: 0.0,
+                x_dot: 0.0,
+                mode: Mode::Rock { pivot: Sign::Neg },
+            }],
+        };
+        assert_eq!(
+            classes_csv(std::slice::from_ref(&v)),
+            "value,outcome,period,max_abs_theta,lyapunov\n0.30000000000000004,periodic,2,0.25,\n"
+        );
+        assert_eq!(
+            points_csv(&[v]),
+            "value,k,tau,theta,theta_dot\n0.30000000000000004,3,2.5,-0.125,1.0\n"
+        );
+    }
+}

@@ -1,0 +1,49 @@
+//! The desktop app (feature `gui`): the block, its phase portrait and
+//! Poincaré points, live, with every parameter at hand.
+//!
+//! Layering: the app sits on top of [`crate::sim`]. It starts a
+//! [`crate::sim::runner::SimHandle`], sends it commands and draws the
+//! updates; it does no mechanics and no analysis. The block scene is drawn
+//! by our own wgpu pipeline ([`block_view`], `shaders/block.wgsl`) through an
+//! egui paint callback.
+
+pub mod app;
+pub mod block_view;
+pub mod export;
+pub mod history;
+pub mod panels;
+pub mod settings;
+
+pub use app::RockingApp;
+pub use settings::Settings;
+
+use crate::io::config::Config;
+use crate::sim::protocol::Speed;
+
+/// Opens the window on `settings` (resolved to `config`) and runs until it
+/// is closed. The block starts moving at once, in real time.
+pub fn run(settings: Settings, config: Config) -> Result<(), String> {
+    let title = format!("rocking — {}", settings.origin);
+    let options = eframe::NativeOptions {
+        viewport: egui::ViewportBuilder::default()
+            .with_title(title.clone())
+            .with_inner_size([1280.0, 800.0])
+            .with_min_inner_size([640.0, 420.0]),
+        renderer: eframe::Renderer::Wgpu,
+        ..Default::default()
+    };
+    eframe::run_native(
+        &title,
+        options,
+        Box::new(move |cc| {
+            Ok(Box::new(RockingApp::live(
+                cc,
+                settings,
+                config,
+                Speed::default(),
+                false,
+            )))
+        }),
+    )
+    .map_err(|e| format!("cannot open the window: {e}"))
+}

@@ -1,0 +1,232 @@
+//! The block scene: the shake table with its displacement, the block at its
+//! true angle and sliding position with the pivot corner marked, the mode
+//! by colour, a flash at each impact, ghost copies, and optionally the
+//! contact force with the friction cone.
+//!
+//! Everything is placed from [`crate::sim::protocol::pose`], which the
+//! simulation layer computes from the model's own geometry: this module
+//! only chooses colours, sizes on screen and the camera. The shapes go to
+//! the wgpu pipeline of [`crate::gui::block_view`] when there is one, and to
+//! egui's painter otherwise (a headless harness).
+
+use egui::{Color32, Rect};
+
+use crate::gui::block_view::{SceneCallback, Shape, ViewUniform};
+use crate::model::Mode;
+use crate::model::geometry::Geometry;
+use crate::sim::protocol::{GhostState, Sample, pose};
+
+/// Colour of each mode (index order of [`Mode::index`]).
+pub const MODE_COLORS: [Color32; 6] = [
+    Color32::from_rgb(120, 144, 170), // rest
+    Color32::from_rgb(64, 190, 200),  // slide
+    Color32::from_rgb(90, 190, 100),  // rock
+    Color32::from_rgb(240, 150, 50),  // slide-rock
+    Color32::from_rgb(220, 60, 60),   // tumbled
+    Color32::from_rgb(170, 100, 230), // flight
+];
+
+/// The colour of `mode`.
+pub fn mode_color(mode: Mode) -> Color32 {
+    MODE_COLORS[mode.index()]
+}
+
+/// What the scene needs from the app.
+pub struct SceneInput<'a> {
+    /// The block.
+    pub geometry: Geometry,
+    /// The state shown.
+    pub sample: &'a Sample,
+    /// Ghost copies' latest states.
+    pub ghosts: &'a [GhostState],
+    /// Static friction coefficient (∞: no cone drawn).
+    pub mu_s: f64,
+    /// The terminal mode the run ended in, if it has (drawn instead of the
+    /// last sample's mode).
+    pub terminal: Option<Mode>,
+    /// Impact flash strength in [0, 1].
+    pub flash: f32,
+    /// Whether to draw the contact force and the friction cone.
+    pub forces: bool,
+}
+
+/// The camera: follows the block horizontally with a dead zone, so a block
+/// that slides away stays in view while a rocking block holds still.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Camera {
+    /// Horizontal centre of the view, m.
+    pub x: f64,
+}
+
+/// The world-to-screen fit: pixels (points) per metre and the world
+/// rectangle shown, for a block of half-diagonal `r` in a `rect`.
+fn fit(rect: Rect, r: f64) -> (f64, f64) {
+    // Room for the block standing on a corner (height up to 2R), the table
+    // below, and sideways sliding.
+    let world_h = 2.5 * r;
+    let world_w = 3.2 * r;
+    let scale = (rect.height() as f64 / world_h).min(rect.width() as f64 / world_w);
+    // World y at the rect's vertical centre: the table top sits 15 % above
+    // the bottom edge.
+    let y_mid = rect.height() as f64 / scale * 0.5 - 0.15 * rect.height() as f64 / scale;
+    (scale, y_mid)
+}
+
+/// Builds the shapes of one frame, back to front, and moves the camera.
+pub fn build(input: &SceneInput<'_>, rect: Rect, camera: &mut Camera) -> (Vec<Shape>, f64, f64) {
+    let geo = &input.geometry;
+    let s = input.sample;
+    let (scale, y_mid) = fit(rect, geo.r);
+    let half_w = rect.width() as f64 / scale * 0.5;
+    let p = pose(geo, s.theta, s.x, s.mode, s.base_x);
+    let dead = 0.3 * half_w;
+    if (p.x - camera.x).abs() > dead {
+        camera.x = p.x - dead * (p.x - camera.x).signum();
+    }
+    let px = 1.0 / scale; // one point, in metres
+    let mut shapes = Vec::with_capacity(32 + input.ghosts.len());
+
+    // The floor (fixed) and the shake table (moves with the base).
+    let left = camera.x - half_w - geo.r;
+    let right = camera.x + half_w + geo.r;
+    let table_h = 0.12 * geo.r;
+    shapes.push(Shape::rect(
+        [0.5 * (left + right), -table_h - 0.5 * geo.r],
+        [0.5 * (right - left), 0.5 * geo.r],
+        0.0,
+        Color32::from_rgb(38, 40, 46),
+    ));
+    shapes.push(Shape::rect(
+        [0.5 * (left + right) + p.base_x, -0.5 * table_h],
+        [0.5 * (right - left), 0.5 * table_h],
+        0.0,
+        Color32::from_rgb(92, 96, 108),
+    ));
+    // Ticks every R/4 on both, so the table's displacement relative to the
+    // floor is visible.
+    let tick = 0.25 * geo.r;
+    let k0 = (left / tick).floor() as i64;
+    let k1 = (right / tick).ceil() as i64;
+    for k in k0..=k1 {
+        let x = k as f64 * tick;
+        shapes.push(Shape::rect(
+            [x + p.base_x, -0.5 * table_h],
+            [0.75 * px, 0.35 * table_h],
+            0.0,
+            Color32::from_rgb(150, 154, 166),
+        ));
+        shapes.push(Shape::rect(
+            [x, -table_h - 0.04 * geo.r],
+            [0.75 * px, 0.04 * geo.r],
+            0.0,
+            Color32::from_rgb(90, 92, 100),
+        ));
+    }
+
+    let half = [0.5 * geo.width, 0.5 * geo.height];
+    for g in input.ghosts {
+        let gp = pose(geo, g.theta, g.x, g.mode, s.base_x);
+        shapes.push(Shape::rect(
+            [gp.x, gp.y],
+            half,
+            gp.angle,
+            mode_color(g.mode).gamma_multiply(0.22),
+        ));
+    }
+    if input.flash > 0.0 {
+        let grow = 0.06 * geo.width.min(geo.height) + 4.0 * px;
+        shapes.push(Shape::rect(
+            [p.x, p.y],
+            [half[0] + grow, half[1] + grow],
+            p.angle,
+            Color32::from_rgb(255, 245, 200).gamma_multiply(0.85 * input.flash),
+        ));
+    }
+    let mode = input.terminal.unwrap_or(s.mode);
+    shapes.push(Shape::rect([p.x, p.y], half, p.angle, mode_color(mode)));
+    // The centre of mass.
+    shapes.push(Shape::circle([p.x, p.y], 3.0 * px, Color32::from_rgb(30, 30, 36)));
+
+    let contact = match p.pivot {
+        Some((x, _)) => [x, 0.0],
+        None => [p.x, 0.0],
+    };
+    if input.forces && !s.mode.is_terminal() {
+        let len = 0.5 * geo.height.min(2.0 * geo.r);
+        if input.mu_s.is_finite() {
+            let n = len * 1.2;
+            let (sn, cs) = input.mu_s.atan().sin_cos();
+            for side in [-1.0, 1.0] {
+                shapes.push(Shape::segment(
+                    contact,
+                    [contact[0] + side * n * sn, n * cs],
+                    1.5 * px,
+                    Color32::from_rgba_unmultiplied(255, 220, 120, 110),
+                ));
+            }
+        }
+        let tip = [contact[0] + len * s.friction, len * s.normal];
+        shapes.push(Shape::segment(contact, tip, 3.0 * px, Color32::from_rgb(255, 90, 90)));
+        shapes.push(Shape::circle(tip, 3.5 * px, Color32::from_rgb(255, 90, 90)));
+    }
+    if let Some((x, _)) = p.pivot {
+        shapes.push(Shape::circle([x, 0.0], 6.0 * px, Color32::from_rgb(255, 230, 60)));
+        shapes.push(Shape::circle([x, 0.0], 3.0 * px, Color32::from_rgb(40, 30, 10)));
+    }
+    (shapes, scale, y_mid)
+}
+
+/// The view uniform for `rect` at `scale` points per metre.
+pub fn view(rect: Rect, scale: f64, camera: &Camera, y_mid: f64, pixels_per_point: f32) -> ViewUniform {
+    let sx = 2.0 * scale / rect.width() as f64;
+    let sy = 2.0 * scale / rect.height() as f64;
+    ViewUniform {
+        scale: [sx as f32, sy as f32],
+        offset: [(-camera.x * sx) as f32, (-y_mid * sy) as f32],
+        px_per_m: [(scale * pixels_per_point as f64) as f32; 2],
+        _pad: [0.0; 2],
+    }
+}
+
+/// Draws the shapes with wgpu (if `gpu`) or with egui's painter.
+pub fn paint(ui: &egui::Ui, rect: Rect, shapes: Vec<Shape>, view: ViewUniform, gpu: bool) {
+    if gpu {
+        ui.painter().add(egui_wgpu::Callback::new_paint_callback(
+            rect,
+            SceneCallback { view, shapes },
+        ));
+        return;
+    }
+    let painter = ui.painter_at(rect);
+    let to_screen = |x: f64, y: f64| {
+        let nx = x as f32 * view.scale[0] + view.offset[0];
+        let ny = y as f32 * view.scale[1] + view.offset[1];
+        egui::pos2(
+            rect.center().x + 0.5 * nx * rect.width(),
+            rect.center().y - 0.5 * ny * rect.height(),
+        )
+    };
+    for s in shapes {
+        let c = s.color.map(|v| (v.clamp(0.0, 1.0) * 255.0).round() as u8);
+        let color = Color32::from_rgba_premultiplied(c[0], c[1], c[2], c[3]);
+        let [cx, cy] = s.center.map(f64::from);
+        let [hx, hy] = s.half_size.map(f64::from);
+        if s.angle_shape[1] > 0.5 {
+            let r = hx as f32 * view.px_per_m[0] / ui.ctx().pixels_per_point();
+            painter.circle_filled(to_screen(cx, cy), r, color);
+        } else {
+            let (sn, cs) = f64::from(s.angle_shape[0]).sin_cos();
+            let corner = |a: f64, b: f64| {
+                let (lx, ly) = (a * hx, b * hy);
+                to_screen(cx + lx * cs + ly * sn, cy - lx * sn + ly * cs)
+            };
+            let pts = vec![
+                corner(-1.0, -1.0),
+                corner(1.0, -1.0),
+                corner(1.0, 1.0),
+                corner(-1.0, 1.0),
+            ];
+            painter.add(egui::Shape::convex_polygon(pts, color, egui::Stroke::NONE));
+        }
+    }
+}

@@ -1,0 +1,215 @@
+//! The scene's settings as the user wrote them: the TOML table of explicit
+//! keys (from a preset, a file, or edits in the panel) and where it came
+//! from. Resolving goes through [`Config::from_table`], so the app accepts
+//! exactly what the CLI accepts and refuses the rest with the same one-line
+//! message. Keys left out keep their documented defaults (e.g. Ω_v follows
+//! Ω_h), which a table of resolved values would lose.
+
+use std::path::Path;
+
+use toml::Table;
+
+use crate::io::config::{Config, Source, parse_toml, preset_text, read_file};
+use crate::io::table::set_dotted;
+
+/// The explicit keys of a scene and their source.
+#[derive(Clone, Debug, Default)]
+pub struct Settings {
+    /// Explicit keys, `section.key = value`.
+    pub table: Table,
+    /// Where relative record paths are resolved.
+    pub source: Source,
+    /// What the settings came from (a preset name or a file), for the title.
+    pub origin: String,
+}
+
+impl Settings {
+    /// The settings of preset `name`.
+    pub fn preset(name: &str) -> Result<Self, String> {
+        let text = preset_text(name).map_err(|e| e.to_string())?;
+        let table = parse_toml(text, &format!("preset {name}")).map_err(|e| e.to_string())?;
+        Ok(Self {
+            table,
+            source: Source::default(),
+            origin: format!("preset {name}"),
+        })
+    }
+
+    /// The settings in a TOML (or summary.json) file, resolved and checked.
+    pub fn open(path: &Path) -> Result<(Self, Config), String> {
+        let (table, source) = read_file(path).map_err(|e| e.to_string())?;
+        let s = Self {
+            table,
+            source,
+            origin: path.display().to_string(),
+        };
+        let cfg = s.resolve()?;
+        Ok((s, cfg))
+    }
+
+    /// The scene the command line names: `--config FILE` or `--preset NAME`
+    /// (default `default`), then each `--set KEY=VALUE`, resolved and checked.
+    pub fn from_cli(preset: Option<&str>, file: Option<&Path>, sets: &[String]) -> Result<(Self, Config), String> {
+        let mut s = match (preset, file) {
+            (Some(_), Some(_)) => return Err("give either --preset or --config, not both".into()),
+            (_, Some(path)) => Self::open(path)?.0,
+            (name, None) => Self::preset(name.unwrap_or("default"))?,
+        };
+        for set in sets {
+            set_dotted(&mut s.table, set).map_err(|e| e.to_string())?;
+        }
+        let cfg = s.resolve()?;
+        Ok((s, cfg))
+    }
+
+    /// Settings whose every key is explicit, from a resolved config (used
+    /// when the app is handed a `Config` rather than a table).
+    pub fn from_config(cfg: &Config) -> Self {
+        let mut table = Table::new();
+        if let serde_json::Value::Object(sections) = cfg.to_json() {
+            for (section, keys) in sections {
+                let serde_json::Value::Object(keys) = keys else {
+                    continue;
+                };
+                let mut t = Table::new();
+                for (k, v) in keys {
+                    let tv = match v {
+                        serde_json::Value::String(s) if s == "inf" => toml::Value::Float(f64::INFINITY),
+                        serde_json::Value::String(s) => toml::Value::String(s),
+                        serde_json::Value::Bool(b) => toml::Value::Boolean(b),
+                        serde_json::Value::Number(n) => match n.as_i64() {
+                            Some(i) if !is_float_key(&section, &k) => toml::Value::Integer(i),
+                            _ => match n.as_f64() {
+                                Some(f) => toml::Value::Float(f),
+                                None => continue,
+                            },
+                        },
+                        serde_json::Value::Null | serde_json::Value::Array(_) | serde_json::Value::Object(_) => {
+                            continue;
+                        }
+                    };
+                    t.insert(k, tv);
+                }
+                table.insert(section, toml::Value::Table(t));
+            }
+        }
+        Self {
+            table,
+            source: Source::default(),
+            origin: "config".to_string(),
+        }
+    }
+
+    /// Resolves and validates.
+    pub fn resolve(&self) -> Result<Config, String> {
+        Config::from_table(&self.table, &self.source).map_err(|e| e.to_string())
+    }
+
+    /// The explicit value of `key` (`section.key`), as TOML text.
+    pub fn explicit(&self, key: &str) -> Option<String> {
+        let (section, name) = key.split_once('.')?;
+        let v = self.table.get(section)?.as_table()?.get(name)?;
+        Some(value_text(v))
+    }
+
+    /// These settings with `key` set to `raw` (TOML value text; empty
+    /// removes the key, restoring its default), resolved and checked.
+    /// Nothing changes on error.
+    pub fn with(&self, key: &str, raw: &str) -> Result<(Self, Config), String> {
+        let mut next = self.clone();
+        let raw = raw.trim();
+        if raw.is_empty() {
+            if let Some((section, name)) = key.split_once('.')
+                && let Some(toml::Value::Table(t)) = next.table.get_mut(section)
+            {
+                t.remove(name);
+            }
+        } else {
+            set_dotted(&mut next.table, &format!("{key}={raw}")).map_err(|e| e.to_string())?;
+        }
+        let cfg = next.resolve()?;
+        Ok((next, cfg))
+    }
+
+    /// The scene as TOML text, with a header naming its origin.
+    pub fn to_toml(&self) -> Result<String, String> {
+        let body = toml::to_string(&self.table).map_err(|e| format!("cannot write the scene as TOML: {e}"))?;
+        Ok(format!("# rocking scene (from {})\n\n{body}", self.origin))
+    }
+}
+
+/// Keys whose values are real numbers even when they print as integers.
+fn is_float_key(section: &str, key: &str) -> bool {
+    !matches!(
+        (section, key),
+        ("excitation", "cycles") | ("run", "max_steps") | ("run", "max_events")
+    )
+}
+
+/// A TOML value as the user would type it (`inf`, `0.4`, `ratio`).
+pub fn value_text(v: &toml::Value) -> String {
+    match v {
+        toml::Value::String(s) => s.clone(),
+        toml::Value::Float(f) if f.is_infinite() && *f > 0.0 => "inf".to_string(),
+        toml::Value::Float(f) => format_number(*f),
+        toml::Value::Integer(i) => i.to_string(),
+        toml::Value::Boolean(b) => b.to_string(),
+        toml::Value::Datetime(d) => d.to_string(),
+        toml::Value::Array(_) | toml::Value::Table(_) => v.to_string(),
+    }
+}
+
+/// A number in the shortest form that reads back to the same value.
+pub fn format_number(x: f64) -> String {
+    if x.is_infinite() {
+        if x > 0.0 { "inf".into() } else { "-inf".into() }
+    } else {
+        // Rust's Display is the shortest round-tripping representation.
+        format!("{x}")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn an_edit_keeps_defaults_that_follow_other_keys() {
+        let s = Settings::preset("fig3").expect("preset");
+        let (s2, cfg) = s.with("excitation.omega_h", "5").expect("valid");
+        assert_eq!(cfg.omega_v, 5.0, "Ω_v defaults to Ω_h");
+        assert_eq!(s2.explicit("excitation.omega_h").as_deref(), Some("5"));
+    }
+
+    #[test]
+    fn an_invalid_edit_is_refused_with_the_key_named() {
+        let s = Settings::preset("default").expect("preset");
+        let err = s.with("block.width", "-1").expect_err("refused");
+        assert!(err.starts_with("block.width"), "{err}");
+        let err = s.with("friction.kinetic", "0.9").expect_err("refused");
+        assert!(err.contains("friction.kinetic"), "{err}");
+    }
+
+    #[test]
+    fn an_empty_value_restores_the_default() {
+        let s = Settings::preset("default").expect("preset");
+        let (_, cfg) = s.with("excitation.a_h", "").expect("valid");
+        assert_eq!(cfg.a_h, 0.0);
+    }
+
+    #[test]
+    fn the_scene_round_trips_through_toml() {
+        let s = Settings::preset("fig16").expect("preset");
+        let text = s.to_toml().expect("toml");
+        let table = parse_toml(&text, "saved").expect("parses");
+        let back = Config::from_table(&table, &Source::default()).expect("valid");
+        assert_eq!(back, s.resolve().expect("valid"));
+    }
+
+    #[test]
+    fn settings_from_a_resolved_config_resolve_to_it() {
+        let cfg = Settings::preset("fig12").and_then(|s| s.resolve()).expect("valid");
+        let back = Settings::from_config(&cfg).resolve().expect("valid");
+        assert_eq!(back, cfg);
+    }
+}

@@ -1,0 +1,228 @@
+//! Axis labels with units, titles naming the fixed parameters, and the
+//! colour of each response class, shared by every figure.
+
+use plotters::style::RGBColor;
+
+use crate::analysis::classify::Response;
+use crate::io::config::{Config, ExcitationKind};
+
+/// A number as short as it can be written without losing its value
+/// (`8`, `0.925`, `2.5`).
+pub fn num(x: f64) -> String {
+    format!("{x}")
+}
+
+/// Decimal places that write every value of a grid `from + i·step`
+/// exactly as typed (`0.02` → 2), at most 12.
+pub fn grid_decimals(from: f64, step: f64) -> usize {
+    let exact = |x: f64, d: i32| {
+        let scaled = x * 10f64.powi(d);
+        (scaled - scaled.round()).abs() <= 1e-6 * scaled.abs().max(1.0)
+    };
+    (0..=12).find(|&d| exact(step, d) && exact(from, d)).unwrap_or(12) as usize
+}
+
+/// A grid value with `decimals` places (`1.7000000000000002` → `1.70`):
+/// for titles and summaries; files keep the exact value.
+pub fn grid_num(x: f64, decimals: usize) -> String {
+    format!("{x:.decimals$}")
+}
+
+/// The axis label of a config key, with its unit.
+pub fn param_label(key: &str) -> String {
+    let label = match key {
+        "excitation.a_v" => "A_v, vertical amplitude (units of ψ g)",
+        "excitation.a_h" => "A_h, horizontal amplitude (units of ψ g)",
+        "excitation.omega_h" => "Ω_h, horizontal frequency (units of p)",
+        "excitation.omega_v" => "Ω_v, vertical frequency (units of p)",
+        "excitation.phase_h" => "Φ_h, horizontal phase (rad)",
+        "excitation.phase_v" => "Φ_v, vertical phase (rad)",
+        "friction.static" => "μ_s, static friction coefficient",
+        "friction.kinetic" => "μ_k, kinetic friction coefficient",
+        "impact.r" => "r, angular-velocity ratio at impact",
+        "impact.e" => "e, vertical restitution at impact",
+        "block.width" => "B, block width (m)",
+        "block.height" => "H, block height (m)",
+        "initial.theta" => "Θ(0) = θ(0)/ψ",
+        "initial.theta_dot" => "Θ'(0) = dΘ/dτ at τ = 0",
+        other => other,
+    };
+    label.to_string()
+}
+
+/// The short symbol of a config key, for titles (`A_v`, `Ω_h`, …).
+pub fn param_symbol(key: &str) -> String {
+    let s = match key {
+        "excitation.a_v" => "A_v",
+        "excitation.a_h" => "A_h",
+        "excitation.omega_h" => "Ω_h",
+        "excitation.omega_v" => "Ω_v",
+        "friction.static" => "μ_s",
+        "friction.kinetic" => "μ_k",
+        "impact.r" => "r",
+        "impact.e" => "e",
+        "block.width" => "B",
+        "block.height" => "H",
+        other => other,
+    };
+    s.to_string()
+}
+
+/// The parameters of `cfg` that define a harmonic response, except those in
+/// `varied` (dotted keys): block, excitation, friction and impact law, e.g.
+/// `B × H = 1 × 4 m, Ω_h = Ω_v = 8, A_h = 3, no sliding, impact ratio r = 0.925`.
+pub fn fixed_parameters(cfg: &Config, varied: &[&str]) -> String {
+    let free = |k: &str| !varied.contains(&k);
+    let mut parts = Vec::new();
+    if free("block.width") && free("block.height") {
+        parts.push(format!("B × H = {} × {} m", num(cfg.width), num(cfg.height)));
+    }
+    if cfg.kind == ExcitationKind::Harmonic {
+        let (oh, ov) = (free("excitation.omega_h"), free("excitation.omega_v"));
+        if oh && ov && cfg.omega_h == cfg.omega_v {
+            parts.push(format!("Ω_h = Ω_v = {}", num(cfg.omega_h)));
+        } else {
+            if oh {
+                parts.push(format!("Ω_h = {}", num(cfg.omega_h)));
+            }
+            if ov {
+                parts.push(format!("Ω_v = {}", num(cfg.omega_v)));
+            }
+        }
+        if free("excitation.a_h") {
+            parts.push(format!("A_h = {}", num(cfg.a_h)));
+        }
+        if free("excitation.a_v") {
+            parts.push(format!("A_v = {}", num(cfg.a_v)));
+        }
+        if free("excitation.phase_h") && cfg.phase_h != 0.0 {
+            parts.push(format!("Φ_h = {}", num(cfg.phase_h)));
+        }
+        if free("excitation.phase_v") && cfg.phase_v != 0.0 {
+            parts.push(format!("Φ_v = {}", num(cfg.phase_v)));
+        }
+    }
+    if free("friction.static") && free("friction.kinetic") {
+        if cfg.mu_s.is_infinite() {
+            parts.push("no sliding".to_string());
+        } else {
+            parts.push(format!("μ_s = {}, μ_k = {}", num(cfg.mu_s), num(cfg.mu_k)));
+        }
+    }
+    match cfg.law.as_str() {
+        "ratio" if free("impact.r") => parts.push(format!("impact ratio r = {}", num(cfg.r))),
+        "impulse" if free("impact.e") => parts.push(format!("impulse impact, e = {}", num(cfg.e))),
+        "housner" => parts.push(format!("Housner impact (r = {:.4})", cfg.r)),
+        _ => {}
+    }
+    parts.join(", ")
+}
+
+/// The colour of a response class: periods 1, 2, 3, 4 in distinct hues,
+/// longer periods teal, quasiperiodic olive, chaotic red, tumbled near
+/// black, rest light grey, flight pink (colour-blind-safe-ish: the classes
+/// that matter most, period 1/2, chaos and tumbling, differ in lightness
+/// too).
+pub fn response_colour(r: Response) -> RGBColor {
+    match r {
+        Response::Periodic { period: 1 } => RGBColor(31, 119, 180),
+        Response::Periodic { period: 2 } => RGBColor(44, 160, 44),
+        Response::Periodic { period: 3 } => RGBColor(148, 103, 189),
+        Response::Periodic { period: 4 } => RGBColor(255, 127, 14),
+        Response::Periodic { .. } => RGBColor(23, 190, 207),
+        Response::Quasiperiodic => RGBColor(188, 189, 34),
+        Response::Chaotic => RGBColor(214, 39, 40),
+        Response::Tumbled => RGBColor(45, 45, 45),
+        Response::Rest => RGBColor(200, 200, 200),
+        Response::Flight => RGBColor(227, 119, 194),
+    }
+}
+
+/// The legend text of a response class: `period 2 (1,2)`, `chaotic`, …
+/// Periods above 4 share one colour, so `period k > 4` names them together.
+pub fn response_label(r: Response) -> String {
+    match r {
+        Response::Periodic { period } if period <= 4 => format!("period {period} (1,{period})"),
+        Response::Periodic { .. } => "period > 4".to_string(),
+        Response::Quasiperiodic | Response::Chaotic | Response::Tumbled | Response::Rest | Response::Flight => {
+            r.name().to_string()
+        }
+    }
+}
+
+/// The legend group of a response: periods above 4 share one entry.
+pub fn legend_key(r: Response) -> Response {
+    match r {
+        Response::Periodic { period } if period > 4 => Response::Periodic { period: 5 },
+        other => other,
+    }
+}
+
+/// Legend groups present in `responses`, in a fixed order (rest, periods,
+/// quasiperiodic, chaotic, tumbled, flight).
+pub fn legend_entries(responses: impl Iterator<Item = Response>) -> Vec<Response> {
+    let order = |r: &Response| match r {
+        Response::Rest => 0,
+        Response::Periodic { period } => *period,
+        Response::Quasiperiodic => 100,
+        Response::Chaotic => 101,
+        Response::Tumbled => 102,
+        Response::Flight => 103,
+    };
+    let mut v: Vec<Response> = responses.map(legend_key).collect();
+    v.sort_by_key(order);
+    v.dedup();
+    v
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::analysis::steady::ParamBase;
+
+    #[test]
+    fn fig4_title_names_its_fixed_parameters() {
+        let cfg = ParamBase::load(Some("fig4"), None, &[]).unwrap().resolve(&[]).unwrap();
+        assert_eq!(
+            fixed_parameters(&cfg, &["excitation.a_v"]),
+            "B × H = 1 × 4 m, Ω_h = Ω_v = 8, A_h = 3, no sliding, impact ratio r = 0.925"
+        );
+        let cfg = ParamBase::load(Some("fig9"), None, &[]).unwrap().resolve(&[]).unwrap();
+        let t = fixed_parameters(&cfg, &["excitation.a_v"]);
+        assert!(t.contains("μ_s = 0.4, μ_k = 0.35"), "{t}");
+    }
+
+    #[test]
+    fn legend_groups_long_periods() {
+        let e = legend_entries(
+            [
+                Response::Chaotic,
+                Response::Periodic { period: 7 },
+                Response::Periodic { period: 1 },
+                Response::Periodic { period: 9 },
+                Response::Rest,
+            ]
+            .into_iter(),
+        );
+        assert_eq!(
+            e,
+            vec![
+                Response::Rest,
+                Response::Periodic { period: 1 },
+                Response::Periodic { period: 5 },
+                Response::Chaotic
+            ]
+        );
+        assert_eq!(response_label(Response::Periodic { period: 2 }), "period 2 (1,2)");
+        assert_eq!(param_label("excitation.a_v"), "A_v, vertical amplitude (units of ψ g)");
+        assert_eq!(param_label("run.zeno_eps"), "run.zeno_eps");
+    }
+
+    #[test]
+    fn grid_values_print_as_typed() {
+        assert_eq!(grid_decimals(0.0, 0.02), 2);
+        assert_eq!(grid_decimals(1.5, 0.25), 2);
+        assert_eq!(grid_decimals(2.0, 1.0), 0);
+        assert_eq!(grid_num(85.0 * 0.02, grid_decimals(0.0, 0.02)), "1.70");
+    }
+}

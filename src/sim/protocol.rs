@@ -1,0 +1,462 @@
+//! The messages between the simulation thread ([`super::runner`]) and its
+//! user (the desktop app, or a test).
+//!
+//! Contract:
+//! - Every update carries the [`RunId`] of the run that produced it. A run is
+//!   one continuous trajectory: a reset, new parameters or a perturbed
+//!   restart start a new run with a new id, so data of a run that was reset
+//!   can be recognised and dropped.
+//! - Within one run, updates arrive in the order they were produced, and the
+//!   samples, events and section points inside a [`Batch`] are in time order
+//!   and continue those of the previous batch of the same run.
+//! - Every number in an update is finite: a run whose state turns
+//!   non-finite ends with [`SimUpdate::Finished`] carrying the error instead.
+//! - The end of a run is an explicit [`SimUpdate::Finished`] message, never
+//!   just silence or a closed channel.
+//! - Units are the normalised ones of MODEL-DECISIONS (τ = p t, Θ = θ/ψ,
+//!   X = x/R, accelerations per unit g) unless a field says metres.
+//!
+//! This module knows nothing of windows; the app turns these into pictures.
+
+use crate::io::config::Config;
+use crate::model::geometry::Geometry;
+use crate::model::system::EventRecord;
+use crate::model::{Mode, Sign, energy};
+
+/// Identifies one run (one continuous trajectory). Ids increase by one with
+/// every new run started through one [`super::runner::SimHandle`]; the first
+/// run has id 1, so `RunId(0)` never names a run.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub struct RunId(pub u64);
+
+/// How fast the simulation runs.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Speed {
+    /// A multiple of real time in the block's physical seconds
+    /// (1 s = p τ). Clamped to [[`Speed::MIN_MULTIPLE`], [`Speed::MAX_MULTIPLE`]].
+    RealTime(f64),
+    /// As fast as the thread can integrate.
+    Max,
+}
+
+impl Speed {
+    /// Slowest playback, ×0.1: slow enough to follow one impact of the
+    /// paper's block by eye.
+    pub const MIN_MULTIPLE: f64 = 0.1;
+    /// Fastest paced playback, ×1000; beyond that use [`Speed::Max`].
+    pub const MAX_MULTIPLE: f64 = 1000.0;
+}
+
+impl Default for Speed {
+    /// Real time: what a lecture audience expects to see.
+    fn default() -> Self {
+        Speed::RealTime(1.0)
+    }
+}
+
+/// Commands to the simulation thread.
+#[derive(Clone, Debug)]
+pub enum SimCommand {
+    /// Start a new run from τ = 0 with this configuration and its initial
+    /// state. The run's `run.tau_end` is ignored: a live run goes on until
+    /// it reaches a terminal mode or is replaced.
+    SetParams {
+        /// Id of the new run.
+        run: RunId,
+        /// The validated configuration.
+        config: Box<Config>,
+    },
+    /// Restart the current configuration from τ = 0.
+    Reset {
+        /// Id of the new run.
+        run: RunId,
+    },
+    /// Restart from the current time and state, with Θ increased by
+    /// `eps` (units of ψ). Shows sensitive dependence on initial conditions.
+    ResetPerturbed {
+        /// Id of the new run.
+        run: RunId,
+        /// Perturbation of Θ.
+        eps: f64,
+    },
+    /// Stop advancing (the thread then sleeps until the next command).
+    Pause,
+    /// Continue advancing.
+    Resume,
+    /// While paused: advance by `tau` (> 0) and stay paused.
+    Step {
+        /// How far, in τ.
+        tau: f64,
+    },
+    /// Change the playback speed.
+    SetSpeed(Speed),
+    /// Run `count` ghost copies (0 = none, at most [`MAX_GHOSTS`]) from the
+    /// current state with Θ perturbed by `eps · (k + 1)/count`, k = 0..count.
+    SetGhosts {
+        /// How many.
+        count: usize,
+        /// Largest perturbation of Θ.
+        eps: f64,
+    },
+    /// End the thread. Sent by the handle's `Drop`.
+    Shutdown,
+}
+
+/// Most ghost copies: the 1–100.
+pub const MAX_GHOSTS: usize = 100;
+
+/// One state on the regular output grid, with what the scene needs to draw
+/// it without doing any mechanics.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Sample {
+    /// τ.
+    pub tau: f64,
+    /// Θ.
+    pub theta: f64,
+    /// Θ'.
+    pub theta_dot: f64,
+    /// X: centre of mass relative to the base, per R.
+    pub x: f64,
+    /// X'.
+    pub x_dot: f64,
+    /// Contact mode.
+    pub mode: Mode,
+    /// Base acceleration a_h/g.
+    pub a_h: f64,
+    /// Base acceleration a_v/g.
+    pub a_v: f64,
+    /// Base displacement per R (see [`BaseMotion`]).
+    pub base_x: f64,
+    /// Normal contact force per unit weight, N/(mg); 0 in terminal modes.
+    pub normal: f64,
+    /// Horizontal contact force on the block per unit weight, F/(mg).
+    pub friction: f64,
+}
+
+/// A point of the stroboscopic (Poincaré) section, τ_k = 2πk/Ω_h.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SectionPoint {
+    /// k, counting from τ = 0.
+    pub k: u64,
+    /// τ_k.
+    pub tau: f64,
+    /// Θ(τ_k).
+    pub theta: f64,
+    /// Θ'(τ_k).
+    pub theta_dot: f64,
+    /// X(τ_k), relative to the base, per R.
+    pub x: f64,
+    /// X'(τ_k).
+    pub x_dot: f64,
+    /// Mode at τ_k.
+    pub mode: Mode,
+}
+
+/// The latest state of one ghost copy.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct GhostState {
+    /// Θ.
+    pub theta: f64,
+    /// X (relative to the base), per R.
+    pub x: f64,
+    /// Mode.
+    pub mode: Mode,
+}
+
+/// What a run is about: sent once when it starts.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RunInfo {
+    /// The configuration being run.
+    pub config: Config,
+    /// The block's geometry (for the scene and the τ ↔ seconds conversion).
+    pub geometry: Geometry,
+    /// Period of the stroboscopic section, τ; `None` without harmonic
+    /// excitation (then no section points come).
+    pub section_period: Option<f64>,
+    /// τ at which the run starts (0, or the current τ for a perturbed
+    /// restart).
+    pub tau0: f64,
+    /// Spacing of the samples, τ.
+    pub sample_dt: f64,
+}
+
+/// A batch of output of one run.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Batch {
+    /// Samples on the regular grid, in time order. May have gaps where the
+    /// consumer fell behind (see `dropped_samples`).
+    pub samples: Vec<Sample>,
+    /// Events in time order. Never dropped.
+    pub events: Vec<EventRecord>,
+    /// Section points in time order. Never dropped.
+    pub section: Vec<SectionPoint>,
+    /// Latest state of each ghost copy (live view only: older ghost states
+    /// are not kept).
+    pub ghosts: Vec<GhostState>,
+    /// Samples of this run dropped since the previous batch because the
+    /// consumer fell behind.
+    pub dropped_samples: u64,
+    /// τ reached by the run when the batch was sent.
+    pub tau: f64,
+}
+
+impl Batch {
+    /// Whether the batch carries no data.
+    pub fn is_empty(&self) -> bool {
+        self.samples.is_empty() && self.events.is_empty() && self.section.is_empty() && self.ghosts.is_empty()
+    }
+}
+
+/// How a run ended.
+#[derive(Clone, Debug, PartialEq)]
+pub enum RunEnd {
+    /// Reached a terminal mode (tumbled or flight) at `tau`.
+    Terminal {
+        /// The terminal mode.
+        mode: Mode,
+        /// When.
+        tau: f64,
+    },
+    /// The integration failed; the message names the cause.
+    Failed(String),
+}
+
+/// Updates from the simulation thread.
+#[derive(Clone, Debug, PartialEq)]
+pub enum SimUpdate {
+    /// A run started.
+    Started {
+        /// Its id.
+        run: RunId,
+        /// What it runs.
+        info: Box<RunInfo>,
+    },
+    /// Output of a run.
+    Batch {
+        /// The run.
+        run: RunId,
+        /// The data.
+        batch: Batch,
+    },
+    /// The thread paused (after a `Pause` or a completed `Step`) or resumed.
+    Paused {
+        /// The run.
+        run: RunId,
+        /// Whether it is paused now.
+        paused: bool,
+        /// τ reached.
+        tau: f64,
+    },
+    /// A run ended; no more batches of it follow.
+    Finished {
+        /// The run.
+        run: RunId,
+        /// How.
+        end: RunEnd,
+    },
+}
+
+impl SimUpdate {
+    /// The run the update belongs to.
+    pub fn run(&self) -> RunId {
+        match self {
+            SimUpdate::Started { run, .. }
+            | SimUpdate::Batch { run, .. }
+            | SimUpdate::Paused { run, .. }
+            | SimUpdate::Finished { run, .. } => *run,
+        }
+    }
+}
+
+/// The base's horizontal displacement, per R, from the excitation.
+///
+/// For harmonic excitation it is the periodic solution of
+/// `U'' = (a_h/g)/γ` (γ = R p²/g = 3/4), `U = −A_h ψ sin(Ω_h τ + Φ_h)/(γ Ω_h²)`:
+/// the base oscillates about a fixed point. For pulses and records the
+/// runner integrates the acceleration samples with the trapezoidal rule from
+/// rest, which is exact to the sampling of the display and is only drawn,
+/// never fed back into the mechanics.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum BaseMotion {
+    /// The base stays put.
+    Fixed,
+    /// Closed form: amplitude `A_h ψ/(γ Ω_h²)` per R, frequency, phase.
+    Harmonic {
+        /// Amplitude per R.
+        amplitude: f64,
+        /// Ω_h.
+        omega: f64,
+        /// Φ_h.
+        phase: f64,
+    },
+    /// Trapezoidal integration of the samples.
+    Integrated {
+        /// τ of the last sample.
+        tau: f64,
+        /// a_h/g at the last sample.
+        a: f64,
+        /// U' at the last sample.
+        velocity: f64,
+        /// U at the last sample.
+        displacement: f64,
+    },
+}
+
+impl BaseMotion {
+    /// The motion of `excitation`, starting at rest at τ = `tau0`.
+    pub fn new(excitation: &crate::model::Excitation, tau0: f64) -> Self {
+        use crate::model::Excitation as E;
+        match excitation {
+            E::None => BaseMotion::Fixed,
+            E::Harmonic(h) => BaseMotion::Harmonic {
+                amplitude: h.a_h * h.psi / (crate::model::geometry::GAMMA * h.omega_h * h.omega_h),
+                omega: h.omega_h,
+                phase: h.phase_h,
+            },
+            E::Pulse(_) | E::Record(_) => BaseMotion::Integrated {
+                tau: tau0,
+                a: excitation.forcing(tau0).a,
+                velocity: 0.0,
+                displacement: 0.0,
+            },
+        }
+    }
+
+    /// Displacement per R at `tau`, given `a` = a_h/g there. Calls must come
+    /// in increasing `tau` for the integrated kind.
+    pub fn advance(&mut self, tau: f64, a: f64) -> f64 {
+        match self {
+            BaseMotion::Fixed => 0.0,
+            BaseMotion::Harmonic {
+                amplitude,
+                omega,
+                phase,
+            } => -*amplitude * (*omega * tau + *phase).sin(),
+            BaseMotion::Integrated {
+                tau: t0,
+                a: a0,
+                velocity,
+                displacement,
+            } => {
+                let dt = tau - *t0;
+                if dt > 0.0 {
+                    let gamma = crate::model::geometry::GAMMA;
+                    let v1 = *velocity + 0.5 * (*a0 + a) / gamma * dt;
+                    *displacement += 0.5 * (*velocity + v1) * dt;
+                    *velocity = v1;
+                    *t0 = tau;
+                    *a0 = a;
+                }
+                *displacement
+            }
+        }
+    }
+}
+
+/// Where to draw the block: the pose of a rigid rectangle, in metres, in
+/// the frame of the base's rest position (x to the right, y up).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Pose {
+    /// Centre of mass, horizontal, m (base displacement included).
+    pub x: f64,
+    /// Centre of mass, height above the base, m.
+    pub y: f64,
+    /// Rotation θ = ψΘ, rad, clockwise positive (MODEL-DECISIONS).
+    pub angle: f64,
+    /// The corner in contact, if the block is tilted: horizontal position, m,
+    /// and which corner.
+    pub pivot: Option<(f64, Sign)>,
+    /// Base displacement, m.
+    pub base_x: f64,
+}
+
+/// The pose of a block of geometry `geo` in state (`theta`, `x`, `mode`)
+/// on a base displaced by `base_x` (per R). Uses the model's own height
+/// of the centre of mass, so the drawing and the mechanics agree.
+pub fn pose(geo: &Geometry, theta: f64, x: f64, mode: Mode, base_x: f64) -> Pose {
+    let (height, _) = energy::height(geo, mode, theta, 0.0);
+    let tilted = theta != 0.0;
+    let pivot = tilted.then(|| {
+        let s = Sign::of(theta);
+        // The pivot lies a horizontal distance R sin φ, φ = ψ(1 − sΘ), from
+        // the centre of mass, on its side s.
+        let phi = geo.psi * (1.0 - s.value() * theta);
+        ((base_x + x + s.value() * phi.sin()) * geo.r, s)
+    });
+    Pose {
+        x: (base_x + x) * geo.r,
+        y: height * geo.r,
+        angle: geo.psi * theta,
+        pivot,
+        base_x: base_x * geo.r,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn flat_block_stands_on_its_base() {
+        let geo = Geometry::new(1.0, 4.0);
+        let p = pose(&geo, 0.0, 0.25, Mode::Rest, 0.5);
+        assert!((p.y - 2.0).abs() < 1e-12, "centre of mass at H/2, got {}", p.y);
+        assert!((p.x - 0.75 * geo.r).abs() < 1e-12);
+        assert_eq!(p.pivot, None);
+    }
+
+    #[test]
+    fn pivot_corner_stays_on_the_base_line_for_any_tilt() {
+        // The lower corner on the pivot side must be at (pivot_x, 0): rotate
+        // the corner's offset from the centre by θ clockwise and compare.
+        let geo = Geometry::new(1.0, 4.0);
+        for &theta in &[0.3, -0.7, 0.99] {
+            let mode = Mode::Rock { pivot: Sign::of(theta) };
+            let p = pose(&geo, theta, 0.1, mode, 0.0);
+            let (px, side) = p.pivot.expect("tilted");
+            let (hw, hh) = (0.5 * geo.width * side.value(), -0.5 * geo.height);
+            let (s, c) = p.angle.sin_cos();
+            // Clockwise rotation by θ: (x, y) → (x cos θ + y sin θ, −x sin θ + y cos θ).
+            let cx = p.x + hw * c + hh * s;
+            let cy = p.y - hw * s + hh * c;
+            assert!((cx - px).abs() < 1e-12, "corner x {cx} vs pivot {px}");
+            assert!(cy.abs() < 1e-12, "corner height {cy}");
+        }
+    }
+
+    #[test]
+    fn harmonic_base_displacement_has_the_excitation_as_second_derivative() {
+        let h = crate::model::Harmonic {
+            a_h: 2.0,
+            a_v: 0.0,
+            omega_h: 8.0,
+            omega_v: 8.0,
+            phase_h: 0.3,
+            phase_v: 0.0,
+            psi: 0.245,
+        };
+        let ex = crate::model::Excitation::Harmonic(h);
+        let mut m = BaseMotion::new(&ex, 0.0);
+        let (tau, d) = (1.234, 1e-4);
+        let u = |m: &mut BaseMotion, t: f64| m.advance(t, ex.forcing(t).a);
+        let second = (u(&mut m, tau + d) - 2.0 * u(&mut m, tau) + u(&mut m, tau - d)) / (d * d);
+        let want = ex.forcing(tau).a / crate::model::geometry::GAMMA;
+        assert!((second - want).abs() < 1e-5 * want.abs().max(1.0), "{second} vs {want}");
+    }
+
+    #[test]
+    fn integrated_base_displacement_of_constant_acceleration_is_a_parabola() {
+        let mut m = BaseMotion::Integrated {
+            tau: 0.0,
+            a: 0.3,
+            velocity: 0.0,
+            displacement: 0.0,
+        };
+        let mut u = 0.0;
+        for k in 1..=100 {
+            u = m.advance(k as f64 * 0.01, 0.3);
+        }
+        let want = 0.5 * 0.3 / crate::model::geometry::GAMMA;
+        assert!((u - want).abs() < 1e-12, "{u} vs {want}");
+    }
+}
