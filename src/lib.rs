@@ -16,6 +16,7 @@ pub mod integrate;
 pub mod io;
 pub mod model;
 pub mod plot;
+pub mod reproduce;
 pub mod sim;
 
 pub mod cli;

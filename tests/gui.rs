@@ -9,6 +9,9 @@ use std::time::{Duration, Instant};
 
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable as _;
+use rocking::analysis::classify::ClassifyOptions;
+use rocking::analysis::orbit_diagram::{BlockSweep, Continuation, Grid, Plan, block_sweep};
+use rocking::analysis::steady::{ParamBase, Window};
 use rocking::gui::{RockingApp, Settings};
 use rocking::sim::protocol::{Batch, GhostState, RunId, SectionPoint, SimUpdate, Speed};
 use rocking::sim::runner::record;
@@ -343,4 +346,169 @@ fn measure_frame_time_with_a_million_points_and_100_ghosts() {
     }
     let per = start.elapsed().as_secs_f64() * 1000.0 / rebins as f64;
     println!("rebinning 1e6 points for a new view: {per:.1} ms");
+}
+
+/// The default scene on an empty fixed stream, without a GPU: the
+/// bifurcation view's tests need no simulation thread.
+fn quiet() -> Harness<'static, RockingApp> {
+    let (s, c) = scene("default", &[]);
+    Harness::builder()
+        .with_size(SIZE)
+        .build_eframe(move |cc| RockingApp::with_stream(cc, s, c, Vec::new()))
+}
+
+/// A sweep of `count` values of A_v from 0 to 2 with a short window (70 τ
+/// holds 76 section points at Ω_h = 8; the classifier needs 64).
+fn small_sweep(app: &mut RockingApp, count: usize, window: Window) {
+    let b = app.bifurcation_mut();
+    b.param = "excitation.a_v".into();
+    b.from = 0.0;
+    b.to = 2.0;
+    b.count = count;
+    b.window = window;
+}
+
+const TINY: Window = Window {
+    transient: 10.0,
+    tau_end: 70.0,
+};
+
+#[test]
+fn the_bifurcation_view_sweeps_in_the_background_and_draws_points() {
+    let mut h = quiet();
+    small_sweep(h.state_mut(), 5, TINY);
+    for _ in 0..5 {
+        h.step();
+    }
+    assert_eq!(h.state().bifurcation().sweeps, 0, "hidden: no sweep started");
+    toggle_view(&mut h, "Bifurcation diagram");
+    assert!(h.state().show.bifurcation);
+    let _ = h.get_by_label("Sweep");
+    let _ = h.get_by_label("Compute");
+    assert!(pump(&mut h, Duration::from_secs(60), |a| a.bifurcation().done()));
+    h.step();
+    let b = h.state().bifurcation();
+    assert_eq!(b.sweeps, 1);
+    assert_eq!(b.columns().len(), 5);
+    assert!(b.drawn > 0, "points are drawn");
+    let _ = h.get_by_label_contains("5 values in");
+
+    // What the view drew is what the analysis layer computes.
+    let (s, _) = scene("default", &[]);
+    let base = ParamBase::from_table(s.table.clone(), s.source.clone());
+    let spec = BlockSweep {
+        base: &base,
+        param: "excitation.a_v",
+        window: TINY,
+        classify: ClassifyOptions::default(),
+        lyapunov: None,
+    };
+    let plan = Plan::new(Grid::new(0.0, 2.0, 0.5).unwrap(), Continuation::None, None).unwrap();
+    let want = block_sweep(&spec, &plan, &indicatif::ProgressBar::hidden()).unwrap();
+    let mut got = b.columns().to_vec();
+    got.sort_by(|a, b| a.value.total_cmp(&b.value));
+    for (g, w) in got.iter().zip(&want) {
+        assert_eq!(g.value, w.value);
+        assert_eq!(g.response, w.response, "at {}", w.value);
+        let thetas: Vec<f64> = w.points.iter().map(|p| p.theta).collect();
+        assert_eq!(g.thetas, thetas, "at {}", w.value);
+    }
+    assert!(
+        got.iter().any(|c| !c.thetas.is_empty()),
+        "some value has section points"
+    );
+
+    // Setting the swept key only moves the marker; any other key restarts.
+    assert!(h.state_mut().set_key("excitation.a_v", "1.25"));
+    h.step();
+    assert_eq!(h.state().bifurcation().sweeps, 1, "the swept key does not restart");
+    assert!(h.state_mut().set_key("excitation.a_h", "1.5"));
+    h.step();
+    assert_eq!(h.state().bifurcation().sweeps, 2, "another key restarts the sweep");
+    assert!(pump(&mut h, Duration::from_secs(60), |a| a.bifurcation().done()));
+}
+
+#[test]
+fn a_hidden_bifurcation_view_does_no_work() {
+    let mut h = quiet();
+    // Long enough that it cannot finish before it is hidden.
+    small_sweep(
+        h.state_mut(),
+        2000,
+        Window {
+            transient: 600.0,
+            tau_end: 800.0,
+        },
+    );
+    for _ in 0..5 {
+        h.step();
+    }
+    assert_eq!(h.state().bifurcation().sweeps, 0);
+    assert_eq!(h.state().bifurcation().threads(), 0, "hidden: no thread");
+    toggle_view(&mut h, "Bifurcation diagram");
+    assert!(pump(&mut h, Duration::from_secs(60), |a| a.bifurcation().values > 0));
+    toggle_view(&mut h, "Bifurcation diagram");
+    assert!(!h.state().show.bifurcation);
+    let n = h.state().bifurcation().values;
+    // Hidden, the sweep is cancelled: its thread ends long before the
+    // 2000 values could have been computed.
+    assert!(pump(&mut h, Duration::from_secs(20), |a| a.bifurcation().threads() == 0));
+    assert!(!h.state().bifurcation().done());
+    let _ = pump(&mut h, Duration::from_millis(300), |_| false);
+    assert_eq!(h.state().bifurcation().values, n, "nothing received while hidden");
+    assert_eq!(h.state().bifurcation().sweeps, 1);
+    // Shown again, it starts over.
+    toggle_view(&mut h, "Bifurcation diagram");
+    assert_eq!(h.state().bifurcation().sweeps, 2);
+    assert!(h.state().bifurcation().threads() > 0);
+}
+
+fn pointer(h: &mut Harness<'static, RockingApp>, pos: egui::Pos2, pressed: Option<bool>) {
+    h.event(egui::Event::PointerMoved(pos));
+    if let Some(pressed) = pressed {
+        h.event(egui::Event::PointerButton {
+            pos,
+            button: egui::PointerButton::Primary,
+            pressed,
+            modifiers: egui::Modifiers::NONE,
+        });
+    }
+    h.step();
+}
+
+#[test]
+fn dragging_a_rectangle_zooms_the_bifurcation_view_at_a_finer_step() {
+    let mut h = quiet();
+    small_sweep(h.state_mut(), 5, TINY);
+    toggle_view(&mut h, "Bifurcation diagram");
+    assert!(pump(&mut h, Duration::from_secs(60), |a| a.bifurcation().done()));
+    // Drag across the middle of the view (the right-most panel).
+    let (a, b) = (egui::pos2(980.0, 350.0), egui::pos2(1120.0, 500.0));
+    pointer(&mut h, a, None);
+    pointer(&mut h, a, Some(true));
+    for k in 1..=8 {
+        pointer(&mut h, a + (b - a) * (k as f32 / 8.0), None);
+    }
+    pointer(&mut h, b, Some(false));
+    h.step();
+    let v = h.state().bifurcation();
+    assert_eq!(v.sweeps, 2, "the zoom recomputes");
+    assert!(
+        0.0 < v.from && v.from < v.to && v.to < 2.0,
+        "zoomed into [0, 2]: [{}, {}]",
+        v.from,
+        v.to
+    );
+    assert_eq!(v.count, 5, "same number of values over a narrower range");
+    assert!(pump(&mut h, Duration::from_secs(60), |a| a.bifurcation().done()));
+    // Double-click goes back to the full range.
+    let c = egui::pos2(1050.0, 420.0);
+    for _ in 0..2 {
+        pointer(&mut h, c, Some(true));
+        pointer(&mut h, c, Some(false));
+    }
+    h.step();
+    let v = h.state().bifurcation();
+    assert_eq!((v.from, v.to), (0.0, 3.0), "the paper's range for A_v");
+    assert_eq!(v.sweeps, 3);
 }

@@ -3,11 +3,16 @@
 //! periodic block responses from an independently computed monodromy
 //! matrix, and the agreement of the two methods on chaotic responses.
 
+// Small matrices read best with explicit indices.
+#![allow(clippy::needless_range_loop)]
+
 use rocking::analysis::lyapunov::{
-    Lyapunov, LyapunovError, LyapunovOptions, LyapunovResult, Method, NoExponent, Outcome, Request, Schedule,
-    Square, TangentSystem, exponents, lyapunov,
+    Lyapunov, LyapunovError, LyapunovOptions, LyapunovResult, Method, NoExponent, Outcome, Request, Schedule, Square,
+    TangentSystem, exponents, lyapunov,
 };
-use rocking::integrate::hybrid::{Advance, Driver, DriverError, HybridSystem, Jump, Limits, MAX_GUARDS, Observer, Outputs};
+use rocking::integrate::hybrid::{
+    Advance, Driver, DriverError, HybridSystem, Jump, Limits, MAX_GUARDS, Observer, Outputs,
+};
 use rocking::integrate::{Dop853, Tolerances};
 use rocking::io::config;
 use rocking::model::{BlockSystem, EventKind, ImpactLaw, Mode, Model};
@@ -250,7 +255,10 @@ fn linear_forced_oscillator_has_both_exponents_minus_zeta() {
         for l in tangent {
             assert!((l + zeta).abs() < 1e-3, "ζ = {zeta}: tangent {tangent:?}");
         }
-        assert!((tangent[0] + tangent[1] + 2.0 * zeta).abs() < 1e-6, "trace: {tangent:?}");
+        assert!(
+            (tangent[0] + tangent[1] + 2.0 * zeta).abs() < 1e-6,
+            "trace: {tangent:?}"
+        );
         assert!((benettin + zeta).abs() < 1e-3, "ζ = {zeta}: two-trajectory {benettin}");
     }
 }
@@ -291,10 +299,16 @@ fn impact_oscillator_exponents_are_ln_e_over_pi() {
         // window of 150 it is e^n·(rotation) with n the number of impacts in
         // it: 150/π = 47.7 flights, hence an error below |ln e|/150.
         for l in tangent {
-            assert!((l - exact).abs() < e.ln().abs() / 150.0, "e = {e}: {tangent:?} vs {exact}");
+            assert!(
+                (l - exact).abs() < e.ln().abs() / 150.0,
+                "e = {e}: {tangent:?} vs {exact}"
+            );
         }
         assert!((tangent[0] - tangent[1]).abs() < 1e-9, "equal exponents: {tangent:?}");
-        assert!((benettin - exact).abs() < e.ln().abs() / 150.0, "e = {e}: {benettin} vs {exact}");
+        assert!(
+            (benettin - exact).abs() < e.ln().abs() / 150.0,
+            "e = {e}: {benettin} vs {exact}"
+        );
     }
 }
 
@@ -443,7 +457,10 @@ fn fig4_period_one_response_has_its_floquet_exponents() {
     let model = cfg.model().unwrap();
     let (row, p, kinds) = periodic_orbit(&cfg);
     assert_eq!(p, 1, "period from the Poincaré points");
-    assert!(kinds.iter().all(|&k| k == EventKind::Impact) && kinds.len() == 2, "{kinds:?}");
+    assert!(
+        kinds.iter().all(|&k| k == EventKind::Impact) && kinds.len() == 2,
+        "{kinds:?}"
+    );
     let floquet = floquet(&model, &row, p);
     let init = InitialState {
         theta: row.theta,
@@ -470,7 +487,11 @@ fn fig4_period_one_response_has_its_floquet_exponents() {
         panic!("fig4 uses the ratio law")
     };
     let sum = 2.0 * ratio.ln() * 2.0 / r.period;
-    assert!((r.spectrum[0] + r.spectrum[1] - sum).abs() < 1e-6, "{:?} vs sum {sum}", r.spectrum);
+    assert!(
+        (r.spectrum[0] + r.spectrum[1] - sum).abs() < 1e-6,
+        "{:?} vs sum {sum}",
+        r.spectrum
+    );
     // The two-trajectory method on the same orbit.
     let b = lyapunov(
         &model,
@@ -482,7 +503,12 @@ fn fig4_period_one_response_has_its_floquet_exponents() {
     )
     .unwrap();
     let b = exponents_of(&b);
-    assert!((b.largest_per_tau - floquet[0]).abs() < 1e-3 + 3.0 * b.stderr, "{} vs {}", b.largest_per_tau, floquet[0]);
+    assert!(
+        (b.largest_per_tau - floquet[0]).abs() < 1e-3 + 3.0 * b.stderr,
+        "{} vs {}",
+        b.largest_per_tau,
+        floquet[0]
+    );
 }
 
 #[test]
@@ -567,7 +593,11 @@ fn methods_agree_on_the_papers_chaotic_cases() {
     };
     let res = lyapunov(&cfg.model().unwrap(), &cfg.initial(), &opts).unwrap();
     let r = exponents_of(&res);
-    assert!(r.largest_per_tau > 0.3, "fig7 transient is chaotic: {}", r.largest_per_tau);
+    assert!(
+        r.largest_per_tau > 0.3,
+        "fig7 transient is chaotic: {}",
+        r.largest_per_tau
+    );
     assert_paired_agreement(r, "fig7");
 
     // Fig. 19 (sliding): chaos, which on some trajectories gives way to a
@@ -610,7 +640,11 @@ fn independent_runs_agree_on_a_persistent_chaotic_attractor() {
         b.largest_per_tau,
         b.stderr
     );
-    assert!(t.spectrum[1] < 0.0 && t.spectrum[0] + t.spectrum[1] < 0.0, "dissipative: {:?}", t.spectrum);
+    assert!(
+        t.spectrum[1] < 0.0 && t.spectrum[0] + t.spectrum[1] < 0.0,
+        "dissipative: {:?}",
+        t.spectrum
+    );
     assert!((t.per_cycle - t.largest_per_tau * t.period).abs() < 1e-15);
 }
 
@@ -644,6 +678,75 @@ fn tumbling_and_flat_responses_have_no_exponent() {
     );
     let json = res.summary().to_string();
     assert!(json.contains("\"no_exponent\":\"rest\""), "{json}");
+    // Just above the uplift threshold the block rocks, its impacts
+    // accumulate, it rests and is lifted again: perturbations die out at
+    // every rest (both methods see it).
+    let cfg = preset("fig4", &["excitation.a_h=1.05", "excitation.a_v=0", "run.tau_end=1200"]);
+    for method in [Method::Tangent, Method::Benettin] {
+        let opts = LyapunovOptions::for_config(&cfg, method);
+        let res = lyapunov(&cfg.model().unwrap(), &cfg.initial(), &opts).unwrap();
+        assert!(
+            matches!(
+                res,
+                Lyapunov::None {
+                    no_exponent: NoExponent::FlatPhases,
+                    ..
+                }
+            ),
+            "{method:?}: {res:?}"
+        );
+    }
+}
+
+/// A fresh, empty output directory for one test.
+fn out_dir(name: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("rocking-lyapunov-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    dir
+}
+
+#[test]
+fn batch_writes_the_exponents_into_summary_json() {
+    let out = out_dir("batch");
+    let status = std::process::Command::new(env!("CARGO_BIN_EXE_rocking"))
+        .args(["--batch", "--preset", "fig4", "-q"])
+        .args(["--set", "excitation.a_v=1.0", "--set", "run.tau_end=600"])
+        .args([
+            "--set",
+            "analysis.lyapunov=true",
+            "--set",
+            "analysis.lyapunov_method=both",
+        ])
+        .arg("--out")
+        .arg(&out)
+        .status()
+        .unwrap();
+    assert!(status.success());
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let l = &summary["lyapunov"];
+    assert_eq!(l["method"], "both");
+    let largest = l["largest_per_tau"].as_f64().unwrap();
+    assert!((largest + 0.1985).abs() < 0.01, "{l}");
+    assert!((l["per_cycle"].as_f64().unwrap() - largest * std::f64::consts::TAU / 8.0).abs() < 1e-12);
+    assert!(l["stderr"].as_f64().unwrap() >= 0.0);
+    assert_eq!(l["spectrum"].as_array().unwrap().len(), 2);
+    assert!(l["check"]["difference"].as_f64().unwrap().abs() < 0.01, "{l}");
+    assert_eq!(summary["config"]["analysis"]["lyapunov"], true);
+    let _ = std::fs::remove_dir_all(&out);
+
+    // Bad input: exit 2, nothing written.
+    let out = out_dir("bad");
+    for set in ["analysis.lyapunov=3", "analysis.lyapunov_method=fast"] {
+        let status = std::process::Command::new(env!("CARGO_BIN_EXE_rocking"))
+            .args(["--batch", "--preset", "fig4", "-q", "--set", set])
+            .arg("--out")
+            .arg(&out)
+            .status()
+            .unwrap();
+        assert_eq!(status.code(), Some(2), "{set}");
+        assert!(!out.join("summary.json").exists());
+    }
 }
 
 #[test]

@@ -3,11 +3,12 @@
 //!
 //! - **Tangent dynamics** ([`Method::Tangent`]): the variational equations
 //!   of each mode (`model::variational`) are integrated with the state; at
-//!   every event — impact and every mode switch — the tangent vectors are
-//!   mapped by the saltation matrix `S = J_R + (f⁺ − J_R f⁻) n_yᵀ / (n_y·f⁻
-//!   + ∂g/∂τ)` (Müller 1995; Leine & Nijmeijer 2004); once per forcing
-//!   period they are re-orthonormalised by QR and `ln R_ii` accumulated
-//!   (Benettin et al. 1980). This gives the whole spectrum.
+//!   every event (impact and every mode switch) the tangent vectors are
+//!   mapped by the saltation matrix
+//!   `S = J_R + (f⁺ − J_R f⁻) n_yᵀ / (n_y·f⁻ + ∂g/∂τ)`
+//!   (Müller 1995; Leine & Nijmeijer 2004); once per forcing period they
+//!   are re-orthonormalised by QR and `ln R_ii` accumulated (Benettin et
+//!   al. 1980). This gives the whole spectrum.
 //! - **Two trajectories** ([`Method::Benettin`]): a fiducial and a
 //!   perturbed run, renormalised only on the stroboscopic section
 //!   `τ_k = 2πk/Ω_h`, where both are smooth. This gives the largest
@@ -212,8 +213,8 @@ pub struct LyapunovResult {
     pub stderr: f64,
     /// Standard error of `per_cycle`.
     pub stderr_per_cycle: f64,
-    /// Tangent only: the finite exponents of `(Θ, Θ', X')` per τ, largest
-    /// first. The neutral direction `X` (exponent exactly 0) is not listed;
+    /// Tangent only: the finite exponents of `(Θ, Θ', X')` per τ, sorted
+    /// largest first. The neutral direction `X` (exponent exactly 0) is not listed;
     /// directions annihilated in finite time are counted in `collapsed`.
     /// Empty for the two-trajectory method.
     pub spectrum: Vec<f64>,
@@ -448,14 +449,20 @@ pub fn lyapunov(model: &Model, init: &InitialState, opts: &LyapunovOptions) -> R
                     difference_stderr: standard_error(&diffs),
                 }
             });
+            // QR order is the Oseledets order in the limit; finite-time
+            // estimates of equal exponents (a complex pair of Floquet
+            // multipliers) can come out in either order, so sort.
+            let mut pairs: Vec<(f64, f64)> = t.exponents.iter().copied().zip(t.stderr).take(finite).collect();
+            pairs.sort_by(|a, b| b.0.total_cmp(&a.0));
+            let (largest, stderr) = pairs.first().copied().unwrap_or((t.exponents[0], t.stderr[0]));
             LyapunovResult {
                 method,
-                largest_per_tau: t.exponents[0],
-                per_cycle: t.exponents[0] * period,
-                stderr: t.stderr[0],
-                stderr_per_cycle: t.stderr[0] * period,
-                spectrum: t.exponents[..finite].to_vec(),
-                spectrum_stderr: t.stderr[..finite].to_vec(),
+                largest_per_tau: largest,
+                per_cycle: largest * period,
+                stderr,
+                stderr_per_cycle: stderr * period,
+                spectrum: pairs.iter().map(|p| p.0).collect(),
+                spectrum_stderr: pairs.iter().map(|p| p.1).collect(),
                 collapsed: DIM - finite,
                 convergence: t.convergence,
                 tau_start: t.t_start,
@@ -466,6 +473,10 @@ pub fn lyapunov(model: &Model, init: &InitialState, opts: &LyapunovOptions) -> R
                 check,
             }
         }
+        // Growth is measured whenever the perturbed copy is in the
+        // fiducial's mode; never measuring means no admissible perturbation
+        // existed (a flat block), which `min_dim` has already caught.
+        (None, Some(b)) if b.span <= 0.0 => return Ok(none(NoExponent::FlatPhases, b.t_end)),
         (None, Some(b)) => LyapunovResult {
             method,
             largest_per_tau: b.exponents[0],
@@ -483,10 +494,12 @@ pub fn lyapunov(model: &Model, init: &InitialState, opts: &LyapunovOptions) -> R
             batches: b.batches,
             check: None,
         },
-        (None, None) => return Err(LyapunovError::Option {
-            field: "method",
-            reason: "asked for no estimate",
-        }),
+        (None, None) => {
+            return Err(LyapunovError::Option {
+                field: "method",
+                reason: "asked for no estimate",
+            });
+        }
     };
     Ok(Lyapunov::Exponents(result))
 }

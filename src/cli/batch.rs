@@ -3,8 +3,8 @@
 use anyhow::Context as _;
 
 use super::Cli;
-use crate::io::config::{self, Config};
 use crate::analysis::lyapunov::{self, Lyapunov, LyapunovError, LyapunovOptions, Method};
+use crate::io::config::{self, Config};
 use crate::io::output;
 use crate::sim;
 
@@ -30,7 +30,11 @@ pub fn run(cli: &Cli) -> Result<(), BatchError> {
         .context("simulation failed")
         .map_err(BatchError::Run)?;
     let mut summary = output::summary_json(&cfg, &res);
-    let exponents = if cfg.lyapunov { Some(lyapunov_summary(&cfg)?) } else { None };
+    let exponents = if cfg.lyapunov {
+        Some(lyapunov_summary(&cfg)?)
+    } else {
+        None
+    };
     if let (Some(l), Some(obj)) = (&exponents, summary.as_object_mut()) {
         obj.insert("lyapunov".to_string(), l.summary());
     }
@@ -48,7 +52,7 @@ pub fn run(cli: &Cli) -> Result<(), BatchError> {
         .map_err(BatchError::Run)?;
     if !cli.quiet {
         let outcome = serde_json::to_value(res.outcome).unwrap_or_default();
-        println!(
+        crate::say!(
             "outcome {} at tau {:.6} | impacts {} | max |theta| {:.6} | energy residual {:.2e} (relative {:.1e}) | {} steps, {} rhs evals, solver {:.3} s",
             outcome.as_str().unwrap_or("?"),
             res.tau_end,
@@ -60,7 +64,7 @@ pub fn run(cli: &Cli) -> Result<(), BatchError> {
             res.stats.rhs_evals,
             res.wall_s,
         );
-        println!(
+        crate::say!(
             "wrote {}/{{summary.json, events.csv ({} events), poincare.csv ({} points), history.csv ({} rows)}}",
             cli.out.display(),
             res.events.len(),
@@ -68,7 +72,7 @@ pub fn run(cli: &Cli) -> Result<(), BatchError> {
             res.history.len()
         );
         match &exponents {
-            Some(Lyapunov::Exponents(r)) => println!(
+            Some(Lyapunov::Exponents(r)) => crate::say!(
                 "lyapunov ({}): largest {:.4} ± {:.4} per tau, {:.4} per cycle; spectrum {:?}",
                 r.method.name(),
                 r.largest_per_tau,
@@ -78,7 +82,7 @@ pub fn run(cli: &Cli) -> Result<(), BatchError> {
             ),
             Some(Lyapunov::None {
                 method, no_exponent, ..
-            }) => println!("lyapunov ({}): no exponent ({})", method.name(), no_exponent.name()),
+            }) => crate::say!("lyapunov ({}): no exponent ({})", method.name(), no_exponent.name()),
             None => {}
         }
     }

@@ -226,8 +226,8 @@ pub fn run_with(args: &MapArgs, lyapunov: Option<&LyapunovFn<'_>>) -> Result<(),
         }
         counts.sort();
         let summary: Vec<String> = counts.iter().map(|(n, c)| format!("{n}: {c}")).collect();
-        println!("mapped {} × {} cells in {wall:.1} s; {}", x.n, y.n, summary.join(", "));
-        println!("wrote {}", args.out.display());
+        crate::say!("mapped {} × {} cells in {wall:.1} s; {}", x.n, y.n, summary.join(", "));
+        crate::say!("wrote {}", args.out.display());
     }
     Ok(())
 }

@@ -325,7 +325,7 @@ pub fn run(args: &MergeArgs) -> Result<(), BatchError> {
         .with_context(|| format!("writing {}", args.out.display()))
         .map_err(BatchError::Run)?;
     if !args.quiet {
-        println!(
+        crate::say!(
             "merged {n} shards: {} values, {} points; wrote {}",
             values.len(),
             points.len(),

@@ -1,9 +1,20 @@
 //! The `rocking` command line: `--batch` runs one simulation headless;
 //! the subcommands `sweep`, `merge` and `map` run the analyses headless.
 
+/// `println!` that never panics: a closed stdout (`rocking … | head`) is
+/// not an error of the run, so write failures are ignored.
+#[macro_export]
+macro_rules! say {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        let _ = writeln!(std::io::stdout().lock(), $($arg)*);
+    }};
+}
+
 pub mod batch;
 pub mod map;
 pub mod merge;
+pub mod reproduce;
 pub mod staging;
 pub mod sweep;
 
@@ -59,6 +70,9 @@ pub enum Command {
     Merge(merge::MergeArgs),
     /// Outcome map over two config keys (map.csv, map.png/svg, map.json).
     Map(map::MapArgs),
+    /// Recompute every figure of the paper (Figs. 3–19) and write them with
+    /// report.md, which sets each beside the paper's statements.
+    Reproduce(reproduce::ReproduceArgs),
 }
 
 impl Command {
@@ -68,6 +82,7 @@ impl Command {
             Command::Sweep(args) => sweep::run(args),
             Command::Merge(args) => merge::run(args),
             Command::Map(args) => map::run(args),
+            Command::Reproduce(args) => reproduce::run(args),
         }
     }
 }

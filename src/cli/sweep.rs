@@ -370,7 +370,7 @@ pub fn run_with(args: &SweepArgs, lyapunov: Option<&LyapunovFn<'_>>) -> Result<(
     if !args.quiet {
         let npoints: usize = values.iter().map(|v| v.points.len()).sum();
         let d = grid_decimals(meta.grid.from, meta.grid.step);
-        println!(
+        crate::say!(
             "swept {} = {} … {} ({} values{}) in {wall:.1} s; {npoints} Poincaré points",
             meta.param,
             grid_num(meta.grid.from, d),
@@ -380,9 +380,9 @@ pub fn run_with(args: &SweepArgs, lyapunov: Option<&LyapunovFn<'_>>) -> Result<(
         );
         let pairs: Vec<(f64, Response)> = values.iter().map(|v| (v.value, v.response)).collect();
         for r in response_ranges(&pairs) {
-            println!("  {} … {}: {}", grid_num(r.from, d), grid_num(r.to, d), r.response);
+            crate::say!("  {} … {}: {}", grid_num(r.from, d), grid_num(r.to, d), r.response);
         }
-        println!("wrote {}", args.out.display());
+        crate::say!("wrote {}", args.out.display());
     }
     Ok(())
 }

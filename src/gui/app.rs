@@ -12,6 +12,7 @@ use std::collections::VecDeque;
 use std::time::{Duration, Instant};
 
 use crate::gui::history::RunHistory;
+use crate::gui::panels::bifurcation::BifurcationView;
 use crate::gui::panels::params::{self, Edits};
 use crate::gui::panels::plots::{self, HistoryView, PhaseView, PoincareView, SpectrumView};
 use crate::gui::panels::scene::{self, Camera, SceneInput};
@@ -53,6 +54,10 @@ pub struct Show {
     pub history: bool,
     /// The power spectrum of Θ.
     pub spectrum: bool,
+    /// The bifurcation diagram. Off at start: its sweep keeps every core
+    /// busy for seconds, which a lecture projector opening the app on the
+    /// live block should not pay for unasked.
+    pub bifurcation: bool,
 }
 
 impl Default for Show {
@@ -64,6 +69,7 @@ impl Default for Show {
             poincare: true,
             history: true,
             spectrum: true,
+            bifurcation: false,
         }
     }
 }
@@ -101,6 +107,7 @@ pub struct RockingApp {
     poincare: PoincareView,
     history_view: HistoryView,
     spectrum: SpectrumView,
+    bifurcation: BifurcationView,
     camera: Camera,
     flash_at: Option<f64>,
     message: Option<Message>,
@@ -194,6 +201,7 @@ impl RockingApp {
             poincare: PoincareView::default(),
             history_view: HistoryView::default(),
             spectrum: SpectrumView::default(),
+            bifurcation: BifurcationView::default(),
             camera: Camera::default(),
             flash_at: None,
             message: None,
@@ -255,6 +263,14 @@ impl RockingApp {
             self.history_view.work,
             self.spectrum.work,
         )
+    }
+    /// The bifurcation view (its sweep settings are public fields).
+    pub fn bifurcation(&self) -> &BifurcationView {
+        &self.bifurcation
+    }
+    /// The bifurcation view, to change its sweep.
+    pub fn bifurcation_mut(&mut self) -> &mut BifurcationView {
+        &mut self.bifurcation
     }
     /// CPU time of the last frame's app code (layout and data), ms.
     pub fn frame_ms(&self) -> f32 {
@@ -479,6 +495,7 @@ impl RockingApp {
                 ui.checkbox(&mut self.show.poincare, "Poincaré points");
                 ui.checkbox(&mut self.show.history, "Time history");
                 ui.checkbox(&mut self.show.spectrum, "Power spectrum");
+                ui.checkbox(&mut self.show.bifurcation, "Bifurcation diagram");
                 ui.separator();
                 ui.checkbox(&mut self.forces, "Contact force and friction cone");
             });
@@ -796,6 +813,17 @@ impl eframe::App for RockingApp {
                         }
                     });
                 });
+        }
+        if self.show.bifurcation {
+            egui::Panel::right("bifurcation")
+                .resizable(true)
+                .default_size(420.0)
+                .show(ui, |ui| {
+                    ui.label("Bifurcation diagram (drag a rectangle to zoom, double-click for the full range)");
+                    self.bifurcation.show(ui, &self.settings, &self.config);
+                });
+        } else {
+            self.bifurcation.hide();
         }
         if self.show.phase || self.show.poincare {
             egui::Panel::right("plots")

@@ -51,14 +51,19 @@ pub(super) fn err_scale(tol: &Tolerances, y_old: f64, y_new: f64) -> f64 {
 /// arithmetic for a state and its mirror image.
 #[inline]
 pub(super) fn combine<const N: usize>(y: &[f64; N], h: f64, w: &[f64], k: &[[f64; N]], out: &mut [f64; N]) {
-    for (n, o) in out.iter_mut().enumerate() {
-        let mut s = 0.0;
-        for (wj, kj) in w.iter().zip(k) {
-            if *wj != 0.0 {
-                s += wj * kj[n];
+    // Stages outer, components inner: contiguous and vectorisable. Each
+    // component still sums its stages in the same order, so the result is
+    // bit-identical to the component-by-component loop.
+    let mut acc = [0.0; N];
+    for (wj, kj) in w.iter().zip(k) {
+        if *wj != 0.0 {
+            for (a, kn) in acc.iter_mut().zip(kj) {
+                *a += wj * kn;
             }
         }
-        *o = y[n] + h * s;
+    }
+    for ((o, yn), a) in out.iter_mut().zip(y).zip(acc) {
+        *o = yn + h * a;
     }
 }
 

@@ -83,6 +83,15 @@ pub trait HybridSystem<const N: usize> {
     /// are (at most [`MAX_GUARDS`]).
     fn guards(&self, mode: Self::Mode, t: f64, y: &[f64; N], g: &mut [f64; MAX_GUARDS]) -> usize;
 
+    /// The value of guard `index` alone. The root finder and the dip check
+    /// call this many times per event, so a system can skip the work of the
+    /// other guards; it must equal `guards(..)[index]` bit for bit.
+    fn guard(&self, mode: Self::Mode, index: usize, t: f64, y: &[f64; N]) -> f64 {
+        let mut g = [0.0; MAX_GUARDS];
+        self.guards(mode, t, y, &mut g);
+        g[index]
+    }
+
     /// Whether guard `index` of `mode` only observes (no jump).
     fn is_observer(&self, mode: Self::Mode, index: usize) -> bool;
 
@@ -393,10 +402,8 @@ where
             for i in 0..n {
                 let mut value = |tt: f64| {
                     let mut yy = [0.0; N];
-                    let mut g = [0.0; MAX_GUARDS];
                     stepper.dense(&f, tt, &mut yy);
-                    sys.guards(mode, tt, &yy, &mut g);
-                    g[i]
+                    sys.guard(mode, i, tt, &yy)
                 };
                 let Some((a, b)) = bracket(i, &ts, &gs, &mut armed[i], &mut value) else {
                     continue;

@@ -85,7 +85,8 @@ pub struct Config {
     pub mu_k: f64,
     /// `impact.law`: `housner`, `ratio` or `impulse`. Default `housner`.
     pub law: String,
-    /// `impact.r` for `ratio`, in [0, 1]. Default: Housner's 1 − 1.5 sin²ψ.
+    /// `impact.r` for `ratio`, in [0, 1]. Default: Housner's 1 − 1.5 sin²ψ
+    /// (0 for blocks squat enough that it is negative).
     pub r: f64,
     /// `impact.e` for `impulse`, vertical restitution in [0, 1]. Default 0.
     pub e: f64,
@@ -303,7 +304,10 @@ impl Config {
             .choice("impact", "law", &["housner", "ratio", "impulse"])?
             .unwrap_or("housner")
             .to_string();
-        let rr = r.number("impact", "r", false)?.unwrap_or_else(|| geo.housner_r());
+        // Housner's ratio is negative for squat blocks (ψ > 54.7°, where a
+        // single-corner impact reverses the rotation and the block lands
+        // flat, docs/model.md §7.5): the default ratio is then 0.
+        let rr = r.number("impact", "r", false)?.unwrap_or_else(|| geo.housner_r().max(0.0));
         check("impact.r", (0.0..=1.0).contains(&rr), "in [0, 1]", rr)?;
         let e = r.number("impact", "e", false)?.unwrap_or(0.0);
         check("impact.e", (0.0..=1.0).contains(&e), "in [0, 1]", e)?;

@@ -694,6 +694,29 @@ impl HybridSystem<N> for BlockSystem {
         }
     }
 
+    #[inline]
+    fn guard(&self, mode: Mode, index: usize, t: f64, y: &[f64; N]) -> f64 {
+        // The geometric guards of the rocking modes need neither the
+        // forcing nor the contact forces; the same expressions as `guards`.
+        match (mode, index) {
+            (Mode::Rock { pivot } | Mode::SlideRock { pivot, .. }, 0) => pivot.value() * y[THETA],
+            (Mode::Rock { pivot } | Mode::SlideRock { pivot, .. }, 1) => {
+                self.tumble_angle() - pivot.value() * y[THETA]
+            }
+            (Mode::Rock { pivot } | Mode::SlideRock { pivot, .. }, 3) => pivot.value() * y[THETA_DOT],
+            (Mode::SlideRock { pivot, slip }, 4) => {
+                let vp = dynamics::pivot_slip_velocity(&self.model.geo, pivot, y[THETA], y[THETA_DOT], y[X_DOT]);
+                slip.value() * vp
+            }
+            (Mode::Slide { slip }, 0) => slip.value() * y[X_DOT],
+            _ => {
+                let mut g = [0.0; MAX_GUARDS];
+                self.guards(mode, t, y, &mut g);
+                g[index]
+            }
+        }
+    }
+
     fn is_observer(&self, mode: Mode, index: usize) -> bool {
         match mode {
             Mode::Rock { .. } | Mode::SlideRock { .. } => index == 3 || (index == 2 && !self.stops_at_flight()),

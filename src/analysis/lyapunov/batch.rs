@@ -34,6 +34,8 @@ pub struct Estimate<const D: usize> {
     /// The batch means of the first exponent, in time order (for paired
     /// comparisons of two estimates from one trajectory).
     pub batch_means: Vec<f64>,
+    /// Total time over which growth was measured (0: nothing was).
+    pub span: f64,
 }
 
 /// Most points kept in [`Estimate::convergence`]: enough to plot the
@@ -120,9 +122,9 @@ impl<const D: usize> Accumulator<D> {
         }
         let b = ((self.done as u128 * self.batches as u128) / self.intervals as u128) as usize;
         let b = b.min(self.batches - 1);
-        for i in 0..D {
-            self.sum[i] += logs[i];
-            self.batch_sum[b][i] += logs[i];
+        for ((sum, batch), log) in self.sum.iter_mut().zip(self.batch_sum[b].iter_mut()).zip(logs) {
+            *sum += log;
+            *batch += log;
         }
         self.batch_len[b] += dt;
         self.elapsed += dt;
@@ -139,8 +141,8 @@ impl<const D: usize> Accumulator<D> {
         let mut exponents = [0.0; D];
         let mut stderr = [0.0; D];
         if self.elapsed > 0.0 {
-            for i in 0..D {
-                exponents[i] = self.sum[i] / self.elapsed;
+            for (e, sum) in exponents.iter_mut().zip(&self.sum) {
+                *e = sum / self.elapsed;
             }
         }
         let used: Vec<usize> = (0..self.batches).filter(|&b| self.batch_len[b] > 0.0).collect();
@@ -162,6 +164,7 @@ impl<const D: usize> Accumulator<D> {
             t_end: self.t_last,
             batches: nb,
             batch_means,
+            span: self.elapsed,
         }
     }
 }

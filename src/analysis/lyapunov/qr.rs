@@ -31,6 +31,9 @@ pub fn mul<const D: usize>(a: &Square<D>, b: &Square<D>) -> Square<D> {
     out
 }
 
+// Explicit row and column indices read like the algorithm (Golub & Van
+// Loan, alg. 5.2.1); iterator chains over columns would not.
+#[allow(clippy::needless_range_loop)]
 /// `a = Q R` with orthonormal columns in `Q` and `R_ii >= 0`. Returns `Q`
 /// and the diagonal of `R`. A column already zero below the diagonal is
 /// left alone (its `R_ii` is its diagonal entry, possibly 0).
@@ -79,6 +82,7 @@ pub fn qr<const D: usize>(a: &Square<D>) -> (Square<D>, [f64; D]) {
 }
 
 #[cfg(test)]
+#[allow(clippy::needless_range_loop)]
 mod tests {
     use super::*;
 

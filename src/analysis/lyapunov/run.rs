@@ -139,7 +139,15 @@ where
     let mut fiducial = if request.tangent {
         let aug = Augmented::<S, N, D, NA>::new(sys);
         let ya0 = Augmented::<S, N, D, NA>::pack(&y0, &qr::identity());
-        Fiducial::Tangent(Driver::new(Dop853::<NA>::new(tol), aug, mode0, 0.0, ya0, limits, outputs))
+        Fiducial::Tangent(Driver::new(
+            Dop853::<NA>::new(tol),
+            aug,
+            mode0,
+            0.0,
+            ya0,
+            limits,
+            outputs,
+        ))
     } else {
         Fiducial::Plain(Driver::new(Dop853::<N>::new(tol), sys, mode0, 0.0, y0, limits, outputs))
     };

@@ -182,7 +182,7 @@ where
         self.inner.rhs(jump.mode, jump.t, &jump.y, &mut rate);
         let f_after = self.inner.coords(&rate);
         let den: f64 = n.iter().zip(&f_before).map(|(a, b)| a * b).sum::<f64>() + g_t;
-        if !(den.abs() > 0.0) {
+        if den == 0.0 || !den.is_finite() {
             return Err(TangentError::Grazing { t });
         }
         let mut s = jr;

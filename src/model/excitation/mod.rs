@@ -39,10 +39,18 @@ impl Harmonic {
     /// `(a_h/g, a_v/g)` at τ.
     #[inline]
     pub fn accel(&self, tau: f64) -> (f64, f64) {
-        (
-            self.a_h * self.psi * (self.omega_h * tau + self.phase_h).sin(),
-            self.a_v * self.psi * (self.omega_v * tau + self.phase_v).sin(),
-        )
+        let sh = (self.omega_h * tau + self.phase_h).sin();
+        // The paper's Ω_v = Ω_h, Φ_v = Φ_h shares one sine (the same value
+        // bit for bit), and no vertical excitation needs none: sines are a
+        // third of a step's cost.
+        let sv = if self.a_v == 0.0 {
+            0.0
+        } else if self.omega_v == self.omega_h && self.phase_v == self.phase_h {
+            sh
+        } else {
+            (self.omega_v * tau + self.phase_v).sin()
+        };
+        (self.a_h * self.psi * sh, self.a_v * self.psi * sv)
     }
 }
 

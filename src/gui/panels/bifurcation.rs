@@ -1,0 +1,584 @@
+//! The bifurcation view: Θ at the Poincaré section against one swept
+//! parameter, computed in the background on all cores and drawn as the
+//! values arrive, with the scene's current value marked.
+//!
+//! Contract:
+//! - The view does no physics: the sweep is the analysis layer's
+//!   ([`crate::analysis::orbit_diagram`]), run by [`sweeper`] on a named
+//!   thread; this module only decides what to compute and draws it.
+//! - A sweep is computed for the scene's explicit keys with the swept key
+//!   free. It restarts when any other key of the scene changes, when the
+//!   range, resolution or window changes, or after a zoom; setting the swept
+//!   key itself only moves the marker. A restart cancels the old sweep and
+//!   drops its channel, so nothing stale is drawn.
+//! - Dragging a rectangle on the plot zooms into it: the same number of
+//!   values over the narrower range, i.e. a finer step. Double-click (or
+//!   "Full range") goes back.
+//! - Hidden, the view does no work: [`BifurcationView::hide`] cancels a
+//!   running sweep, and none starts until the view is shown again (it then
+//!   starts over).
+//! - Points are decimated to the plot's pixels before drawing: per value at
+//!   most one point per pixel row.
+
+pub mod sweeper;
+
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+
+use egui::Color32;
+use egui_plot::{Legend, Plot, PlotBounds, PlotPoint, PlotPoints, Points, Polygon, VLine};
+
+use self::sweeper::{Column, MAX_VALUES, Reply, Request, Sweeper};
+use crate::analysis::classify::Response;
+use crate::analysis::orbit_diagram::Grid;
+use crate::analysis::steady::{ParamBase, Window};
+use crate::gui::settings::Settings;
+use crate::io::config::{Config, KNOWN_KEYS};
+
+/// The interactive window: transient 200 τ, end 300 τ. At Ω_h = 8 that is
+/// 128 section points per value (the classifier needs 64), and a third of
+/// the paper's run time per value.
+pub const SHORT_WINDOW: Window = Window {
+    transient: 200.0,
+    tau_end: 300.0,
+};
+
+/// The paper's window: section points for 600 ≤ τ ≤ 800.
+pub const PAPER_WINDOW: Window = Window {
+    transient: 600.0,
+    tau_end: 800.0,
+};
+
+/// Default number of values: the paper's grid, 0 to 3 in steps of 0.02.
+pub const DEFAULT_COUNT: usize = 151;
+
+/// The swept key the view opens on (the paper's bifurcation figures).
+pub const DEFAULT_PARAM: &str = "excitation.a_v";
+
+/// What a computed sweep depends on.
+#[derive(Clone, Debug, PartialEq)]
+struct Key {
+    table: toml::Table,
+    origin: String,
+    param: String,
+    from: f64,
+    to: f64,
+    count: usize,
+    window: Window,
+}
+
+/// The bifurcation view's state. The public fields are the sweep the view
+/// computes; the view starts a new sweep whenever they change.
+pub struct BifurcationView {
+    /// The swept key, `section.key`.
+    pub param: String,
+    /// First value.
+    pub from: f64,
+    /// Last value.
+    pub to: f64,
+    /// Number of values (2 to [`MAX_VALUES`]).
+    pub count: usize,
+    /// Transient and end of each run, τ.
+    pub window: Window,
+    edit: (f64, f64, usize),
+    key: Option<Key>,
+    sweeper: Option<Sweeper>,
+    retired: Vec<Sweeper>,
+    columns: Vec<Column>,
+    failed: Vec<(f64, String)>,
+    invalid: Option<String>,
+    expected: usize,
+    done: bool,
+    started: Option<Instant>,
+    took: Option<Duration>,
+    y_zoom: Option<[f64; 2]>,
+    drag_from: Option<PlotPoint>,
+    /// Sweeps started over the view's life (work counter).
+    pub sweeps: u64,
+    /// Values received over the view's life (work counter).
+    pub values: u64,
+    /// Points drawn in the last frame, after decimation.
+    pub drawn: usize,
+}
+
+impl Default for BifurcationView {
+    fn default() -> Self {
+        let (from, to) = default_range(DEFAULT_PARAM, 0.0);
+        Self {
+            param: DEFAULT_PARAM.to_string(),
+            from,
+            to,
+            count: DEFAULT_COUNT,
+            window: SHORT_WINDOW,
+            edit: (from, to, DEFAULT_COUNT),
+            key: None,
+            sweeper: None,
+            retired: Vec::new(),
+            columns: Vec::new(),
+            failed: Vec::new(),
+            invalid: None,
+            expected: 0,
+            done: false,
+            started: None,
+            took: None,
+            y_zoom: None,
+            drag_from: None,
+            sweeps: 0,
+            values: 0,
+            drawn: 0,
+        }
+    }
+}
+
+/// The range a key is swept over when chosen: the paper's 0–3 for A_v,
+/// otherwise half to one and a half times the current value (0–1 at 0).
+pub fn default_range(param: &str, current: f64) -> (f64, f64) {
+    if param == DEFAULT_PARAM {
+        (0.0, 3.0)
+    } else if current == 0.0 || !current.is_finite() {
+        (0.0, 1.0)
+    } else {
+        let (a, b) = (0.5 * current, 1.5 * current);
+        (a.min(b), a.max(b))
+    }
+}
+
+/// The numeric keys a sweep may vary, with their current values in `cfg`
+/// (infinite for `inf`). Solver and analysis settings are left out: the
+/// window replaces the run's end, and the others do not change the physics.
+pub fn sweepable(cfg: &Config) -> Vec<(String, f64)> {
+    let json = cfg.to_json();
+    let mut out = Vec::new();
+    for (section, keys) in KNOWN_KEYS {
+        if matches!(*section, "run" | "analysis") {
+            continue;
+        }
+        for key in *keys {
+            if *key == "cycles" {
+                continue;
+            }
+            let value = match &json[*section][*key] {
+                serde_json::Value::Number(n) => n.as_f64(),
+                serde_json::Value::String(s) if s == "inf" => Some(f64::INFINITY),
+                _ => None,
+            };
+            if let Some(v) = value {
+                out.push((format!("{section}.{key}"), v));
+            }
+        }
+    }
+    out
+}
+
+/// The current value of `param` in `cfg`, if it is a finite number.
+fn current_value(cfg: &Config, param: &str) -> Option<f64> {
+    let (section, key) = param.split_once('.')?;
+    cfg.to_json()[section][key].as_f64().filter(|v| v.is_finite())
+}
+
+/// Colour of a response class in the diagram.
+fn class_color(r: Response) -> Color32 {
+    match r {
+        Response::Periodic { .. } => Color32::from_rgb(110, 170, 255),
+        Response::Quasiperiodic => Color32::from_rgb(120, 220, 140),
+        Response::Chaotic => Color32::from_rgb(255, 170, 80),
+        Response::Rest | Response::Tumbled | Response::Flight => Color32::from_gray(170),
+    }
+}
+
+/// Legend names, in drawing order.
+const CLASSES: [&str; 4] = ["periodic", "quasiperiodic", "chaotic", "rest"];
+
+fn class_slot(r: Response) -> usize {
+    match r {
+        Response::Periodic { .. } => 0,
+        Response::Quasiperiodic => 1,
+        Response::Chaotic => 2,
+        Response::Rest | Response::Tumbled | Response::Flight => 3,
+    }
+}
+
+impl BifurcationView {
+    /// Values received for the current sweep.
+    pub fn columns(&self) -> &[Column] {
+        &self.columns
+    }
+
+    /// Whether the current sweep has sent every value.
+    pub fn done(&self) -> bool {
+        self.done
+    }
+
+    /// Wall-clock time of the last complete sweep.
+    pub fn took(&self) -> Option<Duration> {
+        self.took
+    }
+
+    /// Why the current sweep was refused, if it was.
+    pub fn invalid(&self) -> Option<&str> {
+        self.invalid.as_deref()
+    }
+
+    /// Whether a sweep thread is still working.
+    pub fn busy(&self) -> bool {
+        self.sweeper.as_ref().is_some_and(|s| !s.finished())
+    }
+
+    /// Sweep threads still running, cancelled ones included.
+    pub fn threads(&self) -> usize {
+        self.retired
+            .iter()
+            .chain(self.sweeper.iter())
+            .filter(|s| !s.finished())
+            .count()
+    }
+
+    /// Number of values the current sweep computes.
+    pub fn expected(&self) -> usize {
+        self.expected
+    }
+
+    /// Stops work while the view is hidden: a running sweep is cancelled and
+    /// will start over when the view is shown again.
+    pub fn hide(&mut self) {
+        self.retired.retain(|s| !s.finished());
+        if !self.done
+            && let Some(s) = self.sweeper.take()
+        {
+            s.cancel();
+            self.retired.push(s);
+            self.key = None;
+        }
+    }
+
+    fn wanted(&self, settings: &Settings) -> Key {
+        let mut table = settings.table.clone();
+        if let Some((section, name)) = self.param.split_once('.')
+            && let Some(toml::Value::Table(t)) = table.get_mut(section)
+        {
+            t.remove(name);
+        }
+        Key {
+            table,
+            origin: settings.origin.clone(),
+            param: self.param.clone(),
+            from: self.from,
+            to: self.to,
+            count: self.count,
+            window: self.window,
+        }
+    }
+
+    fn restart(&mut self, key: Key, settings: &Settings, ctx: &egui::Context) {
+        if let Some(old) = self.sweeper.take() {
+            old.cancel();
+            self.retired.push(old);
+        }
+        self.columns.clear();
+        self.failed.clear();
+        self.invalid = None;
+        self.done = false;
+        self.took = None;
+        self.expected = 0;
+        let grid = if !(self.from.is_finite() && self.to.is_finite() && self.from < self.to) {
+            Err(format!(
+                "From {} / To {}: need From < To, both finite",
+                self.from, self.to
+            ))
+        } else if !(2..=MAX_VALUES).contains(&self.count) {
+            Err(format!("Values {}: must be 2 to {MAX_VALUES}", self.count))
+        } else {
+            let step = (self.to - self.from) / (self.count - 1) as f64;
+            Grid::new(self.from, self.to, step).map_err(|e| e.to_string())
+        };
+        self.key = Some(key);
+        let grid = match grid {
+            Ok(g) => g,
+            Err(e) => {
+                self.invalid = Some(e);
+                return;
+            }
+        };
+        self.expected = grid.count;
+        let req = Request {
+            base: ParamBase::from_table(settings.table.clone(), settings.source.clone()),
+            param: self.param.clone(),
+            grid,
+            window: self.window,
+        };
+        let ctx = ctx.clone();
+        match Sweeper::start(req, Arc::new(move || ctx.request_repaint())) {
+            Ok(s) => {
+                self.sweeper = Some(s);
+                self.sweeps += 1;
+                self.started = Some(Instant::now());
+            }
+            Err(e) => self.invalid = Some(e),
+        }
+    }
+
+    fn receive(&mut self) {
+        let Some(s) = &self.sweeper else { return };
+        for reply in s.drain() {
+            match reply {
+                Reply::Value(c) => {
+                    self.values += 1;
+                    self.columns.push(c);
+                }
+                Reply::Failed { value, error } => self.failed.push((value, error)),
+                Reply::Invalid(e) => self.invalid = Some(e),
+                Reply::Done => {
+                    self.done = true;
+                    self.took = self.started.map(|t| t.elapsed());
+                }
+            }
+        }
+    }
+
+    /// Sets the swept range to the rectangle between `a` and `b` (plot
+    /// coordinates) at the same number of values.
+    fn zoom(&mut self, a: PlotPoint, b: PlotPoint) {
+        let (x0, x1) = (a.x.min(b.x), a.x.max(b.x));
+        let (y0, y1) = (a.y.min(b.y), a.y.max(b.y));
+        if x1 - x0 <= 1e-9 * (1.0 + x0.abs()) || y1 - y0 <= 0.0 {
+            return;
+        }
+        self.from = x0;
+        self.to = x1;
+        self.y_zoom = Some([y0, y1]);
+        self.edit = (x0, x1, self.count);
+    }
+
+    fn full_range(&mut self, cfg: &Config) {
+        let (from, to) = default_range(&self.param, current_value(cfg, &self.param).unwrap_or(0.0));
+        self.from = from;
+        self.to = to;
+        self.y_zoom = None;
+        self.edit = (from, to, self.count);
+    }
+
+    /// Draws the view for the scene `settings` (resolved to `cfg`),
+    /// starting or restarting the sweep as needed.
+    pub fn show(&mut self, ui: &mut egui::Ui, settings: &Settings, cfg: &Config) {
+        self.retired.retain(|s| !s.finished());
+        self.receive();
+        self.controls(ui, cfg);
+        let key = self.wanted(settings);
+        if self.key.as_ref() != Some(&key) {
+            self.restart(key, settings, ui.ctx());
+        }
+        self.status(ui);
+        self.plot(ui, cfg);
+    }
+
+    fn controls(&mut self, ui: &mut egui::Ui, cfg: &Config) {
+        ui.horizontal_wrapped(|ui| {
+            let label = ui.label("Sweep");
+            let keys = sweepable(cfg);
+            let mut chosen = None;
+            egui::ComboBox::from_id_salt("bifurcation param")
+                .selected_text(&self.param)
+                .show_ui(ui, |ui| {
+                    for (k, _) in &keys {
+                        if ui.selectable_label(*k == self.param, k).clicked() {
+                            chosen = Some(k.clone());
+                        }
+                    }
+                })
+                .response
+                .labelled_by(label.id)
+                .on_hover_text("The configuration key swept along the horizontal axis");
+            if let Some(k) = chosen
+                && k != self.param
+            {
+                self.param = k;
+                self.full_range(cfg);
+            }
+            let run_label = ui.label("Run");
+            let text = |w: Window| format!("τ {}–{}", w.transient, w.tau_end);
+            egui::ComboBox::from_id_salt("bifurcation window")
+                .selected_text(text(self.window))
+                .show_ui(ui, |ui| {
+                    ui.selectable_value(&mut self.window, SHORT_WINDOW, text(SHORT_WINDOW))
+                        .on_hover_text("Interactive: a third of the paper's run per value");
+                    ui.selectable_value(&mut self.window, PAPER_WINDOW, text(PAPER_WINDOW))
+                        .on_hover_text("The paper's: section points from τ 600 to 800");
+                })
+                .response
+                .labelled_by(run_label.id)
+                .on_hover_text("Section points are kept from the first τ to the second");
+        });
+        ui.horizontal_wrapped(|ui| {
+            let l = ui.label("From");
+            ui.add(egui::DragValue::new(&mut self.edit.0).speed(0.01))
+                .labelled_by(l.id);
+            let l = ui.label("To");
+            ui.add(egui::DragValue::new(&mut self.edit.1).speed(0.01))
+                .labelled_by(l.id);
+            let l = ui.label("Values");
+            ui.add(egui::DragValue::new(&mut self.edit.2).range(2..=MAX_VALUES))
+                .labelled_by(l.id)
+                .on_hover_text("Number of parameter values, evenly spaced, ends included");
+            if ui.button("Compute").on_hover_text("Sweep this range").clicked() {
+                (self.from, self.to, self.count) = self.edit;
+                self.y_zoom = None;
+            }
+            if ui
+                .button("Full range")
+                .on_hover_text("Back to the key's default range (or double-click the plot)")
+                .clicked()
+            {
+                self.full_range(cfg);
+            }
+        });
+    }
+
+    fn status(&self, ui: &mut egui::Ui) {
+        let text = if let Some(e) = &self.invalid {
+            ui.colored_label(Color32::from_rgb(235, 90, 90), e);
+            return;
+        } else if self.done {
+            let took = self
+                .took
+                .map_or(String::new(), |t| format!(" in {:.1} s", t.as_secs_f64()));
+            format!("{} values{took}", self.expected)
+        } else {
+            format!(
+                "computing: {} / {} values",
+                self.columns.len() + self.failed.len(),
+                self.expected
+            )
+        };
+        let tumbled = self.columns.iter().filter(|c| c.response == Response::Tumbled).count();
+        let mut line = text;
+        if tumbled > 0 {
+            line.push_str(&format!(", {tumbled} tumbled (blank)"));
+        }
+        ui.horizontal_wrapped(|ui| {
+            ui.label(line);
+            if let Some((v, e)) = self.failed.first() {
+                ui.colored_label(
+                    Color32::from_rgb(235, 90, 90),
+                    format!("{} failed, first at {v}: {e}", self.failed.len()),
+                );
+            }
+        });
+    }
+
+    fn plot(&mut self, ui: &mut egui::Ui, cfg: &Config) {
+        let current = current_value(cfg, &self.param);
+        let (from, to) = (self.from, self.to);
+        let y_zoom = self.y_zoom;
+        let columns = &self.columns;
+        let drag_from = self.drag_from;
+        let (lo, hi) = columns
+            .iter()
+            .flat_map(|c| c.thetas.iter())
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &t| {
+                (lo.min(t), hi.max(t))
+            });
+        let resp = Plot::new("bifurcation")
+            .x_axis_label(self.param.as_str())
+            .y_axis_label("Θ(τ_k)")
+            .legend(Legend::default())
+            .allow_drag(false)
+            .allow_zoom(false)
+            .allow_scroll(false)
+            .allow_boxed_zoom(false)
+            .allow_double_click_reset(false)
+            .show(ui, |plot_ui| {
+                let pad = 0.02 * (to - from);
+                let [y0, y1] = y_zoom.unwrap_or(if lo <= hi {
+                    let d = (hi - lo).max(1e-3);
+                    [lo - 0.05 * d, hi + 0.05 * d]
+                } else {
+                    [-1.0, 1.0]
+                });
+                plot_ui.set_plot_bounds(PlotBounds::from_min_max([from - pad, y0], [to + pad, y1]));
+                let t = *plot_ui.transform();
+                let rows = (t.frame().height() * plot_ui.ctx().pixels_per_point()).max(1.0) as f64;
+                let mut by_class: [Vec<[f64; 2]>; 4] = Default::default();
+                let mut pixels: Vec<i64> = Vec::new();
+                for c in columns {
+                    pixels.clear();
+                    pixels.extend(
+                        c.thetas
+                            .iter()
+                            .filter(|&&t| t >= y0 && t <= y1)
+                            .map(|&t| ((t - y0) / (y1 - y0) * rows) as i64),
+                    );
+                    pixels.sort_unstable();
+                    pixels.dedup();
+                    let slot = &mut by_class[class_slot(c.response)];
+                    slot.extend(
+                        pixels
+                            .iter()
+                            .map(|&p| [c.value, y0 + (p as f64 + 0.5) / rows * (y1 - y0)]),
+                    );
+                }
+                let mut drawn = 0;
+                for (i, pts) in by_class.into_iter().enumerate() {
+                    if pts.is_empty() {
+                        continue;
+                    }
+                    drawn += pts.len();
+                    let color = class_color(match i {
+                        0 => Response::Periodic { period: 1 },
+                        1 => Response::Quasiperiodic,
+                        2 => Response::Chaotic,
+                        _ => Response::Rest,
+                    });
+                    plot_ui.points(
+                        Points::new(CLASSES[i], PlotPoints::new(pts))
+                            .radius(1.0)
+                            .color(color)
+                            .allow_hover(false),
+                    );
+                }
+                if let Some(v) = current {
+                    plot_ui.vline(
+                        VLine::new("current value", v)
+                            .color(Color32::from_rgb(255, 230, 60))
+                            .width(1.5),
+                    );
+                }
+                let pointer = plot_ui.pointer_coordinate();
+                if let (Some(a), Some(b)) = (drag_from, pointer) {
+                    let rect = vec![[a.x, a.y], [b.x, a.y], [b.x, b.y], [a.x, b.y]];
+                    plot_ui.polygon(
+                        Polygon::new("zoom", PlotPoints::new(rect))
+                            .fill_color(Color32::from_rgba_unmultiplied(255, 255, 255, 24))
+                            .stroke(egui::Stroke::new(1.0, Color32::WHITE))
+                            .allow_hover(false),
+                    );
+                }
+                (drawn, pointer)
+            });
+        let (drawn, pointer) = resp.inner;
+        self.drawn = drawn;
+        let r = &resp.response;
+        if r.drag_started() {
+            self.drag_from = pointer;
+        }
+        if r.drag_stopped() {
+            if let (Some(a), Some(b)) = (self.drag_from.take(), pointer) {
+                self.zoom(a, b);
+            }
+        } else if self.drag_from.is_some() && !r.dragged() {
+            self.drag_from = None;
+        }
+        if r.double_clicked() {
+            self.full_range(cfg);
+        }
+    }
+}
+
+impl Drop for BifurcationView {
+    fn drop(&mut self) {
+        // Cancel everything first so the threads stop together, then join
+        // (each Sweeper joins its thread on drop).
+        for s in self.retired.iter().chain(self.sweeper.iter()) {
+            s.cancel();
+        }
+    }
+}

@@ -1,0 +1,189 @@
+//! The bifurcation view's background sweep: one named thread per sweep,
+//! which runs the analysis layer's generic [`sweep`] (rayon, all cores) and
+//! sends each value's result back as soon as it is computed.
+//!
+//! Contract:
+//! - No physics here: every value is [`steady_response`] of the base
+//!   configuration with the swept key set, exactly as `rocking sweep`
+//!   computes it (from the configuration's initial state, no continuation).
+//! - Results arrive value by value, in completion order (rayon spreads the
+//!   values over the cores, so the diagram fills in across its whole range).
+//!   The channel is unbounded but holds at most one message per value plus
+//!   one, and a sweep has at most [`MAX_VALUES`] values.
+//! - Cancellation: a flag checked before each value. A cancelled sweep
+//!   finishes the values already running (at most one per core) and sends
+//!   nothing more; the view drops its channel at once, so nothing stale is
+//!   ever drawn.
+//! - The thread is joined when its [`Sweeper`] is dropped (after cancelling
+//!   it), so no sweep outlives the view.
+
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::thread::JoinHandle;
+
+use crossbeam_channel::{Receiver, Sender, unbounded};
+use indicatif::ProgressBar;
+
+use crate::analysis::classify::{ClassifyOptions, Response};
+use crate::analysis::orbit_diagram::{BlockSweep, Continuation, Grid, Plan, sweep};
+use crate::analysis::steady::{ParamBase, Window, steady_response};
+
+/// Most values one interactive sweep may have: 2001 values of 255 points
+/// each is about 4 MB, and more columns than a screen has pixels add nothing.
+pub const MAX_VALUES: usize = 2001;
+
+/// What to compute.
+#[derive(Clone, Debug)]
+pub struct Request {
+    /// The scene with the swept key free.
+    pub base: ParamBase,
+    /// The swept key, `section.key`.
+    pub param: String,
+    /// The values.
+    pub grid: Grid,
+    /// Transient and end of each run, τ.
+    pub window: Window,
+}
+
+/// One computed value: its class and the Θ of its section points after the
+/// transient (none for tumbled or flight).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Column {
+    /// The parameter value.
+    pub value: f64,
+    /// The steady response.
+    pub response: Response,
+    /// Θ(τ_k) for the section points after the transient, units of ψ.
+    pub thetas: Vec<f64>,
+}
+
+/// What the sweep thread sends.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Reply {
+    /// One value done.
+    Value(Column),
+    /// One value failed (the others go on).
+    Failed {
+        /// The parameter value.
+        value: f64,
+        /// Why, one line.
+        error: String,
+    },
+    /// The sweep was refused before anything ran (a value out of range, a
+    /// window too short, non-harmonic excitation), one line naming the key.
+    Invalid(String),
+    /// Every value has been sent.
+    Done,
+}
+
+/// Called after each message so the GUI wakes to draw it.
+pub type Waker = Arc<dyn Fn() + Send + Sync>;
+
+/// A running (or finished) sweep.
+pub struct Sweeper {
+    cancel: Arc<AtomicBool>,
+    rx: Receiver<Reply>,
+    thread: Option<JoinHandle<()>>,
+}
+
+/// The closure's error when the sweep was cancelled.
+struct Cancelled;
+
+impl std::fmt::Display for Cancelled {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("cancelled")
+    }
+}
+
+impl Sweeper {
+    /// Starts `req` on a thread named `bifurcation`.
+    pub fn start(req: Request, waker: Waker) -> Result<Self, String> {
+        let cancel = Arc::new(AtomicBool::new(false));
+        let (tx, rx) = unbounded();
+        let flag = Arc::clone(&cancel);
+        let thread = std::thread::Builder::new()
+            .name("bifurcation".into())
+            .spawn(move || run(&req, &flag, &tx, &waker))
+            .map_err(|e| format!("cannot start the bifurcation thread: {e}"))?;
+        Ok(Self {
+            cancel,
+            rx,
+            thread: Some(thread),
+        })
+    }
+
+    /// Asks the thread to stop before its next value.
+    pub fn cancel(&self) {
+        self.cancel.store(true, Ordering::Relaxed);
+    }
+
+    /// The messages received so far, without waiting.
+    pub fn drain(&self) -> Vec<Reply> {
+        self.rx.try_iter().collect()
+    }
+
+    /// Whether the thread has ended.
+    pub fn finished(&self) -> bool {
+        self.thread.as_ref().is_none_or(JoinHandle::is_finished)
+    }
+}
+
+impl Drop for Sweeper {
+    fn drop(&mut self) {
+        self.cancel();
+        if let Some(t) = self.thread.take() {
+            // A panic in the thread has already been reported on stderr;
+            // there is nothing more to do with it here.
+            let _ = t.join();
+        }
+    }
+}
+
+fn run(req: &Request, cancel: &AtomicBool, tx: &Sender<Reply>, waker: &Waker) {
+    let send = |r: Reply| {
+        // The view may have dropped the receiver (a newer sweep): fine.
+        let _ = tx.send(r);
+        waker();
+    };
+    let plan = match Plan::new(req.grid, Continuation::None, None) {
+        Ok(p) => p,
+        Err(e) => return send(Reply::Invalid(e.to_string())),
+    };
+    let classify = ClassifyOptions::default();
+    let spec = BlockSweep {
+        base: &req.base,
+        param: &req.param,
+        window: req.window,
+        classify,
+        lyapunov: None,
+    };
+    // Every value's configuration is checked before anything runs.
+    if let Err(e) = spec.configs(&plan) {
+        return send(Reply::Invalid(e.to_string()));
+    }
+    let result = sweep(&plan, &ProgressBar::hidden(), |value, _: Option<&()>| {
+        if cancel.load(Ordering::Relaxed) {
+            return Err(Cancelled);
+        }
+        let out = req
+            .base
+            .resolve(&[(req.param.as_str(), value)])
+            .map_err(|e| e.to_string())
+            .and_then(|cfg| steady_response(&cfg, &req.window, &classify, None).map_err(|e| e.to_string()));
+        if cancel.load(Ordering::Relaxed) {
+            return Err(Cancelled);
+        }
+        send(match out {
+            Ok(s) => Reply::Value(Column {
+                value,
+                response: s.response,
+                thetas: s.points.iter().map(|p| p.theta).collect(),
+            }),
+            Err(error) => Reply::Failed { value, error },
+        });
+        Ok(((), None))
+    });
+    if result.is_ok() {
+        send(Reply::Done);
+    }
+}

@@ -1,0 +1,571 @@
+//! The bifurcation diagrams of the paper (Figs. 3–6, 9, 10, 14, 15) and the
+//! variants that test why a diagram differs from the paper's, with the
+//! comparison of each diagram against the mode ranges the paper gives.
+//!
+//! Every diagram is a [`block_sweep`] of `excitation.a_v` over the preset
+//! of its figure, with the paper's window (Poincaré points of Θ at
+//! τ_k = 2πk/Ω_h for 600 ≤ τ_k ≤ 800) and from rest unless the variant
+//! says otherwise. The variants change one thing each, through the
+//! configuration only (the model's equations are never altered); they are
+//! labelled as variants in every output and are never the default.
+
+use indicatif::ProgressBar;
+
+use super::ReproduceError;
+use super::paper::{Expect, PaperFigure, PaperRange};
+use crate::analysis::classify::{ClassifyOptions, Response};
+use crate::analysis::orbit_diagram::{
+    BifurcationValue, BlockSweep, Continuation, Grid, Plan, ResponseRange, block_sweep, response_ranges,
+};
+use crate::analysis::steady::{ParamBase, Window};
+use crate::io::config::Config;
+use crate::model::Geometry;
+
+/// The swept key of every bifurcation diagram of the paper.
+pub const PARAM: &str = "excitation.a_v";
+
+/// The paper's vertical restitution e = 0.925 (its section 4.1), used by
+/// the `printed-eq20` variant.
+pub const PAPER_E: f64 = 0.925;
+
+/// One way of computing a bifurcation diagram.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Variant {
+    /// The preset as it is: ratio law r = 0.925, DOP853, from rest, tumble
+    /// at |Θ| = 1, flight ignored (the project's reading of the paper).
+    Paper,
+    /// The paper's integrator: Ralston's RK2 with fixed step 0.004
+    /// (`run.method = "ralston"`).
+    Ralston,
+    /// Each A_v seeded from the previous smaller A_v's final state
+    /// (continuation upwards) instead of from rest.
+    ContinuationUp,
+    /// Housner's impact law, r = 1 − 1.5 sin²ψ = 0.9118 (the paper's
+    /// eq. 22) instead of r = 0.925.
+    Housner,
+    /// The paper's eq. 20 as printed, with its e = 0.925 as the vertical
+    /// restitution and λ_x = −1 (no sliding): δ_i = 1 − 1.5 (1 + e) sin²ψ
+    /// = 0.830, used as the angular-velocity ratio.
+    PrintedEq20,
+    /// Tumbling only when the block lies on its side (|θ| = π/2, i.e.
+    /// `run.tumble_theta` = π/(2ψ)) instead of when the centre of mass
+    /// passes over the pivot (|Θ| = 1).
+    TumbleAtSide,
+    /// The run stops when the normal force vanishes (`run.flight = "stop"`)
+    /// instead of integrating the grounded equations on, as the paper did.
+    FlightStop,
+}
+
+impl Variant {
+    /// The variants run for the investigation of a diagram that differs.
+    pub const INVESTIGATION: [Variant; 6] = [
+        Variant::Ralston,
+        Variant::ContinuationUp,
+        Variant::Housner,
+        Variant::PrintedEq20,
+        Variant::TumbleAtSide,
+        Variant::FlightStop,
+    ];
+
+    /// Name used in file names and JSON (`paper`, `ralston`, …).
+    pub fn slug(self) -> &'static str {
+        match self {
+            Variant::Paper => "paper",
+            Variant::Ralston => "ralston",
+            Variant::ContinuationUp => "continuation-up",
+            Variant::Housner => "housner",
+            Variant::PrintedEq20 => "printed-eq20",
+            Variant::TumbleAtSide => "tumble-at-side",
+            Variant::FlightStop => "flight-stop",
+        }
+    }
+
+    /// What the variant changes, in a few words, for titles and tables.
+    pub fn title(self) -> &'static str {
+        match self {
+            Variant::Paper => "preset (r = 0.925, DOP853, from rest, tumble at |Θ| = 1, flight ignored)",
+            Variant::Ralston => "VARIANT: the paper's Ralston RK2, step 0.004",
+            Variant::ContinuationUp => "VARIANT: continuation upwards in A_v",
+            Variant::Housner => "VARIANT: Housner's r = 0.9118 (eq. 22)",
+            Variant::PrintedEq20 => "VARIANT: eq. 20 as printed with e = 0.925 (r = 0.830)",
+            Variant::TumbleAtSide => "VARIANT: tumble only at |θ| = π/2",
+            Variant::FlightStop => "VARIANT: stop at flight (N ≤ 0)",
+        }
+    }
+
+    /// The `--set` assignments of the variant for a block of geometry `geo`.
+    pub fn sets(self, geo: &Geometry) -> Vec<String> {
+        match self {
+            Variant::Paper | Variant::ContinuationUp => Vec::new(),
+            Variant::Ralston => vec!["run.method=ralston".to_string()],
+            Variant::Housner => vec!["impact.law=housner".to_string()],
+            Variant::PrintedEq20 => vec![
+                "impact.law=ratio".to_string(),
+                format!("impact.r={:?}", printed_eq20_ratio(geo, PAPER_E)),
+            ],
+            Variant::TumbleAtSide => vec![format!("run.tumble_theta={:?}", geo.side_theta())],
+            Variant::FlightStop => vec!["run.flight=stop".to_string()],
+        }
+    }
+
+    /// How the values are seeded.
+    pub fn continuation(self) -> Continuation {
+        match self {
+            Variant::ContinuationUp => Continuation::Up,
+            Variant::Paper
+            | Variant::Ralston
+            | Variant::Housner
+            | Variant::PrintedEq20
+            | Variant::TumbleAtSide
+            | Variant::FlightStop => Continuation::None,
+        }
+    }
+}
+
+/// The paper's eq. 20 for an impact without sliding (λ_x = −1):
+/// δ_i = 1 − (3/2)(1 + e) sin²ψ, with `e` its vertical restitution.
+pub fn printed_eq20_ratio(geo: &Geometry, e: f64) -> f64 {
+    1.0 - 1.5 * (1.0 + e) * geo.sin_psi * geo.sin_psi
+}
+
+/// The grid, window and classifier shared by every diagram of a run.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct DiagramSettings {
+    /// The A_v values.
+    pub grid: Grid,
+    /// Transient and end of each run, τ.
+    pub window: Window,
+    /// Classifier thresholds.
+    pub classify: ClassifyOptions,
+}
+
+/// A computed bifurcation diagram.
+#[derive(Clone, Debug)]
+pub struct Diagram {
+    /// The paper's figure number.
+    pub figure: u32,
+    /// How it was computed.
+    pub variant: Variant,
+    /// The base configuration (A_v as in the preset; `run.tau_end` the
+    /// window's end).
+    pub config: Config,
+    /// The `--set` assignments of the variant.
+    pub sets: Vec<String>,
+    /// Grid, window and classifier.
+    pub settings: DiagramSettings,
+    /// Every value, increasing.
+    pub values: Vec<BifurcationValue>,
+    /// Wall time of the sweep, s.
+    pub wall_s: f64,
+}
+
+/// Computes the diagram of `figure` with `variant` (values in parallel on
+/// the current rayon pool, unless the variant continues).
+pub fn run_diagram(
+    figure: &PaperFigure,
+    variant: Variant,
+    settings: &DiagramSettings,
+) -> Result<Diagram, ReproduceError> {
+    let start = std::time::Instant::now();
+    let fail = |e: String| ReproduceError::Figure {
+        figure: figure.number,
+        what: format!("bifurcation diagram ({})", variant.slug()),
+        error: e,
+    };
+    let plain = ParamBase::load(Some(figure.preset), None, &[]).map_err(|e| fail(e.to_string()))?;
+    let geo = plain.resolve(&[]).map_err(|e| fail(e.to_string()))?.geometry();
+    let sets = variant.sets(&geo);
+    let base = ParamBase::load(Some(figure.preset), None, &sets).map_err(|e| fail(e.to_string()))?;
+    let mut config = base.resolve(&[]).map_err(|e| fail(e.to_string()))?;
+    config.tau_end = settings.window.tau_end;
+    let plan = Plan::new(settings.grid, variant.continuation(), None).map_err(|e| fail(e.0))?;
+    let spec = BlockSweep {
+        base: &base,
+        param: PARAM,
+        window: settings.window,
+        classify: settings.classify,
+        lyapunov: None,
+    };
+    let values = block_sweep(&spec, &plan, &ProgressBar::hidden())
+        .map_err(|e| fail(format!("A_v = {}: {}", e.value, e.error)))?;
+    Ok(Diagram {
+        figure: figure.number,
+        variant,
+        config,
+        sets,
+        settings: *settings,
+        values,
+        wall_s: start.elapsed().as_secs_f64(),
+    })
+}
+
+impl Diagram {
+    /// `(A_v, response)` of every value.
+    pub fn responses(&self) -> Vec<(f64, Response)> {
+        self.values.iter().map(|v| (v.value, v.response)).collect()
+    }
+
+    /// Consecutive values with one response.
+    pub fn ranges(&self) -> Vec<ResponseRange> {
+        response_ranges(&self.responses())
+    }
+
+    /// How many values have each response, in a fixed order (rest, periods
+    /// increasing, quasiperiodic, chaotic, tumbled, flight).
+    pub fn counts(&self) -> Vec<(Response, usize)> {
+        counts(self.values.iter().map(|v| v.response))
+    }
+
+    /// The share of values that are periodic, chaotic (or quasiperiodic)
+    /// and tumbled.
+    pub fn shares(&self) -> Shares {
+        shares(&self.responses())
+    }
+
+    /// First A_v that tumbled, if any.
+    pub fn first_tumble(&self) -> Option<f64> {
+        self.values
+            .iter()
+            .find(|v| v.response == Response::Tumbled)
+            .map(|v| v.value)
+    }
+}
+
+/// Counts of each response in `responses`, in a fixed order.
+pub fn counts(responses: impl Iterator<Item = Response>) -> Vec<(Response, usize)> {
+    let mut out: Vec<(Response, usize)> = Vec::new();
+    for r in responses {
+        match out.iter_mut().find(|(x, _)| *x == r) {
+            Some((_, n)) => *n += 1,
+            None => out.push((r, 1)),
+        }
+    }
+    out.sort_by_key(|(r, _)| order(*r));
+    out
+}
+
+/// Sort key: rest, periods increasing, quasiperiodic, chaotic, tumbled,
+/// flight.
+pub fn order(r: Response) -> u32 {
+    match r {
+        Response::Rest => 0,
+        Response::Periodic { period } => period,
+        Response::Quasiperiodic => 1000,
+        Response::Chaotic => 1001,
+        Response::Tumbled => 1002,
+        Response::Flight => 1003,
+    }
+}
+
+/// `period 2 ×12, chaotic ×3, …` for a table cell.
+pub fn counts_text(counts: &[(Response, usize)]) -> String {
+    if counts.is_empty() {
+        return "none".to_string();
+    }
+    counts
+        .iter()
+        .map(|(r, n)| format!("{} ×{n}", short(*r)))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// A response in a few characters: `(1,2)`, `chaotic`, `tumbled`, …
+pub fn short(r: Response) -> String {
+    match r {
+        Response::Periodic { period } => format!("(1,{period})"),
+        Response::Quasiperiodic | Response::Chaotic | Response::Tumbled | Response::Rest | Response::Flight => {
+            r.name().to_string()
+        }
+    }
+}
+
+/// Shares of the values of a diagram, each in [0, 1].
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct Shares {
+    /// Periodic (any period) or at rest.
+    pub periodic: f64,
+    /// Chaotic or quasiperiodic (not periodic, still rocking).
+    pub aperiodic: f64,
+    /// Tumbled.
+    pub tumbled: f64,
+    /// Flight (only with `flight = "stop"`).
+    pub flight: f64,
+    /// Number of values.
+    pub count: usize,
+}
+
+/// The shares of `responses`.
+pub fn shares(responses: &[(f64, Response)]) -> Shares {
+    let n = responses.len().max(1) as f64;
+    let share = |f: &dyn Fn(Response) -> bool| responses.iter().filter(|(_, r)| f(*r)).count() as f64 / n;
+    Shares {
+        periodic: share(&|r| matches!(r, Response::Periodic { .. } | Response::Rest)),
+        aperiodic: share(&|r| matches!(r, Response::Chaotic | Response::Quasiperiodic)),
+        tumbled: share(&|r| r == Response::Tumbled),
+        flight: share(&|r| r == Response::Flight),
+        count: responses.len(),
+    }
+}
+
+/// How well one of our ranges matches the paper's.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Verdict {
+    /// Same response over the same range, within the tolerance.
+    Agrees,
+    /// The same response over part of the range.
+    Partly,
+    /// A different response.
+    Differs,
+}
+
+impl Verdict {
+    /// The word in the report.
+    pub fn word(self) -> &'static str {
+        match self {
+            Verdict::Agrees => "agrees",
+            Verdict::Partly => "partly",
+            Verdict::Differs => "differs",
+        }
+    }
+}
+
+/// One of the paper's ranges against our values.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct RangeComparison {
+    /// First A_v of the paper's range.
+    pub from: f64,
+    /// Last A_v of the paper's range.
+    pub to: f64,
+    /// The paper's response, in words.
+    pub paper: String,
+    /// Our values in [from, to] with the expected response.
+    pub matching: usize,
+    /// Our values in [from, to].
+    pub total: usize,
+    /// Our responses in [from, to], as counts.
+    pub ours: String,
+    /// For a periodic range: our contiguous run of that period that
+    /// overlaps the paper's range most, (first, last) A_v.
+    pub run: Option<(f64, f64)>,
+    /// The verdict (see [`compare_ranges`]).
+    pub verdict: Verdict,
+}
+
+/// Whether `r` is what the paper reports.
+pub fn matches(expect: Expect, r: Response) -> bool {
+    match expect {
+        Expect::Period(k) => r == Response::Periodic { period: k },
+        Expect::HigherOrChaotic => match r {
+            Response::Periodic { period } => period > 2,
+            Response::Quasiperiodic | Response::Chaotic => true,
+            Response::Tumbled | Response::Rest | Response::Flight => false,
+        },
+        Expect::Chaotic => r == Response::Chaotic,
+    }
+}
+
+/// Compares `values` with the paper's `ranges`. Values on a shared
+/// boundary count in both ranges (the paper says "about").
+///
+/// - A periodic range **agrees** when our longest-overlapping run of that
+///   period starts and ends within `tol` of the paper's ends, and is
+///   **partly** reproduced when at least half of the values in the range
+///   have that period.
+/// - A chaotic or mixed range agrees when at least 3/4 of its values
+///   match, partly when at least 1/4 do.
+///
+/// Otherwise it differs.
+pub fn compare_ranges(values: &[(f64, Response)], ranges: &[PaperRange], tol: f64) -> Vec<RangeComparison> {
+    let eps = 1e-9;
+    ranges
+        .iter()
+        .map(|pr| {
+            let inside: Vec<Response> = values
+                .iter()
+                .filter(|(v, _)| *v >= pr.from - eps && *v <= pr.to + eps)
+                .map(|(_, r)| *r)
+                .collect();
+            let matching = inside.iter().filter(|r| matches(pr.expect, **r)).count();
+            let total = inside.len();
+            let frac = if total == 0 {
+                0.0
+            } else {
+                matching as f64 / total as f64
+            };
+            let run = match pr.expect {
+                Expect::Period(k) => best_run(values, Response::Periodic { period: k }, pr.from, pr.to),
+                Expect::HigherOrChaotic | Expect::Chaotic => None,
+            };
+            let verdict = match (pr.expect, run) {
+                (Expect::Period(_), Some((a, b))) if (a - pr.from).abs() <= tol && (b - pr.to).abs() <= tol => {
+                    Verdict::Agrees
+                }
+                (Expect::Period(_), _) if frac >= 0.5 => Verdict::Partly,
+                (Expect::HigherOrChaotic | Expect::Chaotic, _) if frac >= 0.75 => Verdict::Agrees,
+                (Expect::HigherOrChaotic | Expect::Chaotic, _) if frac >= 0.25 => Verdict::Partly,
+                _ => Verdict::Differs,
+            };
+            RangeComparison {
+                from: pr.from,
+                to: pr.to,
+                paper: pr.expect.label(),
+                matching,
+                total,
+                ours: counts_text(&counts(inside.into_iter())),
+                run,
+                verdict,
+            }
+        })
+        .collect()
+}
+
+/// The maximal run of consecutive values equal to `target` that overlaps
+/// [from, to] most (ties: the first), as (first, last) value.
+fn best_run(values: &[(f64, Response)], target: Response, from: f64, to: f64) -> Option<(f64, f64)> {
+    let overlap = |a: f64, b: f64| (b.min(to) - a.max(from)).max(-1.0);
+    response_ranges(values)
+        .into_iter()
+        .filter(|r| r.response == target && r.to >= from - 1e-9 && r.from <= to + 1e-9)
+        .map(|r| (r.from, r.to))
+        .fold(None, |best: Option<(f64, f64)>, r| match best {
+            Some(b) if overlap(b.0, b.1) >= overlap(r.0, r.1) => Some(b),
+            _ => Some(r),
+        })
+}
+
+/// The periods of the successive periodic runs from the first value up to
+/// the first aperiodic, tumbled or flight value, each listed once in order
+/// of appearance, e.g. `[1, 2, 4, 8]` for a period-doubling cascade.
+pub fn cascade(values: &[(f64, Response)]) -> Vec<u32> {
+    let mut out: Vec<u32> = Vec::new();
+    for (_, r) in values {
+        match r {
+            Response::Periodic { period } => {
+                if out.last() != Some(period) && !out.contains(period) {
+                    out.push(*period);
+                }
+            }
+            Response::Rest => {}
+            Response::Quasiperiodic | Response::Chaotic | Response::Tumbled | Response::Flight => break,
+        }
+    }
+    out
+}
+
+/// Whether the start of `values` is a period-doubling cascade: periods 1,
+/// 2 and 4 in this order before the first aperiodic or terminal value.
+pub fn is_period_doubling(values: &[(f64, Response)]) -> bool {
+    cascade(values).starts_with(&[1, 2, 4])
+}
+
+/// Switches between periodic and aperiodic (chaotic or quasiperiodic)
+/// responses along the sweep, tumbled and flight values skipped: many
+/// switches are the paper's "intermittency" (periodic and chaotic values
+/// intermingled).
+pub fn intermittency_switches(values: &[(f64, Response)]) -> usize {
+    let kinds: Vec<bool> = values
+        .iter()
+        .filter_map(|(_, r)| match r {
+            Response::Periodic { .. } | Response::Rest => Some(true),
+            Response::Quasiperiodic | Response::Chaotic => Some(false),
+            Response::Tumbled | Response::Flight => None,
+        })
+        .collect();
+    kinds.windows(2).filter(|w| w[0] != w[1]).count()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const P1: Response = Response::Periodic { period: 1 };
+    const P2: Response = Response::Periodic { period: 2 };
+    const P4: Response = Response::Periodic { period: 4 };
+    const C: Response = Response::Chaotic;
+    const T: Response = Response::Tumbled;
+
+    fn grid(rs: &[Response]) -> Vec<(f64, Response)> {
+        rs.iter().enumerate().map(|(i, r)| (i as f64 * 0.1, *r)).collect()
+    }
+
+    #[test]
+    fn ranges_are_compared_by_runs_and_shares() {
+        // 0.0..0.4 period 1, 0.5..0.7 period 2, 0.8 period 4, 0.9.. mixed.
+        let v = grid(&[P1, P1, P1, P1, P1, P2, P2, P2, P4, C, T, C, T]);
+        let ranges = [
+            PaperRange {
+                from: 0.0,
+                to: 0.5,
+                expect: Expect::Period(1),
+            },
+            PaperRange {
+                from: 0.5,
+                to: 0.8,
+                expect: Expect::Period(2),
+            },
+            PaperRange {
+                from: 0.9,
+                to: 1.2,
+                expect: Expect::Chaotic,
+            },
+        ];
+        let c = compare_ranges(&v, &ranges, 0.1);
+        assert_eq!(c[0].run, Some((0.0, 0.4)));
+        assert_eq!(c[0].verdict, Verdict::Agrees);
+        assert_eq!((c[0].matching, c[0].total), (5, 6));
+        assert_eq!(c[1].run.map(|r| (r.0 * 10.0).round()), Some(5.0));
+        assert_eq!(c[1].verdict, Verdict::Agrees);
+        assert_eq!((c[2].matching, c[2].total), (2, 4));
+        assert_eq!(c[2].verdict, Verdict::Partly);
+        assert_eq!(c[2].ours, "chaotic ×2, tumbled ×2");
+        let far = compare_ranges(
+            &v,
+            &[PaperRange {
+                from: 0.0,
+                to: 1.2,
+                expect: Expect::Period(2),
+            }],
+            0.1,
+        );
+        assert_eq!(far[0].verdict, Verdict::Differs);
+    }
+
+    #[test]
+    fn cascades_and_intermittency_are_recognised() {
+        let doubling = grid(&[P1, P1, P2, P2, P4, C, T]);
+        assert_eq!(cascade(&doubling), vec![1, 2, 4]);
+        assert!(is_period_doubling(&doubling));
+        let mixed = grid(&[P1, P2, C, P2, C, T, P4, C]);
+        assert!(!is_period_doubling(&mixed));
+        assert_eq!(intermittency_switches(&mixed), 5);
+        assert_eq!(intermittency_switches(&doubling), 1);
+    }
+
+    #[test]
+    fn variants_set_what_they_say() {
+        let geo = Geometry::new(1.0, 4.0);
+        let r = printed_eq20_ratio(&geo, PAPER_E);
+        assert!((r - (1.0 - 1.5 * 1.925 / 17.0)).abs() < 1e-12, "{r}");
+        for v in Variant::INVESTIGATION {
+            let base = ParamBase::load(Some("fig4"), None, &v.sets(&geo)).unwrap();
+            let cfg = base.resolve(&[]).unwrap();
+            match v {
+                Variant::Ralston => assert_eq!(cfg.method.name(), "ralston"),
+                Variant::Housner => assert_eq!(cfg.law, "housner"),
+                Variant::PrintedEq20 => assert_eq!(cfg.r, r),
+                Variant::TumbleAtSide => assert_eq!(cfg.tumble_theta, geo.side_theta()),
+                Variant::FlightStop => assert_eq!(cfg.flight, crate::model::FlightPolicy::Stop),
+                Variant::ContinuationUp => assert_eq!(v.continuation(), Continuation::Up),
+                Variant::Paper => unreachable!(),
+            }
+        }
+    }
+
+    #[test]
+    fn shares_add_up() {
+        let s = shares(&grid(&[P1, C, T, T]));
+        assert_eq!((s.periodic, s.aperiodic, s.tumbled, s.count), (0.25, 0.25, 0.5, 4));
+    }
+}

@@ -1,0 +1,408 @@
+//! The files of a reproduction: figures (PNG and SVG), CSV tables,
+//! `reproduce.json` and `report.md`, written through a [`Sink`].
+//!
+//! File names are flat and sort by figure: `fig04_bifurcation.png`,
+//! `fig04_variant_ralston_bifurcation.svg`, `fig07_time_history.png`, …
+//! CSV numbers are written in their shortest round-trip form, so the files
+//! are a function of the computation alone.
+
+use std::fmt::Write as _;
+use std::path::PathBuf;
+
+use serde_json::{Value as Json, json};
+
+use super::diagrams::{Diagram, Variant, compare_ranges, counts_text};
+use super::paper;
+use super::report;
+use super::response::{ResponseExample, SpectrumData};
+use super::{ReproduceError, Reproduction};
+use crate::analysis::classify::Response;
+use crate::analysis::lyapunov::Lyapunov;
+use crate::io::config::Config;
+use crate::io::output::OutputError;
+use crate::plot::Figure;
+use crate::plot::bifurcation::BifurcationFigure;
+use crate::plot::labels::{grid_decimals, grid_num, num, param_label};
+use crate::plot::poincare::PoincareFigure;
+use crate::plot::spectrum::SpectrumFigure;
+use crate::plot::time_history::TimeHistoryFigure;
+
+/// Where the files go: an output directory that is committed at the end.
+pub trait Sink {
+    /// Writes the text file `name`.
+    fn text(&mut self, name: &str, text: &str) -> Result<(), OutputError>;
+    /// The path at which the binary file `name` is to be written.
+    fn path(&mut self, name: &str) -> PathBuf;
+}
+
+/// Highest harmonic ω/Ω_h shown in the spectra (the forcing frequency
+/// and its first harmonics, where the paper's spectra have their lines).
+pub const MAX_HARMONIC: f64 = 5.0;
+
+/// `figNN_` for figure `n`.
+pub fn prefix(n: u32) -> String {
+    format!("fig{n:02}_")
+}
+
+/// The base name of a diagram's files: `fig04_` or `fig04_variant_ralston_`.
+pub fn diagram_stem(d: &Diagram) -> String {
+    match d.variant {
+        Variant::Paper => prefix(d.figure),
+        Variant::Ralston
+        | Variant::ContinuationUp
+        | Variant::Housner
+        | Variant::PrintedEq20
+        | Variant::TumbleAtSide
+        | Variant::FlightStop => format!("{}variant_{}_", prefix(d.figure), d.variant.slug()),
+    }
+}
+
+/// The parameters that define a response in a short line:
+/// `Ω_h = Ω_v = 8, A_h = 2, A_v = 2.5, no sliding`.
+pub fn short_params(cfg: &Config, with_a_v: bool) -> String {
+    let mut parts = Vec::new();
+    if cfg.omega_h == cfg.omega_v {
+        parts.push(format!("Ω_h = Ω_v = {}", num(cfg.omega_h)));
+    } else {
+        parts.push(format!("Ω_h = {}, Ω_v = {}", num(cfg.omega_h), num(cfg.omega_v)));
+    }
+    parts.push(format!("A_h = {}", num(cfg.a_h)));
+    if with_a_v {
+        parts.push(format!("A_v = {}", num(cfg.a_v)));
+    }
+    if cfg.mu_s.is_infinite() {
+        parts.push("no sliding".to_string());
+    } else {
+        parts.push(format!("μ_s = {}, μ_k = {}", num(cfg.mu_s), num(cfg.mu_k)));
+    }
+    parts.join(", ")
+}
+
+/// The impact law and block in a short line: `B × H = 1 × 4 m, impact ratio r = 0.925`.
+pub fn block_and_impact(cfg: &Config) -> String {
+    let law = match cfg.law.as_str() {
+        "housner" => format!("Housner impact r = {:.4}", cfg.geometry().housner_r()),
+        "impulse" => format!("impulse impact e = {}", num(cfg.e)),
+        _ => format!("impact ratio r = {}", short_num(cfg.r)),
+    };
+    format!("B × H = {} × {} m, {law}", num(cfg.width), num(cfg.height))
+}
+
+/// A number with at most 4 decimals, trailing zeros dropped.
+pub fn short_num(x: f64) -> String {
+    let s = format!("{x:.4}");
+    let s = s.trim_end_matches('0').trim_end_matches('.');
+    if s.is_empty() || s == "-" { "0".to_string() } else { s.to_string() }
+}
+
+fn cell(x: f64) -> String {
+    format!("{x:?}")
+}
+
+/// `classes.csv` of a diagram: `value,outcome,period,max_abs_theta`.
+pub fn classes_csv(d: &Diagram) -> String {
+    let mut s = String::from("value,outcome,period,max_abs_theta\n");
+    for v in &d.values {
+        let _ = writeln!(
+            s,
+            "{},{},{},{}",
+            cell(v.value),
+            v.response.name(),
+            v.response.period().map_or(String::new(), |k| k.to_string()),
+            cell(v.max_abs_theta)
+        );
+    }
+    s
+}
+
+/// `points.csv` of a diagram: `value,k,tau,theta,theta_dot`.
+pub fn points_csv(d: &Diagram) -> String {
+    let mut s = String::from("value,k,tau,theta,theta_dot\n");
+    for v in &d.values {
+        for p in &v.points {
+            let _ = writeln!(
+                s,
+                "{},{},{},{},{}",
+                cell(v.value),
+                p.k,
+                cell(p.tau),
+                cell(p.theta),
+                cell(p.theta_dot)
+            );
+        }
+    }
+    s
+}
+
+fn bifurcation_figure<'a>(
+    d: &Diagram,
+    values: &'a [(f64, Response)],
+    points: &'a [(f64, f64)],
+) -> BifurcationFigure<'a> {
+    let g = d.settings.grid;
+    let w = d.settings.window;
+    let dec = grid_decimals(g.from, g.step);
+    let seeding = match d.variant {
+        Variant::ContinuationUp => "continuation upwards",
+        Variant::Paper
+        | Variant::Ralston
+        | Variant::Housner
+        | Variant::PrintedEq20
+        | Variant::TumbleAtSide
+        | Variant::FlightStop => "each value from rest",
+    };
+    let title = match d.variant {
+        Variant::Paper => format!(
+            "Fig. {} reproduced: bifurcation diagram ({})",
+            d.figure,
+            short_params(&d.config, false)
+        ),
+        Variant::Ralston
+        | Variant::ContinuationUp
+        | Variant::Housner
+        | Variant::PrintedEq20
+        | Variant::TumbleAtSide
+        | Variant::FlightStop => format!("Fig. {} {}", d.figure, d.variant.title()),
+    };
+    let subtitle = format!(
+        "{}{}; Θ at τ_k = 2πk/Ω_h, {} ≤ τ_k ≤ {}; A_v = {} … {} step {}; {seeding}",
+        if d.variant == Variant::Paper {
+            String::new()
+        } else {
+            format!("{}; ", short_params(&d.config, false))
+        },
+        block_and_impact(&d.config),
+        num(w.transient),
+        num(w.tau_end),
+        grid_num(g.from, dec),
+        grid_num(g.value(g.count.saturating_sub(1)), dec),
+        num(g.step),
+    );
+    BifurcationFigure {
+        title,
+        subtitle,
+        x_label: param_label(super::diagrams::PARAM),
+        values,
+        points,
+        step: g.step,
+    }
+}
+
+fn write_figure<F: Figure>(sink: &mut dyn Sink, stem: &str, fig: &F, names: &mut Vec<String>) -> Result<(), ReproduceError> {
+    let png = format!("{stem}.png");
+    fig.write_png(&sink.path(&png))?;
+    let svg = format!("{stem}.svg");
+    sink.text(&svg, &fig.to_svg()?)?;
+    names.push(png);
+    names.push(svg);
+    Ok(())
+}
+
+fn write_diagram(sink: &mut dyn Sink, d: &Diagram, names: &mut Vec<String>) -> Result<(), ReproduceError> {
+    let stem = diagram_stem(d);
+    let values = d.responses();
+    let points: Vec<(f64, f64)> = d
+        .values
+        .iter()
+        .flat_map(|v| v.points.iter().map(move |p| (v.value, p.theta)))
+        .collect();
+    write_figure(sink, &format!("{stem}bifurcation"), &bifurcation_figure(d, &values, &points), names)?;
+    let classes = format!("{stem}classes.csv");
+    sink.text(&classes, &classes_csv(d))?;
+    names.push(classes);
+    if d.variant == Variant::Paper {
+        let pts = format!("{stem}points.csv");
+        sink.text(&pts, &points_csv(d))?;
+        names.push(pts);
+    }
+    Ok(())
+}
+
+fn spectrum_figure<'a>(r: &ResponseExample, s: &'a SpectrumData, which: &str) -> SpectrumFigure<'a> {
+    SpectrumFigure {
+        title: format!("Fig. {} (b) reproduced: power spectrum of Θ, {which}", r.figure),
+        subtitle: format!(
+            "{}; τ {} – {} ({} samples, Δτ = {}), Hann taper, mean removed",
+            short_params(&r.config, true),
+            short_num(s.tau_from),
+            short_num(s.tau_to),
+            s.samples,
+            num(s.dt)
+        ),
+        harmonic: &s.harmonic,
+        psd: &s.psd,
+        peaks: &s.peaks,
+        max_harmonic: MAX_HARMONIC,
+    }
+}
+
+fn write_response(sink: &mut dyn Sink, r: &ResponseExample, names: &mut Vec<String>) -> Result<(), ReproduceError> {
+    let stem = prefix(r.figure);
+    let params = short_params(&r.config, true);
+    let (tau, theta): (Vec<f64>, Vec<f64>) = r.history.iter().copied().unzip();
+    let span = match (tau.first(), tau.last()) {
+        (Some(a), Some(b)) => format!("τ {} – {}", short_num(*a), short_num(*b)),
+        _ => "no samples".to_string(),
+    };
+    let ended = match r.tumble_tau {
+        Some(t) => format!("; tumbled at τ = {t:.2}"),
+        None => String::new(),
+    };
+    let th = TimeHistoryFigure {
+        title: format!("Fig. {} (a) reproduced: time history Θ(τ) ({params})", r.figure),
+        subtitle: format!(
+            "{}; {span} of the run from rest, sampled every {}{ended}",
+            block_and_impact(&r.config),
+            num(super::response::HISTORY_DT)
+        ),
+        tau: &tau,
+        theta: &theta,
+        tumble_theta: Some(r.config.tumble_theta),
+    };
+    write_figure(sink, &format!("{stem}time_history"), &th, names)?;
+    if let Ok(s) = &r.spectrum_paper {
+        let fig = spectrum_figure(r, s, "the paper's window (its samples 3000–7096)");
+        write_figure(sink, &format!("{stem}spectrum_paper_window"), &fig, names)?;
+    }
+    if let Ok(s) = &r.spectrum_long {
+        let fig = spectrum_figure(r, s, "a long window after the transient");
+        write_figure(sink, &format!("{stem}spectrum_long_window"), &fig, names)?;
+    }
+    let pm = PoincareFigure {
+        title: format!("Fig. {} (c) reproduced: Poincaré map ({params})", r.figure),
+        subtitle: format!(
+            "(Θ, Θ') at τ_k = 2πk/Ω_h, {} ≤ τ_k ≤ {}: {} points{}",
+            num(r.settings.transient),
+            short_num(r.long_tau_end),
+            r.poincare.len(),
+            if r.poincare.is_empty() {
+                " (the long run tumbled)"
+            } else {
+                ""
+            }
+        ),
+        points: &r.poincare,
+    };
+    write_figure(sink, &format!("{stem}poincare"), &pm, names)?;
+    let mut csv = String::from("theta,theta_dot\n");
+    for (a, b) in &r.poincare {
+        let _ = writeln!(csv, "{},{}", cell(*a), cell(*b));
+    }
+    let name = format!("{stem}poincare.csv");
+    sink.text(&name, &csv)?;
+    names.push(name);
+    Ok(())
+}
+
+/// The JSON summary of a Lyapunov result.
+pub fn lyapunov_json(l: &Result<Lyapunov, String>) -> Json {
+    match l {
+        Ok(l) => l.summary(),
+        Err(e) => json!({ "error": e }),
+    }
+}
+
+fn reproduction_json(rep: &Reproduction) -> Json {
+    let diagrams: Vec<Json> = rep
+        .diagrams
+        .iter()
+        .map(|d| {
+            let fig = paper::figure(d.figure);
+            let step = d.settings.grid.step;
+            let comparison = fig.map(|f| compare_ranges(&d.responses(), f.ranges, step.max(0.1)));
+            json!({
+                "figure": d.figure,
+                "variant": d.variant,
+                "sets": d.sets,
+                "continuation": d.variant.continuation(),
+                "counts": counts_text(&d.counts()),
+                "shares": d.shares(),
+                "first_tumble": d.first_tumble(),
+                "ranges": d.ranges().iter().map(|r| json!({
+                    "from": r.from, "to": r.to, "outcome": r.response.name(), "period": r.response.period(),
+                })).collect::<Vec<_>>(),
+                "paper_comparison": comparison,
+                "config": d.config.to_json(),
+            })
+        })
+        .collect();
+    let responses: Vec<Json> = rep
+        .responses
+        .iter()
+        .map(|r| {
+            let peaks = |s: &Result<SpectrumData, String>| match s {
+                Ok(s) => json!({
+                    "tau_from": s.tau_from, "tau_to": s.tau_to, "samples": s.samples, "dt": s.dt,
+                    "peaks_harmonic": s.peaks.iter().map(|p| p.harmonic).collect::<Vec<_>>(),
+                }),
+                Err(e) => json!({ "error": e }),
+            };
+            json!({
+                "figure": r.figure,
+                "outcome": r.outcome,
+                "tumble_tau": r.tumble_tau,
+                "max_abs_theta": r.max_abs_theta,
+                "max_abs_theta_steady": r.max_abs_theta_steady,
+                "flight_violations": r.flight_violations,
+                "impacts_per_cycle": r.impacts_per_cycle,
+                "long_outcome": r.long_outcome,
+                "long_tau_end": r.long_tau_end,
+                "long_max_abs_theta": r.long_max_abs_theta,
+                "poincare_points": r.poincare.len(),
+                "poincare_mean": r.poincare_mean,
+                "response": r.response.to_string(),
+                "spectrum_paper_window": peaks(&r.spectrum_paper),
+                "spectrum_long_window": peaks(&r.spectrum_long),
+                "lyapunov": lyapunov_json(&r.lyapunov),
+                "config": r.config.to_json(),
+            })
+        })
+        .collect();
+    let scans: Vec<Json> = rep
+        .scans
+        .iter()
+        .map(|s| {
+            json!({
+                "figure": s.figure,
+                "window": s.window,
+                "period": s.period,
+                "points": s.points.iter().map(|p| match &p.exponent {
+                    Ok((l, e)) => json!({ "a_v": p.a_v, "class": p.response.name(), "largest_per_tau": l, "stderr": e }),
+                    Err(why) => json!({ "a_v": p.a_v, "class": p.response.name(), "no_exponent": why }),
+                }).collect::<Vec<_>>(),
+            })
+        })
+        .collect();
+    json!({
+        "command": "rocking reproduce",
+        "version": env!("CARGO_PKG_VERSION"),
+        "quick": rep.options.quick,
+        "only": rep.options.only,
+        "diagram_settings": rep.diagram_settings,
+        "response_settings": rep.response_settings,
+        "diagrams": diagrams,
+        "responses": responses,
+        "scans": scans,
+        "units": "tau = p t, theta = θ/ψ; lyapunov per unit τ (natural log), per_cycle = per τ × 2π/Ω_h",
+    })
+}
+
+/// Writes every file of `rep` into `sink`, `report.md` last. `wall_s` is
+/// the wall time to state in the report (the caller's measurement).
+/// Returns the names written.
+pub fn write_all(rep: &Reproduction, sink: &mut dyn Sink, threads: usize) -> Result<Vec<String>, ReproduceError> {
+    let mut names = Vec::new();
+    for d in &rep.diagrams {
+        write_diagram(sink, d, &mut names)?;
+    }
+    for r in &rep.responses {
+        write_response(sink, r, &mut names)?;
+    }
+    let json = serde_json::to_string_pretty(&reproduction_json(rep)).map_err(|e| ReproduceError::Json(e.to_string()))?;
+    sink.text("reproduce.json", &(json + "\n"))?;
+    names.push("reproduce.json".to_string());
+    names.push("report.md".to_string());
+    let text = report::report(rep, &names, threads);
+    sink.text("report.md", &text)?;
+    Ok(names)
+}
