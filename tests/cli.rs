@@ -239,3 +239,46 @@ fn record_run_from_an_at2_file() {
     assert_eq!(s["config"]["excitation"]["kind"], "record");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn unwritable_output_is_refused_before_running() {
+    // A path below a regular file can never be created (even as root, which
+    // ignores permission bits).
+    let dir = tmpdir("unwritable");
+    let file = dir.join("plain-file");
+    std::fs::write(&file, b"not a directory").expect("write");
+    for out in [file.join("out"), file.clone()] {
+        let o = rocking()
+            .args(["--batch", "--preset", "fig12", "--set", "run.tau_end=5", "--out"])
+            .arg(&out)
+            .output()
+            .expect("runs");
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{err}");
+        assert!(err.contains("--out"), "{err}");
+        assert_eq!(err.trim().lines().count(), 1, "{err}");
+    }
+    assert_eq!(std::fs::read(&file).expect("read"), b"not a directory");
+    let leftovers: Vec<_> = std::fs::read_dir(&dir)
+        .expect("dir")
+        .flatten()
+        .map(|e| e.file_name())
+        .collect();
+    assert_eq!(leftovers.len(), 1, "{leftovers:?}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn closed_stdout_is_not_a_panic() {
+    use std::process::Stdio;
+    let mut child = rocking()
+        .arg("--list-presets")
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("spawn");
+    drop(child.stdout.take());
+    let o = child.wait_with_output().expect("wait");
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!err.contains("panicked"), "{err}");
+}
