@@ -12,6 +12,7 @@
 //! [`io`] and the `rocking` binary.
 
 pub mod analysis;
+pub mod bench;
 pub mod integrate;
 pub mod io;
 pub mod model;

@@ -282,3 +282,54 @@ fn closed_stdout_is_not_a_panic() {
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(!err.contains("panicked"), "{err}");
 }
+
+#[test]
+fn bench_writes_the_work_precision_files() {
+    let dir = tmpdir("bench");
+    let out = dir.join("out");
+    let o = rocking()
+        .args(["bench", "--scene", "free", "--repeats", "1", "--out"])
+        .arg(&out)
+        .output()
+        .expect("runs");
+    assert!(o.status.success(), "stderr: {}", String::from_utf8_lossy(&o.stderr));
+    let (h, rows) = read_csv(&out.join("work_precision.csv"));
+    assert_eq!(
+        h[..7],
+        ["scene", "method", "setting", "wall_s", "rhs_evals", "steps", "error"]
+    );
+    for m in ["dop853", "dopri5", "ralston"] {
+        assert!(rows.iter().any(|r| r[1] == m), "no {m} record");
+    }
+    // Tighter tolerances give smaller errors: DOP853 at rtol 1e-12 beats 1e-4.
+    let err = |m: &str, s: &str| {
+        rows.iter()
+            .find(|r| r[1] == m && r[2] == s)
+            .map(|r| r[6].parse::<f64>().expect("error"))
+            .expect("record")
+    };
+    assert!(err("dop853", "1e-12") < 1e-3 * err("dop853", "0.0001"));
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("work_precision.json")).expect("json")).expect("parse");
+    assert!(json["records"].as_array().is_some_and(|r| r.len() == rows.len()));
+    assert!(json["references"][0]["self_check"].as_f64().expect("self check") < 1e-9);
+    for f in ["work_precision.png", "work_precision.svg"] {
+        assert!(std::fs::metadata(out.join(f)).expect(f).len() > 1000);
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn bench_rejects_an_unknown_scene() {
+    let dir = tmpdir("bench-bad");
+    let out = dir.join("out");
+    let o = rocking()
+        .args(["bench", "--scene", "nosuch", "--out"])
+        .arg(&out)
+        .output()
+        .expect("runs");
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("--scene nosuch"));
+    assert!(!out.exists());
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -11,7 +11,10 @@ macro_rules! say {
     }};
 }
 
+use crate::analysis::lyapunov;
+
 pub mod batch;
+pub mod bench;
 pub mod map;
 pub mod merge;
 pub mod reproduce;
@@ -73,16 +76,22 @@ pub enum Command {
     /// Recompute every figure of the paper (Figs. 3–19) and write them with
     /// report.md, which sets each beside the paper's statements.
     Reproduce(reproduce::ReproduceArgs),
+    /// Work–precision benchmark: run time against error for every method
+    /// (work_precision.json/.csv/.png/.svg).
+    Bench(bench::BenchArgs),
 }
 
 impl Command {
     /// Runs the subcommand.
     pub fn run(&self) -> Result<(), batch::BatchError> {
         match self {
+            Command::Sweep(args) if args.lyapunov => sweep::run_with(args, Some(&lyapunov::largest_for_config)),
             Command::Sweep(args) => sweep::run(args),
             Command::Merge(args) => merge::run(args),
+            Command::Map(args) if args.lyapunov => map::run_with(args, Some(&lyapunov::largest_for_config)),
             Command::Map(args) => map::run(args),
             Command::Reproduce(args) => reproduce::run(args),
+            Command::Bench(args) => bench::run(args),
         }
     }
 }

@@ -101,6 +101,11 @@ pub struct SweepArgs {
     /// Worker threads (default: one per core). The output does not depend on it.
     #[arg(long, value_name = "N")]
     pub threads: Option<usize>,
+    /// Also compute the largest Lyapunov exponent of each value (tangent
+    /// dynamics with saltation matrices, τ 600–2600 by default; about half a
+    /// second per value in release) into the `lyapunov` column.
+    #[arg(long)]
+    pub lyapunov: bool,
     /// Output directory.
     #[arg(long, value_name = "DIR")]
     pub out: PathBuf,

@@ -18,6 +18,7 @@ pub mod outcome_map;
 pub mod poincare;
 pub mod spectrum;
 pub mod time_history;
+pub mod work_precision;
 
 use std::path::Path;
 use std::sync::OnceLock;
