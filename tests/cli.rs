@@ -333,3 +333,40 @@ fn bench_rejects_an_unknown_scene() {
     assert!(!out.exists());
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn batch_spectrum_of_a_period_one_response_peaks_at_the_forcing_harmonics() {
+    let dir = tmpdir("spectrum");
+    let out = dir.join("out");
+    let o = rocking()
+        .args([
+            "--batch",
+            "--preset",
+            "fig4",
+            "--set",
+            "excitation.a_v=1.0",
+            "--set",
+            "analysis.spectrum=true",
+        ])
+        .args(["--set", "run.tau_end=400", "--out"])
+        .arg(&out)
+        .output()
+        .expect("runs");
+    assert!(o.status.success(), "stderr: {}", String::from_utf8_lossy(&o.stderr));
+    let (h, rows) = read_csv(&out.join("spectrum.csv"));
+    assert_eq!(h, ["freq", "omega", "omega_over_omega_h", "psd"]);
+    assert!(rows.len() > 1000);
+    let s: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).expect("summary")).expect("json");
+    let peaks = s["spectrum"]["peaks"].as_array().expect("peaks");
+    let top = peaks[0]["harmonic"].as_f64().expect("harmonic");
+    assert!((top - 1.0).abs() < 0.01, "dominant peak at ω/Ω_h = {top}");
+    for p in peaks.iter().take(3) {
+        let k = p["harmonic"].as_f64().expect("harmonic");
+        assert!(
+            (k - k.round()).abs() < 0.01,
+            "a period-1 response has only forcing harmonics, got {k}"
+        );
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -38,15 +38,26 @@ pub fn run(cli: &Cli) -> Result<(), BatchError> {
     if let (Some(l), Some(obj)) = (&exponents, summary.as_object_mut()) {
         obj.insert("lyapunov".to_string(), l.summary());
     }
+    let spectrum = if cfg.spectrum {
+        Some(spectrum_of(&cfg, &res)?)
+    } else {
+        None
+    };
+    if let (Some((_, peaks)), Some(obj)) = (&spectrum, summary.as_object_mut()) {
+        obj.insert("spectrum".to_string(), peaks.clone());
+    }
     let summary_text = serde_json::to_string_pretty(&summary)
         .context("serialising summary.json")
         .map_err(BatchError::Run)?;
-    let files = [
+    let mut files = vec![
         ("summary.json", summary_text + "\n"),
         ("events.csv", output::events_csv(&res.events)),
         ("poincare.csv", output::poincare_csv(&res.section)),
         ("history.csv", output::history_csv(&res.history)),
     ];
+    if let Some((csv, _)) = spectrum {
+        files.push(("spectrum.csv", csv));
+    }
     output::write_all(&cli.out, &files)
         .with_context(|| format!("writing {}", cli.out.display()))
         .map_err(BatchError::Run)?;
@@ -104,4 +115,35 @@ fn lyapunov_summary(cfg: &Config) -> Result<Lyapunov, BatchError> {
             BatchError::Run(anyhow::Error::new(e).context("lyapunov exponents failed"))
         }
     })
+}
+
+/// The power spectrum of Θ(τ) from the run's history (`analysis.spectrum`):
+/// `spectrum.csv` (`freq,omega,omega_over_omega_h,psd`; f in cycles per
+/// unit τ, ω = 2πf in units of p, ω/Ω_h with `excitation.omega_h`) and the
+/// ten dominant peaks for `summary.json`.
+fn spectrum_of(cfg: &Config, res: &sim::RunResult) -> Result<(String, serde_json::Value), BatchError> {
+    use crate::analysis::spectrum::{SpectrumOptions, SpectrumWindow, theta_spectrum};
+    use std::fmt::Write as _;
+    let window = if cfg.spectrum_window == "paper" {
+        SpectrumWindow::Paper
+    } else {
+        SpectrumWindow::All
+    };
+    let sp = theta_spectrum(&res.history, window, &SpectrumOptions::default())
+        .context("analysis.spectrum")
+        .map_err(BatchError::Run)?;
+    let mut csv = String::from("freq,omega,omega_over_omega_h,psd\n");
+    for (f, p) in sp.freq.iter().zip(&sp.psd) {
+        let omega = std::f64::consts::TAU * f;
+        let _ = writeln!(csv, "{f:?},{omega:?},{:?},{p:?}", omega / cfg.omega_h);
+    }
+    let peaks = sp.peaks(10, 1e-6, cfg.omega_h);
+    let summary = serde_json::json!({
+        "window": cfg.spectrum_window,
+        "samples": sp.n,
+        "dt": sp.dt,
+        "taper": "hann",
+        "peaks": peaks,
+    });
+    Ok((csv, summary))
 }

@@ -48,7 +48,10 @@ pub const KNOWN_KEYS: &[(&str, &[&str])] = &[
             "max_events",
         ],
     ),
-    ("analysis", &["lyapunov", "lyapunov_method"]),
+    (
+        "analysis",
+        &["lyapunov", "lyapunov_method", "spectrum", "spectrum_window"],
+    ),
 ];
 
 /// Largest kinetic friction coefficient accepted (exclusive): the
@@ -160,6 +163,15 @@ pub struct Config {
     /// `benettin` (two trajectories) or `both` (both on one trajectory,
     /// with their paired difference). Default `tangent`.
     pub lyapunov_method: String,
+    /// `analysis.spectrum`: `--batch` also writes `spectrum.csv` (power
+    /// spectrum of Θ(τ)) and lists the dominant peaks in `summary.json`.
+    /// Default false. Needs `run.output_dt > 0` (it is computed from the
+    /// history).
+    pub spectrum: bool,
+    /// `analysis.spectrum_window`: `all` (the whole history) or `paper`
+    /// (the paper's samples 3000–7095 at Δτ = 0.004, i.e. τ 12–28.384).
+    /// Default `all`.
+    pub spectrum_window: String,
 }
 
 /// `section.key` as a boolean, or `None` if absent (a non-table section is
@@ -307,7 +319,9 @@ impl Config {
         // Housner's ratio is negative for squat blocks (ψ > 54.7°, where a
         // single-corner impact reverses the rotation and the block lands
         // flat, docs/model.md §7.5): the default ratio is then 0.
-        let rr = r.number("impact", "r", false)?.unwrap_or_else(|| geo.housner_r().max(0.0));
+        let rr = r
+            .number("impact", "r", false)?
+            .unwrap_or_else(|| geo.housner_r().max(0.0));
         check("impact.r", (0.0..=1.0).contains(&rr), "in [0, 1]", rr)?;
         let e = r.number("impact", "e", false)?.unwrap_or(0.0);
         check("impact.e", (0.0..=1.0).contains(&e), "in [0, 1]", e)?;
@@ -470,6 +484,24 @@ impl Config {
             ));
         }
 
+        let spectrum = boolean(table, "analysis", "spectrum")?.unwrap_or(false);
+        let spectrum_window = r
+            .choice("analysis", "spectrum_window", &["all", "paper"])?
+            .unwrap_or("all")
+            .to_string();
+        if spectrum && output_dt <= 0.0 {
+            return Err(ConfigError::key(
+                "analysis.spectrum",
+                "needs run.output_dt > 0 (the spectrum is computed from the history)",
+            ));
+        }
+        if spectrum && spectrum_window == "paper" && tau_end < 28.384 {
+            return Err(ConfigError::key(
+                "analysis.spectrum_window",
+                "\"paper\" needs run.tau_end >= 28.384 (the paper's window is τ 12–28.384)",
+            ));
+        }
+
         r.reject_unknown(KNOWN_KEYS)?;
         Ok(Self {
             width,
@@ -510,6 +542,8 @@ impl Config {
             max_events,
             lyapunov,
             lyapunov_method,
+            spectrum,
+            spectrum_window,
         })
     }
 
@@ -659,7 +693,10 @@ impl Config {
                 "flight": match self.flight { FlightPolicy::Stop => "stop", FlightPolicy::Ignore => "ignore" },
                 "zeno_eps": self.zeno_eps, "max_steps": self.max_steps, "max_events": self.max_events,
             },
-            "analysis": { "lyapunov": self.lyapunov, "lyapunov_method": self.lyapunov_method },
+            "analysis": {
+                "lyapunov": self.lyapunov, "lyapunov_method": self.lyapunov_method,
+                "spectrum": self.spectrum, "spectrum_window": self.spectrum_window,
+            },
         })
     }
 }
