@@ -38,7 +38,8 @@ pub fn impact_times(psi: f64, housner_r: f64, theta0: f64, tau_end: f64) -> Vec<
         out.push(tau);
         let w = (4.0 * (psi * (1.0 - 0.5 * theta)).sin() * (0.5 * psi * theta).sin()).sqrt() * housner_r;
         theta = 1.0 - (psi.cos() + 0.5 * w * w).acos() / psi;
-        if !(theta > 1e-12) {
+        // Stop once the amplitude is negligible (or no longer a number).
+        if theta.is_nan() || theta <= 1e-12 {
             break;
         }
         tau += 2.0 * quarter_period(psi, theta);
