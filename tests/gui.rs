@@ -10,8 +10,10 @@ use std::time::{Duration, Instant};
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable as _;
 use rocking::analysis::classify::ClassifyOptions;
+use rocking::analysis::lyapunov::{LyapunovOptions, Method, lyapunov};
 use rocking::analysis::orbit_diagram::{BlockSweep, Continuation, Grid, Plan, block_sweep};
 use rocking::analysis::steady::{ParamBase, Window};
+use rocking::gui::panels::lyapunov::TRANSIENT_TAU;
 use rocking::gui::{RockingApp, Settings};
 use rocking::sim::protocol::{Batch, GhostState, RunId, SectionPoint, SimUpdate, Speed};
 use rocking::sim::runner::record;
@@ -354,6 +356,7 @@ fn quiet() -> Harness<'static, RockingApp> {
     let (s, c) = scene("default", &[]);
     Harness::builder()
         .with_size(SIZE)
+        .with_step_dt(0.05)
         .build_eframe(move |cc| RockingApp::with_stream(cc, s, c, Vec::new()))
 }
 
@@ -503,12 +506,118 @@ fn dragging_a_rectangle_zooms_the_bifurcation_view_at_a_finer_step() {
     assert!(pump(&mut h, Duration::from_secs(60), |a| a.bifurcation().done()));
     // Double-click goes back to the full range.
     let c = egui::pos2(1050.0, 420.0);
-    for _ in 0..2 {
-        pointer(&mut h, c, Some(true));
-        pointer(&mut h, c, Some(false));
+    // Frames of 0.05 s (the harness's default 0.25 s is longer than a
+    // double-click's 0.3 s delay spans two clicks).
+    for pressed in [true, false, true, false] {
+        pointer(&mut h, c, Some(pressed));
     }
     h.step();
     let v = h.state().bifurcation();
     assert_eq!((v.from, v.to), (0.0, 3.0), "the paper's range for A_v");
     assert_eq!(v.sweeps, 3);
+}
+
+/// Time to compute and draw the bifurcation view's default sweep (151
+/// values of A_v, τ 200–300) on the default scene. A measurement, not a
+/// check: run with `cargo test --release --test gui -- --ignored --nocapture
+/// measure_bifurcation`; set `BIFURCATION_PNG=path` to keep a rendering.
+#[test]
+#[ignore]
+fn measure_bifurcation_sweep_time() {
+    let (s, c) = scene("default", &[]);
+    let mut h = Harness::builder()
+        .with_size(SIZE)
+        .wgpu()
+        .build_eframe(move |cc| RockingApp::with_stream(cc, s, c, Vec::new()));
+    h.state_mut().show.bifurcation = true;
+    let start = Instant::now();
+    h.step();
+    let mut first = None;
+    while !h.state().bifurcation().done() {
+        h.step();
+        if first.is_none() && h.state().bifurcation().drawn > 0 {
+            first = Some(start.elapsed());
+        }
+        std::thread::sleep(Duration::from_millis(5));
+    }
+    h.step();
+    let total = start.elapsed();
+    let v = h.state().bifurcation();
+    println!(
+        "{} values on {} threads: first points drawn after {:.2} s, all drawn after {:.2} s ({} points after decimation)",
+        v.columns().len(),
+        rayon::current_num_threads(),
+        first.unwrap_or(total).as_secs_f64(),
+        total.as_secs_f64(),
+        v.drawn
+    );
+    if let Ok(path) = std::env::var("BIFURCATION_PNG") {
+        // With the Lyapunov view below it, once its first stage is in.
+        h.state_mut().show.lyapunov = true;
+        let start = Instant::now();
+        while h.state().lyapunov().latest().is_none() {
+            h.step();
+            std::thread::sleep(Duration::from_millis(5));
+        }
+        println!("first Lyapunov stage after {:.2} s", start.elapsed().as_secs_f64());
+        h.step();
+        h.render().expect("render").save(path).expect("png written");
+    }
+}
+
+#[test]
+fn the_lyapunov_view_shows_the_running_largest_exponent() {
+    let mut h = quiet();
+    for _ in 0..5 {
+        h.step();
+    }
+    assert_eq!(h.state().lyapunov().runs, 0, "hidden: nothing computed");
+    toggle_view(&mut h, "Lyapunov exponent");
+    assert!(h.state().show.lyapunov);
+    assert!(pump(&mut h, Duration::from_secs(120), |a| a
+        .lyapunov()
+        .latest()
+        .is_some()));
+    h.step();
+    let shown = h.state().lyapunov().value().expect("a finite exponent");
+    let _ = h.get_by_label_contains(&format!("λ₁ = {shown:.4} ±"));
+
+    // The number is the analysis layer's, for the scene from its initial state.
+    let stage = h.state().lyapunov().latest().expect("a stage").clone();
+    let cfg = h.state().config().clone();
+    let opts = LyapunovOptions {
+        method: Method::Tangent,
+        transient_tau: TRANSIENT_TAU,
+        total_tau: stage.total_tau,
+        ..LyapunovOptions::default()
+    };
+    let want = lyapunov(&cfg.model().unwrap(), &cfg.initial(), &opts).unwrap();
+    assert_eq!(stage.answer, Ok(want));
+
+    // Hidden, it stops.
+    toggle_view(&mut h, "Lyapunov exponent");
+    assert!(pump(&mut h, Duration::from_secs(60), |a| a.lyapunov().threads() == 0));
+}
+
+#[test]
+fn a_bifurcation_sweep_over_invalid_values_is_refused_naming_the_key() {
+    let mut h = quiet();
+    {
+        let b = h.state_mut().bifurcation_mut();
+        b.param = "block.width".into();
+        b.from = -1.0;
+        b.to = 1.0;
+        b.count = 3;
+        b.window = TINY;
+    }
+    toggle_view(&mut h, "Bifurcation diagram");
+    assert!(pump(&mut h, Duration::from_secs(30), |a| a
+        .bifurcation()
+        .invalid()
+        .is_some()));
+    h.step();
+    let msg = h.state().bifurcation().invalid().expect("refused").to_string();
+    assert!(msg.contains("block.width"), "{msg}");
+    assert!(h.state().bifurcation().columns().is_empty(), "nothing ran");
+    let _ = h.get_by_label_contains("block.width");
 }

@@ -46,8 +46,19 @@
 //! The accumulation window (after the transient) is split into batches;
 //! the standard error is that of the batch means (`batch.rs`).
 //!
-//! The generic machinery ([`TangentSystem`], [`tangent_exponents`],
-//! [`benettin`]) works for any hybrid system that provides Jacobians and is
+//! # Which trajectory
+//!
+//! [`lyapunov`] integrates its own trajectory from the initial state (the
+//! tangent method integrates the state with its tangent vectors, so its
+//! steps differ from a plain run's). Several of the paper's presets show
+//! transient chaos that ends in a tumble, or chaos beside a stable periodic
+//! orbit; round-off then decides where a trajectory goes, and a plain run,
+//! a tangent run and a two-trajectory run may end up in different places.
+//! [`Method::Both`] computes both estimates on one fiducial trajectory, so
+//! they are always comparable.
+//!
+//! The generic machinery ([`TangentSystem`], [`exponents`] with a
+//! [`Request`]) works for any hybrid system that provides Jacobians and is
 //! tested on systems with known exponents.
 
 mod batch;

@@ -13,6 +13,7 @@ use std::time::{Duration, Instant};
 
 use crate::gui::history::RunHistory;
 use crate::gui::panels::bifurcation::BifurcationView;
+use crate::gui::panels::lyapunov::LyapunovView;
 use crate::gui::panels::params::{self, Edits};
 use crate::gui::panels::plots::{self, HistoryView, PhaseView, PoincareView, SpectrumView};
 use crate::gui::panels::scene::{self, Camera, SceneInput};
@@ -58,6 +59,9 @@ pub struct Show {
     /// busy for seconds, which a lecture projector opening the app on the
     /// live block should not pay for unasked.
     pub bifurcation: bool,
+    /// The running largest Lyapunov exponent. Off at start, like the
+    /// bifurcation diagram: it keeps a core busy for seconds.
+    pub lyapunov: bool,
 }
 
 impl Default for Show {
@@ -70,6 +74,7 @@ impl Default for Show {
             history: true,
             spectrum: true,
             bifurcation: false,
+            lyapunov: false,
         }
     }
 }
@@ -108,6 +113,7 @@ pub struct RockingApp {
     history_view: HistoryView,
     spectrum: SpectrumView,
     bifurcation: BifurcationView,
+    lyapunov: LyapunovView,
     camera: Camera,
     flash_at: Option<f64>,
     message: Option<Message>,
@@ -202,6 +208,7 @@ impl RockingApp {
             history_view: HistoryView::default(),
             spectrum: SpectrumView::default(),
             bifurcation: BifurcationView::default(),
+            lyapunov: LyapunovView::default(),
             camera: Camera::default(),
             flash_at: None,
             message: None,
@@ -271,6 +278,10 @@ impl RockingApp {
     /// The bifurcation view, to change its sweep.
     pub fn bifurcation_mut(&mut self) -> &mut BifurcationView {
         &mut self.bifurcation
+    }
+    /// The Lyapunov view.
+    pub fn lyapunov(&self) -> &LyapunovView {
+        &self.lyapunov
     }
     /// CPU time of the last frame's app code (layout and data), ms.
     pub fn frame_ms(&self) -> f32 {
@@ -496,6 +507,7 @@ impl RockingApp {
                 ui.checkbox(&mut self.show.history, "Time history");
                 ui.checkbox(&mut self.show.spectrum, "Power spectrum");
                 ui.checkbox(&mut self.show.bifurcation, "Bifurcation diagram");
+                ui.checkbox(&mut self.show.lyapunov, "Lyapunov exponent");
                 ui.separator();
                 ui.checkbox(&mut self.forces, "Contact force and friction cone");
             });
@@ -716,6 +728,25 @@ impl RockingApp {
         });
     }
 
+    fn analyses_panel(&mut self, ui: &mut egui::Ui) {
+        if self.show.bifurcation {
+            ui.label("Bifurcation diagram (drag to zoom, double-click: full range)");
+            let height = if self.show.lyapunov {
+                ui.available_height() - 230.0
+            } else {
+                ui.available_height()
+            };
+            ui.allocate_ui(egui::vec2(ui.available_width(), height), |ui| {
+                ui.vertical(|ui| self.bifurcation.show(ui, &self.settings, &self.config));
+            });
+        }
+        if self.show.lyapunov {
+            ui.separator();
+            ui.label("Largest Lyapunov exponent (from the initial state)");
+            self.lyapunov.show(ui, &self.config);
+        }
+    }
+
     fn scene_panel(&mut self, ui: &mut egui::Ui) {
         let rect = ui.available_rect_before_wrap();
         let (Some(info), Some(sample)) = (self.info.as_ref(), self.hist.samples.last()) else {
@@ -814,16 +845,17 @@ impl eframe::App for RockingApp {
                     });
                 });
         }
-        if self.show.bifurcation {
-            egui::Panel::right("bifurcation")
+        if self.show.bifurcation || self.show.lyapunov {
+            egui::Panel::right("analyses")
                 .resizable(true)
                 .default_size(420.0)
-                .show(ui, |ui| {
-                    ui.label("Bifurcation diagram (drag a rectangle to zoom, double-click for the full range)");
-                    self.bifurcation.show(ui, &self.settings, &self.config);
-                });
-        } else {
+                .show(ui, |ui| self.analyses_panel(ui));
+        }
+        if !self.show.bifurcation {
             self.bifurcation.hide();
+        }
+        if !self.show.lyapunov {
+            self.lyapunov.hide();
         }
         if self.show.phase || self.show.poincare {
             egui::Panel::right("plots")

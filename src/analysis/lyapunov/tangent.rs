@@ -54,7 +54,7 @@ pub trait TangentSystem<const N: usize, const D: usize>: HybridSystem<N> {
 
     /// A state of `mode` displaced from `y` by about `dz` in tangent
     /// coordinates and consistent with the mode's constraints, or `None`
-    /// if the displacement leaves the mode's domain (for [`benettin`](super::benettin)).
+    /// if the displacement leaves the mode's domain (for the two-trajectory method).
     fn displaced(&self, mode: Self::Mode, t: f64, y: &[f64; N], dz: &[f64; D]) -> Option<[f64; N]>;
 }
 

@@ -434,10 +434,12 @@ impl BifurcationView {
     }
 
     fn status(&self, ui: &mut egui::Ui) {
-        let text = if let Some(e) = &self.invalid {
-            ui.colored_label(Color32::from_rgb(235, 90, 90), e);
+        let red = Color32::from_rgb(235, 90, 90);
+        if let Some(e) = &self.invalid {
+            ui.colored_label(red, e);
             return;
-        } else if self.done {
+        }
+        let mut line = if self.done {
             let took = self
                 .took
                 .map_or(String::new(), |t| format!(" in {:.1} s", t.as_secs_f64()));
@@ -450,17 +452,13 @@ impl BifurcationView {
             )
         };
         let tumbled = self.columns.iter().filter(|c| c.response == Response::Tumbled).count();
-        let mut line = text;
         if tumbled > 0 {
             line.push_str(&format!(", {tumbled} tumbled (blank)"));
         }
         ui.horizontal_wrapped(|ui| {
             ui.label(line);
             if let Some((v, e)) = self.failed.first() {
-                ui.colored_label(
-                    Color32::from_rgb(235, 90, 90),
-                    format!("{} failed, first at {v}: {e}", self.failed.len()),
-                );
+                ui.colored_label(red, format!("{} failed, first at {v}: {e}", self.failed.len()));
             }
         });
     }

@@ -2,6 +2,7 @@
 //! draws; a panel the user hides is simply not called.
 
 pub mod bifurcation;
+pub mod lyapunov;
 pub mod params;
 pub mod plots;
 pub mod scene;
