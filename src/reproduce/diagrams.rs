@@ -10,6 +10,7 @@
 //! labelled as variants in every output and are never the default.
 
 use indicatif::ProgressBar;
+use rayon::prelude::*;
 
 use super::ReproduceError;
 use super::paper::{Expect, PaperFigure, PaperRange};
@@ -17,9 +18,10 @@ use crate::analysis::classify::{ClassifyOptions, Response};
 use crate::analysis::orbit_diagram::{
     BifurcationValue, BlockSweep, Continuation, Grid, Plan, ResponseRange, block_sweep, response_ranges,
 };
-use crate::analysis::steady::{ParamBase, Window};
+use crate::analysis::steady::{ParamBase, Window, steady_response};
 use crate::io::config::Config;
 use crate::model::Geometry;
+use crate::sim::simulate;
 
 /// The swept key of every bifurcation diagram of the paper.
 pub const PARAM: &str = "excitation.a_v";
@@ -29,7 +31,7 @@ pub const PARAM: &str = "excitation.a_v";
 pub const PAPER_E: f64 = 0.925;
 
 /// One way of computing a bifurcation diagram.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Variant {
     /// The preset as it is: ratio law r = 0.925, DOP853, from rest, tumble
@@ -55,7 +57,20 @@ pub enum Variant {
     /// The run stops when the normal force vanishes (`run.flight = "stop"`)
     /// instead of integrating the grounded equations on, as the paper did.
     FlightStop,
+    /// The paper's own impact law with friction at impact, its eqs. 17–27
+    /// (`impact.law = "impulse"`, e = 0, μ̄ = μ): for a block that does not
+    /// slip it is Housner's law; a slipping corner loses energy to friction.
+    ImpulseLaw,
+    /// The `ratio` impact law with this angular-velocity ratio r instead of
+    /// 0.925: a scan over r, to see whether any r reproduces the paper's
+    /// ranges.
+    ImpactRatio(f64),
 }
+
+/// The ratios r of the impact-ratio scan, besides those of the preset
+/// (0.925), Housner (0.9118) and the printed eq. 20 (0.830): between and
+/// around them.
+pub const R_SCAN: [f64; 5] = [0.85, 0.87, 0.89, 0.94, 0.96];
 
 impl Variant {
     /// The variants run for the investigation of a diagram that differs.
@@ -68,29 +83,48 @@ impl Variant {
         Variant::FlightStop,
     ];
 
-    /// Name used in file names and JSON (`paper`, `ralston`, …).
-    pub fn slug(self) -> &'static str {
+    /// Name used in file names and JSON (`paper`, `ralston`, `r0.85`, …).
+    pub fn slug(self) -> String {
         match self {
-            Variant::Paper => "paper",
-            Variant::Ralston => "ralston",
-            Variant::ContinuationUp => "continuation-up",
-            Variant::Housner => "housner",
-            Variant::PrintedEq20 => "printed-eq20",
-            Variant::TumbleAtSide => "tumble-at-side",
-            Variant::FlightStop => "flight-stop",
+            Variant::Paper => "paper".to_string(),
+            Variant::Ralston => "ralston".to_string(),
+            Variant::ContinuationUp => "continuation-up".to_string(),
+            Variant::Housner => "housner".to_string(),
+            Variant::PrintedEq20 => "printed-eq20".to_string(),
+            Variant::TumbleAtSide => "tumble-at-side".to_string(),
+            Variant::FlightStop => "flight-stop".to_string(),
+            Variant::ImpulseLaw => "impulse".to_string(),
+            Variant::ImpactRatio(r) => format!("r{r}"),
         }
     }
 
     /// What the variant changes, in a few words, for titles and tables.
-    pub fn title(self) -> &'static str {
+    pub fn title(self) -> String {
         match self {
-            Variant::Paper => "preset (r = 0.925, DOP853, from rest, tumble at |Θ| = 1, flight ignored)",
-            Variant::Ralston => "VARIANT: the paper's Ralston RK2, step 0.004",
-            Variant::ContinuationUp => "VARIANT: continuation upwards in A_v",
-            Variant::Housner => "VARIANT: Housner's r = 0.9118 (eq. 22)",
-            Variant::PrintedEq20 => "VARIANT: eq. 20 as printed with e = 0.925 (r = 0.830)",
-            Variant::TumbleAtSide => "VARIANT: tumble only at |θ| = π/2",
-            Variant::FlightStop => "VARIANT: stop at flight (N ≤ 0)",
+            Variant::Paper => "preset (r = 0.925, DOP853, from rest, tumble at |Θ| = 1, flight ignored)".to_string(),
+            Variant::Ralston => "VARIANT: the paper's Ralston RK2, step 0.004".to_string(),
+            Variant::ContinuationUp => "VARIANT: continuation upwards in A_v".to_string(),
+            Variant::Housner => "VARIANT: Housner's r = 0.9118 (eq. 22)".to_string(),
+            Variant::PrintedEq20 => "VARIANT: eq. 20 as printed with e = 0.925 (r = 0.830)".to_string(),
+            Variant::TumbleAtSide => "VARIANT: tumble only at |θ| = π/2".to_string(),
+            Variant::FlightStop => "VARIANT: stop at flight (N ≤ 0)".to_string(),
+            Variant::ImpulseLaw => "VARIANT: the paper's impact law with friction, eqs. 17–27 (e = 0)".to_string(),
+            Variant::ImpactRatio(r) => format!("VARIANT: impact ratio r = {r}"),
+        }
+    }
+
+    /// What the variant changes, shortest form, for figure titles.
+    pub fn short_label(self) -> String {
+        match self {
+            Variant::Paper => "preset".to_string(),
+            Variant::Ralston => "Ralston RK2, fixed step 0.004 (the paper's integrator)".to_string(),
+            Variant::ContinuationUp => "continuation upwards in A_v".to_string(),
+            Variant::Housner => "Housner impact, r = 0.9118 (eq. 22)".to_string(),
+            Variant::PrintedEq20 => "eq. 20 as printed, e = 0.925 → r = 0.830".to_string(),
+            Variant::TumbleAtSide => "tumble only at |θ| = π/2".to_string(),
+            Variant::FlightStop => "stop at flight (N ≤ 0)".to_string(),
+            Variant::ImpulseLaw => "impact law of eqs. 17–27 with friction, e = 0".to_string(),
+            Variant::ImpactRatio(r) => format!("impact ratio r = {r}"),
         }
     }
 
@@ -106,6 +140,8 @@ impl Variant {
             ],
             Variant::TumbleAtSide => vec![format!("run.tumble_theta={:?}", geo.side_theta())],
             Variant::FlightStop => vec!["run.flight=stop".to_string()],
+            Variant::ImpulseLaw => vec!["impact.law=impulse".to_string(), "impact.e=0".to_string()],
+            Variant::ImpactRatio(r) => vec!["impact.law=ratio".to_string(), format!("impact.r={r:?}")],
         }
     }
 
@@ -118,7 +154,9 @@ impl Variant {
             | Variant::Housner
             | Variant::PrintedEq20
             | Variant::TumbleAtSide
-            | Variant::FlightStop => Continuation::None,
+            | Variant::FlightStop
+            | Variant::ImpulseLaw
+            | Variant::ImpactRatio(_) => Continuation::None,
         }
     }
 }
@@ -198,6 +236,90 @@ pub fn run_diagram(
         values,
         wall_s: start.elapsed().as_secs_f64(),
     })
+}
+
+/// When each tumbled value of `d` tumbled: `(A_v, τ of the tumble)`, in
+/// increasing A_v, by running those values again exactly as the diagram
+/// did (deterministic, so the same trajectory). Only for a diagram seeded
+/// from rest (not continuation), whose runs depend on the value alone. A tumble
+/// long after τ = 0 means the block rocked, possibly chaotically, for that
+/// long first: a transient, not an immediate overturn.
+pub fn tumble_times(d: &Diagram) -> Result<Vec<(f64, f64)>, ReproduceError> {
+    let fail = |e: String| ReproduceError::Figure {
+        figure: d.figure,
+        what: format!("tumble times ({})", d.variant.slug()),
+        error: e,
+    };
+    if d.variant.continuation() != Continuation::None {
+        return Err(fail(
+            "a continuation diagram's runs depend on the previous value".to_string(),
+        ));
+    }
+    let preset = format!("fig{}", d.figure);
+    let base = ParamBase::load(Some(&preset), None, &d.sets).map_err(|e| fail(e.to_string()))?;
+    let tumbled: Vec<f64> = d
+        .values
+        .iter()
+        .filter(|v| v.response == Response::Tumbled)
+        .map(|v| v.value)
+        .collect();
+    tumbled
+        .par_iter()
+        .map(|&a_v| {
+            let mut cfg = base.resolve(&[(PARAM, a_v)]).map_err(|e| fail(e.to_string()))?;
+            cfg.tau_end = d.settings.window.tau_end;
+            let model = cfg.model().map_err(|e| fail(e.to_string()))?;
+            let mut opts = cfg.run_options();
+            opts.output_dt = None;
+            // As the diagram ran it: the section times are step ends, so
+            // they shape the (chaotic) trajectory too.
+            opts.section = true;
+            let res = simulate(model, &cfg.initial(), &opts).map_err(|e| fail(format!("A_v = {a_v}: {e}")))?;
+            Ok((a_v, res.tumble_tau.unwrap_or(res.tau_end)))
+        })
+        .collect()
+}
+
+/// Neighbouring runs of tumbled values: `(A_v, responses of its
+/// neighbours)` per value.
+pub type Neighbours = Vec<(f64, Vec<Response>)>;
+
+/// Neighbouring runs of the tumbled values of `d` with A_v in
+/// [`from`, `to`]: for each, `count` runs at A_v·(1 + k·10⁻⁹), k = 1 …
+/// `count`, classified over the diagram's window. A tumble that ends a
+/// chaotic transient depends on such tiny changes; the share of
+/// neighbours that still rock at the window's end is what runs like the
+/// paper's could have seen. Deterministic (collected by index).
+pub fn tumbled_neighbours(d: &Diagram, from: f64, to: f64, count: usize) -> Result<Neighbours, ReproduceError> {
+    let fail = |e: String| ReproduceError::Figure {
+        figure: d.figure,
+        what: format!("neighbouring runs ({})", d.variant.slug()),
+        error: e,
+    };
+    let preset = format!("fig{}", d.figure);
+    let base = ParamBase::load(Some(&preset), None, &d.sets).map_err(|e| fail(e.to_string()))?;
+    let tumbled: Vec<f64> = d
+        .values
+        .iter()
+        .filter(|v| v.response == Response::Tumbled && v.value >= from - 1e-9 && v.value <= to + 1e-9)
+        .map(|v| v.value)
+        .collect();
+    let jobs: Vec<(f64, usize)> = tumbled.iter().flat_map(|&a| (1..=count).map(move |k| (a, k))).collect();
+    let responses = jobs
+        .par_iter()
+        .map(|&(a_v, k)| {
+            let value = a_v * (1.0 + k as f64 * super::response::NEIGHBOUR_STEP);
+            let cfg = base.resolve(&[(PARAM, value)]).map_err(|e| fail(e.to_string()))?;
+            steady_response(&cfg, &d.settings.window, &d.settings.classify, None)
+                .map(|s| s.response)
+                .map_err(|e| fail(format!("A_v = {value}: {e}")))
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    Ok(tumbled
+        .iter()
+        .zip(responses.chunks(count.max(1)))
+        .map(|(a, r)| (*a, r.to_vec()))
+        .collect())
 }
 
 impl Diagram {
@@ -558,9 +680,20 @@ mod tests {
                 Variant::TumbleAtSide => assert_eq!(cfg.tumble_theta, geo.side_theta()),
                 Variant::FlightStop => assert_eq!(cfg.flight, crate::model::FlightPolicy::Stop),
                 Variant::ContinuationUp => assert_eq!(v.continuation(), Continuation::Up),
-                Variant::Paper => unreachable!(),
+                Variant::Paper | Variant::ImpulseLaw | Variant::ImpactRatio(_) => unreachable!(),
             }
         }
+    }
+
+    #[test]
+    fn an_impact_ratio_variant_sets_the_ratio_law() {
+        let geo = Geometry::new(1.0, 4.0);
+        let cfg = ParamBase::load(Some("fig4"), None, &Variant::ImpactRatio(0.87).sets(&geo))
+            .unwrap()
+            .resolve(&[])
+            .unwrap();
+        assert_eq!((cfg.law.as_str(), cfg.r), ("ratio", 0.87));
+        assert_eq!(Variant::ImpactRatio(0.87).slug(), "r0.87");
     }
 
     #[test]

@@ -39,9 +39,11 @@ use crate::analysis::orbit_diagram::Grid;
 use crate::analysis::steady::Window;
 use crate::io::output::OutputError;
 use crate::plot::PlotError;
-use diagrams::{Diagram, DiagramSettings, Variant, run_diagram};
+use diagrams::{Diagram, DiagramSettings, R_SCAN, Variant, run_diagram, tumble_times, tumbled_neighbours};
 use paper::{FIGURES, FigureKind, PaperFigure};
-use response::{ResponseExample, ResponseSettings, run_response};
+use response::{
+    ResponseExample, ResponseSettings, ResponseVariant, response_variants, run_response, run_response_variant,
+};
 use scan::{Scan, lyapunov_scan};
 
 /// The figures whose diagrams are investigated with the variants: the
@@ -130,13 +132,34 @@ pub struct Reproduction {
     pub diagrams: Vec<Diagram>,
     /// The response examples, in figure order.
     pub responses: Vec<ResponseExample>,
+    /// The response examples recomputed with impact-law variants, in
+    /// figure then variant order.
+    pub response_variants: Vec<ResponseVariant>,
     /// Lyapunov scans along diagrams.
     pub scans: Vec<Scan>,
+    /// For each investigated figure's preset diagram: when each tumbled
+    /// value tumbled, `(A_v, τ)`.
+    pub tumbles: Vec<(u32, Vec<(f64, f64)>)>,
+    /// For each investigated figure's preset diagram: the neighbouring runs
+    /// (A_v·(1 + k·10⁻⁹)) of its tumbled values in the paper's last range.
+    pub survivals: Vec<(u32, diagrams::Neighbours)>,
     /// Wall time of the computation, s.
     pub wall_s: f64,
+    /// Summed wall times of the parts (diagrams, response examples with
+    /// their variants, then the Lyapunov scan, tumble times and
+    /// neighbouring runs), s; they overlap in parallel, so
+    /// they add up to more than `wall_s` on several threads.
+    pub part_s: [f64; 3],
 }
 
 impl Reproduction {
+    /// The diagram of `figure` with the paper's own impact law (eqs.
+    /// 17–27, e = 0; see [`paper_law`]).
+    pub fn paper_law_diagram(&self, figure: u32) -> Option<&Diagram> {
+        let d = self.diagram(figure, Variant::Paper)?;
+        self.diagram(figure, paper_law(&d.config))
+    }
+
     /// The diagram of `figure` computed with `variant`.
     pub fn diagram(&self, figure: u32, variant: Variant) -> Option<&Diagram> {
         self.diagrams
@@ -153,6 +176,44 @@ impl Reproduction {
     pub fn scan(&self, figure: u32) -> Option<&Scan> {
         self.scans.iter().find(|s| s.figure == figure)
     }
+
+    /// The impact-law variants of `figure`'s response example.
+    pub fn response_variants(&self, figure: u32) -> Vec<&ResponseVariant> {
+        self.response_variants.iter().filter(|r| r.figure == figure).collect()
+    }
+
+    /// The neighbouring runs of `figure`'s tumbled values.
+    pub fn survivals(&self, figure: u32) -> Option<&diagrams::Neighbours> {
+        self.survivals.iter().find(|t| t.0 == figure).map(|t| &t.1)
+    }
+
+    /// The tumble times of `figure`'s preset diagram.
+    pub fn tumbles(&self, figure: u32) -> Option<&[(f64, f64)]> {
+        self.tumbles.iter().find(|t| t.0 == figure).map(|t| t.1.as_slice())
+    }
+
+    /// The diagrams of `figure`'s impact-ratio scan, with the preset's,
+    /// Housner's and the printed eq. 20's, in increasing r: `(r, diagram)`.
+    pub fn ratio_scan(&self, figure: u32) -> Vec<(f64, &Diagram)> {
+        let mut out: Vec<(f64, &Diagram)> = self
+            .diagrams
+            .iter()
+            .filter(|d| d.figure == figure)
+            .filter_map(|d| match d.variant {
+                Variant::Paper | Variant::Housner | Variant::PrintedEq20 | Variant::ImpactRatio(_) => {
+                    let r = d.config.geometry().housner_r();
+                    Some((if d.config.law == "housner" { r } else { d.config.r }, d))
+                }
+                Variant::Ralston
+                | Variant::ContinuationUp
+                | Variant::TumbleAtSide
+                | Variant::FlightStop
+                | Variant::ImpulseLaw => None,
+            })
+            .collect();
+        out.sort_by(|a, b| a.0.total_cmp(&b.0));
+        out
+    }
 }
 
 /// One unit of work.
@@ -160,17 +221,39 @@ impl Reproduction {
 enum Job {
     Diagram(&'static PaperFigure, Variant),
     Response(&'static PaperFigure),
+    ResponseVariant(&'static PaperFigure, Variant),
 }
 
 enum Done {
     Diagram(Box<Diagram>),
     Response(Box<ResponseExample>),
+    ResponseVariant(Box<ResponseVariant>),
+}
+
+/// The preset configuration of `f`.
+fn config_of(f: &PaperFigure) -> Result<crate::io::config::Config, ReproduceError> {
+    crate::io::config::load(Some(f.preset), None, &[]).map_err(|e| ReproduceError::Figure {
+        figure: f.number,
+        what: "configuration".to_string(),
+        error: e.to_string(),
+    })
+}
+
+/// The paper's own impact law (its eqs. 17–27 with e = 0) as a variant of
+/// `cfg`: [`Variant::ImpulseLaw`] where the block can slide, and
+/// [`Variant::Housner`] (the same law without slip) where it cannot.
+pub fn paper_law(cfg: &crate::io::config::Config) -> Variant {
+    if cfg.mu_s.is_finite() {
+        Variant::ImpulseLaw
+    } else {
+        Variant::Housner
+    }
 }
 
 /// The jobs of `options`: continuation sweeps first (they are sequential,
 /// so they should not be the last to start), then every other diagram,
-/// then the response examples.
-fn jobs(options: &Options) -> Vec<Job> {
+/// then the response examples and their variants.
+fn jobs(options: &Options) -> Result<Vec<Job>, ReproduceError> {
     let wanted: Vec<&'static PaperFigure> = FIGURES.iter().filter(|f| options.wants(f.number)).collect();
     let mut slow = Vec::new();
     let mut rest = Vec::new();
@@ -186,13 +269,28 @@ fn jobs(options: &Options) -> Vec<Job> {
                             rest.push(Job::Diagram(f, v));
                         }
                     }
+                    for r in R_SCAN {
+                        rest.push(Job::Diagram(f, Variant::ImpactRatio(r)));
+                    }
+                } else {
+                    // Every diagram also with the paper's own impact law
+                    // (eqs. 17–27, e = 0), which is Housner's without
+                    // sliding; the investigated figures have it already.
+                    let cfg = config_of(f)?;
+                    rest.push(Job::Diagram(f, paper_law(&cfg)));
                 }
             }
-            FigureKind::Response => rest.push(Job::Response(f)),
+            FigureKind::Response => {
+                rest.push(Job::Response(f));
+                let cfg = config_of(f)?;
+                for v in response_variants(&cfg) {
+                    rest.push(Job::ResponseVariant(f, v));
+                }
+            }
         }
     }
     slow.extend(rest);
-    slow
+    Ok(slow)
 }
 
 /// Computes every wanted figure on the current rayon pool; `progress`
@@ -213,16 +311,16 @@ pub fn reproduce(options: &Options, progress: &ProgressBar) -> Result<Reproducti
     };
     let response_settings = options.response_settings();
     let classify = diagram_settings.classify;
-    let jobs = jobs(options);
+    let jobs = jobs(options)?;
     progress.set_length(jobs.len() as u64 + u64::from(options.wants(SCANNED)));
     let done = jobs
         .par_iter()
         .map(|job| {
             let out = match *job {
                 Job::Diagram(f, v) => run_diagram(f, v, &diagram_settings).map(|d| Done::Diagram(Box::new(d))),
-                Job::Response(f) => {
-                    run_response(f, &response_settings, &classify).map(|r| Done::Response(Box::new(r)))
-                }
+                Job::Response(f) => run_response(f, &response_settings, &classify).map(|r| Done::Response(Box::new(r))),
+                Job::ResponseVariant(f, v) => run_response_variant(f, v, &response_settings, &classify)
+                    .map(|r| Done::ResponseVariant(Box::new(r))),
             };
             progress.inc(1);
             out
@@ -230,36 +328,70 @@ pub fn reproduce(options: &Options, progress: &ProgressBar) -> Result<Reproducti
         .collect::<Result<Vec<_>, _>>()?;
     let mut diagrams = Vec::new();
     let mut responses = Vec::new();
+    let mut variants = Vec::new();
     for d in done {
         match d {
             Done::Diagram(d) => diagrams.push(*d),
             Done::Response(r) => responses.push(*r),
+            Done::ResponseVariant(r) => variants.push(*r),
         }
     }
     let variant_index = |v: Variant| {
         std::iter::once(Variant::Paper)
             .chain(Variant::INVESTIGATION)
+            .chain([Variant::ImpulseLaw])
+            .chain(R_SCAN.map(Variant::ImpactRatio))
             .position(|x| x == v)
             .unwrap_or(usize::MAX)
     };
     diagrams.sort_by_key(|d| (d.variant != Variant::Paper, d.figure, variant_index(d.variant)));
     responses.sort_by_key(|r| r.figure);
+    // Jobs were collected in order, so the variants already are in figure
+    // then variant order.
 
+    let part_s = [
+        diagrams.iter().map(|d| d.wall_s).sum(),
+        responses.iter().map(|r| r.wall_s).sum::<f64>() + variants.iter().map(|r| r.wall_s).sum::<f64>(),
+        0.0,
+    ];
+    let after = std::time::Instant::now();
     let mut scans = Vec::new();
     if let Some(d) = diagrams
         .iter()
         .find(|d| d.figure == SCANNED && d.variant == Variant::Paper)
     {
-        scans.push(lyapunov_scan(d, options.scan_window(), if options.quick { 4 } else { 8 })?);
+        scans.push(lyapunov_scan(
+            d,
+            options.scan_window(),
+            if options.quick { 4 } else { 8 },
+        )?);
         progress.inc(1);
     }
+    let tumbles = diagrams
+        .iter()
+        .filter(|d| INVESTIGATED.contains(&d.figure) && d.variant == Variant::Paper)
+        .map(|d| tumble_times(d).map(|t| (d.figure, t)))
+        .collect::<Result<Vec<_>, _>>()?;
+    let neighbours = if options.quick { 2 } else { 8 };
+    let survivals = diagrams
+        .iter()
+        .filter(|d| INVESTIGATED.contains(&d.figure) && d.variant == Variant::Paper)
+        .filter_map(|d| {
+            let last = paper::figure(d.figure)?.ranges.last()?;
+            Some(tumbled_neighbours(d, last.from, last.to, neighbours).map(|t| (d.figure, t)))
+        })
+        .collect::<Result<Vec<_>, _>>()?;
     Ok(Reproduction {
         options: options.clone(),
         diagram_settings,
         response_settings,
         diagrams,
         responses,
+        response_variants: variants,
         scans,
+        tumbles,
+        survivals,
         wall_s: start.elapsed().as_secs_f64(),
+        part_s: [part_s[0], part_s[1], after.elapsed().as_secs_f64()],
     })
 }

@@ -384,7 +384,10 @@ mod tests {
             assert!(f.ranges.windows(2).all(|w| w[0].to <= w[1].from + 1e-12));
             assert!(!f.statements.is_empty());
         }
-        assert_eq!(FIGURES.iter().map(|f| f.number).collect::<Vec<_>>(), (3..=19).collect::<Vec<_>>());
+        assert_eq!(
+            FIGURES.iter().map(|f| f.number).collect::<Vec<_>>(),
+            (3..=19).collect::<Vec<_>>()
+        );
     }
 
     #[test]

@@ -9,19 +9,23 @@
 //!    after the transient show the attractor with many more points than
 //!    the paper's 255, and they are what the response is classified from;
 //! 3. **the Lyapunov run**, tangent dynamics and two trajectories on one
-//!    fiducial trajectory ([`Method::Both`]).
+//!    fiducial trajectory ([`Method::Both`]); if it tumbles, a second one
+//!    over the rocking before the tumble gives the finite-time exponent of
+//!    that chaotic transient, labelled as such;
+//! 4. **neighbouring runs** at A_v·(1 + k·10⁻⁹), classified over the
+//!    paper's window: how typical the preset's own run is.
 //!
-//! A run that tumbles is reported as such (with its τ), never as NaN.
+//! A run that tumbles is reported as such (with its τ), never as NaN; its
+//! Poincaré map and long spectrum then show the rocking before the tumble.
 
 use super::ReproduceError;
+use super::diagrams::Variant;
 use super::paper::PaperFigure;
 use crate::analysis::classify::{ClassifyOptions, Response, classify_points};
-use crate::analysis::lyapunov::{Lyapunov, LyapunovOptions, Method, lyapunov};
+use crate::analysis::lyapunov::{Lyapunov, LyapunovOptions, Method, NoExponent, lyapunov};
 use crate::analysis::section::{after_transient, block_coordinates};
-use crate::analysis::spectrum::{
-    PAPER_DT, Peak, SpectrumOptions, SpectrumWindow, theta_spectrum,
-};
-use crate::analysis::steady::ParamBase;
+use crate::analysis::spectrum::{PAPER_DT, Peak, SpectrumOptions, SpectrumWindow, theta_spectrum};
+use crate::analysis::steady::{ParamBase, Window, steady_response};
 use crate::io::config::Config;
 use crate::sim::{Outcome, simulate};
 
@@ -42,13 +46,26 @@ pub struct ResponseSettings {
     /// End of the long run, τ. Default 4000: ~4300 Poincaré points at
     /// Ω_h = 8, enough to draw the attractor.
     pub long_end: f64,
+    /// The response is classified from the long run's last `end_window`
+    /// τ: what it settles to, after any chaotic transient. Default 800
+    /// (~1000 points at Ω_h = 8).
+    pub end_window: f64,
     /// Discarded start of the Lyapunov run, τ.
     pub lyapunov_transient: f64,
     /// End of the Lyapunov run, τ.
     pub lyapunov_end: f64,
     /// Batches for the Lyapunov error bars.
     pub lyapunov_batches: usize,
+    /// Neighbouring runs: A_v·(1 + k·10⁻⁹) for k = 1 … this, each over the
+    /// paper's window (τ 600–800) and classified, to show how typical the
+    /// preset's own run is of the response at this A_v (a chaotic response
+    /// makes every neighbour follow a different trajectory).
+    pub neighbours: usize,
 }
+
+/// Relative step of the neighbouring runs' A_v: far below any precision
+/// the paper could have meant, far above rounding.
+pub const NEIGHBOUR_STEP: f64 = 1e-9;
 
 impl ResponseSettings {
     /// The full settings: paper's run to 800, long run to 4000, Lyapunov
@@ -59,22 +76,27 @@ impl ResponseSettings {
             history_end: 800.0,
             transient: 600.0,
             long_end: 4000.0,
+            end_window: 800.0,
             lyapunov_transient: 600.0,
             lyapunov_end: 2600.0,
             lyapunov_batches: 16,
+            neighbours: 24,
         }
     }
 
-    /// CI-sized settings: the same paper's run, a long run to 1200 and
-    /// Lyapunov exponents over τ 200–600 (a rough estimate).
+    /// CI-sized settings: the same paper's run, a long run to 1200,
+    /// Lyapunov exponents over τ 600–1000 (a rough estimate of the steady
+    /// response) and 4 neighbours.
     pub fn quick() -> Self {
         Self {
             history_end: 800.0,
             transient: 600.0,
             long_end: 1200.0,
-            lyapunov_transient: 200.0,
-            lyapunov_end: 600.0,
+            end_window: 400.0,
+            lyapunov_transient: 600.0,
+            lyapunov_end: 1000.0,
             lyapunov_batches: 8,
+            neighbours: 4,
         }
     }
 }
@@ -135,15 +157,29 @@ pub struct ResponseExample {
     pub long_tau_end: f64,
     /// Largest |Θ| over the long run.
     pub long_max_abs_theta: f64,
-    /// (Θ, Θ') of the long run's section points after the transient.
+    /// First τ of the Poincaré points and of the long spectrum: the
+    /// transient, or a quarter of the run's length when it tumbled before
+    /// the transient was over (the points then show the chaotic transient).
+    pub steady_from: f64,
+    /// (Θ, Θ') of the long run's section points from `steady_from` on.
     pub poincare: Vec<(f64, f64)>,
     /// Mean Θ and mean Θ' of those points (the attractor's asymmetry).
     pub poincare_mean: Option<(f64, f64)>,
-    /// The long run's class, decided by the Lyapunov exponent when there
-    /// is one.
+    /// First τ of the points the response is classified from (the last
+    /// `end_window` of the long run).
+    pub end_from: f64,
+    /// The class of the end of the long run; between chaotic and
+    /// quasiperiodic, the Lyapunov exponent decides when there is one.
     pub response: Response,
     /// The Lyapunov result, or why it failed.
     pub lyapunov: Result<Lyapunov, String>,
+    /// When the Lyapunov run tumbled: the exponent of the chaotic transient
+    /// before it, over `(from, to)` τ, with the tumble τ — a finite-time
+    /// exponent, labelled as such.
+    pub transient_lyapunov: Option<TransientExponent>,
+    /// The responses of the neighbouring runs (see
+    /// [`ResponseSettings::neighbours`]), in k order.
+    pub neighbours: Vec<Response>,
     /// Wall time, s.
     pub wall_s: f64,
 }
@@ -200,7 +236,13 @@ pub fn run_response(
     long_opts.tau_end = settings.long_end;
     long_opts.output_dt = Some(LONG_DT);
     let long = simulate(model.clone(), &init, &long_opts).map_err(|e| fail("the long run", e.to_string()))?;
-    let first = (settings.transient / LONG_DT).ceil() as usize;
+    let terminal = matches!(long.outcome, Outcome::Tumbled | Outcome::Flight);
+    let steady_from = if terminal && long.tau_end < settings.transient + 50.0 {
+        0.25 * long.tau_end
+    } else {
+        settings.transient
+    };
+    let first = (steady_from / LONG_DT).ceil() as usize;
     let last = (long.tau_end / LONG_DT).floor() as usize;
     let spectrum_long = if last > first + 64 {
         spectrum(
@@ -215,16 +257,13 @@ pub fn run_response(
         )
     } else {
         Err(format!(
-            "the run ended at τ = {:.1}, before a window after τ = {} could be taken",
-            long.tau_end, settings.transient
+            "the run ended at τ = {:.1}, before a window after τ = {steady_from} could be taken",
+            long.tau_end
         ))
     };
-    let steady = after_transient(&long.section, settings.transient);
-    let poincare: Vec<(f64, f64)> = if long.outcome == Outcome::Tumbled || long.outcome == Outcome::Flight {
-        Vec::new()
-    } else {
-        steady.iter().map(|r| (r.theta, r.theta_dot)).collect()
-    };
+    let steady = after_transient(&long.section, steady_from);
+    let end_from = (long.tau_end - settings.end_window).max(steady_from);
+    let poincare: Vec<(f64, f64)> = steady.iter().map(|r| (r.theta, r.theta_dot)).collect();
     let poincare_mean = (!poincare.is_empty()).then(|| {
         let n = poincare.len() as f64;
         (
@@ -234,21 +273,31 @@ pub fn run_response(
     });
 
     // 3. Lyapunov exponents.
-    let lyap_opts = LyapunovOptions {
-        method: Method::Both,
-        transient_tau: settings.lyapunov_transient,
-        total_tau: settings.lyapunov_end,
-        batches: settings.lyapunov_batches,
-        ..LyapunovOptions::default()
-    };
-    let lyapunov = lyapunov(&model, &init, &lyap_opts).map_err(|e| e.to_string());
+    let (lyap, transient_lyapunov) = exponents(&model, &init, settings, Method::Both, period);
+
+    // 4. The neighbours.
+    let neighbours = (1..=settings.neighbours)
+        .map(|k| {
+            let a_v = config.a_v * (1.0 + k as f64 * NEIGHBOUR_STEP);
+            let cfg = base
+                .resolve(&[("excitation.a_v", a_v)])
+                .map_err(|e| fail("neighbouring runs", e.to_string()))?;
+            let w = Window {
+                transient: settings.transient,
+                tau_end: settings.history_end,
+            };
+            steady_response(&cfg, &w, classify, None)
+                .map(|s| s.response)
+                .map_err(|e| fail("neighbouring runs", e.to_string()))
+        })
+        .collect::<Result<Vec<_>, _>>()?;
 
     let response = match long.outcome {
         Outcome::Tumbled => Response::Tumbled,
         Outcome::Flight => Response::Flight,
         Outcome::Rest | Outcome::Running => {
-            let lambda = lyapunov.as_ref().ok().and_then(Lyapunov::largest_per_tau);
-            classify_points(&block_coordinates(steady), lambda, classify)
+            let lambda = lyap.as_ref().ok().and_then(Lyapunov::largest_per_tau);
+            classify_points(&block_coordinates(after_transient(steady, end_from)), lambda, classify)
                 .map_err(|e| fail("classification", e.to_string()))?
         }
     };
@@ -269,10 +318,192 @@ pub fn run_response(
         long_outcome: long.outcome,
         long_tau_end: long.tau_end,
         long_max_abs_theta: long.max_abs_theta,
+        steady_from,
+        end_from,
         poincare,
         poincare_mean,
         response,
-        lyapunov,
+        lyapunov: lyap,
+        transient_lyapunov,
+        neighbours,
+        wall_s: start.elapsed().as_secs_f64(),
+    })
+}
+
+/// The Lyapunov exponents of `model` from `init` over the settings'
+/// window by `method`; if that run tumbles, also those of the rocking
+/// before the tumble (from a quarter of its length, or the usual
+/// transient if earlier, to five periods before it, if that leaves at
+/// least 20 periods), with that window `(from, to, tumble τ)`.
+pub fn exponents(
+    model: &crate::model::Model,
+    init: &crate::sim::InitialState,
+    settings: &ResponseSettings,
+    method: Method,
+    period: f64,
+) -> TransientExponents {
+    let opts = LyapunovOptions {
+        method,
+        transient_tau: settings.lyapunov_transient,
+        total_tau: settings.lyapunov_end,
+        batches: settings.lyapunov_batches,
+        ..LyapunovOptions::default()
+    };
+    let main = lyapunov(model, init, &opts).map_err(|e| e.to_string());
+    let transient = match &main {
+        Ok(Lyapunov::None {
+            no_exponent: NoExponent::Tumbled,
+            tau,
+            ..
+        }) => {
+            let from = settings.lyapunov_transient.min(0.25 * tau);
+            let to = tau - 5.0 * period;
+            (to - from >= 20.0 * period).then(|| {
+                let opts = LyapunovOptions {
+                    transient_tau: from,
+                    total_tau: to,
+                    ..opts
+                };
+                TransientExponent {
+                    window: TransientWindow {
+                        from,
+                        to,
+                        tumble_tau: *tau,
+                    },
+                    lyapunov: lyapunov(model, init, &opts).map_err(|e| e.to_string()),
+                }
+            })
+        }
+        Ok(_) | Err(_) => None,
+    };
+    (main, transient)
+}
+
+/// The result of [`exponents`]: the exponents over the settings' window,
+/// and those of the transient before a tumble.
+pub type TransientExponents = (Result<Lyapunov, String>, Option<TransientExponent>);
+
+/// The window of a chaotic transient's exponent, τ.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct TransientWindow {
+    /// Start of the accumulation.
+    pub from: f64,
+    /// End of the accumulation (five periods before the tumble).
+    pub to: f64,
+    /// When that run tumbled.
+    pub tumble_tau: f64,
+}
+
+/// The Lyapunov exponents of the rocking before a tumble: a finite-time
+/// exponent of a chaotic transient, labelled as such wherever it is shown.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TransientExponent {
+    /// Its window.
+    pub window: TransientWindow,
+    /// The exponents, or why there are none.
+    pub lyapunov: Result<Lyapunov, String>,
+}
+
+/// A response example recomputed with an impact-law variant (fewer
+/// outputs: no history, spectra or neighbours).
+#[derive(Clone, Debug)]
+pub struct ResponseVariant {
+    /// The paper's figure number.
+    pub figure: u32,
+    /// The variant.
+    pub variant: Variant,
+    /// Its `--set` assignments.
+    pub sets: Vec<String>,
+    /// Largest |Θ| over the paper's run, τ 0–800.
+    pub max_abs_theta: f64,
+    /// τ at which the long run tumbled, if it did.
+    pub tumble_tau: Option<f64>,
+    /// First τ of the points the response is classified from.
+    pub end_from: f64,
+    /// τ at which the long run ended.
+    pub long_tau_end: f64,
+    /// The class of the end of the long run.
+    pub response: Response,
+    /// Largest exponent by tangent dynamics over the settings' window.
+    pub lyapunov: Result<Lyapunov, String>,
+    /// The exponent of the transient before a tumble.
+    pub transient_lyapunov: Option<TransientExponent>,
+    /// Wall time, s.
+    pub wall_s: f64,
+}
+
+/// The impact-law variants run for a response example: Housner's law and
+/// the printed eq. 20 (r = 0.830) for every figure, and the paper's
+/// impact law with friction (eqs. 17–27) where the block can slide
+/// (without sliding it is Housner's law).
+pub fn response_variants(cfg: &Config) -> Vec<Variant> {
+    if cfg.mu_s.is_finite() {
+        vec![Variant::Housner, Variant::ImpulseLaw, Variant::PrintedEq20]
+    } else {
+        vec![Variant::Housner, Variant::PrintedEq20]
+    }
+}
+
+/// Computes the response example of `figure` with `variant`.
+pub fn run_response_variant(
+    figure: &PaperFigure,
+    variant: Variant,
+    settings: &ResponseSettings,
+    classify: &ClassifyOptions,
+) -> Result<ResponseVariant, ReproduceError> {
+    let start = std::time::Instant::now();
+    let fail = |what: &str, e: String| ReproduceError::Figure {
+        figure: figure.number,
+        what: format!("{what} ({})", variant.slug()),
+        error: e,
+    };
+    let plain = ParamBase::load(Some(figure.preset), None, &[]).map_err(|e| fail("configuration", e.to_string()))?;
+    let geo = plain
+        .resolve(&[])
+        .map_err(|e| fail("configuration", e.to_string()))?
+        .geometry();
+    let sets = variant.sets(&geo);
+    let base = ParamBase::load(Some(figure.preset), None, &sets).map_err(|e| fail("configuration", e.to_string()))?;
+    let mut config = base.resolve(&[]).map_err(|e| fail("configuration", e.to_string()))?;
+    config.tau_end = settings.history_end;
+    let model = config.model().map_err(|e| fail("configuration", e.to_string()))?;
+    let Some(period) = model.excitation.forcing_period() else {
+        return Err(fail("configuration", "the excitation is not harmonic".to_string()));
+    };
+    let init = config.initial();
+    let mut opts = config.run_options();
+    opts.output_dt = None;
+    opts.section = true;
+    let paper = simulate(model.clone(), &init, &opts).map_err(|e| fail("the paper's run", e.to_string()))?;
+    let mut long_opts = opts;
+    long_opts.tau_end = settings.long_end;
+    let long = simulate(model.clone(), &init, &long_opts).map_err(|e| fail("the long run", e.to_string()))?;
+    let (lyap, transient_lyapunov) = exponents(&model, &init, settings, Method::Tangent, period);
+    let end_from = (long.tau_end - settings.end_window).max(settings.transient);
+    let response = match long.outcome {
+        Outcome::Tumbled => Response::Tumbled,
+        Outcome::Flight => Response::Flight,
+        Outcome::Rest | Outcome::Running => {
+            let lambda = lyap.as_ref().ok().and_then(Lyapunov::largest_per_tau);
+            classify_points(
+                &block_coordinates(after_transient(&long.section, end_from)),
+                lambda,
+                classify,
+            )
+            .map_err(|e| fail("classification", e.to_string()))?
+        }
+    };
+    Ok(ResponseVariant {
+        figure: figure.number,
+        variant,
+        sets,
+        max_abs_theta: paper.max_abs_theta,
+        tumble_tau: long.tumble_tau,
+        end_from,
+        long_tau_end: long.tau_end,
+        response,
+        lyapunov: lyap,
+        transient_lyapunov,
         wall_s: start.elapsed().as_secs_f64(),
     })
 }

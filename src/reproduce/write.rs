@@ -23,9 +23,11 @@ use crate::io::output::OutputError;
 use crate::plot::Figure;
 use crate::plot::bifurcation::BifurcationFigure;
 use crate::plot::labels::{grid_decimals, grid_num, num, param_label};
+use crate::plot::outcome_map::{MapColouring, OutcomeMapFigure};
 use crate::plot::poincare::PoincareFigure;
 use crate::plot::spectrum::SpectrumFigure;
 use crate::plot::time_history::TimeHistoryFigure;
+use crate::sim::Outcome;
 
 /// Where the files go: an output directory that is committed at the end.
 pub trait Sink {
@@ -53,7 +55,9 @@ pub fn diagram_stem(d: &Diagram) -> String {
         | Variant::Housner
         | Variant::PrintedEq20
         | Variant::TumbleAtSide
-        | Variant::FlightStop => format!("{}variant_{}_", prefix(d.figure), d.variant.slug()),
+        | Variant::FlightStop
+        | Variant::ImpulseLaw
+        | Variant::ImpactRatio(_) => format!("{}variant_{}_", prefix(d.figure), d.variant.slug()),
     }
 }
 
@@ -92,7 +96,11 @@ pub fn block_and_impact(cfg: &Config) -> String {
 pub fn short_num(x: f64) -> String {
     let s = format!("{x:.4}");
     let s = s.trim_end_matches('0').trim_end_matches('.');
-    if s.is_empty() || s == "-" { "0".to_string() } else { s.to_string() }
+    if s.is_empty() || s == "-" {
+        "0".to_string()
+    } else {
+        s.to_string()
+    }
 }
 
 fn cell(x: f64) -> String {
@@ -149,29 +157,34 @@ fn bifurcation_figure<'a>(
         | Variant::Housner
         | Variant::PrintedEq20
         | Variant::TumbleAtSide
-        | Variant::FlightStop => "each value from rest",
+        | Variant::FlightStop
+        | Variant::ImpulseLaw
+        | Variant::ImpactRatio(_) => "each value from rest",
     };
-    let title = match d.variant {
-        Variant::Paper => format!(
-            "Fig. {} reproduced: bifurcation diagram ({})",
-            d.figure,
-            short_params(&d.config, false)
-        ),
-        Variant::Ralston
-        | Variant::ContinuationUp
-        | Variant::Housner
-        | Variant::PrintedEq20
-        | Variant::TumbleAtSide
-        | Variant::FlightStop => format!("Fig. {} {}", d.figure, d.variant.title()),
+    // Variants name the change in the title and the parameters below it;
+    // the preset names the parameters in the title (a line must fit 1200 px).
+    let (title, first) = if d.variant == Variant::Paper {
+        (
+            format!(
+                "Fig. {} reproduced: bifurcation diagram ({})",
+                d.figure,
+                short_params(&d.config, false)
+            ),
+            block_and_impact(&d.config),
+        )
+    } else {
+        (
+            format!("Fig. {} VARIANT: {}", d.figure, d.variant.short_label()),
+            format!(
+                "{}; B × H = {} × {} m",
+                short_params(&d.config, false),
+                num(d.config.width),
+                num(d.config.height)
+            ),
+        )
     };
     let subtitle = format!(
-        "{}{}; Θ at τ_k = 2πk/Ω_h, {} ≤ τ_k ≤ {}; A_v = {} … {} step {}; {seeding}",
-        if d.variant == Variant::Paper {
-            String::new()
-        } else {
-            format!("{}; ", short_params(&d.config, false))
-        },
-        block_and_impact(&d.config),
+        "{first}; Θ at τ_k = 2πk/Ω_h, {} ≤ τ_k ≤ {}; A_v = {} … {} step {}; {seeding}",
         num(w.transient),
         num(w.tau_end),
         grid_num(g.from, dec),
@@ -188,7 +201,12 @@ fn bifurcation_figure<'a>(
     }
 }
 
-fn write_figure<F: Figure>(sink: &mut dyn Sink, stem: &str, fig: &F, names: &mut Vec<String>) -> Result<(), ReproduceError> {
+fn write_figure<F: Figure>(
+    sink: &mut dyn Sink,
+    stem: &str,
+    fig: &F,
+    names: &mut Vec<String>,
+) -> Result<(), ReproduceError> {
     let png = format!("{stem}.png");
     fig.write_png(&sink.path(&png))?;
     let svg = format!("{stem}.svg");
@@ -206,7 +224,12 @@ fn write_diagram(sink: &mut dyn Sink, d: &Diagram, names: &mut Vec<String>) -> R
         .iter()
         .flat_map(|v| v.points.iter().map(move |p| (v.value, p.theta)))
         .collect();
-    write_figure(sink, &format!("{stem}bifurcation"), &bifurcation_figure(d, &values, &points), names)?;
+    write_figure(
+        sink,
+        &format!("{stem}bifurcation"),
+        &bifurcation_figure(d, &values, &points),
+        names,
+    )?;
     let classes = format!("{stem}classes.csv");
     sink.text(&classes, &classes_csv(d))?;
     names.push(classes);
@@ -216,6 +239,57 @@ fn write_diagram(sink: &mut dyn Sink, d: &Diagram, names: &mut Vec<String>) -> R
         names.push(pts);
     }
     Ok(())
+}
+
+/// The impact-ratio scan of figure `n` as an outcome map over A_v × r
+/// (`figNN_impact_ratio_map`), if at least three ratios were computed.
+fn write_ratio_map(
+    sink: &mut dyn Sink,
+    rep: &Reproduction,
+    n: u32,
+    names: &mut Vec<String>,
+) -> Result<(), ReproduceError> {
+    let scan = rep.ratio_scan(n);
+    let Some((_, first)) = scan.first() else {
+        return Ok(());
+    };
+    if scan.len() < 3 {
+        return Ok(());
+    }
+    let x: Vec<f64> = first.values.iter().map(|v| v.value).collect();
+    let y: Vec<f64> = scan.iter().map(|s| s.0).collect();
+    if scan.iter().any(|(_, d)| d.values.len() != x.len()) {
+        return Err(ReproduceError::Figure {
+            figure: n,
+            what: "impact-ratio map".to_string(),
+            error: "the diagrams of the scan have different grids".to_string(),
+        });
+    }
+    let cells: Vec<(Response, Option<f64>)> = scan
+        .iter()
+        .flat_map(|(_, d)| d.values.iter().map(|v| (v.response, None)))
+        .collect();
+    let w = first.settings.window;
+    let fig = OutcomeMapFigure {
+        title: format!(
+            "Fig. {n} VARIANTS: response over A_v × impact ratio r ({})",
+            short_params(&first.config, false)
+        ),
+        subtitle: format!(
+            "B × H = {} × {} m, ratio impact law (0.925 = preset, 0.9118 = Housner, 0.830 = eq. 20 as printed); Θ at τ_k for {} ≤ τ_k ≤ {}, from rest",
+            num(first.config.width),
+            num(first.config.height),
+            num(w.transient),
+            num(w.tau_end)
+        ),
+        x_label: param_label(super::diagrams::PARAM),
+        y_label: "r, angular-velocity ratio at impact".to_string(),
+        x: &x,
+        y: &y,
+        cells: &cells,
+        colouring: MapColouring::Outcome,
+    };
+    write_figure(sink, &format!("{}impact_ratio_map", prefix(n)), &fig, names)
 }
 
 fn spectrum_figure<'a>(r: &ResponseExample, s: &'a SpectrumData, which: &str) -> SpectrumFigure<'a> {
@@ -268,17 +342,18 @@ fn write_response(sink: &mut dyn Sink, r: &ResponseExample, names: &mut Vec<Stri
         let fig = spectrum_figure(r, s, "a long window after the transient");
         write_figure(sink, &format!("{stem}spectrum_long_window"), &fig, names)?;
     }
+    let terminal = matches!(r.long_outcome, Outcome::Tumbled | Outcome::Flight);
     let pm = PoincareFigure {
         title: format!("Fig. {} (c) reproduced: Poincaré map ({params})", r.figure),
         subtitle: format!(
             "(Θ, Θ') at τ_k = 2πk/Ω_h, {} ≤ τ_k ≤ {}: {} points{}",
-            num(r.settings.transient),
+            short_num(r.steady_from),
             short_num(r.long_tau_end),
             r.poincare.len(),
-            if r.poincare.is_empty() {
-                " (the long run tumbled)"
+            if terminal {
+                format!(" of the rocking before the block tumbles at τ = {:.1}", r.long_tau_end)
             } else {
-                ""
+                String::new()
             }
         ),
         points: &r.poincare,
@@ -354,6 +429,11 @@ fn reproduction_json(rep: &Reproduction) -> Json {
                 "spectrum_paper_window": peaks(&r.spectrum_paper),
                 "spectrum_long_window": peaks(&r.spectrum_long),
                 "lyapunov": lyapunov_json(&r.lyapunov),
+                "transient_lyapunov": r.transient_lyapunov.as_ref().map(|t| json!({
+                    "window": t.window, "lyapunov": lyapunov_json(&t.lyapunov),
+                })),
+                "steady_from": r.steady_from,
+                "neighbours": r.neighbours.iter().map(|x| x.to_string()).collect::<Vec<_>>(),
                 "config": r.config.to_json(),
             })
         })
@@ -383,6 +463,28 @@ fn reproduction_json(rep: &Reproduction) -> Json {
         "diagrams": diagrams,
         "responses": responses,
         "scans": scans,
+        "response_variants": rep.response_variants.iter().map(|v| json!({
+            "figure": v.figure,
+            "variant": v.variant,
+            "sets": v.sets,
+            "max_abs_theta": v.max_abs_theta,
+            "tumble_tau": v.tumble_tau,
+            "end_from": v.end_from,
+            "long_tau_end": v.long_tau_end,
+            "response": v.response.to_string(),
+            "lyapunov": lyapunov_json(&v.lyapunov),
+            "transient_lyapunov": v.transient_lyapunov.as_ref().map(|t| json!({
+                "window": t.window, "lyapunov": lyapunov_json(&t.lyapunov),
+            })),
+        })).collect::<Vec<_>>(),
+        "tumbled_neighbours": rep.survivals.iter().map(|(n, s)| json!({
+            "figure": n,
+            "values": s.iter().map(|(a, r)| json!({
+                "a_v": a,
+                "responses": r.iter().map(|x| x.to_string()).collect::<Vec<_>>(),
+            })).collect::<Vec<_>>(),
+        })).collect::<Vec<_>>(),
+        "tumble_times": rep.tumbles.iter().map(|(n, t)| json!({ "figure": n, "a_v_tau": t })).collect::<Vec<_>>(),
         "units": "tau = p t, theta = θ/ψ; lyapunov per unit τ (natural log), per_cycle = per τ × 2π/Ω_h",
     })
 }
@@ -395,10 +497,14 @@ pub fn write_all(rep: &Reproduction, sink: &mut dyn Sink, threads: usize) -> Res
     for d in &rep.diagrams {
         write_diagram(sink, d, &mut names)?;
     }
+    for n in super::INVESTIGATED {
+        write_ratio_map(sink, rep, n, &mut names)?;
+    }
     for r in &rep.responses {
         write_response(sink, r, &mut names)?;
     }
-    let json = serde_json::to_string_pretty(&reproduction_json(rep)).map_err(|e| ReproduceError::Json(e.to_string()))?;
+    let json =
+        serde_json::to_string_pretty(&reproduction_json(rep)).map_err(|e| ReproduceError::Json(e.to_string()))?;
     sink.text("reproduce.json", &(json + "\n"))?;
     names.push("reproduce.json".to_string());
     names.push("report.md".to_string());
