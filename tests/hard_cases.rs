@@ -27,7 +27,10 @@ fn zeno_accumulation_in_free_rocking() {
         let first = res.events.iter().find(|e| e.kind == EventKind::Impact).expect("impact");
         let expected = ((1e-5 / first.theta_dot_after.abs()).ln() / r.ln()).ceil() + 1.0;
         let got = res.tally.impacts as f64;
-        assert!((got - expected).abs() <= 2.0, "B/H = {ratio}: {got} impacts, expected {expected}");
+        assert!(
+            (got - expected).abs() <= 2.0,
+            "B/H = {ratio}: {got} impacts, expected {expected}"
+        );
         assert!(res.energy.relative_residual < 1e-8);
     }
 }
@@ -61,9 +64,18 @@ fn grazing_the_tumble_angle_from_either_side() {
     for (factor, tumbles) in [(1.0 - 1e-7, false), (1.0 + 1e-7, true)] {
         let m = model(1.0, 4.0, ImpactLaw::Housner, NO_SLIDING, Excitation::None);
         let res = run(m, 0.0, factor * w_crit / geo.psi, &opts(60.0, 1e-12, None));
-        assert_eq!(res.outcome == Outcome::Tumbled, tumbles, "factor {factor}: {:?}", res.outcome);
+        assert_eq!(
+            res.outcome == Outcome::Tumbled,
+            tumbles,
+            "factor {factor}: {:?}",
+            res.outcome
+        );
         if !tumbles {
-            assert!(res.max_abs_theta > 0.999 && res.max_abs_theta < 1.0, "peak {}", res.max_abs_theta);
+            assert!(
+                res.max_abs_theta > 0.999 && res.max_abs_theta < 1.0,
+                "peak {}",
+                res.max_abs_theta
+            );
             assert!(res.tally.impacts > 0);
         }
     }
@@ -75,7 +87,13 @@ fn static_friction_equal_to_tan_psi() {
     // uplift, which needs no slip), and stays consistent afterwards.
     let geo = Geometry::new(1.0, 4.0);
     let mu = geo.tan_psi;
-    let m = model(1.0, 4.0, ImpactLaw::Housner, (mu, 0.8 * mu), harmonic(&geo, 2.0, 0.0, 4.0));
+    let m = model(
+        1.0,
+        4.0,
+        ImpactLaw::Housner,
+        (mu, 0.8 * mu),
+        harmonic(&geo, 2.0, 0.0, 4.0),
+    );
     let res = run(m, 0.0, 0.0, &opts(100.0, 1e-10, Some(0.05)));
     assert_eq!(res.events.first().map(|e| e.kind), Some(EventKind::Uplift));
     common::assert_pivot_side(&res);
@@ -88,9 +106,20 @@ fn near_flight_vertical_excitation() {
     // block never leaves the base; at −(1 + 1e-9) it flies.
     let geo = Geometry::new(1.0, 4.0);
     for (level, flies) in [(1.0 - 1e-9, false), (1.0 + 1e-9, true)] {
-        let m = model(1.0, 4.0, ImpactLaw::Housner, NO_SLIDING, harmonic(&geo, 0.0, level / geo.psi, 2.0));
+        let m = model(
+            1.0,
+            4.0,
+            ImpactLaw::Housner,
+            NO_SLIDING,
+            harmonic(&geo, 0.0, level / geo.psi, 2.0),
+        );
         let res = run(m, 0.0, 0.0, &opts(10.0, 1e-11, None));
-        assert_eq!(res.outcome == Outcome::Flight, flies, "level {level}: {:?}", res.outcome);
+        assert_eq!(
+            res.outcome == Outcome::Flight,
+            flies,
+            "level {level}: {:?}",
+            res.outcome
+        );
     }
 }
 
@@ -113,7 +142,11 @@ fn very_slender_and_square_blocks() {
             let m = model(ratio, 1.0, law, mu, harmonic(&geo, 2.5, 1.0, 6.0));
             let res = run(m, 0.0, 0.0, &opts(200.0, 1e-10, Some(0.05)));
             common::assert_pivot_side(&res);
-            assert!(res.energy.relative_residual < 1e-7, "B/H {ratio} {law:?}: {:?}", res.energy);
+            assert!(
+                res.energy.relative_residual < 1e-7,
+                "B/H {ratio} {law:?}: {:?}",
+                res.energy
+            );
             for w in res.events.windows(2) {
                 assert!(w[1].tau > w[0].tau);
             }
@@ -150,7 +183,13 @@ fn million_tau_periodic_run_has_bounded_memory_and_no_drift() {
     // The paper's Fig. 4 conditions at A_v = 1 (period-1 rocking): after
     // 10⁶ τ the stroboscopic point is where it was at τ ≈ 785.
     let geo = Geometry::new(1.0, 4.0);
-    let m = model(1.0, 4.0, ImpactLaw::Ratio { r: 0.925 }, NO_SLIDING, harmonic(&geo, 3.0, 1.0, 8.0));
+    let m = model(
+        1.0,
+        4.0,
+        ImpactLaw::Ratio { r: 0.925 },
+        NO_SLIDING,
+        harmonic(&geo, 3.0, 1.0, 8.0),
+    );
     let period = m.excitation.forcing_period().expect("harmonic");
     let init = InitialState {
         theta: 0.0,
@@ -167,14 +206,26 @@ fn million_tau_periodic_run_has_bounded_memory_and_no_drift() {
         sample_dt: None,
         section_period: Some(period),
     };
-    let mut d = Driver::new(Dop853::new(tol), BlockSystem::new(m), mode, 0.0, y0, Limits::default(), outputs);
+    let mut d = Driver::new(
+        Dop853::new(tol),
+        BlockSystem::new(m),
+        mode,
+        0.0,
+        y0,
+        Limits::default(),
+        outputs,
+    );
     let mut obs = LastSection::default();
     d.advance(1.0e6, &mut obs).expect("runs");
     let first = obs.first_steady.expect("steady point");
     let drift = ((obs.last[0] - first[0]).powi(2) + (obs.last[1] - first[1]).powi(2)).sqrt();
     assert!(obs.count > 1_270_000, "{} section points", obs.count);
     assert!(obs.events > 1_000_000);
-    assert!(drift < 1e-8, "the periodic orbit drifted by {drift:e} (from {first:?} to {:?})", obs.last);
+    assert!(
+        drift < 1e-8,
+        "the periodic orbit drifted by {drift:e} (from {first:?} to {:?})",
+        obs.last
+    );
 }
 
 #[test]
@@ -182,14 +233,28 @@ fn papers_integrator_at_its_own_step_finds_the_same_orbit() {
     // Ralston RK2 at h = 0.004 with the paper's step cutting lands on the
     // same period-1 stroboscopic point as DOP853, to its O(h²) accuracy.
     let geo = Geometry::new(1.0, 4.0);
-    let mk = || model(1.0, 4.0, ImpactLaw::Ratio { r: 0.925 }, NO_SLIDING, harmonic(&geo, 3.0, 1.0, 8.0));
+    let mk = || {
+        model(
+            1.0,
+            4.0,
+            ImpactLaw::Ratio { r: 0.925 },
+            NO_SLIDING,
+            harmonic(&geo, 3.0, 1.0, 8.0),
+        )
+    };
     let exact = run(mk(), 0.0, 0.0, &opts(800.0, 1e-11, None));
     let mut o = opts(800.0, 1e-11, None);
     o.method = Method::Ralston;
     let paper = run(mk(), 0.0, 0.0, &o);
-    let (a, b) = (exact.section.last().expect("point"), paper.section.last().expect("point"));
+    let (a, b) = (
+        exact.section.last().expect("point"),
+        paper.section.last().expect("point"),
+    );
     assert_eq!(a.k, b.k);
-    assert!((a.theta - b.theta).abs() < 1e-3 && (a.theta_dot - b.theta_dot).abs() < 1e-3, "{a:?} vs {b:?}");
+    assert!(
+        (a.theta - b.theta).abs() < 1e-3 && (a.theta_dot - b.theta_dot).abs() < 1e-3,
+        "{a:?} vs {b:?}"
+    );
 }
 
 #[test]

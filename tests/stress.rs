@@ -25,7 +25,11 @@ fn config() -> ProptestConfig {
     ProptestConfig {
         cases: if extensive() { 100_000 } else { 300 },
         failure_persistence: None,
-        rng_seed: if extensive() { RngSeed::Random } else { RngSeed::Fixed(0x726f_636b) },
+        rng_seed: if extensive() {
+            RngSeed::Random
+        } else {
+            RngSeed::Fixed(0x726f_636b)
+        },
         ..ProptestConfig::default()
     }
 }
@@ -74,19 +78,21 @@ fn scene() -> impl Strategy<Value = Scene> {
         (-0.9f64..0.9, -2.0f64..2.0),
         method,
     )
-        .prop_map(|(ratio, mu, law, a_h, a_v_frac, omega_h, omega_v, phase_v, (theta0, theta_dot0), method)| Scene {
-            ratio,
-            mu,
-            law,
-            a_h,
-            a_v_frac,
-            omega_h,
-            omega_v,
-            phase_v,
-            theta0,
-            theta_dot0,
-            method,
-        })
+        .prop_map(
+            |(ratio, mu, law, a_h, a_v_frac, omega_h, omega_v, phase_v, (theta0, theta_dot0), method)| Scene {
+                ratio,
+                mu,
+                law,
+                a_h,
+                a_v_frac,
+                omega_h,
+                omega_v,
+                phase_v,
+                theta0,
+                theta_dot0,
+                method,
+            },
+        )
 }
 
 fn model_of(s: &Scene, excited: bool) -> Model {
@@ -149,10 +155,16 @@ fn check(s: &Scene, excited: bool) -> Result<(), TestCaseError> {
         Err(e) => return Err(TestCaseError::fail(format!("run failed: {e}"))),
     };
     let finite = |x: f64| x.is_finite();
-    prop_assert!(res.final_state.iter().all(|&x| finite(x)), "final state {:?}", res.final_state);
+    prop_assert!(
+        res.final_state.iter().all(|&x| finite(x)),
+        "final state {:?}",
+        res.final_state
+    );
     for e in &res.events {
         prop_assert!(
-            [e.tau, e.theta, e.theta_dot_before, e.theta_dot_after, e.x_dot].into_iter().all(finite),
+            [e.tau, e.theta, e.theta_dot_before, e.theta_dot_after, e.x_dot]
+                .into_iter()
+                .all(finite),
             "{e:?}"
         );
     }
@@ -160,16 +172,31 @@ fn check(s: &Scene, excited: bool) -> Result<(), TestCaseError> {
         prop_assert!(w[1].tau > w[0].tau, "event times {} then {}", w[0].tau, w[1].tau);
     }
     for r in &res.history {
-        prop_assert!([r.tau, r.theta, r.theta_dot, r.x, r.x_dot].into_iter().all(finite), "{r:?}");
+        prop_assert!(
+            [r.tau, r.theta, r.theta_dot, r.x, r.x_dot].into_iter().all(finite),
+            "{r:?}"
+        );
         if let rocking::model::Mode::Rock { pivot } | rocking::model::Mode::SlideRock { pivot, .. } = r.mode {
             // Ralston locates impacts only to |Θ| < 1e-6 (the paper's rule).
             let slack = if s.method == Method::Ralston { 1e-5 } else { 1e-9 };
-            prop_assert!(pivot.value() * r.theta >= -slack, "Θ on the wrong side of its pivot: {r:?}");
+            prop_assert!(
+                pivot.value() * r.theta >= -slack,
+                "Θ on the wrong side of its pivot: {r:?}"
+            );
         }
     }
     let e = res.energy;
     prop_assert!(
-        [e.initial, e.r#final, e.work_base, e.loss_friction, e.loss_impact, e.residual].into_iter().all(finite),
+        [
+            e.initial,
+            e.r#final,
+            e.work_base,
+            e.loss_friction,
+            e.loss_impact,
+            e.residual
+        ]
+        .into_iter()
+        .all(finite),
         "{e:?}"
     );
     // The balance closes to the integration error: tolerance-controlled for
@@ -192,7 +219,10 @@ fn check(s: &Scene, excited: bool) -> Result<(), TestCaseError> {
         };
         if passive_law && s.method != Method::Ralston {
             prop_assert!(e.work_base == 0.0);
-            prop_assert!(e.r#final <= e.initial + 1e-7 * e.initial.abs().max(1.0), "energy rose: {e:?}");
+            prop_assert!(
+                e.r#final <= e.initial + 1e-7 * e.initial.abs().max(1.0),
+                "energy rose: {e:?}"
+            );
         }
     }
     Ok(())

@@ -700,9 +700,7 @@ impl HybridSystem<N> for BlockSystem {
         // forcing nor the contact forces; the same expressions as `guards`.
         match (mode, index) {
             (Mode::Rock { pivot } | Mode::SlideRock { pivot, .. }, 0) => pivot.value() * y[THETA],
-            (Mode::Rock { pivot } | Mode::SlideRock { pivot, .. }, 1) => {
-                self.tumble_angle() - pivot.value() * y[THETA]
-            }
+            (Mode::Rock { pivot } | Mode::SlideRock { pivot, .. }, 1) => self.tumble_angle() - pivot.value() * y[THETA],
             (Mode::Rock { pivot } | Mode::SlideRock { pivot, .. }, 3) => pivot.value() * y[THETA_DOT],
             (Mode::SlideRock { pivot, slip }, 4) => {
                 let vp = dynamics::pivot_slip_velocity(&self.model.geo, pivot, y[THETA], y[THETA_DOT], y[X_DOT]);
