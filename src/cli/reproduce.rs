@@ -102,7 +102,7 @@ pub fn run(args: &ReproduceArgs) -> Result<(), BatchError> {
         .with_context(|| format!("writing {}", args.out.display()))
         .map_err(BatchError::Run)?;
     if !args.quiet {
-        println!(
+        crate::say!(
             "reproduced {} diagram(s) and {} response example(s){} in {:.1} s ({:.1} s computing); wrote {} files to {} (see report.md)",
             rep.diagrams.len(),
             rep.responses.len(),

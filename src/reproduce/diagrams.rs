@@ -558,26 +558,36 @@ fn best_run(values: &[(f64, Response)], target: Response, from: f64, to: f64) ->
 }
 
 /// The periods of the successive periodic runs from the first value up to
-/// the first aperiodic, tumbled or flight value, each listed once in order
-/// of appearance, e.g. `[1, 2, 4, 8]` for a period-doubling cascade.
+/// the first two consecutive aperiodic, tumbled or flight values, each
+/// listed once in order of appearance, e.g. `[1, 2, 4, 8]` for a
+/// period-doubling cascade. A single aperiodic value inside a periodic
+/// branch is passed over: from rest, a run can land on a coexisting
+/// attractor at one value without ending the branch.
 pub fn cascade(values: &[(f64, Response)]) -> Vec<u32> {
     let mut out: Vec<u32> = Vec::new();
+    let mut off_branch = 0;
     for (_, r) in values {
         match r {
             Response::Periodic { period } => {
-                if out.last() != Some(period) && !out.contains(period) {
+                off_branch = 0;
+                if !out.contains(period) {
                     out.push(*period);
                 }
             }
-            Response::Rest => {}
-            Response::Quasiperiodic | Response::Chaotic | Response::Tumbled | Response::Flight => break,
+            Response::Rest => off_branch = 0,
+            Response::Quasiperiodic | Response::Chaotic | Response::Tumbled | Response::Flight => {
+                off_branch += 1;
+                if off_branch >= 2 {
+                    break;
+                }
+            }
         }
     }
     out
 }
 
 /// Whether the start of `values` is a period-doubling cascade: periods 1,
-/// 2 and 4 in this order before the first aperiodic or terminal value.
+/// 2 and 4 in this order (see [`cascade`]).
 pub fn is_period_doubling(values: &[(f64, Response)]) -> bool {
     cascade(values).starts_with(&[1, 2, 4])
 }
@@ -659,8 +669,13 @@ mod tests {
         let doubling = grid(&[P1, P1, P2, P2, P4, C, T]);
         assert_eq!(cascade(&doubling), vec![1, 2, 4]);
         assert!(is_period_doubling(&doubling));
-        let mixed = grid(&[P1, P2, C, P2, C, T, P4, C]);
+        // One chaotic value on the period-2 branch does not end it.
+        let coexisting = grid(&[P1, P2, C, P2, P4, C, T, P2]);
+        assert_eq!(cascade(&coexisting), vec![1, 2, 4]);
+        let mixed = grid(&[P1, P2, C, T, P4, C]);
+        assert_eq!(cascade(&mixed), vec![1, 2]);
         assert!(!is_period_doubling(&mixed));
+        let mixed = grid(&[P1, P2, C, P2, C, T, P4, C]);
         assert_eq!(intermittency_switches(&mixed), 5);
         assert_eq!(intermittency_switches(&doubling), 1);
     }

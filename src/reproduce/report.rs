@@ -1428,7 +1428,7 @@ fn diagram_claims<'a>(out: &mut String, rows: &mut Vec<Row>, pick: &dyn Fn(u32) 
             out,
             rows,
             &format!("{n}{label}"),
-            "period doubling (1,1) → (1,2) → (1,4) → chaos",
+            "period doubling (1,1) → (1,2) → (1,4) → chaos (read: periods 1, 2, 4 in this order before two consecutive aperiodic or tumbled values)",
             c,
         );
     }
