@@ -7,30 +7,9 @@ mod common;
 use common::{model, opts, run};
 use rocking::model::excitation::Excitation;
 use rocking::model::{EventKind, Geometry, ImpactLaw};
-
-/// Quarter period of free rocking from rest at amplitude `theta0`:
-/// τ_q = ∫₀^{Θ₀} ψ dΘ / √(2(cos(ψ(1−Θ₀)) − cos(ψ(1−Θ)))), computed with the
-/// substitution Θ = Θ₀(1 − v²), which removes the endpoint singularity, and
-/// the identity cos A − cos(A+δ) = 2 sin(A + δ/2) sin(δ/2), which removes the
-/// cancellation. Composite Simpson with 20,000 intervals (error ~1e-15).
-fn quarter_period(psi: f64, theta0: f64) -> f64 {
-    let a = psi * (1.0 - theta0);
-    let f = |v: f64| {
-        if v == 0.0 {
-            // Limit v → 0: 2ψΘ₀ v / √(4 sin A · ψΘ₀v²/2) = 2ψΘ₀/√(2 sin A ψΘ₀).
-            return 2.0 * psi * theta0 / (2.0 * a.sin() * psi * theta0).sqrt();
-        }
-        let d = psi * theta0 * v * v;
-        2.0 * psi * theta0 * v / (4.0 * (a + 0.5 * d).sin() * (0.5 * d).sin()).sqrt()
-    };
-    let n = 20_000;
-    let h = 1.0 / n as f64;
-    let mut s = f(0.0) + f(1.0);
-    for i in 1..n {
-        s += f(i as f64 * h) * if i % 2 == 1 { 4.0 } else { 2.0 };
-    }
-    s * h / 3.0
-}
+// The quarter period by energy quadrature: computed without the integrator
+// (substitution Θ = Θ₀(1 − v²) and composite Simpson; src/bench/quadrature.rs).
+use rocking::bench::quadrature::quarter_period;
 
 /// |w| = ψ|Θ'| at Θ = 0 after falling from rest at `theta0`:
 /// ½w² = cos(ψ(1−Θ₀)) − cos ψ.
