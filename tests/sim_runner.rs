@@ -52,7 +52,7 @@ fn sample_index(tau: f64) -> i64 {
 fn live_section_points_equal_the_batch_run_bit_for_bit() {
     // Chunk ends lie on the section times a batch run stops on too, so the
     // live trajectory is the batch trajectory.
-    let cfg = preset("fig12", &[]);
+    let cfg = preset("default", &[]);
     let tau_end = 60.0;
     let updates = record(RunId(1), &cfg, tau_end);
     let live = batches(&updates, RunId(1));
@@ -80,7 +80,7 @@ fn live_section_points_equal_the_batch_run_bit_for_bit() {
 
 #[test]
 fn updates_come_in_order_with_the_run_id_and_nothing_exact_is_lost() {
-    let h = SimHandle::spawn(preset("fig12", &[]), Speed::Max, false, no_waker()).expect("thread starts");
+    let h = SimHandle::spawn(preset("default", &[]), Speed::Max, false, no_waker()).expect("thread starts");
     let got = collect(&h, Duration::from_secs(20), |u| {
         batches(u, RunId(1)).iter().map(|b| b.section.len()).sum::<usize>() > 400
     });
@@ -142,7 +142,7 @@ fn a_reset_starts_a_new_run_and_no_stale_update_follows_its_start() {
 
 #[test]
 fn a_consumer_that_falls_behind_loses_samples_but_no_section_point_or_event() {
-    let h = SimHandle::spawn(preset("fig12", &[]), Speed::Max, false, no_waker()).expect("thread starts");
+    let h = SimHandle::spawn(preset("default", &[]), Speed::Max, false, no_waker()).expect("thread starts");
     // Fill the channel and the outbox: read nothing for a while.
     std::thread::sleep(Duration::from_secs(3));
     let got = collect(&h, Duration::from_secs(5), |_| false);

@@ -7,7 +7,12 @@
 //! - Each mode has up to [`MAX_GUARDS`] guard functions `g_i(t, y)`. The mode's
 //!   domain is `{ g_i > 0 for all i }`; an event is a crossing of one guard
 //!   from `> 0` to `<= 0`. Direction is therefore built into the sign of `g`.
-//! - After every accepted step the driver evaluates every guard at
+//! - After every accepted step the driver evaluates the guards at the step's
+//!   end and at its midpoint on the cheap cubic Hermite interpolant (no
+//!   extra evaluations of `f`). Guards that stay positive there by more than
+//!   [`SCREEN_MARGIN`] times their variation are cleared for the step; that
+//!   is most steps, which then never build the high-order dense output.
+//!   Otherwise it evaluates every guard at
 //!   [`SUBINTERVALS`]` + 1` points of the dense output, looks for sign changes,
 //!   and on sub-intervals where a guard stays positive but dips (the parabola
 //!   through three samples has an interior minimum well below the samples)
@@ -26,6 +31,8 @@
 //!   impact accumulation); the stepper is then restarted (FSAL invalidated).
 //! - *Observer* guards are located the same way but cause no jump: the system
 //!   is told the time and state (used for exact extrema of `|Θ|`).
+//! - Steps are capped at the system's [`HybridSystem::time_scale`], so a
+//!   guard that depends on time alone is sampled several times per radian.
 //! - Section (strobe) times are step stops: the step lands on them bit-exactly,
 //!   so section points are step-end values, never interpolated across a jump.
 //! - Every loop is bounded by [`Limits`]; exceeding a bound is a typed error.
@@ -44,6 +51,14 @@ pub const MAX_GUARDS: usize = 8;
 /// Eight keeps a DOP853 step's interior sample spacing well below the
 /// curvature scale of the guards while costing only 7 dense evaluations.
 pub const SUBINTERVALS: usize = 8;
+
+/// Margin of the cheap screening of a step: a guard is cleared without
+/// dense output if its values at the ends and at the Hermite midpoint are
+/// all above `SCREEN_MARGIN` times its variation between them. For a
+/// resolved smooth guard (steps below the time scale, error control on the
+/// state) the value between samples departs from them by a fraction of that
+/// variation: at most 1/8 of it for a sinusoid sampled at its extremum.
+pub const SCREEN_MARGIN: f64 = 1.0;
 
 /// Guard tolerance of the paper's step-cutting event location (`|Θ| < 1e-6`).
 pub const PAPER_GUARD_TOL: f64 = 1e-6;
@@ -113,6 +128,16 @@ pub trait HybridSystem<const N: usize> {
     /// The first time after `t` at which the vector field has a kink (a
     /// recorded ground motion's samples, a pulse's end). Steps stop there.
     fn next_breakpoint(&self, t: f64) -> Option<f64>;
+
+    /// Shortest time scale of the explicit time dependence of the vector
+    /// field and the guards (1/Ω for a harmonic forcing of frequency Ω);
+    /// infinite by default. Steps are capped at it: the error control sees
+    /// the state, not a guard that depends on time alone (a block at rest
+    /// does not move, whatever the forcing does), so without a cap such a
+    /// guard could pass through zero and back between two samples.
+    fn time_scale(&self) -> f64 {
+        f64::INFINITY
+    }
 }
 
 /// Receives what the driver produces.
@@ -215,6 +240,8 @@ where
     n_guards: usize,
     /// Whether each guard has been positive since the last restart.
     armed: [bool; MAX_GUARDS],
+    /// Steps cleared by the cheap screening (no dense output needed).
+    screened: u64,
 }
 
 impl<S, Sys, const N: usize> Driver<S, Sys, N>
@@ -254,6 +281,7 @@ where
             g_start: [0.0; MAX_GUARDS],
             n_guards: 0,
             armed: [false; MAX_GUARDS],
+            screened: 0,
         };
         d.refresh_guards();
         d
@@ -290,6 +318,11 @@ where
     /// Events so far.
     pub fn events(&self) -> u64 {
         self.events
+    }
+    /// Steps whose guards the cheap Hermite screening cleared, so that they
+    /// needed no dense output.
+    pub fn screened_steps(&self) -> u64 {
+        self.screened
     }
 
     /// Restarts from a new state and mode (e.g. after the user edits it).
@@ -355,6 +388,10 @@ where
         {
             stop = tb;
         }
+        let cap = t + self.system.time_scale();
+        if cap > t && cap < stop {
+            stop = cap;
+        }
         stop
     }
 
@@ -378,28 +415,37 @@ where
 
             let t0 = stepper.t_prev();
             let t1 = stepper.t();
-            // Guard samples on the dense output.
+            let mut ge = [0.0; MAX_GUARDS];
+            sys.guards(mode, t1, stepper.y(), &mut ge);
+            g_end = ge;
+            // Which guards need the dense output this step (see `screen`).
+            let need = screen(sys, mode, n, &*stepper, &armed, &self.g_start, &ge);
+            let any = need[..n].iter().any(|&x| x);
+            if !any {
+                self.screened += 1;
+            }
+            // Guard samples on the dense output, for the guards that need it.
             let mut ts = [0.0; SUBINTERVALS + 1];
             let mut gs = [[0.0; MAX_GUARDS]; SUBINTERVALS + 1];
             ts[0] = t0;
             gs[0] = self.g_start;
-            let mut yj = [0.0; N];
-            for j in 1..=SUBINTERVALS {
-                if j == SUBINTERVALS {
-                    ts[j] = t1;
-                    yj = *stepper.y();
-                } else {
+            ts[SUBINTERVALS] = t1;
+            gs[SUBINTERVALS] = ge;
+            if any {
+                let mut yj = [0.0; N];
+                for j in 1..SUBINTERVALS {
                     ts[j] = t0 + (t1 - t0) * (j as f64 / SUBINTERVALS as f64);
                     stepper.dense(&f, ts[j], &mut yj);
+                    for i in (0..n).filter(|&i| need[i]) {
+                        gs[j][i] = sys.guard(mode, i, ts[j], &yj);
+                    }
                 }
-                sys.guards(mode, ts[j], &yj, &mut gs[j]);
             }
-            g_end = gs[SUBINTERVALS];
 
             // Earliest bracket per guard, then its root.
             let mut best: Option<(f64, usize)> = None;
             let mut roots = [None; MAX_GUARDS];
-            for i in 0..n {
+            for i in (0..n).filter(|&i| need[i]) {
                 let mut value = |tt: f64| {
                     let mut yy = [0.0; N];
                     stepper.dense(&f, tt, &mut yy);
@@ -659,6 +705,118 @@ where
             }
         }
     }
+}
+
+/// Whether the samples `values` of a guard over a step (start, interior,
+/// end, in time order) clear it for the step: all of one sign, `sign`
+/// (+1 for an armed guard that must not fall to zero, −1 for an unarmed
+/// one that must not rise above it), and farther from zero than
+/// [`SCREEN_MARGIN`] times the largest change between neighbours.
+#[inline]
+fn clears(values: &[f64], sign: f64) -> bool {
+    let mut nearest = f64::INFINITY;
+    let mut largest_change = 0.0f64;
+    for (j, &g) in values.iter().enumerate() {
+        nearest = nearest.min(sign * g);
+        if j > 0 {
+            largest_change = largest_change.max((g - values[j - 1]).abs());
+        }
+    }
+    nearest > 0.0 && nearest > SCREEN_MARGIN * largest_change
+}
+
+/// The samples of one guard that [`clears`] looks at, and the sign they
+/// must keep, by the guard's state at the start of the step: armed and
+/// positive (must stay positive); unarmed and negative (an observer that
+/// fired, or a guard behind its surface: must stay negative, so it cannot
+/// arm and fire); or just reset onto its surface (exactly 0: the start is
+/// left out, and the rest must be positive, as [`bracket`] would arm it at
+/// the first sample). `None`: no cheap verdict (the dense output decides).
+#[inline]
+fn screening_case(armed: bool, g_start: f64) -> Option<(bool, f64)> {
+    if armed && g_start > 0.0 {
+        Some((true, 1.0))
+    } else if !armed && g_start < 0.0 {
+        Some((true, -1.0))
+    } else if !armed && g_start == 0.0 {
+        Some((false, 1.0))
+    } else {
+        None
+    }
+}
+
+/// Which guards of the step just taken need the high-order dense output:
+/// those that are not cleared on the cheap cubic Hermite interpolant.
+///
+/// First all guards are evaluated at the Hermite midpoint and tested on
+/// (start, midpoint, end) with [`clears`]. The guards left are sampled alone
+/// at the [`SUBINTERVALS`]` - 1` interior Hermite points (for guards on the
+/// state alone that is a few flops each) and tested again on those samples.
+/// The Hermite interpolant is accurate to O(h⁴), orders of magnitude below
+/// the margin for a step that resolves the state (and steps are capped at
+/// the system's time scale for guards that depend on time alone).
+fn screen<Sys, S, const N: usize>(
+    sys: &Sys,
+    mode: Sys::Mode,
+    n: usize,
+    stepper: &S,
+    armed: &[bool; MAX_GUARDS],
+    g_start: &[f64; MAX_GUARDS],
+    g_end: &[f64; MAX_GUARDS],
+) -> [bool; MAX_GUARDS]
+where
+    Sys: HybridSystem<N>,
+    S: Stepper<N>,
+{
+    let mut need = [true; MAX_GUARDS];
+    let (t0, t1) = (stepper.t_prev(), stepper.t());
+    let mut ym = [0.0; N];
+    let tm = 0.5 * (t0 + t1);
+    if n == 0 || !stepper.hermite(tm, &mut ym) {
+        return need;
+    }
+    let mut gm = [0.0; MAX_GUARDS];
+    sys.guards(mode, tm, &ym, &mut gm);
+    let mut rest = false;
+    for i in 0..n {
+        let Some((with_start, sign)) = screening_case(armed[i], g_start[i]) else {
+            continue;
+        };
+        let three = [g_start[i], gm[i], g_end[i]];
+        if clears(if with_start { &three } else { &three[1..] }, sign) {
+            need[i] = false;
+        } else {
+            rest = true;
+        }
+    }
+    if !rest {
+        return need;
+    }
+    // The finer look, on the Hermite interpolant.
+    let mut ys = [[0.0; N]; SUBINTERVALS + 1];
+    let mut ts = [0.0; SUBINTERVALS + 1];
+    for j in 1..SUBINTERVALS {
+        ts[j] = t0 + (t1 - t0) * (j as f64 / SUBINTERVALS as f64);
+        stepper.hermite(ts[j], &mut ys[j]);
+    }
+    for i in 0..n {
+        let Some((with_start, sign)) = screening_case(armed[i], g_start[i]) else {
+            continue;
+        };
+        if !need[i] {
+            continue;
+        }
+        let mut values = [0.0; SUBINTERVALS + 1];
+        values[0] = g_start[i];
+        values[SUBINTERVALS] = g_end[i];
+        for j in 1..SUBINTERVALS {
+            values[j] = sys.guard(mode, i, ts[j], &ys[j]);
+        }
+        if clears(if with_start { &values } else { &values[1..] }, sign) {
+            need[i] = false;
+        }
+    }
+    need
 }
 
 /// The bracket `[a, b]` of the first crossing of guard `i` in one step, if

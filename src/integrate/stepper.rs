@@ -120,6 +120,16 @@ pub trait Stepper<const N: usize> {
     /// `f` (DOP853 needs three extra stages, computed once per step).
     fn dense<F: Rhs<N>>(&mut self, f: &F, t: f64, out: &mut [f64; N]);
 
+    /// The cubic Hermite interpolant of the last step at `t`, built from the
+    /// end states and their derivatives only (no evaluation of `f`, no
+    /// extra stages): the driver screens guards with it before it pays for
+    /// the high-order dense output. Accurate to O(h⁴), not to the
+    /// tolerance. Returns `false` if the stepper has no such data (then the
+    /// driver uses [`dense`](Stepper::dense)).
+    fn hermite(&self, _t: f64, _out: &mut [f64; N]) -> bool {
+        false
+    }
+
     /// Cut the last step short at `t_cut` in `[t_prev(), t()]`: the current
     /// state becomes the dense output there. Used at events.
     fn truncate<F: Rhs<N>>(&mut self, f: &F, t_cut: f64) {

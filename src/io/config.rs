@@ -291,22 +291,25 @@ impl Config {
 
         let mu_s = r.number("friction", "static", true)?.unwrap_or(f64::INFINITY);
         check("friction.static", mu_s >= 0.0, ">= 0 or inf", mu_s)?;
-        let mu_k = r.number("friction", "kinetic", true)?.unwrap_or(mu_s);
-        check("friction.kinetic", mu_k >= 0.0, ">= 0 or inf", mu_k)?;
+        let given_k = r.number("friction", "kinetic", true)?;
+        let mu_k = given_k.unwrap_or(mu_s);
+        // An absent kinetic coefficient takes the static one; an error about
+        // it must then say so, or the user is told about a key never written.
+        let kinetic_key = if given_k.is_some() {
+            "friction.kinetic"
+        } else {
+            "friction.kinetic (absent, so equal to friction.static)"
+        };
+        check(kinetic_key, mu_k >= 0.0, ">= 0 or inf", mu_k)?;
+        check(kinetic_key, mu_k <= mu_s, &format!("<= friction.static ({mu_s})"), mu_k)?;
         check(
-            "friction.kinetic",
-            mu_k <= mu_s,
-            &format!("<= friction.static ({mu_s})"),
-            mu_k,
-        )?;
-        check(
-            "friction.kinetic",
+            kinetic_key,
             mu_k.is_finite() || mu_s.is_infinite(),
             "finite when friction.static is finite",
             mu_k,
         )?;
         check(
-            "friction.kinetic",
+            kinetic_key,
             mu_k < MU_K_LIMIT || mu_s.is_infinite(),
             "< 4/3 (larger kinetic friction makes slide-rock ill-posed: the Painlevé paradox, docs/model.md §4)",
             mu_k,

@@ -792,4 +792,8 @@ impl HybridSystem<N> for BlockSystem {
     fn next_breakpoint(&self, t: f64) -> Option<f64> {
         self.model.excitation.next_breakpoint(t)
     }
+
+    fn time_scale(&self) -> f64 {
+        self.model.excitation.time_scale()
+    }
 }

@@ -267,6 +267,10 @@ where
     fn next_breakpoint(&self, t: f64) -> Option<f64> {
         self.inner.next_breakpoint(t)
     }
+
+    fn time_scale(&self) -> f64 {
+        self.inner.time_scale()
+    }
 }
 
 /// An observer that ignores everything (the loops read the driver's state).

@@ -107,6 +107,26 @@ impl Excitation {
         }
     }
 
+    /// Shortest time scale of the forcing, τ: 1/Ω for the fastest harmonic
+    /// component with a non-zero amplitude, 1/ω for a pulse; infinite for
+    /// none. The event driver caps its steps at this, so that guards that
+    /// depend on the forcing alone (uplift and slip from rest) are sampled
+    /// at least a few times per radian of forcing phase whatever the state
+    /// does. A record is linear between its samples, and steps stop at every
+    /// sample, so it needs no cap.
+    pub fn time_scale(&self) -> f64 {
+        let inv = |omega: f64| if omega > 0.0 { 1.0 / omega } else { f64::INFINITY };
+        match self {
+            Excitation::None | Excitation::Record(_) => f64::INFINITY,
+            Excitation::Harmonic(h) => {
+                let th = if h.a_h != 0.0 { inv(h.omega_h) } else { f64::INFINITY };
+                let tv = if h.a_v != 0.0 { inv(h.omega_v) } else { f64::INFINITY };
+                th.min(tv)
+            }
+            Excitation::Pulse(p) => inv(p.horizontal.omega()),
+        }
+    }
+
     /// Period of the stroboscopic section, 2π/Ω_h, for harmonic excitation.
     pub fn forcing_period(&self) -> Option<f64> {
         match self {

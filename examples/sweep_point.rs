@@ -1,0 +1,59 @@
+//! Times one sweep point of the paper (the `periodic` bench scene at rtol
+//! 1e-10, section only) and prints the integrator's counters: the numbers
+//! to look at when profiling (`perf record` this example).
+//!
+//! `cargo run --release --example sweep_point [repeats]`
+
+use std::time::Instant;
+
+use rocking::bench::scenes;
+use rocking::integrate::Tolerances;
+use rocking::integrate::hybrid::Limits;
+use rocking::sim::{Method, RunOptions, simulate};
+
+fn main() {
+    let repeats: usize = std::env::args().nth(1).and_then(|s| s.parse().ok()).unwrap_or(20);
+    let s = scenes()
+        .into_iter()
+        .find(|s| s.name == "periodic")
+        .expect("periodic scene");
+    let opts = RunOptions {
+        tau_end: s.tau_end,
+        method: Method::Dop853,
+        tol: Tolerances {
+            rtol: 1e-10,
+            atol: 1e-12,
+            h_max: f64::INFINITY,
+            h_fixed: 0.004,
+        },
+        output_dt: None,
+        section: true,
+        limits: Limits::default(),
+    };
+    let mut walls = Vec::new();
+    let mut last = None;
+    for _ in 0..repeats.max(1) {
+        let start = Instant::now();
+        let r = simulate(s.model.clone(), &s.initial, &opts).expect("the periodic scene runs");
+        walls.push(start.elapsed().as_secs_f64());
+        last = Some(r);
+    }
+    walls.sort_by(f64::total_cmp);
+    let r = last.expect("at least one run");
+    println!(
+        "periodic sweep point: median {:.3} ms, best {:.3} ms over {} runs",
+        walls[walls.len() / 2] * 1e3,
+        walls[0] * 1e3,
+        walls.len()
+    );
+    println!(
+        "steps {} (rejected {}), rhs evals {}, impacts {}, events {}, section points {}, final {:?}",
+        r.stats.accepted,
+        r.stats.rejected,
+        r.stats.rhs_evals,
+        r.tally.impacts,
+        r.events.len(),
+        r.section.len(),
+        &r.final_state[..2]
+    );
+}
