@@ -300,4 +300,18 @@ mod tests {
             assert!(s.abs() < 1e-11, "row {r}: {s}");
         }
     }
+
+    /// Every stage of a step feeds something tested for finiteness: a later
+    /// stage, the solution or an error estimate. The stepper relies on it
+    /// to test only `y_new` and the error instead of every stage.
+    #[test]
+    fn every_stage_feeds_the_solution_or_the_error() {
+        for j in 0..N_STAGES {
+            let later = (j + 1..N_STAGES).any(|i| A[i][j] != 0.0);
+            assert!(
+                later || B[j] != 0.0 || E5[j] != 0.0 || E3[j] != 0.0,
+                "stage {j} feeds nothing"
+            );
+        }
+    }
 }

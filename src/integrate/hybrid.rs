@@ -402,43 +402,82 @@ where
     {
         let mode = self.mode;
         let n = self.n_guards;
-        let mut armed = self.armed;
-        let mut observed = [(0.0, [0.0; N]); MAX_GUARDS];
-        let mut is_observed = [false; MAX_GUARDS];
-        let g_end;
-        let best = {
+        let mut g_end = [0.0; MAX_GUARDS];
+        let need = {
             let sys = &self.system;
             let stepper = &mut self.stepper;
             let f = |tt: f64, yy: &[f64; N], dy: &mut [f64; N]| sys.rhs(mode, tt, yy, dy);
             stepper.step(&f, t_stop).map_err(DriverError::from)?;
             self.steps += 1;
+            sys.guards(mode, stepper.t(), stepper.y(), &mut g_end);
+            // Which guards need the dense output this step (see `screen`).
+            screen(sys, mode, n, &*stepper, &self.armed, &self.g_start, &g_end)
+        };
+        if need[..n].iter().any(|&x| x) {
+            self.locate(&need, g_end, obs)
+        } else {
+            // Nothing can have happened: the common case, without building
+            // the dense output.
+            self.screened += 1;
+            let armed = self.armed;
+            self.accept(armed, g_end, obs);
+            Ok(())
+        }
+    }
 
+    /// The end of a step without an event: new guard values and arming,
+    /// then the outputs due in the step.
+    fn accept<O>(&mut self, armed: [bool; MAX_GUARDS], g_end: [f64; MAX_GUARDS], obs: &mut O)
+    where
+        O: Observer<Sys::Mode, Sys::Record, N>,
+    {
+        let mode = self.mode;
+        let t1 = self.stepper.t();
+        self.armed = armed;
+        self.emit_samples_dense(t1, obs);
+        self.g_start = g_end;
+        for i in 0..self.n_guards {
+            if self.g_start[i] > 0.0 {
+                self.armed[i] = true;
+            } else if self.system.is_observer(mode, i) {
+                // An observer re-arms only once it is positive again.
+                self.armed[i] = false;
+            }
+        }
+        self.emit_section_if_hit(t1, obs);
+    }
+
+    /// Samples the guards in `need` on the dense output of the step just
+    /// taken, locates the earliest crossing and the observers before it, and
+    /// applies the event (or accepts the step if there is none).
+    fn locate<O>(&mut self, need: &[bool; MAX_GUARDS], g_end: [f64; MAX_GUARDS], obs: &mut O) -> Result<(), Sys::Error>
+    where
+        O: Observer<Sys::Mode, Sys::Record, N>,
+    {
+        let mode = self.mode;
+        let n = self.n_guards;
+        let mut armed = self.armed;
+        let mut observed = [(0.0, [0.0; N]); MAX_GUARDS];
+        let mut is_observed = [false; MAX_GUARDS];
+        let best = {
+            let sys = &self.system;
+            let stepper = &mut self.stepper;
+            let f = |tt: f64, yy: &[f64; N], dy: &mut [f64; N]| sys.rhs(mode, tt, yy, dy);
             let t0 = stepper.t_prev();
             let t1 = stepper.t();
-            let mut ge = [0.0; MAX_GUARDS];
-            sys.guards(mode, t1, stepper.y(), &mut ge);
-            g_end = ge;
-            // Which guards need the dense output this step (see `screen`).
-            let need = screen(sys, mode, n, &*stepper, &armed, &self.g_start, &ge);
-            let any = need[..n].iter().any(|&x| x);
-            if !any {
-                self.screened += 1;
-            }
             // Guard samples on the dense output, for the guards that need it.
             let mut ts = [0.0; SUBINTERVALS + 1];
             let mut gs = [[0.0; MAX_GUARDS]; SUBINTERVALS + 1];
             ts[0] = t0;
             gs[0] = self.g_start;
             ts[SUBINTERVALS] = t1;
-            gs[SUBINTERVALS] = ge;
-            if any {
-                let mut yj = [0.0; N];
-                for j in 1..SUBINTERVALS {
-                    ts[j] = t0 + (t1 - t0) * (j as f64 / SUBINTERVALS as f64);
-                    stepper.dense(&f, ts[j], &mut yj);
-                    for i in (0..n).filter(|&i| need[i]) {
-                        gs[j][i] = sys.guard(mode, i, ts[j], &yj);
-                    }
+            gs[SUBINTERVALS] = g_end;
+            let mut yj = [0.0; N];
+            for j in 1..SUBINTERVALS {
+                ts[j] = t0 + (t1 - t0) * (j as f64 / SUBINTERVALS as f64);
+                stepper.dense(&f, ts[j], &mut yj);
+                for i in (0..n).filter(|&i| need[i]) {
+                    gs[j][i] = sys.guard(mode, i, ts[j], &yj);
                 }
             }
 
@@ -493,19 +532,7 @@ where
 
         match best {
             None => {
-                let t1 = self.stepper.t();
-                self.armed = armed;
-                self.emit_samples_dense(t1, obs);
-                self.g_start = g_end;
-                for i in 0..n {
-                    if self.g_start[i] > 0.0 {
-                        self.armed[i] = true;
-                    } else if self.system.is_observer(mode, i) {
-                        // An observer re-arms only once it is positive again.
-                        self.armed[i] = false;
-                    }
-                }
-                self.emit_section_if_hit(t1, obs);
+                self.accept(armed, g_end, obs);
                 Ok(())
             }
             Some((t_ev, i)) => {

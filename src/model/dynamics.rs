@@ -53,13 +53,54 @@ pub struct Tilt {
     pub c: f64,
 }
 
+/// Largest |θ| = |ψΘ| for which [`Tilt::new`] uses its series: there the
+/// first omitted terms, θ¹⁵/15! and θ¹⁶/16!, are below 0.25 ulp.
+const SERIES_LIMIT: f64 = 0.5;
+
+/// sin θ and cos θ for |θ| <= [`SERIES_LIMIT`] by their Taylor series to
+/// θ¹³ and θ¹⁴, in Horner form in θ². The two are independent chains the
+/// processor runs side by side; together they take about half the time of
+/// the C library's `sincos`, which is called 15 times per step.
+#[inline]
+fn small_sin_cos(x: f64) -> (f64, f64) {
+    let z = x * x;
+    let sn = x
+        * (1.0
+            + z * (-1.0 / 6.0
+                + z * (1.0 / 120.0
+                    + z * (-1.0 / 5040.0
+                        + z * (1.0 / 362_880.0 + z * (-1.0 / 39_916_800.0 + z * (1.0 / 6_227_020_800.0)))))));
+    let c = 1.0
+        + z * (-0.5
+            + z * (1.0 / 24.0
+                + z * (-1.0 / 720.0
+                    + z * (1.0 / 40_320.0
+                        + z * (-1.0 / 3_628_800.0 + z * (1.0 / 479_001_600.0 + z * (-1.0 / 87_178_291_200.0)))))));
+    (sn, c)
+}
+
 impl Tilt {
     /// Tilt about pivot `s` at angle `theta` (Θ).
+    ///
+    /// φ = ψ − θ with θ = ψ sΘ, so sin φ = sin ψ cos θ − cos ψ sin θ and
+    /// cos φ = cos ψ cos θ + sin ψ sin θ, with sin ψ and cos ψ stored in the
+    /// geometry and θ small for every block that rocks visibly. Both depend
+    /// on sΘ only, so a state and its mirror image get the same bits. Beyond
+    /// [`SERIES_LIMIT`] (squat blocks far over) the library's `sin_cos`.
     #[inline]
     pub fn new(geo: &Geometry, s: Sign, theta: f64) -> Self {
-        let phi = geo.psi * (1.0 - s.value() * theta);
-        let (sn, c) = phi.sin_cos();
-        Self { sn, c }
+        let x = geo.psi * (s.value() * theta);
+        if x.abs() <= SERIES_LIMIT {
+            let (sx, cx) = small_sin_cos(x);
+            Self {
+                sn: geo.sin_psi * cx - geo.cos_psi * sx,
+                c: geo.cos_psi * cx + geo.sin_psi * sx,
+            }
+        } else {
+            let phi = geo.psi * (1.0 - s.value() * theta);
+            let (sn, c) = phi.sin_cos();
+            Self { sn, c }
+        }
     }
 }
 
@@ -80,7 +121,7 @@ pub fn rock_at(geo: &Geometry, pivot: Sign, tilt: Tilt, theta_dot: f64, fo: Forc
     let wdd = -(s * b * sn + fo.a * c);
     let ww = w * w;
     Accel {
-        theta_ddot: wdd / geo.psi,
+        theta_ddot: wdd * geo.inv_psi,
         x_ddot: c * wdd + s * sn * ww,
         normal: b + GAMMA * (s * sn * wdd - c * ww),
         friction: fo.a + GAMMA * (c * wdd + s * sn * ww),
@@ -190,4 +231,31 @@ pub fn pivot_slip_accel(geo: &Geometry, pivot: Sign, theta: f64, theta_dot: f64,
 #[inline]
 pub fn restoring(geo: &Geometry, pivot: Sign, fo: Forcing) -> f64 {
     fo.b() * geo.sin_psi + pivot.value() * fo.a * geo.cos_psi
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn tilt_agrees_with_the_library_sine_and_cosine() {
+        let mut worst = 0.0f64;
+        for bh in [0.05, 0.1, 0.25, 0.5, 1.0] {
+            let geo = Geometry::new(bh, 1.0);
+            for i in -3000..=3000 {
+                let theta = f64::from(i) / 2000.0;
+                for s in [Sign::Pos, Sign::Neg] {
+                    let t = Tilt::new(&geo, s, theta);
+                    let (sn, c) = (geo.psi * (1.0 - s.value() * theta)).sin_cos();
+                    // Absolute error: the values are at most 1 and enter the
+                    // equations of motion linearly.
+                    worst = worst.max((t.sn - sn).abs()).max((t.c - c).abs());
+                    // Mirror image: pivot and Θ both flipped, same bits.
+                    let m = Tilt::new(&geo, s.flip(), -theta);
+                    assert_eq!((m.sn.to_bits(), m.c.to_bits()), (t.sn.to_bits(), t.c.to_bits()));
+                }
+            }
+        }
+        assert!(worst <= 4.0 * f64::EPSILON, "largest difference {worst:e}");
+    }
 }

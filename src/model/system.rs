@@ -18,6 +18,8 @@
 //! Slide guards exist only with finite friction. With `flight = ignore` the
 //! flight guard only counts violations.
 
+use std::cell::Cell;
+
 use super::dynamics::{self, Accel, Forcing, Tilt};
 use super::energy;
 use super::excitation::Excitation;
@@ -153,6 +155,10 @@ pub struct BlockSystem {
     pub model: Model,
     /// Tallies.
     pub tally: Tally,
+    /// The forcing at the time of the last evaluation: the guards at a
+    /// step's end are evaluated at the time of its last (FSAL) right-hand
+    /// side and reuse its sine. Same bits either way.
+    last_forcing: Cell<(f64, Forcing)>,
 }
 
 /// Errors from the model side of a run.
@@ -169,7 +175,20 @@ impl BlockSystem {
         Self {
             model,
             tally: Tally::default(),
+            last_forcing: Cell::new((f64::NAN, Forcing { a: 0.0, av: 0.0 })),
         }
+    }
+
+    /// The forcing at `t`, remembered for the next call at the same `t`.
+    #[inline]
+    fn forcing(&self, t: f64) -> Forcing {
+        let (tl, fl) = self.last_forcing.get();
+        if tl.to_bits() == t.to_bits() {
+            return fl;
+        }
+        let fo = self.model.excitation.forcing(t);
+        self.last_forcing.set((t, fo));
+        fo
     }
 
     /// The effective tumble angle: `tumble_theta` capped at the side landing.
@@ -595,7 +614,7 @@ impl HybridSystem<N> for BlockSystem {
 
     #[inline]
     fn rhs(&self, mode: Mode, t: f64, y: &[f64; N], dy: &mut [f64; N]) {
-        let fo = self.model.excitation.forcing(t);
+        let fo = self.forcing(t);
         let geo = &self.model.geo;
         match mode {
             Mode::Rest | Mode::Tumbled | Mode::Flight => *dy = [0.0; N],
@@ -643,7 +662,7 @@ impl HybridSystem<N> for BlockSystem {
     }
 
     fn guards(&self, mode: Mode, t: f64, y: &[f64; N], g: &mut [f64; MAX_GUARDS]) -> usize {
-        let fo = self.model.excitation.forcing(t);
+        let fo = self.forcing(t);
         let geo = &self.model.geo;
         let mu_s = self.model.mu_s;
         match mode {
