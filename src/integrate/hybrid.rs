@@ -752,23 +752,52 @@ fn clears(values: &[f64], sign: f64) -> bool {
     nearest > 0.0 && nearest > SCREEN_MARGIN * largest_change
 }
 
-/// The samples of one guard that [`clears`] looks at, and the sign they
-/// must keep, by the guard's state at the start of the step: armed and
-/// positive (must stay positive); unarmed and negative (an observer that
-/// fired, or a guard behind its surface: must stay negative, so it cannot
-/// arm and fire); or just reset onto its surface (exactly 0: the start is
-/// left out, and the rest must be positive, as [`bracket`] would arm it at
-/// the first sample). `None`: no cheap verdict (the dense output decides).
+/// How a guard is screened, by its state at the start of the step.
+#[derive(Clone, Copy)]
+enum Screening {
+    /// Armed and positive: must stay positive.
+    Positive,
+    /// Unarmed and negative (an observer that fired, or a guard behind its
+    /// surface): must stay negative, so it can neither arm nor fire.
+    Negative,
+    /// Just reset onto its surface (exactly 0): must leave it at once and
+    /// stay positive. [`bracket`] arms such a guard at the first sample
+    /// above zero and looks for a bump only if that sample is not above
+    /// zero, so the screening asks the same of the first sample and the
+    /// margin of the rest.
+    FromSurface,
+}
+
+/// The [`Screening`] of a guard, or `None` when there is no cheap verdict
+/// (the dense output decides).
 #[inline]
-fn screening_case(armed: bool, g_start: f64) -> Option<(bool, f64)> {
+fn screening_case(armed: bool, g_start: f64) -> Option<Screening> {
     if armed && g_start > 0.0 {
-        Some((true, 1.0))
+        Some(Screening::Positive)
     } else if !armed && g_start < 0.0 {
-        Some((true, -1.0))
+        Some(Screening::Negative)
     } else if !armed && g_start == 0.0 {
-        Some((false, 1.0))
+        Some(Screening::FromSurface)
     } else {
         None
+    }
+}
+
+/// Whether the samples `values` (start, interior, end, in time order) clear
+/// a guard screened as `case`.
+#[inline]
+fn cleared(values: &[f64], case: Screening) -> bool {
+    match case {
+        Screening::Positive => clears(values, 1.0),
+        Screening::Negative => clears(values, -1.0),
+        Screening::FromSurface => {
+            // The first sample after the surface must be clearly above it
+            // (a quarter of the largest change between the later samples),
+            // and the later ones clear with the usual margin.
+            let rest = &values[2..];
+            let largest_change = rest.windows(2).map(|w| (w[1] - w[0]).abs()).fold(0.0, f64::max);
+            values[1] > 0.25 * largest_change && values[1] > 0.0 && clears(rest, 1.0)
+        }
     }
 }
 
@@ -806,11 +835,12 @@ where
     sys.guards(mode, tm, &ym, &mut gm);
     let mut rest = false;
     for i in 0..n {
-        let Some((with_start, sign)) = screening_case(armed[i], g_start[i]) else {
+        let Some(case) = screening_case(armed[i], g_start[i]) else {
             continue;
         };
-        let three = [g_start[i], gm[i], g_end[i]];
-        if clears(if with_start { &three } else { &three[1..] }, sign) {
+        // A guard just reset onto its surface needs the finer look: three
+        // samples say nothing about how it leaves the surface.
+        if !matches!(case, Screening::FromSurface) && cleared(&[g_start[i], gm[i], g_end[i]], case) {
             need[i] = false;
         } else {
             rest = true;
@@ -827,7 +857,7 @@ where
         stepper.hermite(ts[j], &mut ys[j]);
     }
     for i in 0..n {
-        let Some((with_start, sign)) = screening_case(armed[i], g_start[i]) else {
+        let Some(case) = screening_case(armed[i], g_start[i]) else {
             continue;
         };
         if !need[i] {
@@ -839,7 +869,7 @@ where
         for j in 1..SUBINTERVALS {
             values[j] = sys.guard(mode, i, ts[j], &ys[j]);
         }
-        if clears(if with_start { &values } else { &values[1..] }, sign) {
+        if cleared(&values, case) {
             need[i] = false;
         }
     }
