@@ -174,7 +174,7 @@ fn short_fig4_sweep(threads: usize) -> Vec<rocking::analysis::orbit_diagram::Bif
         classify: ClassifyOptions::default(),
         lyapunov: None,
     };
-    let plan = Plan::new(Grid::new(1.9, 2.6, 0.1).unwrap(), Continuation::None, None).unwrap();
+    let plan = Plan::new(Grid::new(1.9, 3.3, 0.2).unwrap(), Continuation::None, None).unwrap();
     let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
     pool.install(|| block_sweep(&spec, &plan, &ProgressBar::hidden()))
         .unwrap()

@@ -17,8 +17,11 @@ fn tmpdir(name: &str) -> PathBuf {
     d
 }
 
-/// A short Fig. 4 sweep through period 2, chaos and tumbling: 8 values,
-/// window τ 100..160 (77 section points each).
+/// A short Fig. 4 sweep through periods 2 and 4, chaos and tumbling: 8
+/// values A_v = 1.9, 2.1, …, 3.3, window τ 100..160 (77 section points
+/// each). From 2.7 on the block tumbles well inside the window; the chaotic
+/// values in between end in a tumble or not depending on round-off, so the
+/// grid keeps clear of them for that check.
 const SWEEP: [&str; 16] = [
     "sweep",
     "--preset",
@@ -28,9 +31,9 @@ const SWEEP: [&str; 16] = [
     "--from",
     "1.9",
     "--to",
-    "2.6",
+    "3.3",
     "--step",
-    "0.1",
+    "0.2",
     "--transient",
     "100",
     "--tau-end",

@@ -31,8 +31,9 @@
 //!   impact accumulation); the stepper is then restarted (FSAL invalidated).
 //! - *Observer* guards are located the same way but cause no jump: the system
 //!   is told the time and state (used for exact extrema of `|Θ|`).
-//! - Steps are capped at the system's [`HybridSystem::time_scale`], so a
-//!   guard that depends on time alone is sampled several times per radian.
+//! - Steps are capped at the system's [`HybridSystem::step_cap`] of the
+//!   mode (a block at rest: the forcing's time scale), so a guard that
+//!   depends on time alone is sampled several times per radian.
 //! - Section (strobe) times are step stops: the step lands on them bit-exactly,
 //!   so section points are step-end values, never interpolated across a jump.
 //! - Every loop is bounded by [`Limits`]; exceeding a bound is a typed error.
@@ -131,11 +132,19 @@ pub trait HybridSystem<const N: usize> {
 
     /// Shortest time scale of the explicit time dependence of the vector
     /// field and the guards (1/Ω for a harmonic forcing of frequency Ω);
-    /// infinite by default. Steps are capped at it: the error control sees
-    /// the state, not a guard that depends on time alone (a block at rest
-    /// does not move, whatever the forcing does), so without a cap such a
-    /// guard could pass through zero and back between two samples.
+    /// infinite by default. The cheap screening of a step (see [`screen`])
+    /// is used only on steps no longer than this; longer steps get the full
+    /// sampling on the dense output.
     fn time_scale(&self) -> f64 {
+        f64::INFINITY
+    }
+
+    /// Longest step in `mode`; infinite by default. A mode whose guards
+    /// depend on time alone while its state does not move (a block at rest:
+    /// the error control sees nothing, whatever the forcing does) must cap
+    /// its steps at a fraction of the forcing's time scale, or a guard could
+    /// pass through zero and back between two samples.
+    fn step_cap(&self, _mode: Self::Mode) -> f64 {
         f64::INFINITY
     }
 }
@@ -388,7 +397,7 @@ where
         {
             stop = tb;
         }
-        let cap = t + self.system.time_scale();
+        let cap = t + self.system.step_cap(self.mode);
         if cap > t && cap < stop {
             stop = cap;
         }
@@ -828,7 +837,9 @@ where
     let (t0, t1) = (stepper.t_prev(), stepper.t());
     let mut ym = [0.0; N];
     let tm = 0.5 * (t0 + t1);
-    if n == 0 || !stepper.hermite(tm, &mut ym) {
+    // Only a step that resolves the explicit time dependence is screened
+    // (loose tolerances can take steps of several radians of forcing).
+    if n == 0 || t1 - t0 > sys.time_scale() || !stepper.hermite(tm, &mut ym) {
         return need;
     }
     let mut gm = [0.0; MAX_GUARDS];

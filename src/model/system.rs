@@ -815,4 +815,14 @@ impl HybridSystem<N> for BlockSystem {
     fn time_scale(&self) -> f64 {
         self.model.excitation.time_scale()
     }
+
+    fn step_cap(&self, mode: Mode) -> f64 {
+        // At rest the state does not move and every guard is a function of
+        // the forcing alone; in the other modes the forcing drives the
+        // state, whose error control resolves it.
+        match mode {
+            Mode::Rest => self.model.excitation.time_scale(),
+            _ => f64::INFINITY,
+        }
+    }
 }

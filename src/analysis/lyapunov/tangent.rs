@@ -271,6 +271,10 @@ where
     fn time_scale(&self) -> f64 {
         self.inner.time_scale()
     }
+
+    fn step_cap(&self, mode: S::Mode) -> f64 {
+        self.inner.step_cap(mode)
+    }
 }
 
 /// An observer that ignores everything (the loops read the driver's state).

@@ -109,11 +109,12 @@ impl Excitation {
 
     /// Shortest time scale of the forcing, τ: 1/Ω for the fastest harmonic
     /// component with a non-zero amplitude, 1/ω for a pulse; infinite for
-    /// none. The event driver caps its steps at this, so that guards that
-    /// depend on the forcing alone (uplift and slip from rest) are sampled
-    /// at least a few times per radian of forcing phase whatever the state
-    /// does. A record is linear between its samples, and steps stop at every
-    /// sample, so it needs no cap.
+    /// none. The event driver caps its steps at this while the block is at
+    /// rest, so that guards that depend on the forcing alone (uplift and
+    /// slip from rest) are sampled several times per radian of forcing
+    /// phase, and screens steps cheaply only when they are no longer than
+    /// this. A record is linear between its samples, and steps stop at every
+    /// sample, so it needs neither.
     pub fn time_scale(&self) -> f64 {
         let inv = |omega: f64| if omega > 0.0 { 1.0 / omega } else { f64::INFINITY };
         match self {
