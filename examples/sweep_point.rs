@@ -4,7 +4,7 @@
 //! throughput, τ per wall-clock second, of the app's default scene (chaotic
 //! rocking with sliding) over τ 0–20000, section only.
 //!
-//! `cargo run --release --example sweep_point [repeats]`
+//! `cargo run --release --example sweep_point [repeats] [periodic]`
 
 use std::time::Instant;
 
@@ -59,7 +59,11 @@ fn main() {
         &r.final_state[..2]
     );
 
-    // Throughput on the default scene.
+    // Throughput on the default scene (skipped with a second argument
+    // `periodic`, to profile the sweep point alone).
+    if std::env::args().nth(2).as_deref() == Some("periodic") {
+        return;
+    }
     let cfg = rocking::io::config::load(Some("default"), None, &["run.tau_end=20000".to_string()])
         .expect("the default preset loads");
     let mut opts = cfg.run_options();

@@ -621,3 +621,50 @@ fn a_bifurcation_sweep_over_invalid_values_is_refused_naming_the_key() {
     assert!(h.state().bifurcation().columns().is_empty(), "nothing ran");
     let _ = h.get_by_label_contains("block.width");
 }
+
+#[test]
+fn snapshot_of_ghosts_separating_from_the_block() {
+    // Ghost copies spread over a range of Θ, as chaos spreads them: each is
+    // drawn under the block in the ghost tint, not in the block's colour.
+    let (s, c) = scene("default", &[]);
+    let mut updates = record(RunId(1), &c, 20.0);
+    let last = updates
+        .iter()
+        .rev()
+        .find_map(|u| match u {
+            SimUpdate::Batch { batch, .. } => batch.samples.last().copied(),
+            _ => None,
+        })
+        .expect("samples");
+    let ghosts: Vec<GhostState> = (0..8)
+        .map(|k| GhostState {
+            theta: last.theta + 0.06 * (k as f64 - 3.5),
+            x: last.x,
+            mode: last.mode,
+        })
+        .collect();
+    updates.push(SimUpdate::Batch {
+        run: RunId(1),
+        batch: Batch {
+            ghosts,
+            tau: last.tau,
+            ..Batch::default()
+        },
+    });
+    let mut h = Harness::builder()
+        .with_size(SIZE)
+        .wgpu()
+        .build_eframe(move |cc| RockingApp::with_stream(cc, s, c, updates));
+    h.run();
+    let img = h.render().expect("render");
+    // The tint over the dark background: a pale blue-grey no mode uses.
+    let tinted = img
+        .pixels()
+        .filter(|p| {
+            let [r, g, b] = [p.0[0] as i32, p.0[1] as i32, p.0[2] as i32];
+            b > r + 12 && b > g && (40..110).contains(&r)
+        })
+        .count();
+    assert!(tinted > 2_000, "ghost-tinted pixels: {tinted}");
+    h.snapshot("ghosts");
+}

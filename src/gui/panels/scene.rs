@@ -26,6 +26,9 @@ pub const MODE_COLORS: [Color32; 6] = [
     Color32::from_rgb(170, 100, 230), // flight
 ];
 
+/// Colour of the ghost copies: a pale blue at low opacity, unlike any mode.
+pub const GHOST_TINT: Color32 = Color32::from_rgba_premultiplied(46, 56, 72, 72);
+
 /// The colour of `mode`.
 pub fn mode_color(mode: Mode) -> Color32 {
     MODE_COLORS[mode.index()]
@@ -124,14 +127,13 @@ pub fn build(input: &SceneInput<'_>, rect: Rect, camera: &mut Camera) -> (Vec<Sh
     }
 
     let half = [0.5 * geo.width, 0.5 * geo.height];
+    // Ghosts under the block, in one pale tint of their own: while they
+    // follow the block it hides them; once chaos separates them they show
+    // as pale copies beside it (in the block's own colours they read as a
+    // blur of the block).
     for g in input.ghosts {
         let gp = pose(geo, g.theta, g.x, g.mode, s.base_x);
-        shapes.push(Shape::rect(
-            [gp.x, gp.y],
-            half,
-            gp.angle,
-            mode_color(g.mode).gamma_multiply(0.22),
-        ));
+        shapes.push(Shape::rect([gp.x, gp.y], half, gp.angle, GHOST_TINT));
     }
     if input.flash > 0.0 {
         let grow = 0.06 * geo.width.min(geo.height) + 4.0 * px;
@@ -144,6 +146,7 @@ pub fn build(input: &SceneInput<'_>, rect: Rect, camera: &mut Camera) -> (Vec<Sh
     }
     let mode = input.terminal.unwrap_or(s.mode);
     shapes.push(Shape::rect([p.x, p.y], half, p.angle, mode_color(mode)));
+
     // The centre of mass.
     shapes.push(Shape::circle([p.x, p.y], 3.0 * px, Color32::from_rgb(30, 30, 36)));
 
