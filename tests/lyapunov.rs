@@ -551,6 +551,11 @@ fn fig12_period_four_response_with_slip_and_stick_has_its_floquet_exponents() {
     )
     .unwrap();
     let r = exponents_of(&res);
+    // The numbers docs/analysis.md quotes (`--nocapture` shows them).
+    eprintln!(
+        "fig12 period-4 orbit: Floquet {floquet:?}, tangent {:?} ± {:?}",
+        r.spectrum, r.spectrum_stderr
+    );
     assert_eq!(r.spectrum.len(), 2);
     assert_eq!(r.collapsed, 1, "the slip velocity is reset at every sticking impact");
     for i in 0..2 {

@@ -204,7 +204,19 @@ fn check(s: &Scene, excited: bool) -> Result<(), TestCaseError> {
     // fixed-step Ralston RK2.
     let closure = if s.method == Method::Ralston { 2e-2 } else { 1e-6 };
     prop_assert!(e.relative_residual < closure, "energy balance does not close: {e:?}");
-    prop_assert!(e.loss_friction >= -1e-9, "friction created energy: {e:?}");
+    // Friction only dissipates. The paper's Ralston evaluates its second
+    // stage past an event surface it has not located yet (its rule accepts a
+    // crossing once |g| < 1e-6), where the friction power of slide-rock can
+    // take either sign; so its friction loss is exact only to its truncation
+    // error, which the energy residual measures (found by the extensive tier:
+    // −4.0e-7 against a residual of 1.7e-4, the same before and after the
+    // integrator changes of issue 5).
+    let friction_floor = if s.method == Method::Ralston {
+        -e.residual.abs()
+    } else {
+        -1e-9
+    };
+    prop_assert!(e.loss_friction >= friction_floor, "friction created energy: {e:?}");
     // Ralston accepts a crossing once |g| < 1e-6, the paper's rule.
     let past = if s.method == Method::Ralston { 1e-6 } else { 1e-9 };
     prop_assert!(res.max_abs_theta.is_finite() && res.max_abs_theta <= model.tumble_theta + past);

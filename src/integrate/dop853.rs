@@ -18,7 +18,8 @@
 
 use super::dop853_tableau::{A, B, C, D, E3, E5, N_DENSE_ROWS, N_STAGES, N_STAGES_EXTENDED};
 use super::dopri5::{
-    Controller, H_FALLBACK, MAX_REJECTIONS, all_finite, combine, err_scale, h_min, hermite, hinit, next_step_size,
+    Controller, H_FALLBACK, MAX_REJECTIONS, all_finite, combine, err_scale, h_min, hermite, hermite_spread, hinit,
+    next_step_size,
 };
 use super::stepper::{Rhs, StepError, StepStats, Stepper, Tolerances};
 
@@ -332,6 +333,15 @@ impl<const N: usize> Stepper<N> for Dop853<N> {
             (t - self.t_old) / self.h_used,
             out,
         );
+        true
+    }
+
+    fn hermite_spread(&self, out: &mut [f64; N]) -> bool {
+        if !self.has_step {
+            return false;
+        }
+        let (f0, f1) = (&self.k[0], &self.k[FSAL]);
+        hermite_spread(&self.y_old, &self.y, f0, f1, self.h_used, out);
         true
     }
 

@@ -94,6 +94,22 @@ pub(super) fn hermite<const N: usize>(
     }
 }
 
+/// The third-order term of [`hermite`] at the midpoint,
+/// `(2(y1 - y0) - h(f0 + f1))/8` (see [`Stepper::hermite_spread`]).
+#[inline]
+pub(super) fn hermite_spread<const N: usize>(
+    y0: &[f64; N],
+    y1: &[f64; N],
+    f0: &[f64; N],
+    f1: &[f64; N],
+    h: f64,
+    out: &mut [f64; N],
+) {
+    for n in 0..N {
+        out[n] = 0.125 * (2.0 * (y1[n] - y0[n]) - h * (f0[n] + f1[n]));
+    }
+}
+
 /// `true` if every component is finite.
 #[inline]
 pub(super) fn all_finite<const N: usize>(v: &[f64; N]) -> bool {
@@ -568,6 +584,15 @@ impl<const N: usize> Stepper<N> for Dopri5<N> {
             (t - self.t_old) / self.h_used,
             out,
         );
+        true
+    }
+
+    fn hermite_spread(&self, out: &mut [f64; N]) -> bool {
+        if !self.has_step {
+            return false;
+        }
+        let (f0, f1) = (&self.k[0], &self.k[STAGES - 1]);
+        hermite_spread(&self.y_old, &self.y, f0, f1, self.h_used, out);
         true
     }
 

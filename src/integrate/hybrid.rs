@@ -747,9 +747,10 @@ where
 /// end, in time order) clear it for the step: all of one sign, `sign`
 /// (+1 for an armed guard that must not fall to zero, −1 for an unarmed
 /// one that must not rise above it), and farther from zero than
-/// [`SCREEN_MARGIN`] times the largest change between neighbours.
+/// [`SCREEN_MARGIN`] times the largest change between neighbours plus
+/// `slack`, the possible error of the samples.
 #[inline]
-fn clears(values: &[f64], sign: f64) -> bool {
+fn clears(values: &[f64], sign: f64, slack: f64) -> bool {
     let mut nearest = f64::INFINITY;
     let mut largest_change = 0.0f64;
     for (j, &g) in values.iter().enumerate() {
@@ -758,7 +759,7 @@ fn clears(values: &[f64], sign: f64) -> bool {
             largest_change = largest_change.max((g - values[j - 1]).abs());
         }
     }
-    nearest > 0.0 && nearest > SCREEN_MARGIN * largest_change
+    nearest > 0.0 && nearest > SCREEN_MARGIN * largest_change + slack
 }
 
 /// How a guard is screened, by its state at the start of the step.
@@ -795,17 +796,17 @@ fn screening_case(armed: bool, g_start: f64) -> Option<Screening> {
 /// Whether the samples `values` (start, interior, end, in time order) clear
 /// a guard screened as `case`.
 #[inline]
-fn cleared(values: &[f64], case: Screening) -> bool {
+fn cleared(values: &[f64], case: Screening, slack: f64) -> bool {
     match case {
-        Screening::Positive => clears(values, 1.0),
-        Screening::Negative => clears(values, -1.0),
+        Screening::Positive => clears(values, 1.0, slack),
+        Screening::Negative => clears(values, -1.0, slack),
         Screening::FromSurface => {
             // The first sample after the surface must be clearly above it
             // (a quarter of the largest change between the later samples),
             // and the later ones clear with the usual margin.
             let rest = &values[2..];
             let largest_change = rest.windows(2).map(|w| (w[1] - w[0]).abs()).fold(0.0, f64::max);
-            values[1] > 0.25 * largest_change && values[1] > 0.0 && clears(rest, 1.0)
+            values[1] > 0.25 * largest_change + slack && values[1] > 0.0 && clears(rest, 1.0, slack)
         }
     }
 }
@@ -844,6 +845,26 @@ where
     }
     let mut gm = [0.0; MAX_GUARDS];
     sys.guards(mode, tm, &ym, &mut gm);
+    // How far the Hermite values may be off, in each guard's own units: the
+    // guards at the midpoint of the quadratic through y0, f0, y1 differ from
+    // those of the cubic by about the cubic's third-order term, an
+    // overestimate of its error. A guard whose values are not clear of zero
+    // by more than that is left to the dense output (this is what catches a
+    // guard of size 1e-8 on a step whose Hermite error is 1e-5).
+    let mut spread = [0.0; N];
+    if !stepper.hermite_spread(&mut spread) {
+        return need;
+    }
+    let yq: [f64; N] = std::array::from_fn(|k| ym[k] - spread[k]);
+    let mut gq = [0.0; MAX_GUARDS];
+    sys.guards(mode, tm, &yq, &mut gq);
+    let mut slack = [0.0; MAX_GUARDS];
+    for i in 0..n {
+        slack[i] = (gm[i] - gq[i]).abs();
+        if !slack[i].is_finite() {
+            return need;
+        }
+    }
     let mut rest = false;
     for i in 0..n {
         let Some(case) = screening_case(armed[i], g_start[i]) else {
@@ -851,7 +872,7 @@ where
         };
         // A guard just reset onto its surface needs the finer look: three
         // samples say nothing about how it leaves the surface.
-        if !matches!(case, Screening::FromSurface) && cleared(&[g_start[i], gm[i], g_end[i]], case) {
+        if !matches!(case, Screening::FromSurface) && cleared(&[g_start[i], gm[i], g_end[i]], case, slack[i]) {
             need[i] = false;
         } else {
             rest = true;
@@ -880,7 +901,7 @@ where
         for j in 1..SUBINTERVALS {
             values[j] = sys.guard(mode, i, ts[j], &ys[j]);
         }
-        if cleared(&values, case) {
+        if cleared(&values, case, slack[i]) {
             need[i] = false;
         }
     }

@@ -130,6 +130,16 @@ pub trait Stepper<const N: usize> {
         false
     }
 
+    /// A conservative estimate of the error of [`hermite`](Stepper::hermite)
+    /// at the step's midpoint: the cubic's own third-order term there,
+    /// `(2(y1 - y0) - h(f0 + f1))/8`, i.e. how far it is from the quadratic
+    /// through `y0`, `f0`, `y1`. That is O(h³) while the cubic's error is
+    /// O(h⁴), so it overestimates it by about 8/(ωh) for a solution of
+    /// frequency ω. Returns `false` without such data.
+    fn hermite_spread(&self, _out: &mut [f64; N]) -> bool {
+        false
+    }
+
     /// Cut the last step short at `t_cut` in `[t_prev(), t()]`: the current
     /// state becomes the dense output there. Used at events.
     fn truncate<F: Rhs<N>>(&mut self, f: &F, t_cut: f64) {
