@@ -668,3 +668,28 @@ fn snapshot_of_ghosts_separating_from_the_block() {
     assert!(tinted > 2_000, "ghost-tinted pixels: {tinted}");
     h.snapshot("ghosts");
 }
+
+#[test]
+fn the_contact_force_overlay_draws_the_force_inside_the_cone() {
+    // View ▸ Contact force and friction cone: an arrow (255, 90, 90) from the
+    // pivot corner, and the cone's two edges. The block rocks about a stuck
+    // corner at τ = 20, so the force is drawn and lies inside the cone.
+    let mut h = fixed("default", &[], 20.0);
+    h.run();
+    let arrow = |rgba: &[u8]| {
+        rgba.chunks_exact(4)
+            .filter(|p| p[0] > 230 && (70..=110).contains(&p[1]) && (70..=110).contains(&p[2]))
+            .count()
+    };
+    let before = arrow(h.render().expect("render").as_raw());
+    h.get_by_label("View").click();
+    h.run();
+    h.get_by_label("Contact force and friction cone").click();
+    h.run();
+    assert!(h.state().forces_shown(), "the menu item turns the overlay on");
+    let after = arrow(h.render().expect("render").as_raw());
+    assert!(
+        after > before + 100,
+        "arrow pixels: {before} without the overlay, {after} with it"
+    );
+}

@@ -225,6 +225,10 @@ impl RockingApp {
     pub fn gpu(&self) -> bool {
         self.gpu
     }
+    /// Whether the contact force and friction cone are drawn.
+    pub fn forces_shown(&self) -> bool {
+        self.forces
+    }
     /// The playhead, τ.
     pub fn tau(&self) -> f64 {
         self.tau
