@@ -18,8 +18,8 @@
 
 use super::dop853_tableau::{A, B, C, D, E3, E5, N_DENSE_ROWS, N_STAGES, N_STAGES_EXTENDED};
 use super::dopri5::{
-    Controller, H_FALLBACK, MAX_REJECTIONS, all_finite, combine, err_scale, h_min, hermite, hermite_spread, hinit,
-    next_step_size,
+    Controller, H_FALLBACK, MAX_REJECTIONS, all_finite, combine, combine_leading, err_scale, h_min, hermite,
+    hermite_spread, hinit, next_step_size,
 };
 use super::stepper::{Rhs, StepError, StepStats, Stepper, Tolerances};
 
@@ -104,8 +104,10 @@ impl<const N: usize> Dop853<N> {
         // checks it), and `combine` skips zero weights (no 0·∞), so a
         // non-finite stage always shows in `y_new` or the error, which are
         // tested below.
+        // Stage states need only the components `f` reads.
+        let read = N - F::QUADRATURES.min(N);
         for i in 1..N_STAGES {
-            combine(&self.y, h, &A[i][..i], &self.k[..i], &mut ys);
+            combine_leading(&self.y, h, &A[i][..i], &self.k[..i], &mut ys, read);
             let ti = if C[i] == 1.0 { t_new } else { t + C[i] * h };
             self.eval(f, ti, &ys, i);
         }
@@ -150,8 +152,9 @@ impl<const N: usize> Dop853<N> {
     fn prepare_dense<F: Rhs<N>>(&mut self, f: &F) {
         let h = self.h_used;
         let mut ys = [0.0; N];
+        let read = N - F::QUADRATURES.min(N);
         for s in FSAL + 1..N_STAGES_EXTENDED {
-            combine(&self.y_old, h, &A[s][..s], &self.k[..s], &mut ys);
+            combine_leading(&self.y_old, h, &A[s][..s], &self.k[..s], &mut ys, read);
             self.eval(f, self.t_old + C[s] * h, &ys, s);
         }
         let (f_old, f_new) = (self.k[0], self.k[FSAL]);

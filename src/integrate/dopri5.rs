@@ -67,6 +67,33 @@ pub(super) fn combine<const N: usize>(y: &[f64; N], h: f64, w: &[f64], k: &[[f64
     }
 }
 
+/// [`combine`] for the first `m` components only (`m <= N`); the others
+/// keep whatever `out` held. For stage states, whose trailing quadratures
+/// no right-hand side reads ([`Rhs::QUADRATURES`]): `m` is a constant after
+/// monomorphisation, so the loops are as tight as `combine`'s.
+#[inline]
+pub(super) fn combine_leading<const N: usize>(
+    y: &[f64; N],
+    h: f64,
+    w: &[f64],
+    k: &[[f64; N]],
+    out: &mut [f64; N],
+    m: usize,
+) {
+    let m = m.min(N);
+    let mut acc = [0.0; N];
+    for (wj, kj) in w.iter().zip(k) {
+        if *wj != 0.0 {
+            for (a, kn) in acc[..m].iter_mut().zip(&kj[..m]) {
+                *a += wj * kn;
+            }
+        }
+    }
+    for ((o, yn), a) in out[..m].iter_mut().zip(&y[..m]).zip(&acc[..m]) {
+        *o = yn + h * a;
+    }
+}
+
 /// The cubic Hermite interpolant through `(t0, y0, f0)` and `(t0 + h, y1,
 /// f1)` at `theta = (t - t0)/h`, in the Hermite basis:
 /// `(1-θ)²(1+2θ) y0 + θ(1-θ)² h f0 + θ²(3-2θ) y1 + θ²(θ-1) h f1`.

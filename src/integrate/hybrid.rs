@@ -43,7 +43,7 @@
 //! step and retries with the step divided by 10 until `|g| < 1e-6`.
 
 use super::root::{brent_min, brent_root};
-use super::stepper::{StepError, Stepper};
+use super::stepper::{Rhs, StepError, Stepper};
 
 /// Most guards a mode may have.
 pub const MAX_GUARDS: usize = 8;
@@ -91,6 +91,10 @@ pub trait HybridSystem<const N: usize> {
     type Record;
     /// Error a reset map may return.
     type Error: From<DriverError>;
+
+    /// How many trailing components of the state are pure quadratures that
+    /// `rhs` never reads (see [`Rhs::QUADRATURES`]); 0 by default.
+    const QUADRATURES: usize = 0;
 
     /// Vector field of `mode`.
     fn rhs(&self, mode: Self::Mode, t: f64, y: &[f64; N], dydt: &mut [f64; N]);
@@ -146,6 +150,21 @@ pub trait HybridSystem<const N: usize> {
     /// pass through zero and back between two samples.
     fn step_cap(&self, _mode: Self::Mode) -> f64 {
         f64::INFINITY
+    }
+}
+
+/// The vector field of one mode, as a stepper sees it.
+struct Field<'a, Sys, M> {
+    sys: &'a Sys,
+    mode: M,
+}
+
+impl<Sys: HybridSystem<N>, const N: usize> Rhs<N> for Field<'_, Sys, Sys::Mode> {
+    const QUADRATURES: usize = Sys::QUADRATURES;
+
+    #[inline]
+    fn eval(&self, t: f64, y: &[f64; N], dydt: &mut [f64; N]) {
+        self.sys.rhs(self.mode, t, y, dydt);
     }
 }
 
@@ -270,7 +289,7 @@ where
         outputs: Outputs,
     ) -> Self {
         {
-            let f = |t: f64, y: &[f64; N], dy: &mut [f64; N]| system.rhs(mode, t, y, dy);
+            let f = Field { sys: &system, mode };
             stepper.restart(&f, t0, &y0);
         }
         let first = |dt: Option<f64>| match dt {
@@ -338,7 +357,7 @@ where
     pub fn reinit(&mut self, mode: Sys::Mode, t: f64, y: [f64; N]) {
         self.mode = mode;
         let sys = &self.system;
-        let f = |tt: f64, yy: &[f64; N], dy: &mut [f64; N]| sys.rhs(mode, tt, yy, dy);
+        let f = Field { sys, mode };
         self.stepper.restart(&f, t, &y);
         self.refresh_guards();
     }
@@ -415,7 +434,7 @@ where
         let need = {
             let sys = &self.system;
             let stepper = &mut self.stepper;
-            let f = |tt: f64, yy: &[f64; N], dy: &mut [f64; N]| sys.rhs(mode, tt, yy, dy);
+            let f = Field { sys, mode };
             stepper.step(&f, t_stop).map_err(DriverError::from)?;
             self.steps += 1;
             sys.guards(mode, stepper.t(), stepper.y(), &mut g_end);
@@ -471,7 +490,7 @@ where
         let best = {
             let sys = &self.system;
             let stepper = &mut self.stepper;
-            let f = |tt: f64, yy: &[f64; N], dy: &mut [f64; N]| sys.rhs(mode, tt, yy, dy);
+            let f = Field { sys, mode };
             let t0 = stepper.t_prev();
             let t1 = stepper.t();
             // Guard samples on the dense output, for the guards that need it.
@@ -502,8 +521,16 @@ where
                 let Some((a, b)) = bracket(i, &ts, &gs, &mut armed[i], &mut value) else {
                     continue;
                 };
-                let ga = value(a);
-                let gb = value(b);
+                // Bracket ends at samples have their values already (the
+                // same bits: `guard` equals `guards`, and the dense output
+                // returns the step's end states exactly); a dip's minimum
+                // does not.
+                let mut at = |x: f64| match ts.iter().position(|&tk| tk == x) {
+                    Some(k) => gs[k][i],
+                    None => value(x),
+                };
+                let ga = at(a);
+                let gb = at(b);
                 let root = if ga > 0.0 && gb <= 0.0 {
                     let xtol = (4.0 * f64::EPSILON * a.abs().max(b.abs())).max(1e-15);
                     match brent_root(&mut value, a, b, ga, gb, xtol, 200) {
@@ -548,7 +575,7 @@ where
                 let mut y_ev = [0.0; N];
                 {
                     let sys = &self.system;
-                    let f = |tt: f64, yy: &[f64; N], dy: &mut [f64; N]| sys.rhs(mode, tt, yy, dy);
+                    let f = Field { sys, mode };
                     self.stepper.dense(&f, t_ev, &mut y_ev);
                 }
                 self.emit_samples_dense(t_ev, obs);
@@ -568,7 +595,7 @@ where
         let mut g1 = [0.0; MAX_GUARDS];
         loop {
             let sys = &self.system;
-            let f = |tt: f64, yy: &[f64; N], dy: &mut [f64; N]| sys.rhs(mode, tt, yy, dy);
+            let f = Field { sys, mode };
             self.stepper.step(&f, t_stop).map_err(DriverError::from)?;
             self.steps += 1;
             let t1 = self.stepper.t();
@@ -647,7 +674,7 @@ where
         }
         let mode = self.mode;
         let sys = &self.system;
-        let f = |tt: f64, yy: &[f64; N], dy: &mut [f64; N]| sys.rhs(mode, tt, yy, dy);
+        let f = Field { sys, mode };
         self.stepper.restart(&f, jump.t, &jump.y);
         self.refresh_guards();
         // A section time that coincides with the event (or was skipped over)
@@ -667,7 +694,7 @@ where
         };
         let mode = self.mode;
         let sys = &self.system;
-        let f = |tt: f64, yy: &[f64; N], dy: &mut [f64; N]| sys.rhs(mode, tt, yy, dy);
+        let f = Field { sys, mode };
         let t_end = self.stepper.t();
         let mut y = [0.0; N];
         loop {

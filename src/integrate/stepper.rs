@@ -5,6 +5,13 @@
 /// Implemented for every `Fn(f64, &[f64; N], &mut [f64; N])`, so a closure
 /// that captures the current hybrid mode can be passed directly.
 pub trait Rhs<const N: usize> {
+    /// How many trailing components of `y` are pure quadratures, `y_i' =
+    /// g_i(t, y)` with no `g` reading any of them (the block's work and
+    /// friction-loss audits). A Runge–Kutta stepper then forms its stage
+    /// states for the leading components only; the solution and the error
+    /// estimate still cover all. 0 by default: every component is read.
+    const QUADRATURES: usize = 0;
+
     /// Writes `f(t, y)` into `dydt`.
     fn eval(&self, t: f64, y: &[f64; N], dydt: &mut [f64; N]);
 }

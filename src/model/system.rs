@@ -612,6 +612,9 @@ impl HybridSystem<N> for BlockSystem {
     type Record = EventRecord;
     type Error = ModelError;
 
+    /// W and D: the vector field reads Θ, Θ' and X' only.
+    const QUADRATURES: usize = 2;
+
     #[inline]
     fn rhs(&self, mode: Mode, t: f64, y: &[f64; N], dy: &mut [f64; N]) {
         let fo = self.forcing(t);
