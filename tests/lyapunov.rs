@@ -667,8 +667,11 @@ fn independent_runs_agree_on_a_persistent_chaotic_attractor() {
 
 #[test]
 fn tumbling_and_flat_responses_have_no_exponent() {
-    // A strong push tumbles the block.
-    let cfg = preset("fig7", &["excitation.a_h=6"]);
+    // A strong push tumbles the block: at A_h = 10 in the first swing
+    // (τ = 1.28, no impact), so the outcome does not hang on how a chaotic
+    // transient ends (A_h = 6 tumbled after a transient at one rounding
+    // and settled on a periodic orbit at another).
+    let cfg = preset("fig7", &["excitation.a_h=10"]);
     let res = lyapunov(&cfg.model().unwrap(), &cfg.initial(), &LyapunovOptions::default()).unwrap();
     assert!(
         matches!(

@@ -112,6 +112,15 @@ pub trait HybridSystem<const N: usize> {
         g[index]
     }
 
+    /// Whether [`guard`](Self::guard) evaluates guard `index` of `mode` at a
+    /// fraction of the cost of [`guards`](Self::guards) (a guard on the
+    /// state alone, say). Where a sample needs several guards and one is not
+    /// cheap, the driver calls `guards` once instead of `guard` for each.
+    /// `false` by default.
+    fn guard_is_cheap(&self, _mode: Self::Mode, _index: usize) -> bool {
+        false
+    }
+
     /// Whether guard `index` of `mode` only observes (no jump).
     fn is_observer(&self, mode: Self::Mode, index: usize) -> bool;
 
@@ -501,11 +510,16 @@ where
             ts[SUBINTERVALS] = t1;
             gs[SUBINTERVALS] = g_end;
             let mut yj = [0.0; N];
+            let all_at_once = several_costly(sys, mode, n, need);
             for j in 1..SUBINTERVALS {
                 ts[j] = t0 + (t1 - t0) * (j as f64 / SUBINTERVALS as f64);
                 stepper.dense(&f, ts[j], &mut yj);
-                for i in (0..n).filter(|&i| need[i]) {
-                    gs[j][i] = sys.guard(mode, i, ts[j], &yj);
+                if all_at_once {
+                    sys.guards(mode, ts[j], &yj, &mut gs[j]);
+                } else {
+                    for i in (0..n).filter(|&i| need[i]) {
+                        gs[j][i] = sys.guard(mode, i, ts[j], &yj);
+                    }
                 }
             }
 
@@ -915,6 +929,19 @@ where
         ts[j] = t0 + (t1 - t0) * (j as f64 / SUBINTERVALS as f64);
         stepper.hermite(ts[j], &mut ys[j]);
     }
+    // Guards still in question, and all of them per sample if that is
+    // cheaper (see `several_costly`).
+    let mut open = [false; MAX_GUARDS];
+    for i in 0..n {
+        open[i] = need[i] && screening_case(armed[i], g_start[i]).is_some();
+    }
+    let mut all = [[0.0; MAX_GUARDS]; SUBINTERVALS + 1];
+    let all_at_once = several_costly(sys, mode, n, &open);
+    if all_at_once {
+        for j in 1..SUBINTERVALS {
+            sys.guards(mode, ts[j], &ys[j], &mut all[j]);
+        }
+    }
     for i in 0..n {
         let Some(case) = screening_case(armed[i], g_start[i]) else {
             continue;
@@ -926,13 +953,32 @@ where
         values[0] = g_start[i];
         values[SUBINTERVALS] = g_end[i];
         for j in 1..SUBINTERVALS {
-            values[j] = sys.guard(mode, i, ts[j], &ys[j]);
+            values[j] = if all_at_once {
+                all[j][i]
+            } else {
+                sys.guard(mode, i, ts[j], &ys[j])
+            };
         }
         if cleared(&values, case, slack[i]) {
             need[i] = false;
         }
     }
     need
+}
+
+/// Whether the guards marked in `need` are cheaper evaluated all at once by
+/// [`HybridSystem::guards`] than one by one by [`HybridSystem::guard`]: when
+/// at least two are wanted and one of them is not cheap (each costly
+/// `guard` call costs about a `guards` call). Same values either way (the
+/// contract of `guard`).
+fn several_costly<Sys: HybridSystem<N>, const N: usize>(
+    sys: &Sys,
+    mode: Sys::Mode,
+    n: usize,
+    need: &[bool; MAX_GUARDS],
+) -> bool {
+    let wanted = (0..n).filter(|&i| need[i]).count();
+    wanted >= 2 && (0..n).any(|i| need[i] && !sys.guard_is_cheap(mode, i))
 }
 
 /// The bracket `[a, b]` of the first crossing of guard `i` in one step, if

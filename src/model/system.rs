@@ -737,6 +737,17 @@ impl HybridSystem<N> for BlockSystem {
         }
     }
 
+    /// The guards `guard` evaluates without the forcing and the contact
+    /// forces (its special cases).
+    fn guard_is_cheap(&self, mode: Mode, index: usize) -> bool {
+        matches!(
+            (mode, index),
+            (Mode::Rock { .. } | Mode::SlideRock { .. }, 0 | 1 | 3)
+                | (Mode::SlideRock { .. }, 4)
+                | (Mode::Slide { .. }, 0)
+        )
+    }
+
     fn is_observer(&self, mode: Mode, index: usize) -> bool {
         match mode {
             Mode::Rock { .. } | Mode::SlideRock { .. } => index == 3 || (index == 2 && !self.stops_at_flight()),
