@@ -138,6 +138,7 @@ fn options(method: Method) -> RunOptions {
         limits: Limits {
             max_steps: 5_000_000,
             max_events: 1_000_000,
+            ..Limits::default()
         },
     }
 }

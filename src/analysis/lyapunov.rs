@@ -182,6 +182,7 @@ impl LyapunovOptions {
             limits: Limits {
                 max_steps: cfg.max_steps,
                 max_events: cfg.max_events,
+                ..Limits::default()
             },
             ..d
         }

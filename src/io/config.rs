@@ -657,6 +657,7 @@ impl Config {
             limits: Limits {
                 max_steps: self.max_steps,
                 max_events: self.max_events,
+                ..Limits::default()
             },
         }
     }
