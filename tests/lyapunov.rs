@@ -599,13 +599,14 @@ fn assert_paired_agreement(r: &LyapunovResult, what: &str) {
 #[test]
 fn methods_agree_on_the_papers_chaotic_cases() {
     // Fig. 7 (no sliding): in this model the chaotic motion is a transient
-    // that ends in a tumble (τ ≈ 250–700 depending on round-off), so the
-    // exponent is measured over τ 50–400 of the chaotic transient.
+    // that ends in a tumble (τ ≈ 250–700 depending on round-off: 299 at
+    // the present numerics), so the exponent is measured over τ 50–240 of
+    // the chaotic transient.
     let cfg = preset("fig7", &[]);
     let opts = LyapunovOptions {
         method: Method::Both,
         transient_tau: 50.0,
-        total_tau: 400.0,
+        total_tau: 240.0,
         ..LyapunovOptions::default()
     };
     let res = lyapunov(&cfg.model().unwrap(), &cfg.initial(), &opts).unwrap();
