@@ -60,26 +60,8 @@ pub struct Dop853<const N: usize> {
     h_used: f64,
     /// Proposed size of the next step; 0 until the first `hinit`.
     h_next: f64,
-    /// The next step is the first after a restart (an event's reset).
-    after_restart: bool,
-    /// What the first steps after the last [`RESTART_MEMORY`] restarts
-    /// could afford, as fractions of the step-size proposal carried over
-    /// each restart (a ring, oldest overwritten); the next restart starts
-    /// with the smallest (see [`Stepper::restart`]).
-    restart_factors: [f64; RESTART_MEMORY],
-    /// Where the next entry of `restart_factors` goes.
-    restart_slot: usize,
     stats: StepStats,
 }
-
-/// Smallest entry of [`Dop853::restart_factors`]: a restart never starts
-/// with less than this fraction of the carried-over proposal.
-const MIN_RESTART_FACTOR: f64 = 0.1;
-
-/// How many restarts [`Dop853::restart_factors`] remembers: 4 covers the
-/// alternation of left and right impacts, and of the two impacts of a
-/// period-2 orbit, which need different first steps.
-const RESTART_MEMORY: usize = 4;
 
 impl<const N: usize> Dop853<N> {
     /// A stepper with the given tolerances. Call [`Stepper::restart`] before
@@ -102,9 +84,6 @@ impl<const N: usize> Dop853<N> {
             started: false,
             h_used: 0.0,
             h_next: 0.0,
-            after_restart: false,
-            restart_factors: [1.0; RESTART_MEMORY],
-            restart_slot: 0,
             stats: StepStats::default(),
         }
     }
@@ -220,23 +199,7 @@ impl<const N: usize> Stepper<N> for Dop853<N> {
     /// Starts at `(t, y)`: evaluates `f(t, y)` (discarding FSAL and dense
     /// data) and, on the very first restart only, estimates the initial step
     /// with Hairer's `hinit` (one more evaluation). Later restarts keep the
-    /// last step-size estimate, scaled by what the first step after the
-    /// previous restart could afford.
-    ///
-    /// Why the scaling: the proposal carried over a reset was made for the
-    /// motion before it. After an impact the block starts again from Θ = 0,
-    /// where the relative error test is strictest, and at loose tolerances
-    /// (steps a large part of a rocking cycle) the carried-over step failed
-    /// once per impact, at a cost of 11 evaluations each (at rtol 1e-3, a
-    /// quarter of all evaluations). The motion after one impact is much
-    /// like that after the next, so the first step after a restart starts
-    /// at the fraction of its proposal that the controller found right last
-    /// time: the accepted first step's own proposal over the carried-over
-    /// one, at most 1, and the smallest of the last [`RESTART_MEMORY`]
-    /// (impacts on the two corners alternate, and need different steps; a
-    /// first step a little short costs a fraction of a step, a rejected one
-    /// a whole step). Accuracy does not depend on it (every step passes the
-    /// error test); only the number of rejected steps does.
+    /// last step-size estimate.
     fn restart<F: Rhs<N>>(&mut self, f: &F, t: f64, y: &[f64; N]) {
         self.t = t;
         self.t_old = t;
@@ -249,7 +212,6 @@ impl<const N: usize> Stepper<N> for Dop853<N> {
         self.started = true;
         self.h_used = 0.0;
         self.ctrl.reset();
-        self.after_restart = self.h_next > 0.0;
         if self.h_next <= 0.0 {
             let (y0, f0) = (self.y, self.k[0]);
             if let Some(h) = hinit(f, t, &y0, &f0, 8, &self.tol, &mut self.stats.rhs_evals) {
@@ -284,11 +246,6 @@ impl<const N: usize> Stepper<N> for Dop853<N> {
             return Err(StepError::NonFinite { t: self.t });
         }
         let mut h = if self.h_next > 0.0 { self.h_next } else { H_FALLBACK };
-        let carried = h;
-        let first_after_restart = std::mem::take(&mut self.after_restart);
-        if first_after_restart {
-            h *= self.restart_factors.iter().fold(1.0_f64, |m, &x| m.min(x));
-        }
         let mut after_reject = false;
         let mut rejections = 0;
         let mut y_new = [0.0; N];
@@ -315,17 +272,6 @@ impl<const N: usize> Stepper<N> for Dop853<N> {
                     return Err(StepError::NonFinite { t: self.t });
                 }
                 self.h_next = next_step_size(&d, h_try, clamped, h_proposed, self.tol.h_max);
-                // A step shortened to land on `t_stop` says nothing about
-                // the step the motion affords.
-                if first_after_restart && !clamped {
-                    self.restart_factors[self.restart_slot] = (d.h_new / carried).clamp(MIN_RESTART_FACTOR, 1.0);
-                    self.restart_slot = (self.restart_slot + 1) % RESTART_MEMORY;
-                    // That step was short by design, so its small error
-                    // invites growth the motion cannot sustain (at rtol 1e-6,
-                    // 995 rejections of 5120 steps came from it): the next
-                    // step grows no further than the carried proposal.
-                    self.h_next = self.h_next.min(carried.max(h_try));
-                }
                 self.t = t_new;
                 self.y = y_new;
                 self.h_used = h_try;
