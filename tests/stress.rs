@@ -295,3 +295,48 @@ fn a_barely_lifted_block_lands_again() {
     assert!(next.tau - res.events[uplift].tau < 1e-3, "{next:?}");
     assert_eq!(next.kind, EventKind::Rest, "{next:?}");
 }
+
+/// Found by the extensive tier (two scenes in 3·10⁵, failing the same way
+/// at the start of this session's work): free rocking, a frictionless
+/// plastic impact, then slide-rock with μ_k = 1.3 just under the Painlevé
+/// limit, where the denominator D is 0.012 at the state and falls through
+/// zero a little way off it. A trial step reaching there gave non-finite
+/// stages, which ended the run ("non-finite state"); DOP853 now cuts such a
+/// step and retries, as Hairer's codes treat a NaN error.
+#[test]
+fn slide_rock_near_the_painleve_limit_survives_a_bold_trial_step() {
+    let scenes = [
+        (
+            0.5458569771887457,
+            1.415671546236458,
+            -0.6919251896292482,
+            1.5407020122753214,
+        ),
+        (
+            0.4833270370510789,
+            1.4087021425323922,
+            -0.48416775000170137,
+            -0.5129613903249968,
+        ),
+    ];
+    for (ratio, mu_s, theta0, theta_dot0) in scenes {
+        let s = Scene {
+            ratio,
+            mu: (mu_s, 1.3),
+            law: ImpactLaw::Impulse {
+                e: 0.0,
+                mu_s: 0.0,
+                mu_k: 0.0,
+            },
+            a_h: 0.0,
+            a_v_frac: 0.0,
+            omega_h: 0.5,
+            omega_v: 0.5,
+            phase_v: 0.0,
+            theta0,
+            theta_dot0,
+            method: Method::Dop853,
+        };
+        check(&s, false).unwrap();
+    }
+}

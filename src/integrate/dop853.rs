@@ -262,7 +262,21 @@ impl<const N: usize> Stepper<N> for Dop853<N> {
                 t_new = t_stop;
                 clamped = true;
             }
-            let err = self.attempt(f, h_try, t_new, &mut y_new)?;
+            // A stage that left the domain where `f` is finite (the block's
+            // slide-rock near its Painlevé limit, where the denominator D
+            // falls to zero just beyond the state) is a step too large, as
+            // Hairer's codes treat a NaN error: cut it hard and retry. Only
+            // when that does not help is the state reported non-finite.
+            let err = match self.attempt(f, h_try, t_new, &mut y_new) {
+                Ok(err) => err,
+                Err(e @ StepError::NonFinite { .. }) => {
+                    if rejections + 1 >= MAX_REJECTIONS || h_try * self.ctrl.fac_min() < h_min(self.t) {
+                        return Err(e);
+                    }
+                    f64::NAN
+                }
+                Err(e) => return Err(e),
+            };
             let d = self.ctrl.decide(err, h_try, after_reject);
             if d.accept {
                 // The FSAL stage is needed only by an accepted step (Hairer

@@ -232,6 +232,11 @@ pub(super) struct Controller {
 }
 
 impl Controller {
+    /// The smallest step ratio a rejection can ask for (Hairer's `FAC1`).
+    pub(super) fn fac_min(&self) -> f64 {
+        self.fac_min
+    }
+
     /// A controller with Hairer's parameter names.
     pub(super) const fn new(safety: f64, fac_min: f64, fac_max: f64, beta: f64, expo: f64) -> Self {
         Self {
