@@ -340,3 +340,29 @@ fn slide_rock_near_the_painleve_limit_survives_a_bold_trial_step() {
         check(&s, false).unwrap();
     }
 }
+
+/// Found by the extensive tier (failing the same way at the start of this
+/// session): a chain of impacts shrinking towards an accumulation whose last
+/// impact before the closed form (`zeno_eps` = 1e-5) leaves Θ' = 1.4e-5.
+/// The hop after it lands about 1e-4 τ later, inside the first guard-sample
+/// interval (1.9e-3 τ) of a long step, and dips 1e-9 behind the surface
+/// before the extended vector field brings Θ back: the impact guard, reset
+/// onto its surface and above it at the first sample, was armed there and
+/// the landing missed (Θ 1.15e-9 on the wrong side of its pivot at τ 9.5).
+#[test]
+fn a_hop_shorter_than_a_sample_interval_lands() {
+    let s = Scene {
+        ratio: 0.433388238307702,
+        mu: (0.7180626483329566, 0.3426363050612316),
+        law: ImpactLaw::Ratio { r: 0.17832197741590186 },
+        a_h: -1.549379180481649,
+        a_v_frac: 0.7456559800116073,
+        omega_h: 39.706416464093266,
+        omega_v: 4.456822569230644,
+        phase_v: 0.281406527495883,
+        theta0: 0.0,
+        theta_dot0: 0.0,
+        method: Method::Dop853,
+    };
+    check(&s, true).unwrap();
+}

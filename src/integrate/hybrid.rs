@@ -53,6 +53,16 @@ pub const MAX_GUARDS: usize = 8;
 /// curvature scale of the guards while costing only 7 dense evaluations.
 pub const SUBINTERVALS: usize = 8;
 
+/// Most offsets [`landing_near_surface_time`] looks at (halvings of half a
+/// sample interval: 40 reach 1e-12 of it).
+const SURFACE_PROBES: usize = 40;
+
+/// How deep behind its surface, relative to the guard's value two samples
+/// after a reset, a probe must find it to count as a landing (1e-6: the
+/// missed landing this catches dipped to 5.6e-3 of that value; round-off
+/// noise right after a reset is far below it).
+const LANDING_DEPTH: f64 = 1e-6;
+
 /// Margin of the cheap screening of a step: a guard is cleared without
 /// dense output if its values at the ends and at the Hermite midpoint are
 /// all above `SCREEN_MARGIN` times its variation between them. For a
@@ -795,6 +805,45 @@ where
     }
 }
 
+/// The first landing of a guard that was reset onto its surface at `t0`,
+/// is above it at `t1` and at `g_later` a sample later: offsets from `t0`
+/// halving from `(t1 - t0)/2` down to the spacing of floats
+/// ([`SURFACE_PROBES`] at most) give a bracket `(a, b)` with the guard above
+/// the surface at `a` and clearly behind it at `b`, or `None`. Clearly
+/// means below `-LANDING_DEPTH * g_later`: right after a reset the guard is
+/// at round-off level, and a dip of that size is noise, not a landing (a
+/// stick–slip reset would otherwise fire again and again at one instant).
+/// Called only when `g_later > 3 g(t1)`, which a departure at a finite rate
+/// (ratio about 2) does not give, but a short hop does, and a departure
+/// from rest (ratio 4 to 8: uplifts, rare, and then nothing is found).
+fn landing_near_surface_time<V: FnMut(f64) -> f64>(
+    t0: f64,
+    t1: f64,
+    g_later: f64,
+    value: &mut V,
+) -> Option<(f64, f64)> {
+    let depth = LANDING_DEPTH * g_later;
+    let mut probes = [(0.0, 0.0); SURFACE_PROBES];
+    let mut n = 0;
+    let mut offset = 0.5 * (t1 - t0);
+    while n < SURFACE_PROBES {
+        let t = t0 + offset;
+        if t <= t0 {
+            break;
+        }
+        probes[n] = (t, value(t));
+        n += 1;
+        offset *= 0.5;
+    }
+    // The probes run backwards in time; the earliest landing wins.
+    probes[..n]
+        .iter()
+        .rev()
+        .zip(probes[..n].iter().rev().skip(1))
+        .find(|((_, ga), (_, gb))| *ga > 0.0 && *gb < -depth)
+        .map(|((ta, _), (tb, _))| (*ta, *tb))
+}
+
 /// Whether the samples `values` of a guard over a step (start, interior,
 /// end, in time order) clear it for the step: all of one sign, `sign`
 /// (+1 for an armed guard that must not fall to zero, −1 for an unarmed
@@ -1010,6 +1059,21 @@ fn bracket<V: FnMut(f64) -> f64>(
             } else {
                 if gb > 0.0 {
                     *armed = true;
+                    // Reset onto the surface and above it at the next
+                    // sample: usually a departure. But a hop shorter than a
+                    // sample interval (the last one before an impact
+                    // accumulation: Θ' = 1.4e-5 after the impact, back on
+                    // the surface 1e-4 τ later, in an interval of 1.9e-3)
+                    // lands and dips behind the surface in between, and the
+                    // samples then start far from linearly. Only then, look
+                    // closer (see `landing_near_surface_time`).
+                    if ga == 0.0
+                        && j + 2 <= SUBINTERVALS
+                        && gs[j + 2][i] > 3.0 * gb
+                        && let Some(b) = landing_near_surface_time(ts[j], ts[j + 1], gs[j + 2][i], value)
+                    {
+                        return Some(b);
+                    }
                     continue;
                 }
                 // Starts on the surface and is behind it at the next sample:
