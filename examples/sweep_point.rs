@@ -75,10 +75,12 @@ fn main() {
     opts.output_dt = None;
     opts.section = true;
     let mut walls = Vec::new();
+    let mut last_default = None;
     for _ in 0..3 {
         let start = Instant::now();
         let r = simulate(cfg.model().expect("model"), &cfg.initial(), &opts).expect("the default scene runs");
         walls.push((start.elapsed().as_secs_f64(), r.tau_end, r.tally.impacts));
+        last_default = Some(r);
     }
     walls.sort_by(|a, b| a.0.total_cmp(&b.0));
     let (wall, tau, impacts) = walls[1];
@@ -87,4 +89,14 @@ fn main() {
         wall,
         tau / wall
     );
+    if let Some(r) = last_default {
+        println!(
+            "steps {} (rejected {}), rhs evals {}, events {}, section points {}",
+            r.stats.accepted,
+            r.stats.rejected,
+            r.stats.rhs_evals,
+            r.events.len(),
+            r.section.len()
+        );
+    }
 }

@@ -50,8 +50,10 @@ fn sample_index(tau: f64) -> i64 {
 
 #[test]
 fn live_section_points_equal_the_batch_run_bit_for_bit() {
-    // Chunk ends lie on the section times a batch run stops on too, so the
-    // live trajectory is the batch trajectory.
+    // Chunk ends put no stops in the step sequence (a chunk ends with the
+    // whole step that reaches its end), so the live trajectory is the batch
+    // trajectory, up to the batch run's last step: that one is shortened to
+    // end on τ_end, so what falls in it is compared only to the tolerance.
     let cfg = preset("default", &[]);
     let tau_end = 60.0;
     let updates = record(RunId(1), &cfg, tau_end);
@@ -65,14 +67,26 @@ fn live_section_points_equal_the_batch_run_bit_for_bit() {
     assert!(batch.section.len() > 50, "a 60 τ run at Ω = 8 has 76 section points");
     let n = batch.section.len().min(live[0].section.len());
     assert!(n + 1 >= batch.section.len(), "live run lost section points");
+    // Steps at the default tolerance are under 0.1 τ.
+    let before_last_step = tau_end - 0.5;
     for (a, b) in batch.section.iter().zip(&live[0].section).take(n) {
         assert_eq!(a.k, b.k);
         assert_eq!(a.tau.to_bits(), b.tau.to_bits());
-        assert_eq!(a.theta.to_bits(), b.theta.to_bits(), "Θ at k = {}", a.k);
-        assert_eq!(a.theta_dot.to_bits(), b.theta_dot.to_bits(), "Θ' at k = {}", a.k);
+        if a.tau < before_last_step {
+            assert_eq!(a.theta.to_bits(), b.theta.to_bits(), "Θ at k = {}", a.k);
+            assert_eq!(a.theta_dot.to_bits(), b.theta_dot.to_bits(), "Θ' at k = {}", a.k);
+        } else {
+            assert!((a.theta - b.theta).abs() < 1e-9 && (a.theta_dot - b.theta_dot).abs() < 1e-9);
+        }
     }
-    assert_eq!(batch.events.len(), live[0].events.len());
-    for (a, b) in batch.events.iter().zip(&live[0].events) {
+    let early = |e: &&rocking::model::EventRecord| e.tau < before_last_step;
+    let (ea, eb): (Vec<_>, Vec<_>) = (
+        batch.events.iter().filter(early).collect(),
+        live[0].events.iter().filter(early).collect(),
+    );
+    assert!(ea.len() > 50, "{} events", ea.len());
+    assert_eq!(ea.len(), eb.len());
+    for (a, b) in ea.iter().zip(&eb) {
         assert_eq!(a.tau.to_bits(), b.tau.to_bits());
         assert_eq!(a.kind, b.kind);
     }

@@ -57,11 +57,25 @@ pub const SUBINTERVALS: usize = 8;
 /// sample interval: 40 reach 1e-12 of it).
 const SURFACE_PROBES: usize = 40;
 
+/// Evenly spaced points at which [`landing_near_surface_time`] looks over
+/// the first sample interval when its probes near the reset find nothing:
+/// the hop it was added for (stress tier) landed 0.6 of the way through
+/// the interval and was back above the surface by its end, 0.35 of it later.
+const SURFACE_SCAN: usize = 16;
+
 /// How deep behind its surface, relative to the guard's value two samples
 /// after a reset, a probe must find it to count as a landing (1e-6: the
 /// missed landing this catches dipped to 5.6e-3 of that value; round-off
 /// noise right after a reset is far below it).
 const LANDING_DEPTH: f64 = 1e-6;
+
+/// How far behind its surface, in the guard's own units, a guard reset onto
+/// it must be at the end of a step that took it straight there (every
+/// sample behind, no bump above) for that to count as leaving at once
+/// (see [`straight_behind_surface`]): far above the round-off of a reset
+/// (1e-16 of state components of order 1), far below any motion that
+/// matters (the case that needed it ended its step 2.8e-6 behind).
+const BEHIND_FLOOR: f64 = 1e-12;
 
 /// Margin of the cheap screening of a step: a guard is cleared without
 /// dense output if its values at the ends and at the Hermite midpoint are
@@ -402,6 +416,37 @@ where
     where
         O: Observer<Sys::Mode, Sys::Record, N>,
     {
+        self.advance_towards(t_end, t_end, obs)
+    }
+
+    /// Like [`advance`](Self::advance), except that a method with a dense
+    /// output does not shorten a step to land on `t_end`: the step that
+    /// reaches it is taken whole, with its outputs (samples, section points,
+    /// its event), so the driver may stand past `t_end` afterwards. A run
+    /// advanced so, in pieces of any size, takes the same steps as one
+    /// advanced in a single call: the live session's chunks follow the batch
+    /// run bit for bit up to its last step (the batch run's last step is the
+    /// one shortened to end on its `τ_end`). The paper's fixed-step method
+    /// steps onto `t_end`, as in `advance` (it stops on the section times
+    /// too, which the live session's chunk ends are).
+    pub fn advance_past<O>(&mut self, t_end: f64, obs: &mut O) -> Result<Advance, Sys::Error>
+    where
+        O: Observer<Sys::Mode, Sys::Record, N>,
+    {
+        let horizon = if self.stepper.locates_by_root() {
+            f64::INFINITY
+        } else {
+            t_end
+        };
+        self.advance_towards(t_end, horizon, obs)
+    }
+
+    /// Steps until `t_end` is reached, with steps that end on `horizon`
+    /// (or before) rather than on `t_end`.
+    fn advance_towards<O>(&mut self, t_end: f64, horizon: f64, obs: &mut O) -> Result<Advance, Sys::Error>
+    where
+        O: Observer<Sys::Mode, Sys::Record, N>,
+    {
         self.emit_current(obs);
         loop {
             if self.system.is_terminal(self.mode) {
@@ -418,7 +463,7 @@ where
                 }
                 .into());
             }
-            let t_stop = self.next_stop(t, t_end);
+            let t_stop = self.next_stop(t, horizon);
             if self.stepper.locates_by_root() {
                 self.root_step(t_stop, obs)?;
             } else {
@@ -430,7 +475,14 @@ where
     /// The next time a step must land on: the end, a section time or a kink.
     fn next_stop(&self, t: f64, t_end: f64) -> f64 {
         let mut stop = t_end;
-        if let Some(p) = self.outputs.section_period {
+        // Methods with a high-order dense output take section points from
+        // it (`emit_sections_dense`), as scipy's `t_eval` and
+        // DifferentialEquations.jl's `saveat` do: stopping on every section
+        // time cost one extra step per forcing period, 7 % of a sweep
+        // point's steps. The paper's fixed-step method steps onto them.
+        if let Some(p) = self.outputs.section_period
+            && !self.stepper.locates_by_root()
+        {
             let ts = self.next_section as f64 * p;
             if ts > t && ts < stop {
                 stop = ts;
@@ -502,7 +554,7 @@ where
                 self.armed[i] = false;
             }
         }
-        self.emit_section_if_hit(t1, obs);
+        self.emit_sections_dense(t1, true, obs);
     }
 
     /// Samples the guards in `need` on the dense output of the step just
@@ -614,6 +666,9 @@ where
                     self.stepper.dense(&f, t_ev, &mut y_ev);
                 }
                 self.emit_samples_dense(t_ev, obs);
+                // A section time at the event itself reports the post-jump
+                // state (`apply_jump`).
+                self.emit_sections_dense(t_ev, false, obs);
                 self.apply_jump(i, t_ev, y_ev, obs)
             }
         }
@@ -747,6 +802,39 @@ where
         }
     }
 
+    /// Section points in the last step up to `t_to` (included if
+    /// `inclusive`), from its dense output; the step's end state bit for bit
+    /// at its end. The dense output of DOP853 is of the method's accuracy
+    /// (Hairer–Nørsett–Wanner II.6), so the points agree with stepping onto
+    /// the section times to the tolerance (tested in `section_points_from_
+    /// dense_output_match_stepping_onto_them`).
+    fn emit_sections_dense<O>(&mut self, t_to: f64, inclusive: bool, obs: &mut O)
+    where
+        O: Observer<Sys::Mode, Sys::Record, N>,
+    {
+        let Some(p) = self.outputs.section_period else {
+            return;
+        };
+        let mode = self.mode;
+        let sys = &self.system;
+        let f = Field { sys, mode };
+        let t_end = self.stepper.t();
+        let mut y = [0.0; N];
+        loop {
+            let ts = self.next_section as f64 * p;
+            if ts > t_to || (ts == t_to && !inclusive) {
+                break;
+            }
+            if ts == t_end {
+                y = *self.stepper.y();
+            } else {
+                self.stepper.dense(&f, ts, &mut y);
+            }
+            obs.section(self.next_section, ts, mode, &y);
+            self.next_section += 1;
+        }
+    }
+
     /// Outputs due exactly at the current time (the start of a run).
     fn emit_current<O>(&mut self, obs: &mut O)
     where
@@ -808,8 +896,9 @@ where
 /// The first landing of a guard that was reset onto its surface at `t0`,
 /// is above it at `t1` and at `g_later` a sample later: offsets from `t0`
 /// halving from `(t1 - t0)/2` down to the spacing of floats
-/// ([`SURFACE_PROBES`] at most) give a bracket `(a, b)` with the guard above
-/// the surface at `a` and clearly behind it at `b`, or `None`. Clearly
+/// ([`SURFACE_PROBES`] at most), then [`SURFACE_SCAN`] evenly spaced points
+/// over `(t0, t1)`, give a bracket `(a, b)` with the guard above the
+/// surface at `a` and clearly behind it at `b`, or `None`. Clearly
 /// means below `-LANDING_DEPTH * g_later`: right after a reset the guard is
 /// at round-off level, and a dip of that size is noise, not a landing (a
 /// stick–slip reset would otherwise fire again and again at one instant).
@@ -836,12 +925,60 @@ fn landing_near_surface_time<V: FnMut(f64) -> f64>(
         offset *= 0.5;
     }
     // The probes run backwards in time; the earliest landing wins.
-    probes[..n]
+    let near = probes[..n]
         .iter()
         .rev()
         .zip(probes[..n].iter().rev().skip(1))
         .find(|((_, ga), (_, gb))| *ga > 0.0 && *gb < -depth)
-        .map(|((ta, _), (tb, _))| (*ta, *tb))
+        .map(|((ta, _), (tb, _))| (*ta, *tb));
+    if near.is_some() {
+        return near;
+    }
+    // A hop that lands in the later half of the interval and leaves again
+    // before its end is between the probes: look at evenly spaced points.
+    let mut prev = (t0, 0.0);
+    for k in 1..SURFACE_SCAN {
+        let t = t0 + (t1 - t0) * (k as f64 / SURFACE_SCAN as f64);
+        let g = value(t);
+        if prev.1 > 0.0 && g < -depth {
+            return Some((prev.0, t));
+        }
+        prev = (t, g);
+    }
+    None
+}
+
+/// The bracket of a guard that is exactly on its surface at `t0` (just
+/// reset onto it) and behind it from then on, with no bump above it in
+/// between (`g1` at `t1`, the first sample): `(t0, b)` with `b` the
+/// earliest of the offsets halving from `t1 - t0` at which the guard is
+/// still clearly behind the surface (deeper than [`LANDING_DEPTH`] of `g1`).
+/// So the event falls soon after the reset, with the state hardly moved
+/// behind the surface (for g ∝ −(τ − τ0)⁴, at 3 % of the sample interval
+/// and 1e-6 of `g1`), yet late enough that what moved it there is no longer
+/// at round-off level: at the reset itself the model resolves the new mode
+/// from forces that are zero to round-off, and an event there would send
+/// it back into the same mode, again and again.
+///
+/// Found by the extensive stress tier: a block at rest whose uplift moment
+/// only touches zero (two-frequency forcing) is lifted at the tangency, and
+/// then Θ ∝ −(τ − τ0)⁴: it never leaves its base. Without this the impact
+/// guard, which starts on its surface, was never armed, and Θ went on
+/// behind the pivot (−2.8e-6 at the end of the step). With it the block
+/// lands at once (an impact at Θ' ≈ 0, so it is back at rest).
+fn straight_behind_surface<V: FnMut(f64) -> f64>(t0: f64, t1: f64, g1: f64, value: &mut V) -> (f64, f64) {
+    let depth = LANDING_DEPTH * g1.abs();
+    let mut b = t1;
+    let mut offset = 0.5 * (t1 - t0);
+    for _ in 0..SURFACE_PROBES {
+        let t = t0 + offset;
+        if t <= t0 || value(t) >= -depth {
+            break;
+        }
+        b = t;
+        offset *= 0.5;
+    }
+    (t0, b)
 }
 
 /// Whether the samples `values` of a guard over a step (start, interior,
@@ -1083,6 +1220,13 @@ fn bracket<V: FnMut(f64) -> f64>(
                     let (tm, gm) = brent_min(|tt| -value(tt), ts[j], ts[j + 1], 0.0, 100);
                     if -gm > 0.0 && tm < ts[j + 1] {
                         return Some((tm, ts[j + 1]));
+                    }
+                    // No bump, and behind the surface all through the step:
+                    // the state left the new mode's side at once, so the
+                    // mode was never right and its guard fires now (see
+                    // `straight_behind_surface`).
+                    if gs[j + 1..].iter().all(|g| g[i] < 0.0) && gs[SUBINTERVALS][i] < -BEHIND_FLOOR {
+                        return Some(straight_behind_surface(ts[j], ts[j + 1], gb, value));
                     }
                 }
                 continue;

@@ -3,13 +3,16 @@
 //! for fixed streams.
 //!
 //! The run is integrated in *chunks* whose ends lie on a fixed τ grid (the
-//! forcing period, split so that no chunk exceeds [`MAX_CHUNK`]). Chunk ends
-//! are step stops; with harmonic excitation they are exactly the section
-//! times that a batch run stops on too, so a live run with the same config
-//! follows the batch trajectory bit for bit, whatever the playback speed or
-//! pauses. What a chunk produces is queued here and *released* up to a τ
-//! chosen by the caller (the playhead), which is how the thread paces
-//! output in real time without putting step stops at wall-clock times.
+//! forcing period, split so that no chunk exceeds [`MAX_CHUNK`]). A chunk
+//! ends with the step that reaches its end, taken whole
+//! ([`Driver::advance_past`]), so chunk ends put no stops in the step
+//! sequence: a live run with the same config follows the batch trajectory
+//! bit for bit (up to the batch run's last step, shortened to end on its
+//! τ_end), whatever the playback speed or pauses. (The paper's fixed-step
+//! method stops on chunk ends, which are its section-time stops.) What a
+//! chunk produces is queued here and *released* up to a τ chosen by the
+//! caller (the playhead), which is how the thread paces output in real
+//! time without putting step stops at wall-clock times.
 
 use std::collections::VecDeque;
 
@@ -86,8 +89,9 @@ impl AnyDriver {
         with_driver!(self, d => d.mode())
     }
 
+    /// To `t_end` or past it, by whole steps ([`Driver::advance_past`]).
     fn advance<O: Observer<Mode, EventRecord, N>>(&mut self, t_end: f64, obs: &mut O) -> Result<Advance, ModelError> {
-        with_driver!(self, d => d.advance(t_end, obs))
+        with_driver!(self, d => d.advance_past(t_end, obs))
     }
 }
 
