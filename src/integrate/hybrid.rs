@@ -567,8 +567,9 @@ where
         let mode = self.mode;
         let n = self.n_guards;
         let mut armed = self.armed;
-        let mut observed = [(0.0, [0.0; N]); MAX_GUARDS];
-        let mut is_observed = [false; MAX_GUARDS];
+        // Observer roots before the event; their states are interpolated
+        // after this block (no array of states to zero on every call).
+        let mut observed = [None; MAX_GUARDS];
         let best = {
             let sys = &self.system;
             let stepper = &mut self.stepper;
@@ -639,16 +640,21 @@ where
                     && sys.is_observer(mode, i)
                     && to <= t_cut
                 {
-                    stepper.dense(&f, to, &mut observed[i].1);
-                    observed[i].0 = to;
-                    is_observed[i] = true;
+                    observed[i] = Some(to);
                 }
             }
             best
         };
-        for i in 0..n {
-            if is_observed[i] {
-                let (to, yo) = observed[i];
+        for (i, to) in observed.iter().enumerate().take(n) {
+            if let Some(to) = *to {
+                let mut yo = [0.0; N];
+                {
+                    let f = Field {
+                        sys: &self.system,
+                        mode,
+                    };
+                    self.stepper.dense(&f, to, &mut yo);
+                }
                 self.system.observe(mode, i, to, &yo);
             }
         }
