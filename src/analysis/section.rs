@@ -2,9 +2,10 @@
 //! period, at τ_k = 2πk/Ω_h (excitation phase 0, MODEL-DECISIONS), after a
 //! transient.
 //!
-//! The hybrid driver lands its steps bit-exactly on the section times, so a
-//! section point is a step-end value and never an interpolation across an
-//! impact. This module
+//! The hybrid driver takes section points from the dense output of the step
+//! that contains them (the paper's fixed-step method: from a step landed on
+//! the section time); a step ends at every event, so a section point is
+//! never an interpolation across an impact. This module
 //! - collects section points of any [`HybridSystem`](crate::integrate::hybrid::HybridSystem)
 //!   run by the driver ([`Strobe`]);
 //! - selects a block run's points after the transient ([`after_transient`])

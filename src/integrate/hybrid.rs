@@ -34,8 +34,11 @@
 //! - Steps are capped at the system's [`HybridSystem::step_cap`] of the
 //!   mode (a block at rest: the forcing's time scale), so a guard that
 //!   depends on time alone is sampled several times per radian.
-//! - Section (strobe) times are step stops: the step lands on them bit-exactly,
-//!   so section points are step-end values, never interpolated across a jump.
+//! - Section (strobe) points come from the dense output of the step that
+//!   contains them, as regular samples do (no step stops on them: that cost
+//!   one step per forcing period). A step ends at every event, so they are
+//!   never interpolated across a jump. The paper's fixed-step method steps
+//!   onto them instead.
 //! - Every loop is bounded by [`Limits`]; exceeding a bound is a typed error.
 //!
 //! For the fixed-step `ralston` method (the paper's), events are located the

@@ -271,8 +271,8 @@ pub fn tumble_times(d: &Diagram) -> Result<Vec<(f64, f64)>, ReproduceError> {
             let model = cfg.model().map_err(|e| fail(e.to_string()))?;
             let mut opts = cfg.run_options();
             opts.output_dt = None;
-            // As the diagram ran it: the section times are step ends, so
-            // they shape the (chaotic) trajectory too.
+            // As the diagram ran it (with section points; they no longer
+            // shape the step sequence, but the run stays the diagram's).
             opts.section = true;
             let res = simulate(model, &cfg.initial(), &opts).map_err(|e| fail(format!("A_v = {a_v}: {e}")))?;
             Ok((a_v, res.tumble_tau.unwrap_or(res.tau_end)))
