@@ -19,7 +19,7 @@
 use super::dop853_tableau::{A, B, C, D, E3, E5, N_DENSE_ROWS, N_STAGES, N_STAGES_EXTENDED};
 use super::dopri5::{
     Controller, H_FALLBACK, MAX_REJECTIONS, all_finite, combine, combine_leading, err_scale, h_min, hermite,
-    hermite_spread, hinit, next_step_size,
+    hermite_leading, hermite_spread, hinit, next_step_size,
 };
 use super::stepper::{Rhs, StepError, StepStats, Stepper, Tolerances};
 
@@ -183,9 +183,9 @@ impl<const N: usize> Dop853<N> {
 
     /// The dense polynomial at `theta`, Horner-like in `θ` and `1 - θ`
     /// alternately: `y_old + θ(F0 + (1-θ)(F1 + θ(F2 + (1-θ)(F3 + ...))))`.
-    fn interpolate(&self, theta: f64, out: &mut [f64; N]) {
+    fn interpolate(&self, theta: f64, out: &mut [f64; N], count: usize) {
         let th1 = 1.0 - theta;
-        for n in 0..N {
+        for n in 0..count.min(N) {
             let mut acc = 0.0;
             for (i, c) in self.cont.iter().enumerate().rev() {
                 acc += c[n];
@@ -346,8 +346,39 @@ impl<const N: usize> Stepper<N> for Dop853<N> {
             if !self.dense_ready {
                 self.prepare_dense(f);
             }
-            self.interpolate((t - self.t_old) / self.h_used, out);
+            self.interpolate((t - self.t_old) / self.h_used, out, N);
         }
+    }
+
+    fn dense_leading<F: Rhs<N>>(&mut self, f: &F, t: f64, out: &mut [f64; N], count: usize) {
+        if !self.has_step || t == self.t {
+            out[..count].copy_from_slice(&self.y[..count]);
+        } else if t == self.t_old {
+            out[..count].copy_from_slice(&self.y_old[..count]);
+        } else {
+            if !self.dense_ready {
+                self.prepare_dense(f);
+            }
+            self.interpolate((t - self.t_old) / self.h_used, out, count);
+        }
+    }
+
+    fn hermite_leading(&self, t: f64, out: &mut [f64; N], count: usize) -> bool {
+        if !self.has_step {
+            return false;
+        }
+        let (f0, f1) = (&self.k[0], &self.k[FSAL]);
+        hermite_leading(
+            &self.y_old,
+            &self.y,
+            f0,
+            f1,
+            self.h_used,
+            (t - self.t_old) / self.h_used,
+            out,
+            count,
+        );
+        true
     }
 
     fn hermite(&self, t: f64, out: &mut [f64; N]) -> bool {
@@ -482,9 +513,9 @@ mod tests {
         assert_eq!(s.stats().rhs_evals, before + 3);
         // The polynomial itself at θ = 0 and θ = 1.
         let mut p = [0.0; 2];
-        s.interpolate(0.0, &mut p);
+        s.interpolate(0.0, &mut p, 2);
         assert_rel_close(&p, &s.y_old, 1e-14);
-        s.interpolate(1.0, &mut p);
+        s.interpolate(1.0, &mut p, 2);
         assert_rel_close(&p, &s.y, 1e-14);
         // A new step invalidates the extra stages.
         s.step(&osc, 20.0).unwrap();
@@ -508,6 +539,29 @@ mod tests {
             s.step(&osc, s.t() - 1.0),
             Err(StepError::StepSizeUnderflow { .. })
         ));
+    }
+
+    #[test]
+    fn leading_interpolants_equal_the_full_ones_and_leave_the_rest() {
+        let f = |t: f64, y: &[f64; 3], d: &mut [f64; 3]| {
+            d[0] = y[1];
+            d[1] = -y[0] + 0.3 * t.sin();
+            d[2] = y[0] * y[0];
+        };
+        let mut s = Dop853::new(tol(1e-9, 1e-9));
+        s.restart(&f, 0.0, &[1.0, 0.0, 0.0]);
+        s.step(&f, 10.0).unwrap();
+        let t = 0.5 * (s.t_prev() + s.t());
+        let (mut full, mut lead) = ([0.0; 3], [7.0; 3]);
+        s.dense(&f, t, &mut full);
+        s.dense_leading(&f, t, &mut lead, 2);
+        assert_eq!(lead, [full[0], full[1], 7.0], "same bits, third untouched");
+        let (mut full, mut lead) = ([0.0; 3], [7.0; 3]);
+        assert!(s.hermite(t, &mut full) && s.hermite_leading(t, &mut lead, 2));
+        assert_eq!(lead, [full[0], full[1], 7.0]);
+        // At the step's ends, the stored states.
+        s.dense_leading(&f, s.t(), &mut lead, 2);
+        assert_eq!(lead[..2], s.y()[..2]);
     }
 
     #[test]

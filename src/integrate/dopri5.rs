@@ -110,13 +110,30 @@ pub(super) fn hermite<const N: usize>(
     theta: f64,
     out: &mut [f64; N],
 ) {
+    hermite_leading(y0, y1, f0, f1, h, theta, out, N);
+}
+
+/// [`hermite`] for the leading `count` components (the rest of `out` is
+/// left as it was).
+#[inline]
+#[allow(clippy::too_many_arguments)]
+pub(super) fn hermite_leading<const N: usize>(
+    y0: &[f64; N],
+    y1: &[f64; N],
+    f0: &[f64; N],
+    f1: &[f64; N],
+    h: f64,
+    theta: f64,
+    out: &mut [f64; N],
+    count: usize,
+) {
     let u = 1.0 - theta;
     let t2 = theta * theta;
     let w_y0 = u * u * (1.0 + 2.0 * theta);
     let w_f0 = h * theta * u * u;
     let w_y1 = t2 * (3.0 - 2.0 * theta);
     let w_f1 = -h * t2 * u;
-    for n in 0..N {
+    for n in 0..count.min(N) {
         out[n] = w_y0 * y0[n] + w_f0 * f0[n] + w_y1 * y1[n] + w_f1 * f1[n];
     }
 }

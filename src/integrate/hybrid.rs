@@ -120,7 +120,9 @@ pub trait HybridSystem<const N: usize> {
     type Error: From<DriverError>;
 
     /// How many trailing components of the state are pure quadratures that
-    /// `rhs` never reads (see [`Rhs::QUADRATURES`]); 0 by default.
+    /// neither `rhs` nor the guards read (see [`Rhs::QUADRATURES`]); 0 by
+    /// default. The driver samples guards on interpolants of the other
+    /// components only (for the block, the energy audit's W and D).
     const QUADRATURES: usize = 0;
 
     /// Vector field of `mode`.
@@ -569,6 +571,8 @@ where
     {
         let mode = self.mode;
         let n = self.n_guards;
+        // Guards read no quadrature: samples interpolate the rest only.
+        let reads = N - Sys::QUADRATURES.min(N);
         let mut armed = self.armed;
         // Observer roots before the event; their states are interpolated
         // after this block (no array of states to zero on every call).
@@ -590,7 +594,7 @@ where
             let all_at_once = several_costly(sys, mode, n, need);
             for j in 1..SUBINTERVALS {
                 ts[j] = t0 + (t1 - t0) * (j as f64 / SUBINTERVALS as f64);
-                stepper.dense(&f, ts[j], &mut yj);
+                stepper.dense_leading(&f, ts[j], &mut yj, reads);
                 if all_at_once {
                     sys.guards(mode, ts[j], &yj, &mut gs[j]);
                 } else {
@@ -606,7 +610,7 @@ where
             for i in (0..n).filter(|&i| need[i]) {
                 let mut value = |tt: f64| {
                     let mut yy = [0.0; N];
-                    stepper.dense(&f, tt, &mut yy);
+                    stepper.dense_leading(&f, tt, &mut yy, reads);
                     sys.guard(mode, i, tt, &yy)
                 };
                 let Some((a, b)) = bracket(i, &ts, &gs, &mut armed[i], &mut value) else {
@@ -1087,7 +1091,9 @@ where
     let tm = 0.5 * (t0 + t1);
     // Only a step that resolves the explicit time dependence is screened
     // (loose tolerances can take steps of several radians of forcing).
-    if n == 0 || t1 - t0 > sys.time_scale() || !stepper.hermite(tm, &mut ym) {
+    // Guards read no quadrature: the interpolants skip them.
+    let reads = N - Sys::QUADRATURES.min(N);
+    if n == 0 || t1 - t0 > sys.time_scale() || !stepper.hermite_leading(tm, &mut ym, reads) {
         return need;
     }
     let mut gm = [0.0; MAX_GUARDS];
@@ -1133,7 +1139,7 @@ where
     let mut ts = [0.0; SUBINTERVALS + 1];
     for j in 1..SUBINTERVALS {
         ts[j] = t0 + (t1 - t0) * (j as f64 / SUBINTERVALS as f64);
-        stepper.hermite(ts[j], &mut ys[j]);
+        stepper.hermite_leading(ts[j], &mut ys[j], reads);
     }
     // Guards still in question, and all of them per sample if that is
     // cheaper (see `several_costly`).

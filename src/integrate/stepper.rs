@@ -127,6 +127,22 @@ pub trait Stepper<const N: usize> {
     /// `f` (DOP853 needs three extra stages, computed once per step).
     fn dense<F: Rhs<N>>(&mut self, f: &F, t: f64, out: &mut [f64; N]);
 
+    /// [`dense`](Stepper::dense) for the leading `count` components only;
+    /// the rest of `out` is left as it was. The driver samples guards so,
+    /// and guards read no quadrature ([`Rhs::QUADRATURES`]): a third less
+    /// interpolation for the block. By default, all components.
+    fn dense_leading<F: Rhs<N>>(&mut self, f: &F, t: f64, out: &mut [f64; N], count: usize) {
+        let _ = count;
+        self.dense(f, t, out);
+    }
+
+    /// [`hermite`](Stepper::hermite) for the leading `count` components
+    /// only, as [`dense_leading`](Stepper::dense_leading).
+    fn hermite_leading(&self, t: f64, out: &mut [f64; N], count: usize) -> bool {
+        let _ = count;
+        self.hermite(t, out)
+    }
+
     /// The cubic Hermite interpolant of the last step at `t`, built from the
     /// end states and their derivatives only (no evaluation of `f`, no
     /// extra stages): the driver screens guards with it before it pays for
