@@ -154,7 +154,8 @@ pub struct Reference {
 /// Settings of a benchmark.
 #[derive(Clone, Debug)]
 pub struct BenchOptions {
-    /// Repeats per record (the median is reported). Default 5.
+    /// Repeats per record, at least (the median is reported; short runs
+    /// are repeated until they add up to [`MIN_MEASURED_S`]). Default 5.
     pub repeats: usize,
     /// rtols of the adaptive methods. Default 1e-2 … 1e-13, one per decade
     /// (the loose end reaches the error of the paper's method).
@@ -251,7 +252,15 @@ pub fn reference(scene: &Scene) -> Result<(RunResult, Reference), SimError> {
     Ok((fine, r))
 }
 
-/// Runs one method at one setting `repeats` times against `reference`.
+/// Repeats of a record add up to at least this much wall time, s.
+pub const MIN_MEASURED_S: f64 = 0.05;
+
+/// Most repeats of one record (a free-rocking run takes 15 µs).
+pub const MAX_REPEATS: usize = 2000;
+
+/// Runs one method at one setting `repeats` times against `reference`
+/// (more for a short run: see [`MIN_MEASURED_S`]); the median wall time is
+/// reported.
 pub fn record(
     scene: &Scene,
     reference: &RunResult,
@@ -268,10 +277,17 @@ pub fn record(
     let start = Instant::now();
     let mut res = simulate(scene.model.clone(), &scene.initial, &opts)?;
     walls.push(start.elapsed().as_secs_f64());
-    for _ in 1..repeats {
+    let mut total = walls[0];
+    // At least `repeats`, and more for a short run, until the repeats add up
+    // to MIN_MEASURED_S (as criterion and divan sample for a fixed time):
+    // a median of 9 runs of 0.1 ms moved the ratios by ±0.5 from one
+    // benchmark to the next on the shared VM.
+    while walls.len() < repeats.max(1) || (total < MIN_MEASURED_S && walls.len() < MAX_REPEATS) {
         let start = Instant::now();
         res = simulate(scene.model.clone(), &scene.initial, &opts)?;
-        walls.push(start.elapsed().as_secs_f64());
+        let wall = start.elapsed().as_secs_f64();
+        walls.push(wall);
+        total += wall;
     }
     walls.sort_by(f64::total_cmp);
     let wall_s = walls[walls.len() / 2];

@@ -17,7 +17,8 @@ pub struct BenchArgs {
     /// One scene (free, periodic, sliding, chaotic); all four if absent.
     #[arg(long, value_name = "NAME")]
     pub scene: Option<String>,
-    /// Repeats per point; the median wall time is reported.
+    /// Repeats per point, at least: short runs are repeated until they add
+    /// up to 0.05 s. The median wall time is reported.
     #[arg(long, default_value_t = 5, value_name = "N")]
     pub repeats: usize,
     /// Output directory.
