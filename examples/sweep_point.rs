@@ -25,11 +25,18 @@ fn main() {
         .expect("periodic scene");
     let opts = RunOptions {
         tau_end: s.tau_end,
-        method: Method::Dop853,
+        method: if std::env::var("METHOD").as_deref() == Ok("taylor") {
+            Method::Taylor
+        } else {
+            Method::Dop853
+        },
         tol: Tolerances {
             rtol,
             // As the bench does: a hundredth of rtol.
-            atol: rtol * 1e-2,
+            atol: std::env::var("ATOL")
+                .ok()
+                .and_then(|s| s.parse().ok())
+                .unwrap_or(rtol * 1e-2),
             h_max: f64::INFINITY,
             h_fixed: 0.004,
         },
@@ -72,6 +79,9 @@ fn main() {
     let cfg = rocking::io::config::load(Some("default"), None, &["run.tau_end=20000".to_string()])
         .expect("the default preset loads");
     let mut opts = cfg.run_options();
+    if std::env::var("METHOD").as_deref() == Ok("taylor") {
+        opts.method = Method::Taylor;
+    }
     opts.output_dt = None;
     opts.section = true;
     let mut walls = Vec::new();

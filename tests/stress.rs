@@ -65,7 +65,12 @@ fn scene() -> impl Strategy<Value = Scene> {
             mu_k: s * k
         }),
     ];
-    let method = prop_oneof![8 => Just(Method::Dop853), 1 => Just(Method::Dopri5), 1 => Just(Method::Ralston)];
+    let method = prop_oneof![
+        8 => Just(Method::Dop853),
+        1 => Just(Method::Dopri5),
+        1 => Just(Method::Ralston),
+        2 => Just(Method::Taylor)
+    ];
     (
         0.05f64..=1.0,
         friction,

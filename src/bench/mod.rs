@@ -270,7 +270,7 @@ pub fn record(
 ) -> Result<Record, SimError> {
     let (rtol, step) = match method {
         Method::Ralston => (1e-10, setting),
-        Method::Dop853 | Method::Dopri5 => (setting, 0.004),
+        Method::Dop853 | Method::Dopri5 | Method::Taylor => (setting, 0.004),
     };
     let opts = options(method, rtol, step, scene.tau_end);
     let mut walls = Vec::with_capacity(repeats.max(1));
@@ -312,7 +312,7 @@ pub fn record(
 pub fn work_precision(scene: &Scene, opts: &BenchOptions) -> Result<(Reference, Vec<Record>), SimError> {
     let (fine, reference) = reference(scene)?;
     let mut out = Vec::new();
-    for method in [Method::Dop853, Method::Dopri5] {
+    for method in [Method::Dop853, Method::Dopri5, Method::Taylor] {
         for &rtol in &opts.rtols {
             out.push(record(scene, &fine, method, rtol, opts.repeats)?);
         }

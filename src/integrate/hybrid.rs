@@ -128,6 +128,13 @@ pub trait HybridSystem<const N: usize> {
     /// Vector field of `mode`.
     fn rhs(&self, mode: Self::Mode, t: f64, y: &[f64; N], dydt: &mut [f64; N]);
 
+    /// Taylor coefficients of the solution of `mode` through `(t, y)`, as
+    /// [`Rhs::taylor`]; `false` (the default) where there is no series.
+    fn taylor(&self, mode: Self::Mode, t: f64, y: &[f64; N], order: usize, c: &mut [[f64; N]]) -> bool {
+        let _ = (mode, t, y, order, c);
+        false
+    }
+
     /// Writes the guard values of `mode` into `g` and returns how many there
     /// are (at most [`MAX_GUARDS`]).
     fn guards(&self, mode: Self::Mode, t: f64, y: &[f64; N], g: &mut [f64; MAX_GUARDS]) -> usize;
@@ -203,6 +210,11 @@ impl<Sys: HybridSystem<N>, const N: usize> Rhs<N> for Field<'_, Sys, Sys::Mode> 
     #[inline]
     fn eval(&self, t: f64, y: &[f64; N], dydt: &mut [f64; N]) {
         self.sys.rhs(self.mode, t, y, dydt);
+    }
+
+    #[inline]
+    fn taylor(&self, t: f64, y: &[f64; N], order: usize, c: &mut [[f64; N]]) -> bool {
+        self.sys.taylor(self.mode, t, y, order, c)
     }
 }
 

@@ -16,8 +16,10 @@ pub mod hybrid;
 pub mod ralston;
 pub mod root;
 pub mod stepper;
+pub mod taylor;
 
 pub use dop853::Dop853;
 pub use dopri5::Dopri5;
 pub use ralston::Ralston;
 pub use stepper::{Rhs, StepError, StepStats, Stepper, Tolerances};
+pub use taylor::Taylor;

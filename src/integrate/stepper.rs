@@ -14,6 +14,16 @@ pub trait Rhs<const N: usize> {
 
     /// Writes `f(t, y)` into `dydt`.
     fn eval(&self, t: f64, y: &[f64; N], dydt: &mut [f64; N]);
+
+    /// The Taylor coefficients of the solution through `(t, y)`: writes
+    /// `c[k]` with `y(t + s) = Σ_k c[k] s^k` for `k = 0..=order` (so `c[0] =
+    /// y`, `c[1] = f(t, y)`), `c.len() == order + 1`. Returns `false` if
+    /// this right-hand side has no series (then `c` is unspecified and the
+    /// [Taylor](super::taylor) method steps with DOP853). By default none.
+    fn taylor(&self, t: f64, y: &[f64; N], order: usize, c: &mut [[f64; N]]) -> bool {
+        let _ = (t, y, order, c);
+        false
+    }
 }
 
 impl<const N: usize, F> Rhs<N> for F

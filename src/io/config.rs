@@ -412,9 +412,10 @@ impl Config {
             ));
         }
 
-        let run_method = match r.choice("run", "method", &["dop853", "dopri5", "ralston"])? {
+        let run_method = match r.choice("run", "method", &["dop853", "dopri5", "ralston", "taylor"])? {
             None | Some("dop853") => Method::Dop853,
             Some("dopri5") => Method::Dopri5,
+            Some("taylor") => Method::Taylor,
             Some(_) => Method::Ralston,
         };
         let rtol = r.number("run", "rtol", false)?.unwrap_or(1e-10);

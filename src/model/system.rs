@@ -664,6 +664,11 @@ impl HybridSystem<N> for BlockSystem {
         }
     }
 
+    #[inline]
+    fn taylor(&self, mode: Mode, t: f64, y: &[f64; N], order: usize, c: &mut [[f64; N]]) -> bool {
+        super::series::taylor(&self.model, mode, t, y, order, c)
+    }
+
     fn guards(&self, mode: Mode, t: f64, y: &[f64; N], g: &mut [f64; MAX_GUARDS]) -> usize {
         let fo = self.forcing(t);
         let geo = &self.model.geo;

@@ -6,7 +6,7 @@ use serde::Serialize;
 
 use super::collect::{Collector, HistoryRow, SectionRow};
 use crate::integrate::hybrid::{Driver, Limits, Outputs};
-use crate::integrate::{Dop853, Dopri5, Ralston, StepStats, Stepper, Tolerances};
+use crate::integrate::{Dop853, Dopri5, Ralston, StepStats, Stepper, Taylor, Tolerances};
 use crate::model::dynamics::Tilt;
 use crate::model::system::{EventRecord, FRICTION_LOSS, ModelError, N, Tally, WORK};
 use crate::model::{BlockSystem, Mode, Model, Sign};
@@ -23,6 +23,9 @@ pub enum Method {
     /// The paper's Ralston RK2, fixed step 0.004, step cut by 10 at a sign
     /// change until |Θ| < 1e-6.
     Ralston,
+    /// Taylor series of adaptive order ([`Taylor`]), DOP853 where the
+    /// excitation has no series (pulses, records).
+    Taylor,
 }
 
 impl Method {
@@ -32,6 +35,7 @@ impl Method {
             Method::Dop853 => "dop853",
             Method::Dopri5 => "dopri5",
             Method::Ralston => "ralston",
+            Method::Taylor => "taylor",
         }
     }
 }
@@ -201,6 +205,7 @@ pub fn simulate(model: Model, init: &InitialState, opts: &RunOptions) -> Result<
         Method::Dop853 => run_with(Dop853::new(opts.tol), model, mode0, y0, opts),
         Method::Dopri5 => run_with(Dopri5::new(opts.tol), model, mode0, y0, opts),
         Method::Ralston => run_with(Ralston::new(opts.tol), model, mode0, y0, opts),
+        Method::Taylor => run_with(Taylor::new(opts.tol), model, mode0, y0, opts),
     }
 }
 

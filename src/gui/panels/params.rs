@@ -210,7 +210,7 @@ pub const GROUPS: &[(&str, &[Key])] = &[
                 label: "method",
                 unit: "",
                 help: "dop853 (default), dopri5, or ralston (the paper's fixed-step RK2).",
-                kind: Kind::Choice(&["dop853", "dopri5", "ralston"]),
+                kind: Kind::Choice(&["dop853", "dopri5", "ralston", "taylor"]),
             },
             num("run.rtol", "rtol", "", "Relative tolerance, in (0, 1). Default 1e-10."),
             num("run.atol", "atol", "", "Absolute tolerance, in (0, 1). Default 1e-12."),

@@ -17,7 +17,7 @@
 use std::collections::VecDeque;
 
 use crate::integrate::hybrid::{Advance, Driver, Observer, Outputs};
-use crate::integrate::{Dop853, Dopri5, Ralston, Stepper};
+use crate::integrate::{Dop853, Dopri5, Ralston, Stepper, Taylor};
 use crate::io::config::Config;
 use crate::model::system::{EventRecord, ModelError, N, THETA, THETA_DOT, X, X_DOT};
 use crate::model::{BlockSystem, Mode};
@@ -38,6 +38,7 @@ enum AnyDriver {
     Dop853(Box<Driver<Dop853<N>, BlockSystem, N>>),
     Dopri5(Box<Driver<Dopri5<N>, BlockSystem, N>>),
     Ralston(Box<Driver<Ralston<N>, BlockSystem, N>>),
+    Taylor(Box<Driver<Taylor<N>, BlockSystem, N>>),
 }
 
 macro_rules! with_driver {
@@ -46,6 +47,7 @@ macro_rules! with_driver {
             AnyDriver::Dop853($v) => $body,
             AnyDriver::Dopri5($v) => $body,
             AnyDriver::Ralston($v) => $body,
+            AnyDriver::Taylor($v) => $body,
         }
     };
 }
@@ -73,6 +75,9 @@ impl AnyDriver {
             }
             Method::Ralston => {
                 AnyDriver::Ralston(make(Ralston::new(opts.tol), system, mode, t0, y0, opts.limits, outputs))
+            }
+            Method::Taylor => {
+                AnyDriver::Taylor(make(Taylor::new(opts.tol), system, mode, t0, y0, opts.limits, outputs))
             }
         }
     }
