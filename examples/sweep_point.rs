@@ -79,6 +79,10 @@ fn main() {
     let cfg = rocking::io::config::load(Some("default"), None, &["run.tau_end=20000".to_string()])
         .expect("the default preset loads");
     let mut opts = cfg.run_options();
+    if std::env::var("RTOL").is_ok() {
+        opts.tol.rtol = rtol;
+        opts.tol.atol = rtol * 1e-2;
+    }
     if std::env::var("METHOD").as_deref() == Ok("taylor") {
         opts.method = Method::Taylor;
     }

@@ -192,7 +192,7 @@ impl<const N: usize> Stepper<N> for Taylor<N> {
             } else {
                 (h_allowed, self.t + h_allowed)
             };
-            if !(h > 0.0) || t_new <= self.t {
+            if h.is_nan() || h <= 0.0 || t_new <= self.t {
                 return Err(StepError::StepSizeUnderflow { t: self.t, h });
             }
             let mut y_new = [0.0; N];

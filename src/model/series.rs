@@ -237,8 +237,8 @@ fn rock(geo: &Geometry, sg: f64, tilt: Tilt, a: &Series, av: &Series, order: usi
     // X = X_pivot − s sin φ: X_k = −s sin φ_k (k ≥ 2), X'_k = (k+1) X_{k+1};
     // the state's own X and X' stay the constant terms.
     s.x[1] = s.u[0];
-    for k in 2..=order {
-        s.x[k] = -sg * sn[k];
+    for (x, sn_k) in s.x[2..=order].iter_mut().zip(&sn[2..=order]) {
+        *x = -sg * sn_k;
     }
     for k in 1..=order {
         s.u[k] = -sg * (k + 1) as f64 * sn[k + 1];

@@ -17,10 +17,11 @@ pub struct WorkPrecisionFigure<'a> {
     pub scenes: Vec<String>,
 }
 
-const METHODS: [(&str, RGBColor); 3] = [
+const METHODS: [(&str, RGBColor); 4] = [
     ("dop853", RGBColor(31, 119, 180)),
     ("dopri5", RGBColor(44, 160, 44)),
     ("ralston", RGBColor(214, 39, 40)),
+    ("taylor", RGBColor(148, 103, 189)),
 ];
 
 fn log_range(v: impl Iterator<Item = f64>) -> (f64, f64) {
