@@ -5,7 +5,9 @@
 //! rocking with sliding) over τ 0–20000, section only.
 //!
 //! `cargo run --release --example sweep_point [repeats] [periodic]`, with
-//! `RTOL=…` in the environment for a tolerance other than 1e-10.
+//! `RTOL=…` in the environment for a tolerance other than 1e-10 (both
+//! scenes, atol = rtol/100), `ATOL=…` for the sweep point's atol, and
+//! `METHOD=taylor` for the Taylor method instead of DOP853.
 
 use std::time::Instant;
 

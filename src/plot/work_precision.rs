@@ -43,7 +43,7 @@ impl Figure for WorkPrecisionFigure<'_> {
         let area = titled(
             root,
             "Work–precision: error at τ_end vs solver wall time",
-            "median of repeats; DOP853/DOPRI5 at rtol 1e-2 … 1e-13, Ralston (the paper's) at steps 0.004 … 0.00025",
+            "median of repeats; DOP853, DOPRI5, Taylor at rtol 1e-2 … 1e-13, Ralston (the paper's) at steps 0.004 … 0.00025",
         )?;
         let cols = 2;
         let rows = self.scenes.len().div_ceil(cols).max(1);
