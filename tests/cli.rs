@@ -24,8 +24,8 @@ fn read_csv(path: &Path) -> (Vec<String>, Vec<Vec<String>>) {
 
 const MODES: [&str; 6] = ["rest", "slide", "rock", "slide-rock", "tumbled", "flight"];
 
-/// The default scene (Fig. 12's conditions with r = 0.87): chaotic rocking
-/// with sliding that never tumbles. Fig. 12's own r = 0.925 wanders
+/// The default scene (Fig. 12's conditions with r = 0.82): chaotic rocking
+/// with sliding that never tumbles (tests/default_scene.rs). Fig. 12's own r = 0.925 wanders
 /// chaotically from rest and then tumbles or settles depending on round-off
 /// (at τ 56 with this session's numerics), which would cut the files short.
 #[test]
