@@ -157,6 +157,22 @@ pub trait HybridSystem<const N: usize> {
         false
     }
 
+    /// How many leading components of the state guard `index` of `mode`
+    /// reads (its samples and root iterations interpolate no more). By
+    /// default every component but the quadratures.
+    fn guard_reads(&self, _mode: Self::Mode, _index: usize) -> usize {
+        N - Self::QUADRATURES.min(N)
+    }
+
+    /// Whether guard `index` of `mode` provably stays positive along a step
+    /// of length `h` from state `y0` to `y1`: a bound from the system's own
+    /// equations over the whole step (not from samples), so the driver need
+    /// not sample the guard on the dense output. It must never hold for a
+    /// step along which the guard reaches zero. `false` by default.
+    fn guard_stays_positive(&self, _mode: Self::Mode, _index: usize, _h: f64, _y0: &[f64; N], _y1: &[f64; N]) -> bool {
+        false
+    }
+
     /// Whether guard `index` of `mode` only observes (no jump).
     fn is_observer(&self, mode: Self::Mode, index: usize) -> bool;
 
@@ -530,12 +546,29 @@ where
             let sys = &self.system;
             let stepper = &mut self.stepper;
             let f = Field { sys, mode };
+            let y0 = *stepper.y();
             stepper.step(&f, t_stop).map_err(DriverError::from)?;
             self.steps += 1;
             sys.guards(mode, stepper.t(), stepper.y(), &mut g_end);
             // Which guards need the dense output this step (see `screen`).
             if self.limits.screening {
-                screen(sys, mode, n, &*stepper, &self.armed, &self.g_start, &g_end)
+                let mut need = screen(sys, mode, n, &*stepper, &self.armed, &self.g_start, &g_end);
+                // A costly guard left over (a long step, which the cheap
+                // screening does not look at) that the system can bound away
+                // from zero over the whole step needs no samples either.
+                let h = stepper.t() - stepper.t_prev();
+                for i in 0..n {
+                    if need[i]
+                        && self.armed[i]
+                        && self.g_start[i] > 0.0
+                        && g_end[i] > 0.0
+                        && !sys.guard_is_cheap(mode, i)
+                        && sys.guard_stays_positive(mode, i, h, &y0, stepper.y())
+                    {
+                        need[i] = false;
+                    }
+                }
+                need
             } else {
                 [true; MAX_GUARDS]
             }
@@ -604,9 +637,21 @@ where
             gs[SUBINTERVALS] = g_end;
             let mut yj = [0.0; N];
             let all_at_once = several_costly(sys, mode, n, need);
+            // The samples interpolate what the guards sampled read: Θ
+            // alone for the block's impact and tumble guards, a quarter of
+            // the dense output's work.
+            let sample_reads = if all_at_once {
+                reads
+            } else {
+                (0..n)
+                    .filter(|&i| need[i])
+                    .map(|i| sys.guard_reads(mode, i).min(reads))
+                    .max()
+                    .unwrap_or(reads)
+            };
             for j in 1..SUBINTERVALS {
                 ts[j] = t0 + (t1 - t0) * (j as f64 / SUBINTERVALS as f64);
-                stepper.dense_leading(&f, ts[j], &mut yj, reads);
+                stepper.dense_leading(&f, ts[j], &mut yj, sample_reads);
                 if all_at_once {
                     sys.guards(mode, ts[j], &yj, &mut gs[j]);
                 } else {
@@ -620,9 +665,10 @@ where
             let mut best: Option<(f64, usize)> = None;
             let mut roots = [None; MAX_GUARDS];
             for i in (0..n).filter(|&i| need[i]) {
+                let reads_i = sys.guard_reads(mode, i).min(reads);
                 let mut value = |tt: f64| {
                     let mut yy = [0.0; N];
-                    stepper.dense_leading(&f, tt, &mut yy, reads);
+                    stepper.dense_leading(&f, tt, &mut yy, reads_i);
                     sys.guard(mode, i, tt, &yy)
                 };
                 let Some((a, b)) = bracket(i, &ts, &gs, &mut armed[i], &mut value) else {

@@ -133,6 +133,26 @@ pub fn rock_at(geo: &Geometry, pivot: Sign, tilt: Tilt, theta_dot: f64, fo: Forc
     }
 }
 
+/// A lower bound of the normal force n of [`rock_at`] over every state with
+/// |Θ| ≤ `theta_max` and |Θ'| ≤ `theta_dot_max` and every forcing with
+/// |a| ≤ `a_max` and b ≥ `b_min`; `−∞` when the tilt may pass π/2.
+///
+/// With ψΘ'' = −(s b sin φ + a cos φ), `rock_at`'s n = b + γ(s sin φ ψΘ'' −
+/// cos φ w²) is n = b(1 − γ sin²φ) − γ s a sin φ cos φ − γ cos φ w²
+/// (docs/model.md §3). For φ = ψ(1 − sΘ) in [0, π/2], 0 ≤ sin φ ≤
+/// min(1, ψ(1 + |Θ|)) and 0 ≤ cos φ ≤ 1, and γ sin²φ ≤ γ < 1, so each term
+/// is bounded by its worst case separately.
+pub fn rock_normal_lower_bound(geo: &Geometry, theta_max: f64, theta_dot_max: f64, a_max: f64, b_min: f64) -> f64 {
+    let phi_max = geo.psi * (1.0 + theta_max);
+    let phi_min = geo.psi * (1.0 - theta_max);
+    if !(phi_max <= std::f64::consts::FRAC_PI_2 && phi_min >= 0.0) || b_min <= 0.0 {
+        return f64::NEG_INFINITY;
+    }
+    let sn_max = phi_max.min(1.0);
+    let w = geo.psi * theta_dot_max;
+    b_min * (1.0 - GAMMA * sn_max * sn_max) - GAMMA * a_max * sn_max - GAMMA * w * w
+}
+
 /// Rocking about a corner that slips in direction `slip` against kinetic
 /// friction `mu_k` (paper eqs. 9–10/30–31, corrected; docs/model.md §4):
 /// ψΘ'' = −k (b − γ c w²)/((1−γ) + γ(sin²φ − sσμ_k sin φ cos φ)),
@@ -262,5 +282,48 @@ mod tests {
             }
         }
         assert!(worst <= 4.0 * f64::EPSILON, "largest difference {worst:e}");
+    }
+
+    proptest::proptest! {
+        /// The bound holds at every state and forcing inside its box,
+        /// corners included (the extremes are where a bound fails first).
+        #[test]
+        fn the_normal_force_bound_holds_inside_its_box(
+            bh in 0.05f64..1.0,
+            theta_max in 0.0f64..1.0,
+            theta_dot_max in 0.0f64..3.0,
+            a_max in 0.0f64..1.5,
+            av_max in 0.0f64..0.99,
+            u in proptest::array::uniform4(-1.0f64..=1.0),
+            corner in proptest::bool::ANY,
+            pivot in proptest::bool::ANY,
+        ) {
+            let geo = Geometry::new(bh, 1.0);
+            let b_min = 1.0 - av_max;
+            let bound = rock_normal_lower_bound(&geo, theta_max, theta_dot_max, a_max, b_min);
+            // Corners: every coordinate at an end of its range.
+            let u = if corner { u.map(f64::signum) } else { u };
+            let s = if pivot { Sign::Pos } else { Sign::Neg };
+            let theta = s.value() * theta_max * u[0];
+            let theta_dot = theta_dot_max * u[1];
+            let fo = Forcing { a: a_max * u[2], av: av_max * u[3] };
+            let n = rock(&geo, s, theta, theta_dot, fo).normal;
+            proptest::prop_assert!(n >= bound - 1e-12, "n = {n} below the bound {bound}");
+        }
+    }
+
+    #[test]
+    fn the_normal_force_bound_is_tight_enough_to_use_on_the_papers_block() {
+        // The paper's block (B/H = 1/4) under the periodic scene's forcing
+        // (A_h = 2, A_v = 0.5 in units of ψ g), |Θ| ≤ 0.4, |Θ'| ≤ 1.2: the
+        // bound must clear zero by far, or the driver gains nothing.
+        let geo = Geometry::new(1.0, 4.0);
+        let bound = rock_normal_lower_bound(&geo, 0.4, 1.2, 2.0 * geo.psi, 1.0 - 0.5 * geo.psi);
+        assert!(bound > 0.5, "bound {bound}");
+        // Past a tilt of π/2 there is no bound.
+        assert_eq!(
+            rock_normal_lower_bound(&Geometry::new(1.0, 1.0), 1.1, 0.0, 0.0, 1.0),
+            f64::NEG_INFINITY
+        );
     }
 }

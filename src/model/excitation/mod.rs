@@ -128,6 +128,17 @@ impl Excitation {
         }
     }
 
+    /// The largest |a_h/g| and |a_v/g| the excitation ever reaches, where
+    /// that is known in closed form (none and harmonic); `None` otherwise.
+    /// Used to bound contact forces over a step.
+    pub fn peak_accel(&self) -> Option<(f64, f64)> {
+        match self {
+            Excitation::None => Some((0.0, 0.0)),
+            Excitation::Harmonic(h) => Some(((h.a_h * h.psi).abs(), (h.a_v * h.psi).abs())),
+            Excitation::Pulse(_) | Excitation::Record(_) => None,
+        }
+    }
+
     /// Period of the stroboscopic section, 2π/Ω_h, for harmonic excitation.
     pub fn forcing_period(&self) -> Option<f64> {
         match self {
