@@ -154,3 +154,28 @@ fn tilt(bencher: divan::Bencher) {
         ));
     });
 }
+
+/// The Taylor coefficients of one step at rtol 1e-10 (order 20), rocking
+/// and slide-rocking, under the default scene's forcing (Ω_v = Ω_h, one
+/// phase): the Taylor method's cost per step.
+#[divan::bench(args = ["rock", "slide_rock"])]
+fn taylor_series(bencher: divan::Bencher, mode: &str) {
+    let cfg = rocking::io::config::load(Some("default"), None, &[]).expect("default preset");
+    let sys = BlockSystem::new(cfg.model().expect("model"));
+    let mode = match mode {
+        "rock" => Mode::Rock { pivot: Sign::Pos },
+        _ => Mode::SlideRock {
+            pivot: Sign::Pos,
+            slip: Sign::Neg,
+        },
+    };
+    let y = [0.05, -0.2, 0.0, 0.01, 0.0, 0.0];
+    let order = rocking::integrate::taylor::order_for(1e-10);
+    let mut c = [[0.0; N]; 24];
+    let mut t = 0.0;
+    bencher.bench_local(|| {
+        t += 1e-3;
+        black_box(sys.taylor(mode, black_box(t), black_box(&y), order, &mut c[..=order]));
+        black_box(&c);
+    });
+}

@@ -25,6 +25,10 @@ use super::stepper::{Rhs, StepError, StepStats, Stepper, Tolerances};
 /// Highest order the stepper uses (the order for rtol 1e-14 is 28).
 pub const MAX_ORDER: usize = 28;
 
+/// Most times [`Taylor::dense_many`] evaluates side by side (the driver's
+/// seven interior guard samples of a step).
+const MANY: usize = 8;
+
 /// Lowest order: below it the step from the coefficients is too short to
 /// beat DOP853.
 const MIN_ORDER: usize = 8;
@@ -128,6 +132,30 @@ impl<const N: usize> Taylor<N> {
             }
         }
         out[..count].copy_from_slice(&acc[..count]);
+    }
+
+    /// The polynomial at several offsets (at most [`MANY`]), leading
+    /// `count` components: the Horner chains of all offsets side by side, the
+    /// same arithmetic as [`eval_poly`](Self::eval_poly) at each.
+    #[inline]
+    fn eval_poly_many<const C: usize>(&self, s: &[f64], out: &mut [[f64; N]]) {
+        let m = s.len().min(MANY);
+        let top = &self.coef[self.order];
+        let mut acc = [[0.0; C]; MANY];
+        for a in acc.iter_mut() {
+            a.copy_from_slice(&top[..C]);
+        }
+        for k in (0..self.order).rev() {
+            let row = &self.coef[k];
+            for (a, &sp) in acc.iter_mut().zip(s).take(m) {
+                for n in 0..C {
+                    a[n] = a[n] * sp + row[n];
+                }
+            }
+        }
+        for (o, a) in out.iter_mut().zip(&acc).take(m) {
+            o[..C].copy_from_slice(a);
+        }
     }
 
     /// Its derivative at offset `s`, all components.
@@ -242,6 +270,30 @@ impl<const N: usize> Stepper<N> for Taylor<N> {
     /// returned bit for bit.
     fn dense<F: Rhs<N>>(&mut self, f: &F, t: f64, out: &mut [f64; N]) {
         self.dense_leading(f, t, out, N);
+    }
+
+    /// The samples of one step side by side (see
+    /// [`eval_poly_many`](Self::eval_poly_many)); the step's end times are
+    /// still returned bit for bit.
+    fn dense_many<F: Rhs<N>>(&mut self, f: &F, ts: &[f64], out: &mut [[f64; N]], count: usize) {
+        let interior = |t: f64| t != self.t && t != self.t_old;
+        if !self.has_step || self.on_fallback || ts.len() > MANY || !ts.iter().all(|&t| interior(t)) {
+            for (t, o) in ts.iter().zip(out.iter_mut()) {
+                self.dense_leading(f, *t, o, count);
+            }
+            return;
+        }
+        let mut s = [0.0; MANY];
+        for (sj, &t) in s.iter_mut().zip(ts) {
+            *sj = t - self.t_old;
+        }
+        let s = &s[..ts.len()];
+        match count.min(N) {
+            1 => self.eval_poly_many::<1>(s, out),
+            2 => self.eval_poly_many::<2>(s, out),
+            c if c <= 4 && N >= 4 => self.eval_poly_many::<4>(s, out),
+            _ => self.eval_poly_many::<N>(s, out),
+        }
     }
 
     fn dense_leading<F: Rhs<N>>(&mut self, f: &F, t: f64, out: &mut [f64; N], count: usize) {

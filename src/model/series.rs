@@ -19,11 +19,27 @@ use super::geometry::{GAMMA, Geometry};
 use super::mode::Mode;
 use super::system::{FRICTION_LOSS, Model, N, THETA, THETA_DOT, WORK, X, X_DOT};
 
-/// Highest order with a series (longer requests return `false`).
-pub const MAX_ORDER: usize = 32;
+/// One more than the highest order with a series (rocking needs the tilt to
+/// one order beyond the rest): 29, for the Taylor stepper's highest order
+/// 28. Longer requests return `false`. The working series are arrays of
+/// this length, zeroed on every expansion, so it is no longer than needed.
+pub const MAX_ORDER: usize = crate::integrate::taylor::MAX_ORDER + 1;
 
 /// Coefficients of one scalar series.
 type Series = [f64; MAX_ORDER + 1];
+
+/// `1/k` for k = 0..=MAX_ORDER + 1 (entry 0 unused): the recurrences divide
+/// by the order at every step, and a division costs as much as a dozen
+/// multiplications. The same bits as dividing at run time.
+const INV: [f64; MAX_ORDER + 2] = {
+    let mut t = [0.0; MAX_ORDER + 2];
+    let mut k = 1;
+    while k < MAX_ORDER + 2 {
+        t[k] = 1.0 / k as f64;
+        k += 1;
+    }
+    t
+};
 
 /// `Σ_{j=0..=k} a_j b_{k−j}`: coefficient k of the product of two series.
 ///
@@ -46,98 +62,193 @@ fn conv(a: &Series, b: &Series, k: usize) -> f64 {
     (acc[0] + acc[1]) + (acc[2] + acc[3])
 }
 
-/// The series of `amp · sin(Ω t + Φ)` about `t`, to `order`:
-/// `amp Ω^k / k! · sin⁽ᵏ⁾(Ω t + Φ)`. Coefficient 0 is the bits of
-/// `Harmonic::accel`.
-fn sine_series(amp: f64, omega: f64, phase: f64, t: f64, order: usize, out: &mut Series) {
+/// 1/γ.
+const INV_GAMMA: f64 = 1.0 / GAMMA;
+
+/// Index of coefficient 0 in a reversed series: `r[R - i] = y_i`.
+///
+/// Coefficient k of a product, `Σ_j x_j y_{k−j}`, walks `y` backwards; with
+/// `y` also stored reversed it is the dot product of `x[lo..=k]` and
+/// `r[R − k + lo..=R]`, two runs of ascending memory the compiler turns
+/// into vector operations (the sums are most of an expansion's work).
+const R: usize = MAX_ORDER;
+
+/// `Σ_{j=lo..=k} x_j y_{k−j}` with `y` stored reversed in `yr` (see [`R`]).
+#[inline(always)]
+fn lagged(x: &Series, yr: &Series, k: usize, lo: usize) -> f64 {
+    dot(&x[lo..=k], &yr[R - k + lo..=R])
+}
+
+/// `Σ_{j=0..=k} x_j y_{k−j}` (`y` reversed in `yr`), with the two terms that
+/// read the newest coefficients, `x_0 y_k` and `x_k y_0`, added last.
+///
+/// An expansion is a chain from one order to the next; a sum that starts
+/// from its newest terms waits for them before its first addition, while
+/// one that ends with them can add up the older terms while the newest are
+/// still being computed, and then waits only two operations.
+#[inline(always)]
+fn conv_newest_last(x: &Series, yr: &Series, k: usize) -> f64 {
+    if k == 0 {
+        return x[0] * yr[R];
+    }
+    dot(&x[1..k], &yr[R - k + 1..R]) + (x[0] * yr[R - k] + x[k] * yr[R])
+}
+
+/// `Σ_{j=1..=k} x_j y_{k−j}` (`y` reversed in `yr`), with the terms of the
+/// newest `x_k` and `y_{k−1}` added last (see [`conv_newest_last`]).
+#[inline(always)]
+fn conv1_newest_last(x: &Series, yr: &Series, k: usize) -> f64 {
+    if k == 1 {
+        return x[1] * yr[R];
+    }
+    dot(&x[2..k], &yr[R - k + 2..R]) + (x[1] * yr[R - k + 1] + x[k] * yr[R])
+}
+
+/// The dot product of two slices of one length, with four partial sums side
+/// by side (independent chains, paired into vector lanes).
+#[inline(always)]
+fn dot(x: &[f64], y: &[f64]) -> f64 {
+    debug_assert_eq!(x.len(), y.len());
+    let mut acc = [0.0; 4];
+    let (xc, yc) = (x.chunks_exact(4), y.chunks_exact(4));
+    let (xt, yt) = (xc.remainder(), yc.remainder());
+    for (a, b) in xc.zip(yc) {
+        for l in 0..4 {
+            acc[l] += a[l] * b[l];
+        }
+    }
+    for (l, (a, b)) in xt.iter().zip(yt).enumerate() {
+        acc[l] += a * b;
+    }
+    (acc[0] + acc[1]) + (acc[2] + acc[3])
+}
+
+/// The series of `sin(Ω t + Φ)` about `t`, to `order`:
+/// `Ω^k / k! · sin⁽ᵏ⁾(Ω t + Φ)`.
+fn unit_sine_series(omega: f64, phase: f64, t: f64, order: usize, out: &mut Series) {
     let x = omega * t + phase;
     let (s0, c0) = (x.sin(), x.cos());
     let derivs = [s0, c0, -s0, -c0];
-    let mut scale = amp;
+    let mut scale = 1.0;
     for (k, o) in out.iter_mut().enumerate().take(order + 1) {
         *o = scale * derivs[k % 4];
-        scale *= omega / (k + 1) as f64;
+        scale *= omega * INV[k + 1];
     }
 }
 
-/// The forcing series `a = a_h/g` and `av = a_v/g` about `t`; `false` for
-/// an excitation without a closed form.
-fn forcing_series(exc: &Excitation, t: f64, order: usize, a: &mut Series, av: &mut Series) -> bool {
-    match exc {
-        Excitation::None => true,
-        Excitation::Harmonic(h) => {
-            sine_series(h.a_h * h.psi, h.omega_h, h.phase_h, t, order, a);
-            if h.a_v != 0.0 {
-                sine_series(h.a_v * h.psi, h.omega_v, h.phase_v, t, order, av);
+/// The forcing series `a = a_h/g` and `av = a_v/g` about `t`.
+struct ForcingSeries {
+    a: Series,
+    av: Series,
+    /// Both are multiples of one sine, `a = amp_h · unit` and `av = amp_v ·
+    /// unit`: the paper's Ω_v = Ω_h and Φ_v = Φ_h, or no vertical forcing.
+    /// A product with the forcing is then one sum, `unit · (amp_h y +
+    /// amp_v z)`, instead of two.
+    shared: bool,
+    unit: Series,
+    amp_h: f64,
+    amp_v: f64,
+}
+
+impl ForcingSeries {
+    /// No forcing.
+    fn none() -> Self {
+        let z = [0.0; MAX_ORDER + 1];
+        Self {
+            a: z,
+            av: z,
+            shared: true,
+            unit: z,
+            amp_h: 0.0,
+            amp_v: 0.0,
+        }
+    }
+
+    /// The series of `exc` about `t`, written in place (the struct is a few
+    /// hundred bytes: no copies on the way out); `false` for an excitation
+    /// without a closed form.
+    fn fill(&mut self, exc: &Excitation, t: f64, order: usize) -> bool {
+        let f = self;
+        let z = [0.0; MAX_ORDER + 1];
+        match exc {
+            Excitation::None => {}
+            Excitation::Harmonic(h) => {
+                f.amp_h = h.a_h * h.psi;
+                f.amp_v = h.a_v * h.psi;
+                unit_sine_series(h.omega_h, h.phase_h, t, order, &mut f.unit);
+                // Coefficient 0 of `a` is the bits of `Harmonic::accel`.
+                for (a, u) in f.a.iter_mut().zip(&f.unit).take(order + 1) {
+                    *a = f.amp_h * u;
+                }
+                if h.a_v == 0.0 {
+                    f.amp_v = 0.0;
+                } else if h.omega_v == h.omega_h && h.phase_v == h.phase_h {
+                    for (av, u) in f.av.iter_mut().zip(&f.unit).take(order + 1) {
+                        *av = f.amp_v * u;
+                    }
+                } else {
+                    f.shared = false;
+                    let mut unit_v = z;
+                    unit_sine_series(h.omega_v, h.phase_v, t, order, &mut unit_v);
+                    for (av, u) in f.av.iter_mut().zip(&unit_v).take(order + 1) {
+                        *av = f.amp_v * u;
+                    }
+                }
             }
-            true
+            Excitation::Pulse(_) | Excitation::Record(_) => return false,
         }
-        Excitation::Pulse(_) | Excitation::Record(_) => false,
+        true
+    }
+
+    /// Whether the base moves at all.
+    fn forced(&self) -> bool {
+        !self.shared || self.amp_h != 0.0 || self.amp_v != 0.0
     }
 }
 
-/// Working series of one expansion.
-struct Work {
-    th: Series,
-    v: Series,
-    x: Series,
-    u: Series,
-    w: Series,
-    d: Series,
+/// The sine and cosine of the tilt φ = ψ(1 − sΘ) as series, kept reversed
+/// (see [`R`]) for the products that read them, and forward for the rest.
+struct TiltSeries {
+    /// `j φ_j`, forward.
+    jph: Series,
+    sn: Series,
+    cs: Series,
+    snr: Series,
+    csr: Series,
 }
 
-impl Work {
-    fn new(y: &[f64; N]) -> Self {
-        let mut s = Self {
-            th: [0.0; MAX_ORDER + 1],
-            v: [0.0; MAX_ORDER + 1],
-            x: [0.0; MAX_ORDER + 1],
-            u: [0.0; MAX_ORDER + 1],
-            w: [0.0; MAX_ORDER + 1],
-            d: [0.0; MAX_ORDER + 1],
+impl TiltSeries {
+    fn new(tilt: Tilt) -> Self {
+        let z = [0.0; MAX_ORDER + 1];
+        let mut t = Self {
+            jph: z,
+            sn: z,
+            cs: z,
+            snr: z,
+            csr: z,
         };
-        s.th[0] = y[THETA];
-        s.v[0] = y[THETA_DOT];
-        s.x[0] = y[X];
-        s.u[0] = y[X_DOT];
-        s.w[0] = y[WORK];
-        s.d[0] = y[FRICTION_LOSS];
-        s
+        t.set(0, tilt.sn, tilt.c);
+        t
     }
 
-    fn write(&self, order: usize, c: &mut [[f64; N]]) {
-        for (k, row) in c.iter_mut().enumerate().take(order + 1) {
-            row[THETA] = self.th[k];
-            row[THETA_DOT] = self.v[k];
-            row[X] = self.x[k];
-            row[X_DOT] = self.u[k];
-            row[WORK] = self.w[k];
-            row[FRICTION_LOSS] = self.d[k];
-        }
+    #[inline(always)]
+    fn set(&mut self, k: usize, sn: f64, cs: f64) {
+        self.sn[k] = sn;
+        self.cs[k] = cs;
+        self.snr[R - k] = sn;
+        self.csr[R - k] = cs;
     }
-}
 
-/// The sine and cosine of the tilt φ = ψ(1 − sΘ), coefficient `k ≥ 1`,
-/// from `jph[j] = j φ_j` and the lower coefficients.
-#[inline]
-fn tilt_step(jph: &Series, sn: &mut Series, cs: &mut Series, k: usize) {
-    let (mut ds, mut dc) = ([0.0; 2], [0.0; 2]);
-    let mut j = 1;
-    while j + 2 <= k + 1 {
-        for l in 0..2 {
-            ds[l] += jph[j + l] * cs[k - j - l];
-            dc[l] += jph[j + l] * sn[k - j - l];
-        }
-        j += 2;
+    /// Coefficient `k ≥ 1` from `φ_k = −ψ s Θ_k` and the lower ones, by
+    /// `(sin φ)' = cos φ φ'` and `(cos φ)' = −sin φ φ'`.
+    #[inline(always)]
+    fn step(&mut self, k: usize, phi_k: f64) {
+        self.jph[k] = k as f64 * phi_k;
+        let ds = conv1_newest_last(&self.jph, &self.csr, k);
+        let dc = conv1_newest_last(&self.jph, &self.snr, k);
+        let inv = INV[k];
+        self.set(k, ds * inv, -dc * inv);
     }
-    if j <= k {
-        ds[0] += jph[j] * cs[k - j];
-        dc[0] += jph[j] * sn[k - j];
-    }
-    let (ds, dc) = (ds[0] + ds[1], dc[0] + dc[1]);
-    let inv = 1.0 / k as f64;
-    sn[k] = ds * inv;
-    cs[k] = -dc * inv;
 }
 
 /// Writes the Taylor coefficients of the block in `mode` through `(t, y)`
@@ -149,54 +260,49 @@ pub fn taylor(model: &Model, mode: Mode, t: f64, y: &[f64; N], order: usize, c: 
     if order >= MAX_ORDER || c.len() < order + 1 {
         return false;
     }
-    let mut a = [0.0; MAX_ORDER + 1];
-    let mut av = [0.0; MAX_ORDER + 1];
-    if !forcing_series(exc, t, order, &mut a, &mut av) {
+    let mut f = ForcingSeries::none();
+    if !f.fill(exc, t, order) {
         return false;
     }
-    let mut s = Work::new(y);
+    let c = &mut c[..=order];
+    c[0] = *y;
     match mode {
-        Mode::Rest | Mode::Tumbled | Mode::Flight => {}
-        Mode::Slide { slip } => slide(slip.value(), mu_k, &a, &av, order, &mut s),
-        Mode::Rock { pivot } => rock(
-            geo,
-            pivot.value(),
-            Tilt::new(geo, pivot, y[THETA]),
-            &a,
-            &av,
-            order,
-            &mut s,
-        ),
+        Mode::Rest | Mode::Tumbled | Mode::Flight => {
+            for row in &mut c[1..] {
+                *row = [0.0; N];
+            }
+        }
+        Mode::Slide { slip } => slide(slip.value(), mu_k, &f.a, &f.av, c),
+        Mode::Rock { pivot } => rock(geo, pivot.value(), Tilt::new(geo, pivot, y[THETA]), &f, c),
         Mode::SlideRock { pivot, slip } => slide_rock(
             geo,
             pivot.value(),
             slip.value(),
             mu_k,
             Tilt::new(geo, pivot, y[THETA]),
-            &a,
-            &av,
-            order,
-            &mut s,
+            &f,
+            c,
         ),
     }
-    s.write(order, c);
     true
 }
 
 /// Flat sliding: X'' = (f − a)/γ with f = −σ μ_k b; W' = −a X', D' = −f X'.
-fn slide(sigma: f64, mu_k: f64, a: &Series, av: &Series, order: usize, s: &mut Work) {
+/// Θ and Θ' stay 0; the block's rarest mode, kept plain.
+fn slide(sigma: f64, mu_k: f64, a: &Series, av: &Series, c: &mut [[f64; N]]) {
+    let order = c.len() - 1;
     let mut fr = [0.0; MAX_ORDER + 1];
+    let mut u = [0.0; MAX_ORDER + 1];
+    u[0] = c[0][X_DOT];
     for k in 0..order {
         let b = if k == 0 { 1.0 + av[0] } else { av[k] };
         fr[k] = -sigma * mu_k * b;
-        let xdd = (fr[k] - a[k]) / GAMMA;
-        let wdot = -conv(a, &s.u, k);
-        let ddot = -conv(&fr, &s.u, k);
-        let inv = 1.0 / (k + 1) as f64;
-        s.x[k + 1] = s.u[k] * inv;
-        s.u[k + 1] = xdd * inv;
-        s.w[k + 1] = wdot * inv;
-        s.d[k + 1] = ddot * inv;
+        let xdd = (fr[k] - a[k]) * INV_GAMMA;
+        let wdot = -conv(a, &u, k);
+        let ddot = -conv(&fr, &u, k);
+        let inv = INV[k + 1];
+        u[k + 1] = xdd * inv;
+        c[k + 1] = [0.0, 0.0, u[k] * inv, u[k + 1], wdot * inv, ddot * inv];
     }
 }
 
@@ -207,55 +313,75 @@ fn slide(sigma: f64, mu_k: f64, a: &Series, av: &Series, order: usize, s: &mut W
 /// Y = cos φ (per R), so X'' = cos φ ψΘ'' + s sin φ w² of `rock_at` is the
 /// second derivative of −s sin φ, and ẏ = s sin φ w that of cos φ. Their
 /// series are those of the tilt, with no products of their own.
-fn rock(geo: &Geometry, sg: f64, tilt: Tilt, a: &Series, av: &Series, order: usize, s: &mut Work) {
+///
+/// With a shared forcing sine (`a = A e`, `a_v = B e`) the forcing terms of
+/// ψΘ'' are one product, `e · m` with `m = A cos φ + s B sin φ`, and those
+/// of W' one more, `e · (A X' + B ẏ)`.
+fn rock(geo: &Geometry, sg: f64, tilt: Tilt, f: &ForcingSeries, c: &mut [[f64; N]]) {
+    let order = c.len() - 1;
     let psi = geo.psi;
-    let vertical = av[..=order].iter().any(|&v| v != 0.0);
-    let mut sn = [0.0; MAX_ORDER + 1];
-    let mut cs = [0.0; MAX_ORDER + 1];
-    let mut jph = [0.0; MAX_ORDER + 1];
-    sn[0] = tilt.sn;
-    cs[0] = tilt.c;
+    let forced = f.forced();
+    let mut tl = TiltSeries::new(tilt);
+    // m = A cos φ + s B sin φ, reversed (shared forcing only).
+    let mut mr = [0.0; MAX_ORDER + 1];
+    let m_at = |tl: &TiltSeries, k: usize| f.amp_h * tl.cs[k] + sg * f.amp_v * tl.sn[k];
+    mr[R] = m_at(&tl, 0);
+    let mut th = [0.0; MAX_ORDER + 2];
+    let mut v = [0.0; MAX_ORDER + 1];
+    th[0] = c[0][THETA];
+    v[0] = c[0][THETA_DOT];
     // Θ to order p + 1 (one beyond the rest: X' needs sin φ to p + 1).
-    for k in 0..=order {
-        if k > 0 {
-            jph[k] = -(k as f64) * psi * sg * s.th[k];
-            tilt_step(&jph, &mut sn, &mut cs, k);
-        }
-        if k == order {
-            break;
-        }
-        let bsn = if vertical { conv(av, &sn, k) + sn[k] } else { sn[k] };
-        let wdd = -(sg * bsn + conv(a, &cs, k));
-        let inv = 1.0 / (k + 1) as f64;
-        s.th[k + 1] = s.v[k] * inv;
-        s.v[k + 1] = wdd * geo.inv_psi * inv;
+    for k in 0..order {
+        // ψΘ''_k = −(s sin φ_k + forcing_k).
+        let forcing = if !forced {
+            0.0
+        } else if f.shared {
+            // The newest m last (see `conv_newest_last`).
+            (if k > 0 { lagged(&f.unit, &mr, k, 1) } else { 0.0 }) + f.unit[0] * mr[R - k]
+        } else {
+            lagged(&f.a, &tl.csr, k, 0) + sg * lagged(&f.av, &tl.snr, k, 0)
+        };
+        let wdd = -(sg * tl.sn[k] + forcing);
+        let inv = INV[k + 1];
+        th[k + 1] = v[k] * inv;
+        v[k + 1] = wdd * geo.inv_psi * inv;
+        tl.step(k + 1, -psi * sg * th[k + 1]);
+        mr[R - (k + 1)] = m_at(&tl, k + 1);
     }
     let p1 = order + 1;
-    let th_next = s.v[order] / p1 as f64;
-    jph[p1] = -(p1 as f64) * psi * sg * th_next;
-    tilt_step(&jph, &mut sn, &mut cs, p1);
+    th[p1] = v[order] * INV[p1];
+    tl.step(p1, -psi * sg * th[p1]);
     // X = X_pivot − s sin φ: X_k = −s sin φ_k (k ≥ 2), X'_k = (k+1) X_{k+1};
-    // the state's own X and X' stay the constant terms.
-    s.x[1] = s.u[0];
-    for (x, sn_k) in s.x[2..=order].iter_mut().zip(&sn[2..=order]) {
-        *x = -sg * sn_k;
-    }
-    for k in 1..=order {
-        s.u[k] = -sg * (k + 1) as f64 * sn[k + 1];
-    }
-    // ẏ = (cos φ)': ẏ_k = (k+1) cos φ_{k+1}.
+    // the state's own X and X' stay the constant terms. ẏ = (cos φ)':
+    // ẏ_k = (k+1) cos φ_{k+1}. W' = −(a X' + a_v ẏ).
+    let mut u = [0.0; MAX_ORDER + 1];
     let mut yd = [0.0; MAX_ORDER + 1];
-    if vertical {
-        for k in 0..order {
-            yd[k] = (k + 1) as f64 * cs[k + 1];
-        }
-    }
+    // Reversed: z = A X' + B ẏ (shared), or X' and ẏ apart.
+    let (mut zr, mut ur, mut ydr) = ([0.0; MAX_ORDER + 1], [0.0; MAX_ORDER + 1], [0.0; MAX_ORDER + 1]);
+    u[0] = c[0][X_DOT];
     for k in 0..order {
-        let mut wdot = -conv(a, &s.u, k);
-        if vertical {
-            wdot -= conv(av, &yd, k);
+        if k > 0 {
+            u[k] = -sg * (k + 1) as f64 * tl.sn[k + 1];
         }
-        s.w[k + 1] = wdot / (k + 1) as f64;
+        yd[k] = (k + 1) as f64 * tl.cs[k + 1];
+        let wdot = if !forced {
+            0.0
+        } else if f.shared {
+            zr[R - k] = f.amp_h * u[k] + f.amp_v * yd[k];
+            -lagged(&f.unit, &zr, k, 0)
+        } else {
+            ur[R - k] = u[k];
+            ydr[R - k] = yd[k];
+            -(lagged(&f.a, &ur, k, 0) + lagged(&f.av, &ydr, k, 0))
+        };
+        let inv = INV[k + 1];
+        let row = &mut c[k + 1];
+        row[THETA] = th[k + 1];
+        row[THETA_DOT] = v[k + 1];
+        row[X] = if k == 0 { u[0] } else { -sg * tl.sn[k + 1] };
+        row[X_DOT] = -sg * (k + 2) as f64 * tl.sn[k + 2];
+        row[WORK] = wdot * inv;
+        row[FRICTION_LOSS] = 0.0;
     }
 }
 
@@ -264,59 +390,373 @@ fn rock(geo: &Geometry, sg: f64, tilt: Tilt, a: &Series, av: &Series, order: usi
 /// D = (1 − γ) + γ(sin²φ − sσμ_k sin φ cos φ); n = b + γ(s sin φ ψΘ'' −
 /// cos φ w²), f = −σ μ_k n, X'' = (f − a)/γ, W' = −a X' − a_v ẏ,
 /// D' = −f (X' − cos φ w).
+///
+/// With `t = sin φ − sσμ_k cos φ`: κ = s t and D = (1 − γ) + γ sin φ · t,
+/// one product instead of two; with `P = cos φ Θ'`, cos φ w² = ψ² P Θ'
+/// (and P gives the slip velocity's cos φ w too). Θ'' reads neither X'
+/// nor the quadratures, so the first loop advances Θ alone and the second
+/// the rest, whose sums do not wait on each other.
 #[allow(clippy::too_many_arguments)]
-fn slide_rock(
-    geo: &Geometry,
-    sg: f64,
-    sigma: f64,
-    mu_k: f64,
-    tilt: Tilt,
-    a: &Series,
-    av: &Series,
-    order: usize,
-    s: &mut Work,
-) {
+fn slide_rock(geo: &Geometry, sg: f64, sigma: f64, mu_k: f64, tilt: Tilt, f: &ForcingSeries, c: &mut [[f64; N]]) {
+    let order = c.len() - 1;
     let psi = geo.psi;
-    let mut b = *av;
-    b[0] += 1.0;
+    let smu = sigma * mu_k;
     let z = [0.0; MAX_ORDER + 1];
-    let (mut sn, mut cs, mut jph) = (z, z, z);
-    let (mut kap, mut den, mut num, mut wdd) = (z, z, z, z);
-    let (mut ww, mut cww, mut fr, mut yd, mut vp) = (z, z, z, z, z);
-    sn[0] = tilt.sn;
-    cs[0] = tilt.c;
+    let mut tl = TiltSeries::new(tilt);
+    // Forward and reversed as the products need them.
+    let (mut tf, mut den, mut pf, mut cww, mut wdd) = (z, z, z, z, z);
+    let (mut tr, mut numr, mut wddr, mut vr) = (z, z, z, z);
+    let mut v = z;
+    v[0] = c[0][THETA_DOT];
+    vr[R] = v[0];
+    let b = |k: usize| if k == 0 { 1.0 + f.av[0] } else { f.av[k] };
+    // The quotient's one division, out of the loop.
+    let mut inv_den0 = 0.0;
     for k in 0..order {
-        if k > 0 {
-            jph[k] = -(k as f64) * psi * sg * s.th[k];
-            tilt_step(&jph, &mut sn, &mut cs, k);
-        }
-        kap[k] = sg * sn[k] - sigma * mu_k * cs[k];
-        den[k] = GAMMA * (conv(&sn, &sn, k) - sg * sigma * mu_k * conv(&sn, &cs, k));
+        tf[k] = tl.sn[k] - sg * smu * tl.cs[k];
+        tr[R - k] = tf[k];
+        den[k] = GAMMA * conv_newest_last(&tl.sn, &tr, k);
         if k == 0 {
             den[0] += 1.0 - GAMMA;
         }
-        ww[k] = psi * psi * conv(&s.v, &s.v, k);
-        cww[k] = conv(&cs, &ww, k);
-        num[k] = b[k] - GAMMA * cww[k];
-        // den · wdd = −κ · num, solved for the newest coefficient.
-        let mut q = -conv(&kap, &num, k);
-        for j in 1..=k {
-            q -= den[j] * wdd[k - j];
+        pf[k] = conv_newest_last(&tl.cs, &vr, k);
+        cww[k] = psi * psi * conv_newest_last(&pf, &vr, k);
+        numr[R - k] = b(k) - GAMMA * cww[k];
+        // D · ψΘ'' = −κ · num, solved for the newest coefficient.
+        let q = -sg * conv_newest_last(&tf, &numr, k) - if k > 0 { conv1_newest_last(&den, &wddr, k) } else { 0.0 };
+        if k == 0 {
+            inv_den0 = 1.0 / den[0];
         }
-        wdd[k] = q / den[0];
-        let normal = b[k] + GAMMA * (sg * conv(&sn, &wdd, k) - cww[k]);
-        fr[k] = -sigma * mu_k * normal;
-        let xdd = (fr[k] - a[k]) / GAMMA;
-        yd[k] = sg * psi * conv(&sn, &s.v, k);
-        vp[k] = s.u[k] - psi * conv(&cs, &s.v, k);
-        let wdot = -conv(a, &s.u, k) - conv(av, &yd, k);
-        let ddot = -conv(&fr, &vp, k);
-        let inv = 1.0 / (k + 1) as f64;
-        s.th[k + 1] = s.v[k] * inv;
-        s.v[k + 1] = wdd[k] / psi * inv;
-        s.x[k + 1] = s.u[k] * inv;
-        s.u[k + 1] = xdd * inv;
-        s.w[k + 1] = wdot * inv;
-        s.d[k + 1] = ddot * inv;
+        wdd[k] = q * inv_den0;
+        wddr[R - k] = wdd[k];
+        let inv = INV[k + 1];
+        let th_next = v[k] * inv;
+        v[k + 1] = wdd[k] * geo.inv_psi * inv;
+        vr[R - (k + 1)] = v[k + 1];
+        c[k + 1][THETA] = th_next;
+        c[k + 1][THETA_DOT] = v[k + 1];
+        tl.step(k + 1, -psi * sg * th_next);
+    }
+    // The rest, from Θ's series: n, f, X', ẏ = s ψ sin φ Θ', the slip
+    // velocity X' − ψ P, and the two quadratures.
+    let (mut fr, mut u) = (z, z);
+    let (mut vpr, mut zr, mut ur, mut ydr) = (z, z, z, z);
+    u[0] = c[0][X_DOT];
+    for k in 0..order {
+        let normal = b(k) + GAMMA * (sg * lagged(&tl.sn, &wddr, k, 0) - cww[k]);
+        fr[k] = -smu * normal;
+        let yd = sg * psi * lagged(&tl.sn, &vr, k, 0);
+        vpr[R - k] = u[k] - psi * pf[k];
+        let wdot = if f.shared {
+            zr[R - k] = f.amp_h * u[k] + f.amp_v * yd;
+            -lagged(&f.unit, &zr, k, 0)
+        } else {
+            ur[R - k] = u[k];
+            ydr[R - k] = yd;
+            -(lagged(&f.a, &ur, k, 0) + lagged(&f.av, &ydr, k, 0))
+        };
+        let ddot = -lagged(&fr, &vpr, k, 0);
+        let inv = INV[k + 1];
+        u[k + 1] = (fr[k] - f.a[k]) * (INV_GAMMA * inv);
+        let row = &mut c[k + 1];
+        row[X] = u[k] * inv;
+        row[X_DOT] = u[k + 1];
+        row[WORK] = wdot * inv;
+        row[FRICTION_LOSS] = ddot * inv;
+    }
+}
+
+/// The straightforward recurrences, one convolution per product and two
+/// forcing series always apart: the oracle the fused expansions above are
+/// tested against.
+#[cfg(test)]
+mod reference {
+    use super::*;
+
+    pub struct Work {
+        pub th: Series,
+        pub v: Series,
+        pub x: Series,
+        pub u: Series,
+        pub w: Series,
+        pub d: Series,
+    }
+
+    impl Work {
+        pub fn new(y: &[f64; N]) -> Self {
+            let z = [0.0; MAX_ORDER + 1];
+            let mut s = Self {
+                th: z,
+                v: z,
+                x: z,
+                u: z,
+                w: z,
+                d: z,
+            };
+            s.th[0] = y[THETA];
+            s.v[0] = y[THETA_DOT];
+            s.x[0] = y[X];
+            s.u[0] = y[X_DOT];
+            s.w[0] = y[WORK];
+            s.d[0] = y[FRICTION_LOSS];
+            s
+        }
+
+        pub fn row(&self, k: usize) -> [f64; N] {
+            [self.th[k], self.v[k], self.x[k], self.u[k], self.w[k], self.d[k]]
+        }
+    }
+
+    fn tilt_step(jph: &Series, sn: &mut Series, cs: &mut Series, k: usize) {
+        let (mut ds, mut dc) = (0.0, 0.0);
+        for j in 1..=k {
+            ds += jph[j] * cs[k - j];
+            dc += jph[j] * sn[k - j];
+        }
+        sn[k] = ds / k as f64;
+        cs[k] = -dc / k as f64;
+    }
+
+    /// Rocking about a stuck corner (`dynamics::rock_at`): ψΘ'' = −(s b sin φ +
+    /// a cos φ), W' = −a X' − a_v ẏ.
+    ///
+    /// The centre of mass moves with the tilt alone: X = X_pivot − s sin φ and
+    /// Y = cos φ (per R), so X'' = cos φ ψΘ'' + s sin φ w² of `rock_at` is the
+    /// second derivative of −s sin φ, and ẏ = s sin φ w that of cos φ. Their
+    /// series are those of the tilt, with no products of their own.
+    pub fn rock(geo: &Geometry, sg: f64, tilt: Tilt, a: &Series, av: &Series, order: usize, s: &mut Work) {
+        let psi = geo.psi;
+        let vertical = av[..=order].iter().any(|&v| v != 0.0);
+        let mut sn = [0.0; MAX_ORDER + 1];
+        let mut cs = [0.0; MAX_ORDER + 1];
+        let mut jph = [0.0; MAX_ORDER + 1];
+        sn[0] = tilt.sn;
+        cs[0] = tilt.c;
+        // Θ to order p + 1 (one beyond the rest: X' needs sin φ to p + 1).
+        for k in 0..=order {
+            if k > 0 {
+                jph[k] = -(k as f64) * psi * sg * s.th[k];
+                tilt_step(&jph, &mut sn, &mut cs, k);
+            }
+            if k == order {
+                break;
+            }
+            let bsn = if vertical { conv(av, &sn, k) + sn[k] } else { sn[k] };
+            let wdd = -(sg * bsn + conv(a, &cs, k));
+            let inv = 1.0 / (k + 1) as f64;
+            s.th[k + 1] = s.v[k] * inv;
+            s.v[k + 1] = wdd * geo.inv_psi * inv;
+        }
+        let p1 = order + 1;
+        let th_next = s.v[order] / p1 as f64;
+        jph[p1] = -(p1 as f64) * psi * sg * th_next;
+        tilt_step(&jph, &mut sn, &mut cs, p1);
+        // X = X_pivot − s sin φ: X_k = −s sin φ_k (k ≥ 2), X'_k = (k+1) X_{k+1};
+        // the state's own X and X' stay the constant terms.
+        s.x[1] = s.u[0];
+        for (x, sn_k) in s.x[2..=order].iter_mut().zip(&sn[2..=order]) {
+            *x = -sg * sn_k;
+        }
+        for k in 1..=order {
+            s.u[k] = -sg * (k + 1) as f64 * sn[k + 1];
+        }
+        // ẏ = (cos φ)': ẏ_k = (k+1) cos φ_{k+1}.
+        let mut yd = [0.0; MAX_ORDER + 1];
+        if vertical {
+            for k in 0..order {
+                yd[k] = (k + 1) as f64 * cs[k + 1];
+            }
+        }
+        for k in 0..order {
+            let mut wdot = -conv(a, &s.u, k);
+            if vertical {
+                wdot -= conv(av, &yd, k);
+            }
+            s.w[k + 1] = wdot / (k + 1) as f64;
+        }
+    }
+
+    /// Rocking about a slipping corner (`dynamics::slide_rock_at`):
+    /// ψΘ'' = −κ (b − γ cos φ w²)/D with κ = s sin φ − σ μ_k cos φ and
+    /// D = (1 − γ) + γ(sin²φ − sσμ_k sin φ cos φ); n = b + γ(s sin φ ψΘ'' −
+    /// cos φ w²), f = −σ μ_k n, X'' = (f − a)/γ, W' = −a X' − a_v ẏ,
+    /// D' = −f (X' − cos φ w).
+    #[allow(clippy::too_many_arguments)]
+    pub fn slide_rock(
+        geo: &Geometry,
+        sg: f64,
+        sigma: f64,
+        mu_k: f64,
+        tilt: Tilt,
+        a: &Series,
+        av: &Series,
+        order: usize,
+        s: &mut Work,
+    ) {
+        let psi = geo.psi;
+        let mut b = *av;
+        b[0] += 1.0;
+        let z = [0.0; MAX_ORDER + 1];
+        let (mut sn, mut cs, mut jph) = (z, z, z);
+        let (mut kap, mut den, mut num, mut wdd) = (z, z, z, z);
+        let (mut ww, mut cww, mut fr, mut yd, mut vp) = (z, z, z, z, z);
+        sn[0] = tilt.sn;
+        cs[0] = tilt.c;
+        for k in 0..order {
+            if k > 0 {
+                jph[k] = -(k as f64) * psi * sg * s.th[k];
+                tilt_step(&jph, &mut sn, &mut cs, k);
+            }
+            kap[k] = sg * sn[k] - sigma * mu_k * cs[k];
+            den[k] = GAMMA * (conv(&sn, &sn, k) - sg * sigma * mu_k * conv(&sn, &cs, k));
+            if k == 0 {
+                den[0] += 1.0 - GAMMA;
+            }
+            ww[k] = psi * psi * conv(&s.v, &s.v, k);
+            cww[k] = conv(&cs, &ww, k);
+            num[k] = b[k] - GAMMA * cww[k];
+            // den · wdd = −κ · num, solved for the newest coefficient.
+            let mut q = -conv(&kap, &num, k);
+            for j in 1..=k {
+                q -= den[j] * wdd[k - j];
+            }
+            wdd[k] = q / den[0];
+            let normal = b[k] + GAMMA * (sg * conv(&sn, &wdd, k) - cww[k]);
+            fr[k] = -sigma * mu_k * normal;
+            let xdd = (fr[k] - a[k]) / GAMMA;
+            yd[k] = sg * psi * conv(&sn, &s.v, k);
+            vp[k] = s.u[k] - psi * conv(&cs, &s.v, k);
+            let wdot = -conv(a, &s.u, k) - conv(av, &yd, k);
+            let ddot = -conv(&fr, &vp, k);
+            let inv = 1.0 / (k + 1) as f64;
+            s.th[k + 1] = s.v[k] * inv;
+            s.v[k + 1] = wdd[k] / psi * inv;
+            s.x[k + 1] = s.u[k] * inv;
+            s.u[k + 1] = xdd * inv;
+            s.w[k + 1] = wdot * inv;
+            s.d[k + 1] = ddot * inv;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::Harmonic;
+    use crate::model::mode::Sign;
+
+    /// The harmonic forcing of the default scene (`shared`: one sine for both
+    /// directions) or with separate frequencies and phases.
+    fn forcing(geo: &Geometry, shared: bool) -> Excitation {
+        Excitation::Harmonic(Harmonic {
+            a_h: 2.0,
+            a_v: if shared { 2.5 } else { 0.7 },
+            omega_h: 8.0,
+            omega_v: if shared { 8.0 } else { 5.5 },
+            phase_h: 0.3,
+            phase_v: if shared { 0.3 } else { -1.2 },
+            psi: geo.psi,
+        })
+    }
+
+    /// The largest difference between the fused and the reference
+    /// coefficients of every component and order, relative to the largest
+    /// term `|c_k| h^k` of that component's polynomial over a step `h`.
+    fn worst_difference(mode: Mode, exc: Excitation, y: [f64; N], order: usize, h: f64) -> f64 {
+        let geo = Geometry::new(1.0, 4.0);
+        let (mu_k, t) = (0.35, 2.7);
+        let model = Model {
+            geo,
+            mu_s: 0.4,
+            mu_k,
+            law: crate::model::ImpactLaw::Ratio { r: 0.82 },
+            excitation: exc,
+            tumble_theta: 1.0,
+            flight: crate::model::FlightPolicy::Stop,
+            zeno_eps: 1e-5,
+        };
+        let mut fused = vec![[0.0; N]; order + 1];
+        assert!(taylor(&model, mode, t, &y, order, &mut fused));
+        let mut f = ForcingSeries::none();
+        assert!(f.fill(&model.excitation, t, order));
+        let mut r = reference::Work::new(&y);
+        match mode {
+            Mode::Rock { pivot } => reference::rock(
+                &geo,
+                pivot.value(),
+                Tilt::new(&geo, pivot, y[THETA]),
+                &f.a,
+                &f.av,
+                order,
+                &mut r,
+            ),
+            Mode::SlideRock { pivot, slip } => reference::slide_rock(
+                &geo,
+                pivot.value(),
+                slip.value(),
+                mu_k,
+                Tilt::new(&geo, pivot, y[THETA]),
+                &f.a,
+                &f.av,
+                order,
+                &mut r,
+            ),
+            _ => unreachable!("rocking modes only"),
+        }
+        let mut worst: f64 = 0.0;
+        for n in 0..N {
+            let scale = (0..=order)
+                .map(|k| r.row(k)[n].abs() * h.powi(k as i32))
+                .fold(0.0, f64::max)
+                .max(1e-300);
+            for (k, row) in fused.iter().enumerate() {
+                let d = (row[n] - r.row(k)[n]).abs() * h.powi(k as i32) / scale;
+                worst = worst.max(d);
+            }
+        }
+        worst
+    }
+
+    #[test]
+    fn fused_expansions_match_the_plain_recurrences() {
+        let (p, m) = (Sign::Pos, Sign::Neg);
+        let modes = [
+            Mode::Rock { pivot: p },
+            Mode::Rock { pivot: m },
+            Mode::SlideRock { pivot: p, slip: p },
+            Mode::SlideRock { pivot: p, slip: m },
+            Mode::SlideRock { pivot: m, slip: p },
+            Mode::SlideRock { pivot: m, slip: m },
+        ];
+        let states = [
+            [0.05, -0.2, 0.1, 0.01, 0.3, 0.02],
+            [-0.12, 0.4, -0.3, -0.05, 1.0, 0.5],
+            [0.0, 0.0, 0.0, 0.0, 0.0, 0.0],
+        ];
+        let geo = Geometry::new(1.0, 4.0);
+        for mode in modes {
+            for y in states {
+                for shared in [true, false] {
+                    for order in [8, 20, 28] {
+                        let d = worst_difference(mode, forcing(&geo, shared), y, order, 0.3);
+                        assert!(d < 1e-13, "{mode:?} at {y:?}, shared {shared}, order {order}: {d:e}");
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn free_rocking_has_no_forcing_terms() {
+        for mode in [
+            Mode::Rock { pivot: Sign::Pos },
+            Mode::SlideRock {
+                pivot: Sign::Neg,
+                slip: Sign::Pos,
+            },
+        ] {
+            let d = worst_difference(mode, Excitation::None, [0.1, -0.3, 0.0, 0.02, 0.0, 0.0], 20, 0.3);
+            assert!(d < 1e-13, "{mode:?}: {d:e}");
+        }
     }
 }
