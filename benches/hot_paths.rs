@@ -155,7 +155,7 @@ fn tilt(bencher: divan::Bencher) {
     });
 }
 
-/// The Taylor coefficients of one step at rtol 1e-10 (order 20), rocking
+/// The Taylor coefficients of one step at rtol 1e-10 (order 28), rocking
 /// and slide-rocking, under the default scene's forcing (Ω_v = Ω_h, one
 /// phase): the Taylor method's cost per step.
 #[divan::bench(args = ["rock", "slide_rock"])]
@@ -171,11 +171,11 @@ fn taylor_series(bencher: divan::Bencher, mode: &str) {
     };
     let y = [0.05, -0.2, 0.0, 0.01, 0.0, 0.0];
     let order = rocking::integrate::taylor::order_for(1e-10);
-    let mut c = [[0.0; N]; 24];
+    let mut c = vec![[0.0; N]; order + 1];
     let mut t = 0.0;
     bencher.bench_local(|| {
         t += 1e-3;
-        black_box(sys.taylor(mode, black_box(t), black_box(&y), order, &mut c[..=order]));
+        assert!(sys.taylor(mode, black_box(t), black_box(&y), order, &mut c));
         black_box(&c);
     });
 }

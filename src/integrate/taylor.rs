@@ -25,24 +25,26 @@ use super::stepper::{Rhs, StepError, StepStats, Stepper, Tolerances};
 /// Highest order the stepper uses (the order for rtol 1e-14 is 28).
 pub const MAX_ORDER: usize = 28;
 
-/// Most times [`Taylor::dense_many`] evaluates side by side (the driver's
-/// seven interior guard samples of a step).
-const MANY: usize = 8;
-
 /// Lowest order: below it the step from the coefficients is too short to
 /// beat DOP853.
 const MIN_ORDER: usize = 8;
 
-/// The order for a tolerance: `⌈0.85 (−ln ε)⌉`, 20 at rtol 1e-10. That is
-/// far above Jorba and Zou's `−ln ε / 2` (12), which is the optimum for an
-/// analytic solution stepped freely: the block's steps end at every impact
-/// (about every 0.4 τ in the paper's periodic scene), so a longer series
-/// buys fewer steps between impacts. On that scene at rtol 1e-10, orders
-/// 12, 14, 16, 18 and 20 took 13,493, 9,312, 7,193, 6,161 and 5,149 steps
-/// and 15.7, 12.6, 10.6, 10.1 and 9.3 ms (docs/performance.md).
+/// The order for a tolerance: `⌈1.2 (−ln ε)⌉`, 28 (the highest) at rtol
+/// 1e-10 and 23 at 1e-8. That is far above Jorba and Zou's `−ln ε / 2`
+/// (12), which is the optimum for an analytic solution stepped freely: the
+/// block's steps end at every impact (about every 0.4 τ in the paper's
+/// periodic scene), so a longer series buys fewer steps between impacts.
+/// On that scene at rtol 1e-10, orders 12, 14, 16, 18 and 20 took 13,493,
+/// 9,312, 7,193, 6,161 and 5,149 steps and 15.7, 12.6, 10.6, 10.1 and
+/// 9.3 ms with the first series code; once the expansions were fused
+/// (seventh session, docs/performance.md) orders 20 and 28 took the same
+/// time there (5,149 and 4,075 steps, 6.3–6.6 ms), and on the app's default
+/// scene order 28 took 95,000 steps to order 20's 139,000 and ran about
+/// 10 % faster, as did order 23 against 16 at rtol 1e-8. Higher orders
+/// (30–34) took no fewer steps than the events allow and ran slower.
 pub fn order_for(rtol: f64) -> usize {
     let eps = rtol.clamp(1e-16, 1e-2);
-    ((-0.85 * eps.ln()).ceil() as usize).clamp(MIN_ORDER, MAX_ORDER)
+    ((-1.2 * eps.ln()).ceil() as usize).clamp(MIN_ORDER, MAX_ORDER)
 }
 
 /// The Taylor stepper.
@@ -50,6 +52,8 @@ pub fn order_for(rtol: f64) -> usize {
 pub struct Taylor<const N: usize> {
     tol: Tolerances,
     order: usize,
+    /// Jorba and Zou's safety factor `exp(−0.7/(p−1))`.
+    safety: f64,
     t: f64,
     t_old: f64,
     y: [f64; N],
@@ -76,9 +80,11 @@ impl<const N: usize> Taylor<N> {
 
     /// A stepper of a chosen order (clamped to 2..=[`MAX_ORDER`]).
     pub fn with_order(tol: Tolerances, order: usize) -> Self {
+        let order = order.clamp(2, MAX_ORDER);
         Self {
             tol,
-            order: order.clamp(2, MAX_ORDER),
+            order,
+            safety: (-0.7 / (order - 1) as f64).exp(),
             t: 0.0,
             t_old: 0.0,
             y: [0.0; N],
@@ -104,7 +110,7 @@ impl<const N: usize> Taylor<N> {
     /// Infinite for a polynomial solution of lower degree (a block at rest).
     fn step_from_coefficients(&self) -> f64 {
         let p = self.order;
-        let mut h = f64::INFINITY;
+        let mut log_h = f64::INFINITY;
         for k in [p - 1, p] {
             let mut r: f64 = 0.0;
             for n in 0..N {
@@ -112,50 +118,65 @@ impl<const N: usize> Taylor<N> {
                 r = r.max(self.coef[k][n].abs() / sk);
             }
             if r > 0.0 {
-                h = h.min(r.powf(-1.0 / k as f64));
+                // r^(-1/k) by its logarithm: the smaller exponent gives the
+                // smaller step, so one `exp` serves both orders.
+                log_h = log_h.min(-r.ln() / k as f64);
             }
         }
-        h * (-0.7 / (p - 1) as f64).exp()
+        log_h.exp() * self.safety
     }
 
     /// The polynomial at offset `s` from `t_old`, leading `count` components.
-    /// Horner's rule with the components side by side (independent
-    /// chains, vectorisable).
     #[inline]
     fn eval_poly(&self, s: f64, out: &mut [f64; N], count: usize) {
-        let count = count.min(N);
-        let mut acc = self.coef[self.order];
-        for k in (0..self.order).rev() {
-            let row = &self.coef[k];
-            for n in 0..count {
-                acc[n] = acc[n] * s + row[n];
-            }
+        match count.min(N) {
+            1 => self.estrin::<1>(s, out),
+            2 => self.estrin::<2>(s, out),
+            c if c <= 4 && N >= 4 => self.estrin::<4>(s, out),
+            _ => self.estrin::<N>(s, out),
         }
-        out[..count].copy_from_slice(&acc[..count]);
     }
 
-    /// The polynomial at several offsets (at most [`MANY`]), leading
-    /// `count` components: the Horner chains of all offsets side by side, the
-    /// same arithmetic as [`eval_poly`](Self::eval_poly) at each.
+    /// Estrin's scheme for the leading `C` components: coefficients paired
+    /// as `c_2i + c_2i+1 s`, the pairs paired with `s²`, those with `s⁴`,
+    /// and so on. Horner's rule is one chain of `p` multiply–adds; this is
+    /// a tree `⌈log₂(p+1)⌉` deep. A root search evaluates the polynomial
+    /// once per iteration, each waiting on the last, so the depth is its
+    /// cost (about a quarter of Horner's at order 28). The rounding error
+    /// is of the same size as Horner's.
     #[inline]
-    fn eval_poly_many<const C: usize>(&self, s: &[f64], out: &mut [[f64; N]]) {
-        let m = s.len().min(MANY);
-        let top = &self.coef[self.order];
-        let mut acc = [[0.0; C]; MANY];
-        for a in acc.iter_mut() {
-            a.copy_from_slice(&top[..C]);
-        }
-        for k in (0..self.order).rev() {
-            let row = &self.coef[k];
-            for (a, &sp) in acc.iter_mut().zip(s).take(m) {
-                for n in 0..C {
-                    a[n] = a[n] * sp + row[n];
-                }
+    fn estrin<const C: usize>(&self, s: f64, out: &mut [f64; N]) {
+        let len = self.order + 1;
+        let mut buf = [[0.0; C]; (MAX_ORDER + 2) / 2];
+        let mut m = len / 2;
+        for (i, b) in buf.iter_mut().enumerate().take(m) {
+            let (lo, hi) = (&self.coef[2 * i], &self.coef[2 * i + 1]);
+            for n in 0..C {
+                b[n] = lo[n] + hi[n] * s;
             }
         }
-        for (o, a) in out.iter_mut().zip(&acc).take(m) {
-            o[..C].copy_from_slice(a);
+        if len % 2 == 1 {
+            buf[m].copy_from_slice(&self.coef[len - 1][..C]);
+            m += 1;
         }
+        let mut x = s * s;
+        while m > 1 {
+            let half = m / 2;
+            for i in 0..half {
+                let (lo, hi) = (buf[2 * i], buf[2 * i + 1]);
+                for n in 0..C {
+                    buf[i][n] = lo[n] + hi[n] * x;
+                }
+            }
+            if m % 2 == 1 {
+                buf[half] = buf[m - 1];
+                m = half + 1;
+            } else {
+                m = half;
+            }
+            x *= x;
+        }
+        out[..C].copy_from_slice(&buf[0]);
     }
 
     /// Its derivative at offset `s`, all components.
@@ -272,27 +293,12 @@ impl<const N: usize> Stepper<N> for Taylor<N> {
         self.dense_leading(f, t, out, N);
     }
 
-    /// The samples of one step side by side (see
-    /// [`eval_poly_many`](Self::eval_poly_many)); the step's end times are
-    /// still returned bit for bit.
+    /// The samples of one step: the same evaluation as
+    /// [`dense_leading`](Stepper::dense_leading) at each time (Estrin's tree
+    /// is wide, so the times overlap without being batched by hand).
     fn dense_many<F: Rhs<N>>(&mut self, f: &F, ts: &[f64], out: &mut [[f64; N]], count: usize) {
-        let interior = |t: f64| t != self.t && t != self.t_old;
-        if !self.has_step || self.on_fallback || ts.len() > MANY || !ts.iter().all(|&t| interior(t)) {
-            for (t, o) in ts.iter().zip(out.iter_mut()) {
-                self.dense_leading(f, *t, o, count);
-            }
-            return;
-        }
-        let mut s = [0.0; MANY];
-        for (sj, &t) in s.iter_mut().zip(ts) {
-            *sj = t - self.t_old;
-        }
-        let s = &s[..ts.len()];
-        match count.min(N) {
-            1 => self.eval_poly_many::<1>(s, out),
-            2 => self.eval_poly_many::<2>(s, out),
-            c if c <= 4 && N >= 4 => self.eval_poly_many::<4>(s, out),
-            _ => self.eval_poly_many::<N>(s, out),
+        for (t, o) in ts.iter().zip(out.iter_mut()) {
+            self.dense_leading(f, *t, o, count);
         }
     }
 
@@ -466,8 +472,9 @@ mod tests {
 
     #[test]
     fn orders_follow_the_tolerance() {
-        assert_eq!(order_for(1e-10), 20);
-        assert_eq!(order_for(1e-4), 8);
+        assert_eq!(order_for(1e-10), 28);
+        assert_eq!(order_for(1e-8), 23);
+        assert_eq!(order_for(1e-3), 9);
         assert!(order_for(1e-16) <= MAX_ORDER);
     }
 }

@@ -239,11 +239,13 @@ impl TiltSeries {
         self.csr[R - k] = cs;
     }
 
-    /// Coefficient `k ≥ 1` from `φ_k = −ψ s Θ_k` and the lower ones, by
-    /// `(sin φ)' = cos φ φ'` and `(cos φ)' = −sin φ φ'`.
+    /// Coefficient `k ≥ 1` from `k φ_k` and the lower ones, by `(sin φ)' =
+    /// cos φ φ'` and `(cos φ)' = −sin φ φ'`. With φ = ψ(1 − sΘ) and
+    /// `k Θ_k = Θ'_{k−1}`, `k φ_k = −ψ s Θ'_{k−1}`: the callers pass that,
+    /// one multiplication after Θ' instead of four.
     #[inline(always)]
-    fn step(&mut self, k: usize, phi_k: f64) {
-        self.jph[k] = k as f64 * phi_k;
+    fn step(&mut self, k: usize, jph_k: f64) {
+        self.jph[k] = jph_k;
         let ds = conv1_newest_last(&self.jph, &self.csr, k);
         let dc = conv1_newest_last(&self.jph, &self.snr, k);
         let inv = INV[k];
@@ -345,12 +347,10 @@ fn rock(geo: &Geometry, sg: f64, tilt: Tilt, f: &ForcingSeries, c: &mut [[f64; N
         let inv = INV[k + 1];
         th[k + 1] = v[k] * inv;
         v[k + 1] = wdd * geo.inv_psi * inv;
-        tl.step(k + 1, -psi * sg * th[k + 1]);
+        tl.step(k + 1, -psi * sg * v[k]);
         mr[R - (k + 1)] = m_at(&tl, k + 1);
     }
-    let p1 = order + 1;
-    th[p1] = v[order] * INV[p1];
-    tl.step(p1, -psi * sg * th[p1]);
+    tl.step(order + 1, -psi * sg * v[order]);
     // X = X_pivot − s sin φ: X_k = −s sin φ_k (k ≥ 2), X'_k = (k+1) X_{k+1};
     // the state's own X and X' stay the constant terms. ẏ = (cos φ)':
     // ẏ_k = (k+1) cos φ_{k+1}. W' = −(a X' + a_v ẏ).
@@ -435,7 +435,7 @@ fn slide_rock(geo: &Geometry, sg: f64, sigma: f64, mu_k: f64, tilt: Tilt, f: &Fo
         vr[R - (k + 1)] = v[k + 1];
         c[k + 1][THETA] = th_next;
         c[k + 1][THETA_DOT] = v[k + 1];
-        tl.step(k + 1, -psi * sg * th_next);
+        tl.step(k + 1, -psi * sg * v[k]);
     }
     // The rest, from Θ's series: n, f, X', ẏ = s ψ sin φ Θ', the slip
     // velocity X' − ψ P, and the two quadratures.
