@@ -635,6 +635,7 @@ where
             gs[0] = self.g_start;
             ts[SUBINTERVALS] = t1;
             gs[SUBINTERVALS] = g_end;
+            let mut yj = [0.0; N];
             let all_at_once = several_costly(sys, mode, n, need);
             // The samples interpolate what the guards sampled read: Θ
             // alone for the block's impact and tumble guards, a quarter of
@@ -648,18 +649,14 @@ where
                     .max()
                     .unwrap_or(reads)
             };
-            for (j, tj) in ts.iter_mut().enumerate().take(SUBINTERVALS).skip(1) {
-                *tj = t0 + (t1 - t0) * (j as f64 / SUBINTERVALS as f64);
-            }
-            let mut ys = [[0.0; N]; SUBINTERVALS - 1];
-            stepper.dense_many(&f, &ts[1..SUBINTERVALS], &mut ys, sample_reads);
             for j in 1..SUBINTERVALS {
-                let yj = &ys[j - 1];
+                ts[j] = t0 + (t1 - t0) * (j as f64 / SUBINTERVALS as f64);
+                stepper.dense_leading(&f, ts[j], &mut yj, sample_reads);
                 if all_at_once {
-                    sys.guards(mode, ts[j], yj, &mut gs[j]);
+                    sys.guards(mode, ts[j], &yj, &mut gs[j]);
                 } else {
                     for i in (0..n).filter(|&i| need[i]) {
-                        gs[j][i] = sys.guard(mode, i, ts[j], yj);
+                        gs[j][i] = sys.guard(mode, i, ts[j], &yj);
                     }
                 }
             }

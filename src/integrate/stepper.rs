@@ -146,17 +146,6 @@ pub trait Stepper<const N: usize> {
         self.dense(f, t, out);
     }
 
-    /// [`dense_leading`](Stepper::dense_leading) at several times at once,
-    /// `out[j]` for `ts[j]`: the driver's guard samples of one step. The
-    /// same values as one call per time; a stepper whose dense output is a
-    /// polynomial evaluates the times side by side (independent chains
-    /// instead of one Horner chain after another).
-    fn dense_many<F: Rhs<N>>(&mut self, f: &F, ts: &[f64], out: &mut [[f64; N]], count: usize) {
-        for (t, o) in ts.iter().zip(out.iter_mut()) {
-            self.dense_leading(f, *t, o, count);
-        }
-    }
-
     /// [`hermite`](Stepper::hermite) for the leading `count` components
     /// only, as [`dense_leading`](Stepper::dense_leading).
     fn hermite_leading(&self, t: f64, out: &mut [f64; N], count: usize) -> bool {

@@ -293,15 +293,6 @@ impl<const N: usize> Stepper<N> for Taylor<N> {
         self.dense_leading(f, t, out, N);
     }
 
-    /// The samples of one step: the same evaluation as
-    /// [`dense_leading`](Stepper::dense_leading) at each time (Estrin's tree
-    /// is wide, so the times overlap without being batched by hand).
-    fn dense_many<F: Rhs<N>>(&mut self, f: &F, ts: &[f64], out: &mut [[f64; N]], count: usize) {
-        for (t, o) in ts.iter().zip(out.iter_mut()) {
-            self.dense_leading(f, *t, o, count);
-        }
-    }
-
     fn dense_leading<F: Rhs<N>>(&mut self, f: &F, t: f64, out: &mut [f64; N], count: usize) {
         if !self.has_step || t == self.t {
             out[..count].copy_from_slice(&self.y[..count]);
