@@ -639,16 +639,13 @@ where
             let all_at_once = several_costly(sys, mode, n, need);
             // The samples interpolate what the guards sampled read: Θ
             // alone for the block's impact and tumble guards, a quarter of
-            // the dense output's work.
-            let sample_reads = if all_at_once {
-                reads
-            } else {
-                (0..n)
-                    .filter(|&i| need[i])
-                    .map(|i| sys.guard_reads(mode, i).min(reads))
-                    .max()
-                    .unwrap_or(reads)
-            };
+            // the dense output's work; all guards' reads when they are
+            // evaluated together (Θ and Θ' for the block's rocking).
+            let sample_reads = (0..n)
+                .filter(|&i| all_at_once || need[i])
+                .map(|i| sys.guard_reads(mode, i).min(reads))
+                .max()
+                .unwrap_or(reads);
             for j in 1..SUBINTERVALS {
                 ts[j] = t0 + (t1 - t0) * (j as f64 / SUBINTERVALS as f64);
                 stepper.dense_leading(&f, ts[j], &mut yj, sample_reads);

@@ -767,12 +767,16 @@ impl HybridSystem<N> for BlockSystem {
         dynamics::rock_normal_lower_bound(geo, th, v, a_max, 1.0 - av_max) > MARGIN
     }
 
-    /// Θ for the impact and tumble guards, Θ and Θ' for the extremum; the
-    /// rest read Θ, Θ', X and X' (through the forces, or the pivot's slip).
+    /// Θ for the impact and tumble guards, Θ and Θ' for the extremum and
+    /// for every guard of rocking about a stuck corner (its forces, hence
+    /// the flight and slip-onset guards, depend on the tilt and its rate
+    /// alone: `dynamics::rock_at`); the rest read Θ, Θ', X and X' (through
+    /// the forces, or the pivot's slip).
     fn guard_reads(&self, mode: Mode, index: usize) -> usize {
         match (mode, index) {
             (Mode::Rock { .. } | Mode::SlideRock { .. }, 0 | 1) => THETA + 1,
             (Mode::Rock { .. } | Mode::SlideRock { .. }, 3) => THETA_DOT + 1,
+            (Mode::Rock { .. }, _) => THETA_DOT + 1,
             _ => N - Self::QUADRATURES,
         }
     }
