@@ -173,6 +173,23 @@ pub trait HybridSystem<const N: usize> {
         false
     }
 
+    /// Whether the root of observer `index` of `mode`, bracketed between
+    /// the states `ya` at `ta` and `yb` at `tb`, can change what the
+    /// observer records: when it cannot, the driver does not locate it.
+    /// The states are dense-output samples with the components the guards
+    /// read ([`guard_reads`](HybridSystem::guard_reads)). `true` by default.
+    fn observer_may_record(
+        &self,
+        _mode: Self::Mode,
+        _index: usize,
+        _ta: f64,
+        _ya: &[f64; N],
+        _tb: f64,
+        _yb: &[f64; N],
+    ) -> bool {
+        true
+    }
+
     /// Whether guard `index` of `mode` only observes (no jump).
     fn is_observer(&self, mode: Self::Mode, index: usize) -> bool;
 
@@ -622,6 +639,7 @@ where
         // Observer roots before the event; their states are interpolated
         // after this block (no array of states to zero on every call).
         let mut observed = [None; MAX_GUARDS];
+        let screening = self.limits.screening;
         let best = {
             let sys = &self.system;
             let stepper = &mut self.stepper;
@@ -635,7 +653,12 @@ where
             gs[0] = self.g_start;
             ts[SUBINTERVALS] = t1;
             gs[SUBINTERVALS] = g_end;
-            let mut yj = [0.0; N];
+            // The sampled states (leading components), kept for the
+            // observers' `observer_may_record`.
+            let mut ys = [[0.0; N]; SUBINTERVALS + 1];
+            // (The dense output returns the step's end states exactly.)
+            stepper.dense(&f, t0, &mut ys[0]);
+            ys[SUBINTERVALS] = *stepper.y();
             let all_at_once = several_costly(sys, mode, n, need);
             // The samples interpolate what the guards sampled read: Θ
             // alone for the block's impact and tumble guards, a quarter of
@@ -648,12 +671,13 @@ where
                 .unwrap_or(reads);
             for j in 1..SUBINTERVALS {
                 ts[j] = t0 + (t1 - t0) * (j as f64 / SUBINTERVALS as f64);
-                stepper.dense_leading(&f, ts[j], &mut yj, sample_reads);
+                let yj = &mut ys[j];
+                stepper.dense_leading(&f, ts[j], yj, sample_reads);
                 if all_at_once {
-                    sys.guards(mode, ts[j], &yj, &mut gs[j]);
+                    sys.guards(mode, ts[j], yj, &mut gs[j]);
                 } else {
                     for i in (0..n).filter(|&i| need[i]) {
-                        gs[j][i] = sys.guard(mode, i, ts[j], &yj);
+                        gs[j][i] = sys.guard(mode, i, ts[j], yj);
                     }
                 }
             }
@@ -671,6 +695,17 @@ where
                 let Some((a, b)) = bracket(i, &ts, &gs, &mut armed[i], &mut value) else {
                     continue;
                 };
+                // An observer whose root cannot change its record is not
+                // located (a bracket between two samples only). Part of the
+                // screening: `tests/screening.rs` checks that it changes
+                // no result.
+                if screening
+                    && sys.is_observer(mode, i)
+                    && let (Some(ka), Some(kb)) = (ts.iter().position(|&x| x == a), ts.iter().position(|&x| x == b))
+                    && !sys.observer_may_record(mode, i, a, &ys[ka], b, &ys[kb])
+                {
+                    continue;
+                }
                 // Bracket ends at samples have their values already (the
                 // same bits: `guard` equals `guards`, and the dense output
                 // returns the step's end states exactly); a dip's minimum

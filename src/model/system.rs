@@ -801,6 +801,29 @@ impl HybridSystem<N> for BlockSystem {
         }
     }
 
+    /// The extremum observer of rocking records the largest |Θ|: its root
+    /// in `[ta, tb]`, where Θ' = 0, is within `M (tb − ta)²/2` of Θ at
+    /// either end (Taylor's theorem with |Θ''| ≤ M = (b_max + a_max)/ψ, the
+    /// bound of `guard_stays_positive`), so when that stays at or below the
+    /// largest |Θ| so far the root cannot raise it and is not located (most
+    /// extrema of a run that has settled into its range). Slide-rock, whose
+    /// Θ'' has no such simple bound, and the flight observer always record.
+    fn observer_may_record(&self, mode: Mode, index: usize, ta: f64, ya: &[f64; N], tb: f64, yb: &[f64; N]) -> bool {
+        if !matches!(mode, Mode::Rock { .. }) || index != 3 {
+            return true;
+        }
+        let Some((a_max, av_max)) = self.model.excitation.peak_accel() else {
+            return true;
+        };
+        let m = (1.0 + av_max + a_max) * self.model.geo.inv_psi;
+        let dt = tb - ta;
+        // The samples are the dense output, within the tolerance of the
+        // solution: a margin far above that.
+        const MARGIN: f64 = 1e-6;
+        let peak = ya[THETA].abs().max(yb[THETA].abs()) + 0.5 * m * dt * dt + MARGIN;
+        !(peak.is_finite() && peak <= self.tally.max_abs_theta)
+    }
+
     fn observe(&mut self, mode: Mode, index: usize, _t: f64, y: &[f64; N]) {
         match (mode, index) {
             (Mode::Rock { .. } | Mode::SlideRock { .. }, 3) => {
