@@ -7,7 +7,8 @@
 //! `cargo run --release --example sweep_point [repeats] [periodic]`, with
 //! `RTOL=…` in the environment for a tolerance other than 1e-10 (both
 //! scenes, atol = rtol/100), `ATOL=…` for the sweep point's atol, and
-//! `METHOD=taylor` for the Taylor method instead of DOP853.
+//! `METHOD=dop853` or `METHOD=taylor` for a method other than the default
+//! for the tolerance (`Method::default_for`: Taylor at 1e-10).
 
 use std::time::Instant;
 
@@ -15,6 +16,15 @@ use rocking::bench::scenes;
 use rocking::integrate::Tolerances;
 use rocking::integrate::hybrid::Limits;
 use rocking::sim::{Method, RunOptions, simulate};
+
+/// `METHOD=dop853` or `METHOD=taylor`, if set.
+fn method_from_env() -> Option<Method> {
+    match std::env::var("METHOD").as_deref() {
+        Ok("dop853") => Some(Method::Dop853),
+        Ok("taylor") => Some(Method::Taylor),
+        _ => None,
+    }
+}
 
 fn main() {
     let repeats: usize = std::env::args().nth(1).and_then(|s| s.parse().ok()).unwrap_or(20);
@@ -27,11 +37,7 @@ fn main() {
         .expect("periodic scene");
     let opts = RunOptions {
         tau_end: s.tau_end,
-        method: if std::env::var("METHOD").as_deref() == Ok("taylor") {
-            Method::Taylor
-        } else {
-            Method::Dop853
-        },
+        method: method_from_env().unwrap_or(Method::default_for(rtol)),
         tol: Tolerances {
             rtol,
             // As the bench does: a hundredth of rtol.
@@ -85,8 +91,8 @@ fn main() {
         opts.tol.rtol = rtol;
         opts.tol.atol = rtol * 1e-2;
     }
-    if std::env::var("METHOD").as_deref() == Ok("taylor") {
-        opts.method = Method::Taylor;
+    if let Some(m) = method_from_env() {
+        opts.method = m;
     }
     opts.output_dt = None;
     opts.section = true;

@@ -134,7 +134,8 @@ pub struct Config {
     /// `run.tau_end`: τ at which the run ends, > 0. Default 800 (the
     /// paper's 200,000 steps of 0.004).
     pub tau_end: f64,
-    /// `run.method`: `dop853`, `dopri5` or `ralston`. Default `dop853`.
+    /// `run.method`: `dop853`, `dopri5`, `ralston` or `taylor`. Default by
+    /// tolerance, [`Method::default_for`]: `taylor` at the default rtol.
     pub method: Method,
     /// `run.rtol`, in (0, 1). Default 1e-10.
     pub rtol: f64,
@@ -412,14 +413,15 @@ impl Config {
             ));
         }
 
+        let rtol = r.number("run", "rtol", false)?.unwrap_or(1e-10);
+        check("run.rtol", rtol > 0.0 && rtol < 1.0, "in (0, 1)", rtol)?;
         let run_method = match r.choice("run", "method", &["dop853", "dopri5", "ralston", "taylor"])? {
-            None | Some("dop853") => Method::Dop853,
+            None => Method::default_for(rtol),
+            Some("dop853") => Method::Dop853,
             Some("dopri5") => Method::Dopri5,
             Some("taylor") => Method::Taylor,
             Some(_) => Method::Ralston,
         };
-        let rtol = r.number("run", "rtol", false)?.unwrap_or(1e-10);
-        check("run.rtol", rtol > 0.0 && rtol < 1.0, "in (0, 1)", rtol)?;
         let atol = r.number("run", "atol", false)?.unwrap_or(1e-12);
         check("run.atol", atol > 0.0 && atol < 1.0, "in (0, 1)", atol)?;
         let step = r.number("run", "step", false)?.unwrap_or(0.004);

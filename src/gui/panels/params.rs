@@ -209,7 +209,7 @@ pub const GROUPS: &[(&str, &[Key])] = &[
                 key: "run.method",
                 label: "method",
                 unit: "",
-                help: "dop853 (default), dopri5, or ralston (the paper's fixed-step RK2).",
+                help: "taylor (default at rtol ≤ 1e-6: high-order series, fastest at tight tolerances), dop853 (default at looser rtol), dopri5, or ralston (the paper's fixed-step RK2).",
                 kind: Kind::Choice(&["dop853", "dopri5", "ralston", "taylor"]),
             },
             num("run.rtol", "rtol", "", "Relative tolerance, in (0, 1). Default 1e-10."),
