@@ -105,7 +105,7 @@ fn main() {
         .unwrap_or(3);
     for _ in 0..default_repeats.max(1) {
         let start = Instant::now();
-        let r = simulate(cfg.model().expect("model"), &cfg.initial(), &opts).expect("the default scene runs");
+        let r = simulate(cfg.model().expect("model"), &cfg.initial, &opts).expect("the default scene runs");
         walls.push((start.elapsed().as_secs_f64(), r.tau_end, r.tally.impacts));
         last_default = Some(r);
     }

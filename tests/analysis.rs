@@ -4,19 +4,20 @@
 //! Fig. 4 period doubling on the block, determinism over thread counts, and
 //! the figures.
 
-use indicatif::ProgressBar;
 use rocking::analysis::classify::{ClassifyOptions, Response, classify_points};
 use rocking::analysis::orbit_diagram::{BlockSweep, Continuation, Grid, Plan, block_sweep, sweep};
 use rocking::analysis::section::{Strobe, map_orbit};
 use rocking::analysis::spectrum::{SpectrumOptions, SpectrumWindow, theta_spectrum};
-use rocking::analysis::steady::{ParamBase, Window, steady_response};
+use rocking::analysis::steady::{Window, steady_response};
 use rocking::integrate::hybrid::{Driver, DriverError, HybridSystem, Jump, Limits, MAX_GUARDS, Outputs};
 use rocking::integrate::{Dop853, Tolerances};
+use rocking::io::config::load;
 use rocking::plot::bifurcation::BifurcationFigure;
 use rocking::plot::outcome_map::{MapColouring, OutcomeMapFigure};
 use rocking::plot::poincare::PoincareFigure;
 use rocking::plot::spectrum::SpectrumFigure;
 use rocking::plot::time_history::TimeHistoryFigure;
+use rocking::sim::Param;
 use rocking::sim::simulate;
 
 /// The logistic map's steady response at `r`, as a sweep closure: 2000
@@ -35,7 +36,7 @@ fn logistic(r: f64, seed: Option<&f64>) -> Result<(Response, Option<f64>), Strin
 #[test]
 fn logistic_period_doublings_through_the_sweep_machinery() {
     let grid = Grid::new(2.5, 3.9, 0.01).unwrap();
-    let bar = ProgressBar::hidden();
+    let bar = rocking::analysis::silent;
     let periods = |c: Continuation| -> Vec<(f64, Response)> {
         sweep(&Plan::new(grid, c, None).unwrap(), &bar, logistic)
             .unwrap()
@@ -150,10 +151,10 @@ fn issue_3_fig4_period_one_below_a_v_1_7_and_period_two_above() {
     // Fig. 4: Ω = 8, A_h = 3, no sliding, ratio law r = 0.925, from rest,
     // Poincaré points of τ 600..800. The paper: (1,1) up to A_v ≈ 1.7,
     // (1,2) from 1.7 to 2.25.
-    let base = ParamBase::load(Some("fig4"), None, &[]).unwrap();
+    let base = load(Some("fig4"), None, &[]).unwrap();
     let opts = ClassifyOptions::default();
     for (a_v, period) in [(1.0, 1), (1.5, 1), (1.9, 2), (2.1, 2)] {
-        let cfg = base.resolve(&[("excitation.a_v", a_v)]).unwrap();
+        let cfg = Param::apply(&base, &[(Param::Av, a_v)]).unwrap();
         let s = steady_response(&cfg, &Window::default(), &opts, None).unwrap();
         assert_eq!(s.response, Response::Periodic { period }, "A_v = {a_v}");
         assert_eq!(s.points.len(), 255);
@@ -163,10 +164,10 @@ fn issue_3_fig4_period_one_below_a_v_1_7_and_period_two_above() {
 }
 
 fn short_fig4_sweep(threads: usize) -> Vec<rocking::analysis::orbit_diagram::BifurcationValue> {
-    let base = ParamBase::load(Some("fig4"), None, &[]).unwrap();
+    let base = load(Some("fig4"), None, &[]).unwrap();
     let spec = BlockSweep {
         base: &base,
-        param: "excitation.a_v",
+        param: Param::Av,
         window: Window {
             transient: 100.0,
             tau_end: 160.0,
@@ -176,7 +177,7 @@ fn short_fig4_sweep(threads: usize) -> Vec<rocking::analysis::orbit_diagram::Bif
     };
     let plan = Plan::new(Grid::new(1.9, 3.3, 0.2).unwrap(), Continuation::None, None).unwrap();
     let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
-    pool.install(|| block_sweep(&spec, &plan, &ProgressBar::hidden()))
+    pool.install(|| block_sweep(&spec, &plan, &rocking::analysis::silent))
         .unwrap()
 }
 
@@ -224,11 +225,9 @@ fn figures_are_written_as_png_and_svg() {
     let dir = figure_dir();
     // A chaotic response of Fig. 4 (A_v = 2.5) with a history on the
     // paper's grid, for the time history, spectrum and Poincaré map.
-    let base = ParamBase::load(Some("fig4"), None, &[]).unwrap();
-    let cfg = base
-        .resolve(&[("excitation.a_v", 2.5), ("run.output_dt", 0.004)])
-        .unwrap();
-    let res = simulate(cfg.model().unwrap(), &cfg.initial(), &cfg.run_options()).unwrap();
+    let base = load(Some("fig4"), None, &[]).unwrap();
+    let cfg = Param::apply(&base, &[(Param::Av, 2.5), (Param::OutputDt, 0.004)]).unwrap();
+    let res = simulate(cfg.model().unwrap(), &cfg.initial, &cfg.run_options()).unwrap();
     let tau: Vec<f64> = res.history.iter().map(|r| r.tau).collect();
     let theta: Vec<f64> = res.history.iter().map(|r| r.theta).collect();
     let history = TimeHistoryFigure {

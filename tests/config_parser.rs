@@ -11,8 +11,9 @@ use std::path::Path;
 
 use proptest::prelude::*;
 use proptest::test_runner::RngSeed;
-use rocking::io::config::{self, Config, KNOWN_KEYS, Source};
+use rocking::io::config::{self, KNOWN_KEYS, Source};
 use rocking::io::presets;
+use rocking::sim::Scenario;
 
 fn proptest_config() -> ProptestConfig {
     ProptestConfig {
@@ -88,7 +89,7 @@ fn document() -> impl Strategy<Value = String> {
 
 /// A valid config's numbers are all usable: finite where they must be, and
 /// the model builds or says why not.
-fn check_valid(cfg: &Config) {
+fn check_valid(cfg: &Scenario) {
     let opts = cfg.run_options();
     assert!(
         opts.tau_end.is_finite() && opts.tau_end > 0.0,
@@ -97,7 +98,7 @@ fn check_valid(cfg: &Config) {
     );
     assert!(opts.tol.rtol > 0.0 && opts.tol.rtol < 1.0);
     assert!(opts.tol.atol > 0.0 && opts.tol.atol < 1.0);
-    let init = cfg.initial();
+    let init = cfg.initial;
     assert!(init.theta.is_finite() && init.theta_dot.is_finite());
     let geo = cfg.geometry();
     assert!(geo.psi.is_finite() && geo.psi > 0.0);
@@ -116,7 +117,7 @@ fn check_valid(cfg: &Config) {
             _ => {}
         }
     }
-    no_nan(&cfg.to_json(), "");
+    no_nan(&config::to_json(cfg), "");
 }
 
 fn assert_one_line(msg: &str) {
@@ -125,9 +126,9 @@ fn assert_one_line(msg: &str) {
 }
 
 /// Parses `text` as a file named `file` would be.
-fn parse(text: &str, file: &str) -> Result<Config, String> {
+fn parse(text: &str, file: &str) -> Result<Scenario, String> {
     let table = config::parse_toml(text, file).map_err(|e| e.to_string())?;
-    Config::from_table(&table, &Source::default()).map_err(|e| e.to_string())
+    config::from_table(&table, &Source::default()).map_err(|e| e.to_string())
 }
 
 proptest! {

@@ -21,7 +21,7 @@ fn the_default_scene_stays_chaotic_and_never_tumbles() {
         let mut opts = cfg.run_options();
         opts.output_dt = None;
         opts.section = true;
-        let run = simulate(model, &cfg.initial(), &opts).expect("runs");
+        let run = simulate(model, &cfg.initial, &opts).expect("runs");
         assert_eq!(run.outcome, Outcome::Running, "{extra}: the run ended early");
         assert!(
             run.tally.max_abs_theta < 0.3,

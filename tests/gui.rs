@@ -12,15 +12,16 @@ use egui_kittest::kittest::Queryable as _;
 use rocking::analysis::classify::ClassifyOptions;
 use rocking::analysis::lyapunov::{LyapunovOptions, Method, lyapunov};
 use rocking::analysis::orbit_diagram::{BlockSweep, Continuation, Grid, Plan, block_sweep};
-use rocking::analysis::steady::{ParamBase, Window};
+use rocking::analysis::steady::Window;
 use rocking::gui::panels::lyapunov::TRANSIENT_TAU;
 use rocking::gui::{RockingApp, Settings};
+use rocking::sim::Param;
 use rocking::sim::protocol::{Batch, GhostState, RunId, SectionPoint, SimUpdate, Speed};
 use rocking::sim::runner::record;
 
 const SIZE: egui::Vec2 = egui::vec2(1280.0, 800.0);
 
-fn scene(preset: &str, sets: &[&str]) -> (Settings, rocking::io::config::Config) {
+fn scene(preset: &str, sets: &[&str]) -> (Settings, rocking::sim::Scenario) {
     let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
     Settings::from_cli(Some(preset), None, &sets).expect("valid scene")
 }
@@ -53,8 +54,8 @@ fn the_app_opens_on_the_default_preset_and_sets_the_block_moving() {
     assert!(pump(&mut h, Duration::from_secs(10), |a| a.tau() > 0.5
         && !a.history().samples.is_empty()));
     let info = h.state().run_info().expect("started");
-    assert_eq!(info.config.a_h, 2.0);
-    assert_eq!(info.config.mu_s, 0.4);
+    assert_eq!(info.scenario.excitation.a_h, 2.0);
+    assert_eq!(info.scenario.block.mu_s, 0.4);
     let _ = h.get_by_label("Pause");
 }
 
@@ -97,17 +98,21 @@ fn changing_a_parameter_resets_the_simulation_with_it() {
     assert!(pump(&mut h, Duration::from_secs(10), |a| a.tau() > 2.0));
     assert_eq!(h.state().run_id(), RunId(1));
     set_field(&mut h, "A_v", "1.5");
-    assert_eq!(h.state().config().a_v, 1.5, "the panel's scene has the new value");
+    assert_eq!(
+        h.state().config().excitation.a_v,
+        1.5,
+        "the panel's scene has the new value"
+    );
     assert_eq!(h.state().run_id(), RunId(2), "a new run started");
     assert!(pump(&mut h, Duration::from_secs(10), |a| {
-        a.run_info().is_some_and(|i| i.config.a_v == 1.5) && !a.history().samples.is_empty()
+        a.run_info().is_some_and(|i| i.scenario.excitation.a_v == 1.5) && !a.history().samples.is_empty()
     }));
     // The new run starts from τ = 0 and none of the old run's data is kept.
     let first = h.state().history().samples.iter().next().expect("samples").tau;
     assert!(first < 0.5, "restarted from τ = 0, first sample at {first}");
     // Defaults that follow other keys still follow them.
     set_field(&mut h, "Ω_h", "5");
-    assert_eq!(h.state().config().omega_v, 5.0);
+    assert_eq!(h.state().config().excitation.omega_v(), 5.0);
 }
 
 #[test]
@@ -132,10 +137,13 @@ fn choosing_a_preset_runs_it() {
     h.get_by_label("fig16").click();
     h.step();
     let cfg = h.state().config();
-    assert_eq!((cfg.a_h, cfg.a_v, cfg.omega_h), (3.0, 2.0, 10.0));
+    assert_eq!(
+        (cfg.excitation.a_h, cfg.excitation.a_v, cfg.excitation.omega_h),
+        (3.0, 2.0, 10.0)
+    );
     assert_eq!(h.state().run_id(), RunId(2));
     assert!(pump(&mut h, Duration::from_secs(10), |a| {
-        a.run_info().is_some_and(|i| i.config.omega_h == 10.0)
+        a.run_info().is_some_and(|i| i.scenario.excitation.omega_h == 10.0)
     }));
 }
 
@@ -398,16 +406,16 @@ fn the_bifurcation_view_sweeps_in_the_background_and_draws_points() {
 
     // What the view drew is what the analysis layer computes.
     let (s, _) = scene("default", &[]);
-    let base = ParamBase::from_table(s.table.clone(), s.source.clone());
+    let base = s.resolve().unwrap();
     let spec = BlockSweep {
         base: &base,
-        param: "excitation.a_v",
+        param: Param::Av,
         window: TINY,
         classify: ClassifyOptions::default(),
         lyapunov: None,
     };
     let plan = Plan::new(Grid::new(0.0, 2.0, 0.5).unwrap(), Continuation::None, None).unwrap();
-    let want = block_sweep(&spec, &plan, &indicatif::ProgressBar::hidden()).unwrap();
+    let want = block_sweep(&spec, &plan, &rocking::analysis::silent).unwrap();
     let mut got = b.columns().to_vec();
     got.sort_by(|a, b| a.value.total_cmp(&b.value));
     for (g, w) in got.iter().zip(&want) {
@@ -591,7 +599,7 @@ fn the_lyapunov_view_shows_the_running_largest_exponent() {
         total_tau: stage.total_tau,
         ..LyapunovOptions::default()
     };
-    let want = lyapunov(&cfg.model().unwrap(), &cfg.initial(), &opts).unwrap();
+    let want = lyapunov(&cfg.model().unwrap(), &cfg.initial, &opts).unwrap();
     assert_eq!(stage.answer, Ok(want));
 
     // Hidden, it stops.

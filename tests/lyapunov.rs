@@ -16,7 +16,7 @@ use rocking::integrate::hybrid::{
 use rocking::integrate::{Dop853, Tolerances};
 use rocking::io::config;
 use rocking::model::{BlockSystem, EventKind, ImpactLaw, Mode, Model};
-use rocking::sim::{InitialState, SectionRow, initial_mode, simulate};
+use rocking::sim::{InitialState, Scenario, SectionRow, initial_mode, simulate};
 
 // ---------------------------------------------------------------------------
 // Small systems with known exponents.
@@ -323,7 +323,7 @@ impl<M, R, const N: usize> Observer<M, R, N> for Quiet {
     fn event(&mut self, _t: f64, _b: M, _y: &[f64; N], _r: R) {}
 }
 
-fn preset(name: &str, sets: &[&str]) -> config::Config {
+fn preset(name: &str, sets: &[&str]) -> Scenario {
     let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
     config::load(Some(name), None, &sets).unwrap()
 }
@@ -347,12 +347,12 @@ fn section_period(rows: &[SectionRow], tol: f64) -> Option<usize> {
 /// A point of the steady periodic response of `cfg` where the pivot
 /// sticks, its period in forcing periods, and the event kinds of one period
 /// of the orbit.
-fn periodic_orbit(cfg: &config::Config) -> (SectionRow, usize, Vec<EventKind>) {
+fn periodic_orbit(cfg: &Scenario) -> (SectionRow, usize, Vec<EventKind>) {
     let model = cfg.model().unwrap();
     let mut opts = cfg.run_options();
     opts.tau_end = 2000.0;
     opts.output_dt = None;
-    let res = simulate(model, &cfg.initial(), &opts).unwrap();
+    let res = simulate(model, &cfg.initial, &opts).unwrap();
     let tail: Vec<SectionRow> = res.section.iter().filter(|r| r.tau > 1500.0).copied().collect();
     let p = section_period(&tail, 1e-8).expect("a periodic response");
     let start = tail
@@ -609,7 +609,7 @@ fn methods_agree_on_the_papers_chaotic_cases() {
         total_tau: 240.0,
         ..LyapunovOptions::default()
     };
-    let res = lyapunov(&cfg.model().unwrap(), &cfg.initial(), &opts).unwrap();
+    let res = lyapunov(&cfg.model().unwrap(), &cfg.initial, &opts).unwrap();
     let r = exponents_of(&res);
     assert!(
         r.largest_per_tau > 0.3,
@@ -625,7 +625,7 @@ fn methods_agree_on_the_papers_chaotic_cases() {
         method: Method::Both,
         ..LyapunovOptions::default()
     };
-    let res = lyapunov(&cfg.model().unwrap(), &cfg.initial(), &opts).unwrap();
+    let res = lyapunov(&cfg.model().unwrap(), &cfg.initial, &opts).unwrap();
     let r = exponents_of(&res);
     assert_paired_agreement(r, "fig19");
 }
@@ -645,7 +645,7 @@ fn independent_runs_agree_on_a_persistent_chaotic_attractor() {
             total_tau: 3200.0,
             ..LyapunovOptions::default()
         };
-        lyapunov(&model, &cfg.initial(), &opts).unwrap()
+        lyapunov(&model, &cfg.initial, &opts).unwrap()
     };
     let (t, b) = (run(Method::Tangent), run(Method::Benettin));
     let (t, b) = (exponents_of(&t), exponents_of(&b));
@@ -673,7 +673,7 @@ fn tumbling_and_flat_responses_have_no_exponent() {
     // transient ends (A_h = 6 tumbled after a transient at one rounding
     // and settled on a periodic orbit at another).
     let cfg = preset("fig7", &["excitation.a_h=10"]);
-    let res = lyapunov(&cfg.model().unwrap(), &cfg.initial(), &LyapunovOptions::default()).unwrap();
+    let res = lyapunov(&cfg.model().unwrap(), &cfg.initial, &LyapunovOptions::default()).unwrap();
     assert!(
         matches!(
             res,
@@ -686,7 +686,7 @@ fn tumbling_and_flat_responses_have_no_exponent() {
     );
     // Too weak to lift the block: it never leaves rest.
     let cfg = preset("fig4", &["excitation.a_h=0.5", "excitation.a_v=0"]);
-    let res = lyapunov(&cfg.model().unwrap(), &cfg.initial(), &LyapunovOptions::default()).unwrap();
+    let res = lyapunov(&cfg.model().unwrap(), &cfg.initial, &LyapunovOptions::default()).unwrap();
     assert!(
         matches!(
             res,
@@ -704,8 +704,8 @@ fn tumbling_and_flat_responses_have_no_exponent() {
     // every rest (both methods see it).
     let cfg = preset("fig4", &["excitation.a_h=1.05", "excitation.a_v=0", "run.tau_end=1200"]);
     for method in [Method::Tangent, Method::Benettin] {
-        let opts = LyapunovOptions::for_config(&cfg, method);
-        let res = lyapunov(&cfg.model().unwrap(), &cfg.initial(), &opts).unwrap();
+        let opts = LyapunovOptions::for_scenario(&cfg, method);
+        let res = lyapunov(&cfg.model().unwrap(), &cfg.initial, &opts).unwrap();
         assert!(
             matches!(
                 res,
@@ -780,12 +780,12 @@ fn bad_options_and_excitations_are_errors() {
         ..LyapunovOptions::default()
     };
     assert!(matches!(
-        lyapunov(&model, &cfg.initial(), &opts),
+        lyapunov(&model, &cfg.initial, &opts),
         Err(LyapunovError::Option { field: "total_tau", .. })
     ));
     let cfg = preset("fig4", &["excitation.kind=\"none\""]);
     assert!(matches!(
-        lyapunov(&cfg.model().unwrap(), &cfg.initial(), &LyapunovOptions::default()),
+        lyapunov(&cfg.model().unwrap(), &cfg.initial, &LyapunovOptions::default()),
         Err(LyapunovError::NotHarmonic)
     ));
 }

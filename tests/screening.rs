@@ -85,9 +85,9 @@ fn screening_changes_no_result_bit_for_bit() {
         if k % 3 == 2 {
             opts.method = Method::Taylor;
         }
-        let screened = simulate(model.clone(), &cfg.initial(), &opts);
+        let screened = simulate(model.clone(), &cfg.initial, &opts);
         opts.limits.screening = false;
-        let full = simulate(model, &cfg.initial(), &opts);
+        let full = simulate(model, &cfg.initial, &opts);
         match (screened, full) {
             (Ok(a), Ok(b)) => {
                 assert_eq!(fingerprint(&a), fingerprint(&b), "scene {k}: {preset} {sets:?}");

@@ -55,7 +55,7 @@ fn section_points_from_dense_output_match_stepping_onto_them() {
     // The app's default scene: chaotic rocking with sliding.
     let cfg = load(Some("default"), None, &["run.tau_end=400".to_string()]).expect("preset");
     let model = cfg.model().expect("model");
-    let w = worst_difference(&model, &cfg.initial(), 400.0, &[3, 150, 500]);
+    let w = worst_difference(&model, &cfg.initial, 400.0, &[3, 150, 500]);
     eprintln!("default scene: worst section difference {w:.2e}");
     assert!(w < 1e-10, "default scene: {w:e}");
 }

@@ -5,12 +5,12 @@ use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::time::{Duration, Instant};
 
-use rocking::io::config::{Config, load};
+use rocking::io::config::load;
 use rocking::sim::protocol::{Batch, RunEnd, RunId, SimUpdate, Speed};
 use rocking::sim::runner::{LIVE_SAMPLE_DT, SimHandle, record};
-use rocking::sim::{RunOptions, simulate};
+use rocking::sim::{RunOptions, Scenario, simulate};
 
-fn preset(name: &str, sets: &[&str]) -> Config {
+fn preset(name: &str, sets: &[&str]) -> Scenario {
     let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
     load(Some(name), None, &sets).expect("preset loads")
 }
@@ -63,7 +63,7 @@ fn live_section_points_equal_the_batch_run_bit_for_bit() {
         tau_end,
         ..cfg.run_options()
     };
-    let batch = simulate(cfg.model().expect("model"), &cfg.initial(), &opts).expect("batch run");
+    let batch = simulate(cfg.model().expect("model"), &cfg.initial, &opts).expect("batch run");
     assert!(batch.section.len() > 50, "a 60 τ run at Ω = 8 has 76 section points");
     let n = batch.section.len().min(live[0].section.len());
     assert!(n + 1 >= batch.section.len(), "live run lost section points");
@@ -151,7 +151,7 @@ fn a_reset_starts_a_new_run_and_no_stale_update_follows_its_start() {
     let SimUpdate::Started { info, .. } = &seen[0] else {
         panic!("first is Started")
     };
-    assert_eq!(info.config.a_h, 3.0, "run 3 runs the new parameters");
+    assert_eq!(info.scenario.excitation.a_h, 3.0, "run 3 runs the new parameters");
 }
 
 #[test]

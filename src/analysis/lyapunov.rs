@@ -78,10 +78,10 @@ pub use tangent::{Augmented, TangentError, TangentSystem};
 
 use crate::integrate::Tolerances;
 use crate::integrate::hybrid::Limits;
-use crate::io::config::Config;
 use crate::model::system::{ModelError, N};
 use crate::model::variational::{self, DIM};
 use crate::model::{BlockSystem, Mode, Model};
+use crate::sim::Scenario;
 use crate::sim::{self, InitialState, SimError};
 
 /// Which way to compute the exponents.
@@ -173,15 +173,15 @@ impl LyapunovOptions {
     /// Options for a configured run: the run's `tau_end` and loop limits,
     /// the transient of [`Default`] or half the run, whichever is shorter,
     /// and `method`.
-    pub fn for_config(cfg: &Config, method: Method) -> Self {
+    pub fn for_scenario(cfg: &Scenario, method: Method) -> Self {
         let d = Self::default();
         Self {
             method,
-            transient_tau: d.transient_tau.min(0.5 * cfg.tau_end),
-            total_tau: cfg.tau_end,
+            transient_tau: d.transient_tau.min(0.5 * cfg.run.tau_end),
+            total_tau: cfg.run.tau_end,
             limits: Limits {
-                max_steps: cfg.max_steps,
-                max_events: cfg.max_events,
+                max_steps: cfg.run.max_steps,
+                max_events: cfg.run.max_events,
                 ..Limits::default()
             },
             ..d
@@ -516,11 +516,11 @@ pub fn lyapunov(model: &Model, init: &InitialState, opts: &LyapunovOptions) -> R
     Ok(Lyapunov::Exponents(result))
 }
 
-/// The largest exponent per τ of a configured run by tangent dynamics
-/// (for outcome maps), with [`LyapunovOptions::for_config`]; `None` when
-/// the response has no finite exponent or the run fails.
-pub fn largest_for_config(cfg: &Config) -> Option<f64> {
+/// The largest exponent per τ of a scenario by tangent dynamics (for
+/// outcome maps), with [`LyapunovOptions::for_scenario`]; `None` when the
+/// response has no finite exponent or the run fails.
+pub fn largest_for_scenario(cfg: &Scenario) -> Option<f64> {
     let model = cfg.model().ok()?;
-    let opts = LyapunovOptions::for_config(cfg, Method::Tangent);
-    lyapunov(&model, &cfg.initial(), &opts).ok()?.largest_per_tau()
+    let opts = LyapunovOptions::for_scenario(cfg, Method::Tangent);
+    lyapunov(&model, &cfg.initial, &opts).ok()?.largest_per_tau()
 }

@@ -14,8 +14,11 @@
 //!   for any number of threads (results are collected by index).
 //! - Non-finite input is an error, never a NaN in a result.
 //!
-//! Layers: `model → integrate → sim → analysis → (cli, gui)`; this module
-//! also reads [`crate::io::config`] to vary one configuration key at a time.
+//! - Long analyses report progress through a callback ([`ProgressFn`]);
+//!   they know no progress-bar library.
+//!
+//! Layers: `model → integrate → sim → analysis → (cli, gui)`. A parameter
+//! is varied through a typed [`Param`](crate::sim::Param), never by name.
 
 pub mod classify;
 pub mod lyapunov;
@@ -24,3 +27,19 @@ pub mod outcome_map;
 pub mod section;
 pub mod spectrum;
 pub mod steady;
+
+/// Progress of a long analysis.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Progress {
+    /// The number of units of work (sweep values, map cells, figures), told
+    /// once before the first is done.
+    Total(u64),
+    /// One more unit done (from any worker thread).
+    Done,
+}
+
+/// A progress callback: the CLI draws a bar from it, the app a counter.
+pub type ProgressFn<'a> = dyn Fn(Progress) + Sync + 'a;
+
+/// The callback that ignores progress.
+pub fn silent(_: Progress) {}

@@ -10,7 +10,10 @@
 //! [`Window`]:
 //! - **values**: `from + i·step` for i = 0, 1, … while the value is below
 //!   `to` plus half a step (so `to` is included despite rounding), computed
-//!   from i, never accumulated;
+//!   from i, never accumulated, and exact on the decimal grid the user
+//!   typed: with `from` 0 and `step` 0.1 the value "0.3" is the double
+//!   nearest 0.3 (what `--set …=0.3` runs), not 3 × 0.1 =
+//!   0.30000000000000004;
 //! - **transient and samples**: for the block, section points at
 //!   τ_k = 2πk/Ω_h with transient ≤ τ_k ≤ tau_end (the paper: 600–800);
 //! - **seeding**: without continuation every value starts from the
@@ -32,13 +35,12 @@
 //! Results are always returned in increasing index (value) order, whatever
 //! the direction of computation.
 
-use indicatif::ProgressBar;
 use rayon::prelude::*;
 
 use super::classify::{ClassifyOptions, Response};
-use super::steady::{LyapunovFn, ParamBase, SteadyError, Window, check_config, seeded, steady_response};
-use crate::io::config::Config;
-use crate::sim::{InitialState, SectionRow};
+use super::steady::{LyapunovFn, SteadyError, Window, check_scenario, steady_response};
+use super::{Progress, ProgressFn};
+use crate::sim::{InitialState, Param, Scenario, SectionRow};
 
 /// Most values one sweep may have (a guard against a step typed too small).
 pub const MAX_VALUES: usize = 10_000_000;
@@ -56,6 +58,50 @@ pub struct Grid {
     pub step: f64,
     /// Number of values.
     pub count: usize,
+    /// `from` and `step` as integers over 10^places, when both are short
+    /// decimals (as typed): the values are then computed in decimal.
+    #[serde(skip)]
+    decimal: Option<Decimal>,
+}
+
+/// `from` = `first`·10^−places and `step` = `step`·10^−places exactly as
+/// decimals (their shortest round-trip forms).
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Decimal {
+    first: i128,
+    step: i128,
+    places: usize,
+}
+
+/// Most decimal places a grid is computed in: beyond it the values are
+/// `from + i·step` in binary (a step like 1/3 has no short decimal form).
+const MAX_PLACES: usize = 15;
+
+impl Decimal {
+    /// The decimal form of `from` and `step` with the fewest places that
+    /// both round-trip, if there is one within [`MAX_PLACES`] and the
+    /// integers stay well inside i128.
+    fn of(from: f64, step: f64) -> Option<Self> {
+        let places = (0..=MAX_PLACES).find(|&d| {
+            let round_trips = |x: f64| format!("{x:.d$}").parse::<f64>().ok() == Some(x);
+            round_trips(from) && round_trips(step)
+        })?;
+        let scaled = |x: f64| -> Option<i128> {
+            let text = format!("{x:.places$}").replace('.', "");
+            text.parse::<i128>().ok().filter(|n| n.unsigned_abs() < 1u128 << 100)
+        };
+        Some(Self {
+            first: scaled(from)?,
+            step: scaled(step)?,
+            places,
+        })
+    }
+
+    /// Value `i`: the double nearest the decimal (first + i·step)·10^−places.
+    fn value(&self, i: usize) -> f64 {
+        let n = self.first + i as i128 * self.step;
+        format!("{n}e-{}", self.places).parse().unwrap_or(f64::NAN)
+    }
 }
 
 /// Errors in a sweep's definition, each naming the CLI flag.
@@ -85,7 +131,13 @@ impl Grid {
             return bad("--step", step, &format!("gives more than {MAX_VALUES} values"));
         }
         let count = n as usize + 1;
-        let grid = Self { from, to, step, count };
+        let grid = Self {
+            from,
+            to,
+            step,
+            count,
+            decimal: Decimal::of(from, step),
+        };
         // Distinct values are needed to tell them apart in the outputs.
         if count > 1 && grid.value(1) == grid.value(0) {
             return bad(
@@ -97,9 +149,13 @@ impl Grid {
         Ok(grid)
     }
 
-    /// Value `i`: `from + i·step`.
+    /// Value `i`: `from + i·step`, on the typed decimal grid when there is
+    /// one (module docs).
     pub fn value(&self, i: usize) -> f64 {
-        self.from + i as f64 * self.step
+        match self.decimal {
+            Some(d) => d.value(i),
+            None => self.from + i as f64 * self.step,
+        }
     }
 
     /// All values in order.
@@ -223,9 +279,10 @@ pub struct SweepError<E: std::fmt::Display> {
 
 /// Runs `f(value, seed)` for every value of `plan` and returns the results in
 /// increasing index order. `f` returns its result and the seed for the next
-/// value (used only with continuation). `progress` is advanced once per
-/// value (pass [`ProgressBar::hidden`] for none).
-pub fn sweep<T, S, E, F>(plan: &Plan, progress: &ProgressBar, f: F) -> Result<Vec<Computed<T>>, SweepError<E>>
+/// value (used only with continuation). `progress` is told the number of
+/// values first, then once per value done (pass [`super::silent`] for
+/// nothing).
+pub fn sweep<T, S, E, F>(plan: &Plan, progress: &ProgressFn<'_>, f: F) -> Result<Vec<Computed<T>>, SweepError<E>>
 where
     F: Fn(f64, Option<&S>) -> Result<(T, Option<S>), E> + Sync,
     T: Send,
@@ -233,11 +290,12 @@ where
     E: Send + std::fmt::Display,
 {
     let indices = plan.indices();
+    progress(Progress::Total(indices.len() as u64));
     let grid = plan.grid;
     let run_one = |i: usize, seed: Option<&S>| {
         let value = grid.value(i);
         let out = f(value, seed).map_err(|error| SweepError { index: i, value, error });
-        progress.inc(1);
+        progress(Progress::Done);
         out.map(|(result, next)| {
             (
                 Computed {
@@ -319,31 +377,36 @@ pub struct BifurcationValue {
 /// What a block sweep needs besides its plan.
 #[derive(Clone, Copy)]
 pub struct BlockSweep<'a> {
-    /// The configuration the parameter is set in.
-    pub base: &'a ParamBase,
-    /// The dotted key swept, e.g. `excitation.a_v`.
-    pub param: &'a str,
+    /// The scenario the parameter is set in.
+    pub base: &'a Scenario,
+    /// The parameter swept.
+    pub param: Param,
     /// Transient and end of each run.
     pub window: Window,
     /// Classifier thresholds.
     pub classify: ClassifyOptions,
-    /// Largest Lyapunov exponent per configuration, if available.
+    /// Largest Lyapunov exponent per scenario, if available.
     pub lyapunov: Option<&'a LyapunovFn<'a>>,
 }
 
 impl BlockSweep<'_> {
-    /// Resolves and checks every value's configuration before anything
-    /// runs, so that a bad key, an out-of-range value, a non-harmonic
-    /// excitation or a window too short is reported at once.
-    pub fn configs(&self, plan: &Plan) -> Result<Vec<Config>, SweepError<SteadyError>> {
+    /// The scenario of `value`, validated.
+    pub fn scenario(&self, value: f64) -> Result<Scenario, SteadyError> {
+        Ok(Param::apply(self.base, &[(self.param, value)])?)
+    }
+
+    /// Makes and checks every value's scenario before anything runs, so
+    /// that an out-of-range value, a non-harmonic excitation or a window
+    /// too short is reported at once.
+    pub fn scenarios(&self, plan: &Plan) -> Result<Vec<Scenario>, SweepError<SteadyError>> {
         plan.indices()
             .into_iter()
             .map(|i| {
                 let value = plan.grid.value(i);
                 let fail = |error| SweepError { index: i, value, error };
-                let cfg = self.base.resolve(&[(self.param, value)]).map_err(|e| fail(e.into()))?;
-                check_config(&cfg, &self.window, &self.classify).map_err(fail)?;
-                Ok(cfg)
+                let s = self.scenario(value).map_err(fail)?;
+                check_scenario(&s, &self.window, &self.classify).map_err(fail)?;
+                Ok(s)
             })
             .collect()
     }
@@ -353,13 +416,13 @@ impl BlockSweep<'_> {
 pub fn block_sweep(
     spec: &BlockSweep<'_>,
     plan: &Plan,
-    progress: &ProgressBar,
+    progress: &ProgressFn<'_>,
 ) -> Result<Vec<BifurcationValue>, SweepError<SteadyError>> {
-    spec.configs(plan)?;
+    spec.scenarios(plan)?;
     let computed = sweep(plan, progress, |value, seed: Option<&InitialState>| {
-        let cfg = spec.base.resolve(&[(spec.param, value)])?;
+        let cfg = spec.scenario(value)?;
         let cfg = match seed {
-            Some(s) => seeded(&cfg, s),
+            Some(s) => cfg.seeded(s),
             None => cfg,
         };
         let s = steady_response(&cfg, &spec.window, &spec.classify, spec.lyapunov)?;
@@ -400,6 +463,22 @@ mod tests {
     }
 
     #[test]
+    fn values_lie_on_the_typed_decimal_grid() {
+        let g = Grid::new(0.0, 3.0, 0.02).unwrap();
+        // 115 × 0.02 = 2.3000000000000003 in binary; the typed grid means 2.3.
+        assert_eq!(g.value(115), 2.3);
+        assert_ne!(115.0 * 0.02, 2.3);
+        let g = Grid::new(-1.25, 1.0, 0.05).unwrap();
+        assert_eq!(g.value(0), -1.25);
+        assert_eq!(g.value(31), 0.3);
+        assert_eq!(g.value(g.count - 1), 1.0);
+        // No short decimal form: the binary values, still from i.
+        let third = 1.0 / 3.0;
+        let g = Grid::new(0.0, 1.0, third).unwrap();
+        assert_eq!(g.value(2), 2.0 * third);
+    }
+
+    #[test]
     fn shards_partition_the_indices() {
         let g = Grid::new(0.0, 1.0, 0.1).unwrap();
         let mut all: Vec<usize> = (0..3)
@@ -421,7 +500,7 @@ mod tests {
     #[test]
     fn continuation_passes_seeds_in_sweep_order() {
         let g = Grid::new(0.0, 4.0, 1.0).unwrap();
-        let bar = ProgressBar::hidden();
+        let bar = super::super::silent;
         let f = |v: f64, seed: Option<&Vec<f64>>| -> Result<(Vec<f64>, Option<Vec<f64>>), String> {
             let mut seen = seed.cloned().unwrap_or_default();
             seen.push(v);
@@ -440,7 +519,7 @@ mod tests {
     fn the_first_failure_in_index_order_is_reported() {
         let g = Grid::new(0.0, 9.0, 1.0).unwrap();
         let plan = Plan::new(g, Continuation::None, None).unwrap();
-        let e = sweep(&plan, &ProgressBar::hidden(), |v, _: Option<&()>| {
+        let e = sweep(&plan, &super::super::silent, |v, _: Option<&()>| {
             if v >= 3.0 {
                 Err(format!("bad {v}"))
             } else {

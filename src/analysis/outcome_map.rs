@@ -12,22 +12,23 @@
 //!   parallel on the current rayon pool and are collected by index, so the
 //!   result is bit-identical for any number of threads.
 
-use indicatif::ProgressBar;
 use rayon::prelude::*;
 
 use super::classify::{ClassifyOptions, Response};
 use super::orbit_diagram::PlanError;
-use super::steady::{LyapunovFn, ParamBase, SteadyError, Window, check_config, steady_response};
-use crate::io::config::Config;
+use super::steady::{LyapunovFn, SteadyError, Window, check_scenario, steady_response};
+use super::{Progress, ProgressFn};
+use crate::sim::{Param, Scenario};
 
 /// Most points on one axis (a guard against a typo; 10⁴ × 10⁴ cells would
 /// take weeks anyway).
 pub const MAX_AXIS_POINTS: usize = 10_000;
 
-/// One axis of a map: a config key and its values.
+/// One axis of a map: what it is called and its values.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct Axis {
-    /// Dotted config key, e.g. `excitation.a_h`.
+    /// Its name as the user gave it (for a block map, the parameter's
+    /// config key, e.g. `excitation.a_h`).
     pub key: String,
     /// First value.
     pub from: f64,
@@ -92,19 +93,21 @@ pub struct MapError<E: std::fmt::Display> {
 }
 
 /// Runs `f(x, y)` for every cell, in parallel, and returns the results in
-/// row order (y outer, x inner). `progress` is advanced once per cell.
-pub fn grid_map<T, E, F>(x: &Axis, y: &Axis, progress: &ProgressBar, f: F) -> Result<Vec<T>, MapError<E>>
+/// row order (y outer, x inner). `progress` is told the number of cells,
+/// then once per cell done.
+pub fn grid_map<T, E, F>(x: &Axis, y: &Axis, progress: &ProgressFn<'_>, f: F) -> Result<Vec<T>, MapError<E>>
 where
     F: Fn(f64, f64) -> Result<T, E> + Sync,
     T: Send,
     E: Send + std::fmt::Display,
 {
+    progress(Progress::Total((x.n * y.n) as u64));
     let results: Vec<Result<T, MapError<E>>> = (0..x.n * y.n)
         .into_par_iter()
         .map(|c| {
             let (xv, yv) = (x.value(c % x.n), y.value(c / x.n));
             let r = f(xv, yv).map_err(|error| MapError { x: xv, y: yv, error });
-            progress.inc(1);
+            progress(Progress::Done);
             r
         })
         .collect();
@@ -129,10 +132,14 @@ pub struct Cell {
 /// What a block outcome map needs.
 #[derive(Clone, Copy)]
 pub struct BlockMap<'a> {
-    /// The configuration the two keys are set in.
-    pub base: &'a ParamBase,
+    /// The scenario the two parameters are set in.
+    pub base: &'a Scenario,
+    /// The parameter along the horizontal axis.
+    pub x_param: Param,
     /// Horizontal axis.
     pub x: &'a Axis,
+    /// The parameter along the vertical axis.
+    pub y_param: Param,
     /// Vertical axis.
     pub y: &'a Axis,
     /// Transient and end of each run.
@@ -145,16 +152,19 @@ pub struct BlockMap<'a> {
 }
 
 impl BlockMap<'_> {
-    fn config(&self, x: f64, y: f64) -> Result<Config, SteadyError> {
-        Ok(self.base.resolve(&[(&self.x.key, x), (&self.y.key, y)])?)
+    /// The scenario of cell (x, y), validated.
+    pub fn scenario(&self, x: f64, y: f64) -> Result<Scenario, SteadyError> {
+        Ok(Param::apply(self.base, &[(self.x_param, x), (self.y_param, y)])?)
     }
 
-    /// Resolves and checks every cell's configuration before anything runs.
+    /// Makes and checks every cell's scenario before anything runs.
     pub fn check(&self) -> Result<(), MapError<SteadyError>> {
         for yv in self.y.values() {
             for xv in self.x.values() {
-                let cfg = self.config(xv, yv).map_err(|error| MapError { x: xv, y: yv, error })?;
-                check_config(&cfg, &self.window, &self.classify).map_err(|error| MapError { x: xv, y: yv, error })?;
+                let cfg = self
+                    .scenario(xv, yv)
+                    .map_err(|error| MapError { x: xv, y: yv, error })?;
+                check_scenario(&cfg, &self.window, &self.classify).map_err(|error| MapError { x: xv, y: yv, error })?;
             }
         }
         Ok(())
@@ -162,10 +172,10 @@ impl BlockMap<'_> {
 }
 
 /// The outcome map of the block (module docs).
-pub fn block_map(spec: &BlockMap<'_>, progress: &ProgressBar) -> Result<Vec<Cell>, MapError<SteadyError>> {
+pub fn block_map(spec: &BlockMap<'_>, progress: &ProgressFn<'_>) -> Result<Vec<Cell>, MapError<SteadyError>> {
     spec.check()?;
     grid_map(spec.x, spec.y, progress, |x, y| {
-        let cfg = spec.config(x, y)?;
+        let cfg = spec.scenario(x, y)?;
         let s = steady_response(&cfg, &spec.window, &spec.classify, spec.lyapunov)?;
         Ok(Cell {
             x,
@@ -197,7 +207,7 @@ mod tests {
     fn grid_map_is_row_major_and_reports_the_first_failure() {
         let x = Axis::new("--x", "a", 0.0, 2.0, 3).unwrap();
         let y = Axis::new("--y", "b", 10.0, 20.0, 2).unwrap();
-        let cells = grid_map(&x, &y, &ProgressBar::hidden(), |a, b| Ok::<_, String>((a, b))).unwrap();
+        let cells = grid_map(&x, &y, &super::super::silent, |a, b| Ok::<_, String>((a, b))).unwrap();
         assert_eq!(
             cells,
             vec![
@@ -209,7 +219,7 @@ mod tests {
                 (2.0, 20.0)
             ]
         );
-        let e = grid_map(&x, &y, &ProgressBar::hidden(), |a, b| {
+        let e = grid_map(&x, &y, &super::super::silent, |a, b| {
             if a >= 1.0 && b > 15.0 { Err("no") } else { Ok(()) }
         })
         .unwrap_err();

@@ -1,13 +1,13 @@
 //! One block configuration → its steady response: run it over a sampling
 //! window, keep the Poincaré points after the transient, classify them.
 //!
-//! This is where the generic analyses meet the block. It also holds
-//! [`ParamBase`], a configuration with keys left free to vary, used by the
-//! bifurcation diagram and the outcome map.
+//! This is where the generic analyses meet the block. The bifurcation
+//! diagram and the outcome map vary a scenario through typed
+//! [`Param`](crate::sim::Param)s and call [`steady_response`] on each.
 //!
 //! Contract:
 //! - The excitation must be harmonic: the section is defined by Ω_h.
-//! - The window's `tau_end` replaces the config's `run.tau_end`; the run
+//! - The window's `tau_end` replaces the scenario's `run.tau_end`; the run
 //!   keeps no time history (only section points), which is what makes a
 //!   sweep cheap in memory.
 //! - A tumbled or flight response carries no points (the paper leaves those
@@ -16,20 +16,15 @@
 //!   neither terminal nor at rest, with the configuration actually run.
 //!   A non-finite exponent is an error, never written.
 
-use std::path::Path;
-
-use toml::{Table, Value};
-
 use super::classify::{ClassifyError, ClassifyOptions, Response, classify_run};
 use super::section::{after_transient, points_in_window};
-use crate::io::config::{self, Config, ExcitationKind, KNOWN_KEYS, Source};
-use crate::io::table::ConfigError;
 use crate::model::Mode;
-use crate::sim::{InitialState, SectionRow, SimError, simulate};
+use crate::sim::scenario::ExcitationKind;
+use crate::sim::{InitialState, Scenario, ScenarioError, SectionRow, SimError, simulate};
 
 /// The largest Lyapunov exponent of a configuration, per unit τ, if the
 /// caller can compute it (the hook the Lyapunov module is wired into).
-pub type LyapunovFn<'a> = dyn Fn(&Config) -> Option<f64> + Sync + 'a;
+pub type LyapunovFn<'a> = dyn Fn(&Scenario) -> Option<f64> + Sync + 'a;
 
 /// The sampling window of a steady-response study, in τ.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
@@ -84,82 +79,6 @@ impl Window {
     }
 }
 
-/// A configuration (a preset or file plus `--set` overrides) whose keys can
-/// be set to numbers one run at a time.
-#[derive(Clone, Debug)]
-pub struct ParamBase {
-    table: Table,
-    source: Source,
-}
-
-impl ParamBase {
-    /// Loads a preset or a config file (or the `default` preset) and applies
-    /// `--set` overrides, as `rocking --batch` does; the result is validated
-    /// once here so that a bad base is reported before any sweep starts.
-    pub fn load(preset: Option<&str>, file: Option<&Path>, sets: &[String]) -> Result<Self, ConfigError> {
-        let (mut table, source) = match (preset, file) {
-            (Some(_), Some(_)) => return Err(ConfigError("give either --preset or --config, not both".into())),
-            (_, Some(path)) => config::read_file(path)?,
-            (name, None) => {
-                let name = name.unwrap_or("default");
-                let text = config::preset_text(name)?;
-                (config::parse_toml(text, &format!("preset {name}"))?, Source::default())
-            }
-        };
-        config::apply_sets(&mut table, sets)?;
-        let base = Self { table, source };
-        base.resolve(&[])?;
-        Ok(base)
-    }
-
-    /// A base from an already parsed table.
-    pub fn from_table(table: Table, source: Source) -> Self {
-        Self { table, source }
-    }
-
-    /// The configuration with each `(key, value)` set, resolved and validated.
-    /// Keys are dotted `section.key` names from
-    /// [`KNOWN_KEYS`](crate::io::config::KNOWN_KEYS); a key that is not
-    /// numeric fails validation with the key named.
-    pub fn resolve(&self, assignments: &[(&str, f64)]) -> Result<Config, ConfigError> {
-        let mut table = self.table.clone();
-        for &(key, value) in assignments {
-            let (section, name) = check_key(key)?;
-            let entry = table
-                .entry(section.to_string())
-                .or_insert_with(|| Value::Table(Table::new()));
-            let Value::Table(sec) = entry else {
-                return Err(ConfigError::key(section, "is not a table"));
-            };
-            sec.insert(name.to_string(), Value::Float(value));
-        }
-        Config::from_table(&table, &self.source)
-    }
-}
-
-/// Splits a dotted key and checks it is a known config key.
-pub fn check_key(key: &str) -> Result<(&str, &str), ConfigError> {
-    let Some((section, name)) = key.split_once('.') else {
-        return Err(ConfigError(format!(
-            "{key}: a parameter must be SECTION.KEY, e.g. excitation.a_v"
-        )));
-    };
-    let Some((_, keys)) = KNOWN_KEYS.iter().find(|(s, _)| *s == section) else {
-        let sections: Vec<&str> = KNOWN_KEYS.iter().map(|(s, _)| *s).collect();
-        return Err(ConfigError::key(
-            key,
-            format!("unknown section (known: {})", sections.join(", ")),
-        ));
-    };
-    if !keys.contains(&name) {
-        return Err(ConfigError::key(
-            key,
-            format!("unknown key (known in [{section}]: {})", keys.join(", ")),
-        ));
-    }
-    Ok((section, name))
-}
-
 /// The steady response of one configuration.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Steady {
@@ -181,9 +100,9 @@ pub struct Steady {
 /// Why a steady response could not be computed.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum SteadyError {
-    /// The configuration is invalid (or a record file unreadable).
+    /// The scenario breaks a rule (a swept value out of range).
     #[error(transparent)]
-    Config(#[from] ConfigError),
+    Scenario(#[from] ScenarioError),
     /// The excitation is not harmonic, so there is no section.
     #[error(
         "excitation.kind: a steady-response study needs harmonic excitation (the section is taken at τ_k = 2πk/Ω_h)"
@@ -200,26 +119,16 @@ pub enum SteadyError {
     Window(String),
 }
 
-/// Checks, before running, that `cfg` has harmonic excitation and that
+/// Checks, before running, that `scenario` has harmonic excitation and that
 /// `window` holds enough of its section points to classify.
-pub fn check_config(cfg: &Config, window: &Window, opts: &ClassifyOptions) -> Result<(), SteadyError> {
-    if cfg.kind != ExcitationKind::Harmonic {
+pub fn check_scenario(scenario: &Scenario, window: &Window, opts: &ClassifyOptions) -> Result<(), SteadyError> {
+    if scenario.excitation.kind != ExcitationKind::Harmonic {
         return Err(SteadyError::NotHarmonic);
     }
     window.validate().map_err(SteadyError::Window)?;
     window
-        .check_points(std::f64::consts::TAU / cfg.omega_h, opts)
+        .check_points(std::f64::consts::TAU / scenario.excitation.omega_h, opts)
         .map_err(SteadyError::Window)
-}
-
-/// The configuration `cfg` started from `seed` instead of its own initial
-/// state (continuation).
-pub fn seeded(cfg: &Config, seed: &InitialState) -> Config {
-    let mut c = cfg.clone();
-    c.theta0 = seed.theta;
-    c.theta_dot0 = seed.theta_dot;
-    c.x_dot0 = seed.x_dot;
-    c
 }
 
 /// The state of a section point as an initial state at τ = 0. A point taken
@@ -239,15 +148,15 @@ pub fn seed_of(row: &SectionRow) -> Option<InitialState> {
     })
 }
 
-/// Runs `cfg` over `window` and classifies its steady response.
+/// Runs `scenario` over `window` and classifies its steady response.
 pub fn steady_response(
-    cfg: &Config,
+    scenario: &Scenario,
     window: &Window,
     opts: &ClassifyOptions,
     lyapunov: Option<&LyapunovFn<'_>>,
 ) -> Result<Steady, SteadyError> {
-    let mut cfg = cfg.clone();
-    cfg.tau_end = window.tau_end;
+    let mut cfg = scenario.clone();
+    cfg.run.tau_end = window.tau_end;
     let model = cfg.model()?;
     let Some(period) = model.excitation.forcing_period() else {
         return Err(SteadyError::NotHarmonic);
@@ -255,7 +164,7 @@ pub fn steady_response(
     let mut run = cfg.run_options();
     run.output_dt = None;
     run.section = true;
-    let res = simulate(model, &cfg.initial(), &run)?;
+    let res = simulate(model, &cfg.initial, &run)?;
     let mut response = classify_run(&res, period, window.transient, None, opts)?;
     let mut exponent = None;
     if let (Some(hook), Response::Periodic { .. } | Response::Quasiperiodic | Response::Chaotic) = (lyapunov, response)
@@ -291,21 +200,18 @@ pub fn steady_response(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::sim::Param;
 
-    #[test]
-    fn resolve_sets_numeric_keys_and_names_bad_ones() {
-        let base = ParamBase::load(Some("fig4"), None, &[]).unwrap();
-        let cfg = base.resolve(&[("excitation.a_v", 1.25)]).unwrap();
-        assert_eq!(cfg.a_v, 1.25);
-        let e = base.resolve(&[("excitation.nope", 1.0)]).unwrap_err();
-        assert!(e.0.starts_with("excitation.nope: unknown key"), "{e}");
-        let e = base.resolve(&[("nope.a_v", 1.0)]).unwrap_err();
-        assert!(e.0.starts_with("nope.a_v: unknown section"), "{e}");
-        let e = base.resolve(&[("impact.law", 1.0)]).unwrap_err();
-        assert!(e.0.starts_with("impact.law"), "{e}");
-        let e = base.resolve(&[("excitation.omega_h", -1.0)]).unwrap_err();
-        assert!(e.0.starts_with("excitation.omega_h"), "{e}");
-        assert!(check_key("a_v").is_err());
+    /// The paper's Fig. 4 scenario (the preset's values, written out here
+    /// because the analysis layer does not read config files).
+    fn fig4() -> Scenario {
+        let mut s = Scenario::default();
+        s.impact.law = crate::sim::scenario::LawKind::Ratio;
+        s.impact.r = Some(0.925);
+        s.excitation.a_h = 3.0;
+        s.excitation.a_v = 2.0;
+        s.run.flight = crate::model::FlightPolicy::Ignore;
+        s
     }
 
     #[test]
@@ -336,11 +242,9 @@ mod tests {
 
     #[test]
     fn a_block_that_is_never_lifted_is_at_rest() {
-        let base = ParamBase::load(Some("fig4"), None, &[]).unwrap();
+        let base = fig4();
         // A_h = 0.5 < tan ψ / ψ ≈ 1.02 and A_v = 0: the base cannot lift it.
-        let cfg = base
-            .resolve(&[("excitation.a_h", 0.5), ("excitation.a_v", 0.0)])
-            .unwrap();
+        let cfg = Param::apply(&base, &[(Param::Ah, 0.5), (Param::Av, 0.0)]).unwrap();
         let w = Window {
             transient: 60.0,
             tau_end: 120.0,
@@ -352,17 +256,17 @@ mod tests {
 
     #[test]
     fn lyapunov_hook_is_called_and_a_nan_is_an_error() {
-        let base = ParamBase::load(Some("fig4"), None, &[]).unwrap();
-        let cfg = base.resolve(&[("excitation.a_v", 1.0)]).unwrap();
+        let base = fig4();
+        let cfg = Param::apply(&base, &[(Param::Av, 1.0)]).unwrap();
         let w = Window {
             transient: 100.0,
             tau_end: 160.0,
         };
-        let hook = |c: &Config| Some(-0.1 - c.a_v);
+        let hook = |c: &Scenario| Some(-0.1 - c.excitation.a_v);
         let s = steady_response(&cfg, &w, &ClassifyOptions::default(), Some(&hook)).unwrap();
         assert_eq!(s.lyapunov, Some(-1.1));
         assert_eq!(s.response, Response::Periodic { period: 1 });
-        let nan = |_: &Config| Some(f64::NAN);
+        let nan = |_: &Scenario| Some(f64::NAN);
         assert_eq!(
             steady_response(&cfg, &w, &ClassifyOptions::default(), Some(&nan)),
             Err(SteadyError::Classify(ClassifyError::NonFiniteExponent))

@@ -4,9 +4,10 @@ use anyhow::Context as _;
 
 use super::Cli;
 use crate::analysis::lyapunov::{self, Lyapunov, LyapunovError, LyapunovOptions, Method};
-use crate::io::config::{self, Config};
+use crate::io::config;
 use crate::io::output;
-use crate::sim;
+use crate::sim::scenario::{LyapunovChoice, SpectrumRange};
+use crate::sim::{self, Scenario};
 
 /// How a batch run failed, with the exit code it maps to.
 #[derive(Debug)]
@@ -20,17 +21,17 @@ pub enum BatchError {
 /// Runs `--batch` as described by `cli`. Nothing is written unless the run
 /// succeeds.
 pub fn run(cli: &Cli) -> Result<(), BatchError> {
-    let cfg: Config = config::load(cli.preset.as_deref(), cli.config.as_deref(), &cli.sets)
+    let cfg: Scenario = config::load(cli.preset.as_deref(), cli.config.as_deref(), &cli.sets)
         .map_err(|e| BatchError::Input(e.into()))?;
     let model = cfg.model().map_err(|e| BatchError::Input(e.into()))?;
     output::check_writable(&cli.out)
         .with_context(|| "--out: cannot write the output directory".to_string())
         .map_err(BatchError::Input)?;
-    let res = sim::simulate(model, &cfg.initial(), &cfg.run_options())
+    let res = sim::simulate(model, &cfg.initial, &cfg.run_options())
         .context("simulation failed")
         .map_err(BatchError::Run)?;
     let mut summary = output::summary_json(&cfg, &res);
-    let exponents = if cfg.lyapunov {
+    let exponents = if cfg.analyses.lyapunov {
         Some(lyapunov_summary(&cfg)?)
     } else {
         None
@@ -38,7 +39,7 @@ pub fn run(cli: &Cli) -> Result<(), BatchError> {
     if let (Some(l), Some(obj)) = (&exponents, summary.as_object_mut()) {
         obj.insert("lyapunov".to_string(), l.summary());
     }
-    let spectrum = if cfg.spectrum {
+    let spectrum = if cfg.analyses.spectrum {
         Some(spectrum_of(&cfg, &res)?)
     } else {
         None
@@ -101,13 +102,17 @@ pub fn run(cli: &Cli) -> Result<(), BatchError> {
 }
 
 /// The Lyapunov exponents of `cfg`'s run (`analysis.lyapunov`), over the
-/// run's own `tau_end` ([`LyapunovOptions::for_config`]). A run too short
-/// for them is bad input.
-fn lyapunov_summary(cfg: &Config) -> Result<Lyapunov, BatchError> {
+/// run's own `tau_end` ([`LyapunovOptions::for_scenario`]). A run too
+/// short for them is bad input.
+fn lyapunov_summary(cfg: &Scenario) -> Result<Lyapunov, BatchError> {
     let model = cfg.model().map_err(|e| BatchError::Input(e.into()))?;
-    let method = Method::from_name(&cfg.lyapunov_method).unwrap_or(Method::Tangent);
-    let opts = LyapunovOptions::for_config(cfg, method);
-    lyapunov::lyapunov(&model, &cfg.initial(), &opts).map_err(|e| match e {
+    let method = match cfg.analyses.lyapunov_method {
+        LyapunovChoice::Tangent => Method::Tangent,
+        LyapunovChoice::Benettin => Method::Benettin,
+        LyapunovChoice::Both => Method::Both,
+    };
+    let opts = LyapunovOptions::for_scenario(cfg, method);
+    lyapunov::lyapunov(&model, &cfg.initial, &opts).map_err(|e| match e {
         LyapunovError::NotHarmonic | LyapunovError::Option { .. } | LyapunovError::TooShort { .. } => {
             BatchError::Input(anyhow::anyhow!("analysis.lyapunov: {e}"))
         }
@@ -121,13 +126,12 @@ fn lyapunov_summary(cfg: &Config) -> Result<Lyapunov, BatchError> {
 /// `spectrum.csv` (`freq,omega,omega_over_omega_h,psd`; f in cycles per
 /// unit τ, ω = 2πf in units of p, ω/Ω_h with `excitation.omega_h`) and the
 /// ten dominant peaks for `summary.json`.
-fn spectrum_of(cfg: &Config, res: &sim::RunResult) -> Result<(String, serde_json::Value), BatchError> {
+fn spectrum_of(cfg: &Scenario, res: &sim::RunResult) -> Result<(String, serde_json::Value), BatchError> {
     use crate::analysis::spectrum::{SpectrumOptions, SpectrumWindow, theta_spectrum};
     use std::fmt::Write as _;
-    let window = if cfg.spectrum_window == "paper" {
-        SpectrumWindow::Paper
-    } else {
-        SpectrumWindow::All
+    let window = match cfg.analyses.spectrum_window {
+        SpectrumRange::Paper => SpectrumWindow::Paper,
+        SpectrumRange::All => SpectrumWindow::All,
     };
     let sp = theta_spectrum(&res.history, window, &SpectrumOptions::default())
         .context("analysis.spectrum")
@@ -135,11 +139,11 @@ fn spectrum_of(cfg: &Config, res: &sim::RunResult) -> Result<(String, serde_json
     let mut csv = String::from("freq,omega,omega_over_omega_h,psd\n");
     for (f, p) in sp.freq.iter().zip(&sp.psd) {
         let omega = std::f64::consts::TAU * f;
-        let _ = writeln!(csv, "{f:?},{omega:?},{:?},{p:?}", omega / cfg.omega_h);
+        let _ = writeln!(csv, "{f:?},{omega:?},{:?},{p:?}", omega / cfg.excitation.omega_h);
     }
-    let peaks = sp.peaks(10, 1e-6, cfg.omega_h);
+    let peaks = sp.peaks(10, 1e-6, cfg.excitation.omega_h);
     let summary = serde_json::json!({
-        "window": cfg.spectrum_window,
+        "window": cfg.analyses.spectrum_window.name(),
         "samples": sp.n,
         "dt": sp.dt,
         "taper": "hann",

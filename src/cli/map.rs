@@ -22,14 +22,16 @@ use serde_json::json;
 
 use super::batch::BatchError;
 use super::staging::Staging;
-use super::sweep::{progress_bar, thread_pool};
+use super::sweep::{progress_bar, progress_fn, thread_pool};
 use crate::analysis::classify::{ClassifyOptions, Response};
 use crate::analysis::outcome_map::{Axis, BlockMap, Cell, block_map};
-use crate::analysis::steady::{LyapunovFn, ParamBase, Window, check_key};
+use crate::analysis::steady::{LyapunovFn, Window};
+use crate::io::config;
 use crate::io::output;
 use crate::plot::Figure as _;
 use crate::plot::labels::{fixed_parameters, num, param_label, param_symbol};
 use crate::plot::outcome_map::{MapColouring, OutcomeMapFigure};
+use crate::sim::Param;
 
 /// Arguments of `rocking map`.
 #[derive(Debug, Clone, clap::Args)]
@@ -73,12 +75,12 @@ pub struct MapArgs {
     pub quiet: bool,
 }
 
-/// Parses `KEY A B N` of `--x`/`--y`.
-fn axis(flag: &str, parts: &[String]) -> anyhow::Result<Axis> {
+/// Parses `KEY A B N` of `--x`/`--y` into the axis and its parameter.
+fn axis(flag: &str, parts: &[String]) -> anyhow::Result<(Axis, Param)> {
     let [key, a, b, n] = parts else {
         return Err(anyhow!("{flag}: expected KEY A B N"));
     };
-    check_key(key).map_err(|e| anyhow!("{flag} {e}"))?;
+    let param = config::param(key).map_err(|e| anyhow!("{flag} {e}"))?;
     let number = |name: &str, s: &str| {
         s.parse::<f64>()
             .map_err(|_| anyhow!("{flag} {key}: {name} = '{s}' is not a number"))
@@ -87,7 +89,7 @@ fn axis(flag: &str, parts: &[String]) -> anyhow::Result<Axis> {
     let n: usize = n
         .parse()
         .map_err(|_| anyhow!("{flag} {key}: N = '{n}' is not a positive integer"))?;
-    Ok(Axis::new(flag, key, a, b, n)?)
+    Ok((Axis::new(flag, key, a, b, n)?, param))
 }
 
 /// The CSV cell of a number (shortest round-trip form).
@@ -122,30 +124,31 @@ pub fn run(args: &MapArgs) -> Result<(), BatchError> {
 /// decides between quasiperiodic and chaotic, and adds the λ-coloured map.
 pub fn run_with(args: &MapArgs, lyapunov: Option<&LyapunovFn<'_>>) -> Result<(), BatchError> {
     let input = BatchError::Input;
-    let base =
-        ParamBase::load(args.preset.as_deref(), args.config.as_deref(), &args.sets).map_err(|e| input(e.into()))?;
-    let x = axis("--x", &args.x).map_err(input)?;
-    let y = axis("--y", &args.y).map_err(input)?;
-    if x.key == y.key {
+    let base = config::load(args.preset.as_deref(), args.config.as_deref(), &args.sets).map_err(|e| input(e.into()))?;
+    let (x, x_param) = axis("--x", &args.x).map_err(input)?;
+    let (y, y_param) = axis("--y", &args.y).map_err(input)?;
+    if x_param == y_param {
         return Err(input(anyhow!("--y {}: the two axes must be different keys", y.key)));
     }
-    for (flag, a) in [("--x", &x), ("--y", &y)] {
-        if a.key == "run.tau_end" {
+    for (flag, p) in [("--x", x_param), ("--y", y_param)] {
+        if p == Param::TauEnd {
             return Err(input(anyhow!(
                 "{flag} run.tau_end: the run length is set by --tau-end, it cannot be an axis"
             )));
         }
     }
-    let mut config = base.resolve(&[]).map_err(|e| input(e.into()))?;
+    let mut config = base.clone();
     let window = Window {
         transient: args.transient,
-        tau_end: args.tau_end.unwrap_or(config.tau_end),
+        tau_end: args.tau_end.unwrap_or(config.run.tau_end),
     };
     window.validate().map_err(|e| input(anyhow!(e)))?;
-    config.tau_end = window.tau_end;
+    config.run.tau_end = window.tau_end;
     let spec = BlockMap {
         base: &base,
+        x_param,
         x: &x,
+        y_param,
         y: &y,
         window,
         classify: ClassifyOptions::default(),
@@ -161,7 +164,7 @@ pub fn run_with(args: &MapArgs, lyapunov: Option<&LyapunovFn<'_>>) -> Result<(),
     let start = Instant::now();
     let bar = progress_bar(x.n * y.n, "cells", args.quiet);
     let cells = pool
-        .install(|| block_map(&spec, &bar))
+        .install(|| block_map(&spec, &progress_fn(&bar)))
         .map_err(|e| BatchError::Run(anyhow!("{} = {}, {} = {}: {}", x.key, e.x, y.key, e.y, e.error)))?;
     bar.finish_and_clear();
     let wall = start.elapsed().as_secs_f64();
@@ -173,13 +176,13 @@ pub fn run_with(args: &MapArgs, lyapunov: Option<&LyapunovFn<'_>>) -> Result<(),
         "y": y,
         "window": window,
         "classify": spec.classify,
-        "config": config.to_json(),
+        "config": config::to_json(&config),
         "units": "theta = θ/ψ; lyapunov per unit τ; config: the base configuration, the two axis keys take each cell's values",
     });
-    let (sx, sy) = (param_symbol(&x.key), param_symbol(&y.key));
+    let (sx, sy) = (param_symbol(x_param), param_symbol(y_param));
     let title = format!(
         "Outcome map over {sx} × {sy}: {}",
-        fixed_parameters(&config, &[&x.key, &y.key])
+        fixed_parameters(&config, &[x_param, y_param])
     );
     let subtitle = format!(
         "{} × {} cells; response from the Poincaré points at {} ≤ τ_k ≤ {}, from the initial state",
@@ -193,8 +196,8 @@ pub fn run_with(args: &MapArgs, lyapunov: Option<&LyapunovFn<'_>>) -> Result<(),
     let figure = |colouring| OutcomeMapFigure {
         title: title.clone(),
         subtitle: subtitle.clone(),
-        x_label: param_label(&x.key),
-        y_label: param_label(&y.key),
+        x_label: param_label(x_param),
+        y_label: param_label(y_param),
         x: &xs,
         y: &ys,
         cells: &data,

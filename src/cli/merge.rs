@@ -19,7 +19,7 @@ use super::sweep::{CLASSES_HEADER, POINTS_HEADER, SweepMeta};
 use crate::analysis::classify::{ClassifyOptions, Response};
 use crate::analysis::orbit_diagram::{Continuation, Grid, Shard};
 use crate::analysis::steady::Window;
-use crate::io::config::{self, Config};
+use crate::io::config;
 use crate::io::output;
 use crate::plot::Figure as _;
 
@@ -120,7 +120,8 @@ fn meta_of(common: &Json, json_path: &Path) -> anyhow::Result<SweepMeta> {
             .cloned()
             .ok_or_else(|| anyhow!("{}: missing \"{k}\"", json_path.display()))
     };
-    let param: String = serde_json::from_value(field("param")?)?;
+    let key: String = serde_json::from_value(field("param")?)?;
+    let param = config::param(&key).map_err(|e| anyhow!("{}: param {e}", json_path.display()))?;
     let g = field("grid")?;
     let num = |v: &Json, k: &str| {
         v.get(k)
@@ -154,7 +155,7 @@ fn meta_of(common: &Json, json_path: &Path) -> anyhow::Result<SweepMeta> {
         lyapunov_threshold: num(&c, "lyapunov_threshold")?,
     };
     let (table, source) = config::read_file(json_path)?;
-    let config = Config::from_table(&table, &source)?;
+    let config = config::from_table(&table, &source)?;
     Ok(SweepMeta {
         param,
         grid,

@@ -15,7 +15,7 @@ use anyhow::{Context as _, anyhow};
 
 use super::batch::BatchError;
 use super::staging::Staging;
-use super::sweep::{progress_bar, thread_pool};
+use super::sweep::{progress_bar, progress_fn, thread_pool};
 use crate::io::output::{self, OutputError};
 use crate::reproduce::paper::parse_figure;
 use crate::reproduce::write::{Sink, write_all};
@@ -90,7 +90,7 @@ pub fn run(args: &ReproduceArgs) -> Result<(), BatchError> {
         .map_err(BatchError::Input)?;
     let bar = progress_bar(1, "figures", args.quiet);
     let rep = pool
-        .install(|| reproduce(&options, &bar))
+        .install(|| reproduce(&options, &progress_fn(&bar)))
         .map_err(|e| BatchError::Run(anyhow!(e)))?;
     bar.finish_and_clear();
 

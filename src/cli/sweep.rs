@@ -26,16 +26,18 @@ use serde_json::{Value as Json, json};
 
 use super::batch::BatchError;
 use super::staging::Staging;
+use crate::analysis::Progress;
 use crate::analysis::classify::{ClassifyOptions, Response};
 use crate::analysis::orbit_diagram::{
     BifurcationValue, BlockSweep, Continuation, Grid, Plan, Shard, block_sweep, response_ranges,
 };
-use crate::analysis::steady::{LyapunovFn, ParamBase, Window, check_key};
-use crate::io::config::Config;
+use crate::analysis::steady::{LyapunovFn, Window};
+use crate::io::config::{self, to_json};
 use crate::io::output;
 use crate::plot::Figure as _;
 use crate::plot::bifurcation::BifurcationFigure;
 use crate::plot::labels::{fixed_parameters, grid_decimals, grid_num, num, param_label, param_symbol};
+use crate::sim::{Param, Scenario};
 
 /// Continuation as a command-line value.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
@@ -118,8 +120,8 @@ pub struct SweepArgs {
 /// and what the figure's titles are made from.
 #[derive(Clone, Debug)]
 pub struct SweepMeta {
-    /// The swept key.
-    pub param: String,
+    /// The swept parameter.
+    pub param: Param,
     /// Its values.
     pub grid: Grid,
     /// Seeding.
@@ -128,8 +130,8 @@ pub struct SweepMeta {
     pub window: Window,
     /// Classifier thresholds.
     pub classify: ClassifyOptions,
-    /// The base configuration (run.tau_end set to the window's end).
-    pub config: Config,
+    /// The base scenario (run.tau_end set to the window's end).
+    pub config: Scenario,
 }
 
 impl SweepMeta {
@@ -139,20 +141,20 @@ impl SweepMeta {
         json!({
             "command": "rocking sweep",
             "version": env!("CARGO_PKG_VERSION"),
-            "param": self.param,
+            "param": self.param.key(),
             "grid": self.grid,
             "continuation": self.continuation,
             "shard": shard,
             "window": self.window,
             "classify": self.classify,
-            "config": self.config.to_json(),
+            "config": to_json(&self.config),
             "units": "tau = p t, theta = θ/ψ, theta_dot = dΘ/dτ; lyapunov per unit τ; config: the base configuration, `param` takes each value in turn",
         })
     }
 
     /// The bifurcation figure of `values` (responses) and `points` (value, Θ).
     pub fn figure<'a>(&self, values: &'a [(f64, Response)], points: &'a [(f64, f64)]) -> BifurcationFigure<'a> {
-        let sym = param_symbol(&self.param);
+        let sym = param_symbol(self.param);
         let d = grid_decimals(self.grid.from, self.grid.step);
         let seeding = match self.continuation {
             Continuation::None => "every value from the initial state".to_string(),
@@ -162,7 +164,7 @@ impl SweepMeta {
         BifurcationFigure {
             title: format!(
                 "Bifurcation diagram over {sym}: {}",
-                fixed_parameters(&self.config, &[&self.param])
+                fixed_parameters(&self.config, &[self.param])
             ),
             subtitle: format!(
                 "Θ at τ_k = 2πk/Ω_h for {} ≤ τ_k ≤ {}; {sym} = {} … {} step {}; {seeding}",
@@ -172,7 +174,7 @@ impl SweepMeta {
                 grid_num(self.grid.value(self.grid.count - 1), d),
                 num(self.grid.step)
             ),
-            x_label: param_label(&self.param),
+            x_label: param_label(self.param),
             values,
             points,
             step: self.grid.step,
@@ -244,6 +246,14 @@ pub fn progress_bar(len: usize, what: &str, quiet: bool) -> ProgressBar {
     bar
 }
 
+/// The analyses' progress callback drawing on `bar`.
+pub fn progress_fn(bar: &ProgressBar) -> impl Fn(Progress) + Sync + '_ {
+    move |p| match p {
+        Progress::Total(n) => bar.set_length(n),
+        Progress::Done => bar.inc(1),
+    }
+}
+
 /// A rayon pool of `threads` workers (default: one per core), named.
 pub fn thread_pool(threads: Option<usize>) -> Result<rayon::ThreadPool, BatchError> {
     if threads == Some(0) {
@@ -263,22 +273,22 @@ fn input(e: impl Into<anyhow::Error>) -> BatchError {
 
 /// Everything `run` checked and resolved before computing.
 struct Prepared {
-    base: ParamBase,
+    base: Scenario,
     meta: SweepMeta,
     plan: Plan,
     shard: Option<Shard>,
 }
 
 fn prepare(args: &SweepArgs) -> Result<Prepared, BatchError> {
-    let base = ParamBase::load(args.preset.as_deref(), args.config.as_deref(), &args.sets).map_err(input)?;
-    check_key(&args.param).map_err(|e| input(anyhow::anyhow!("--param {e}")))?;
-    if args.param == "run.tau_end" {
+    let base = config::load(args.preset.as_deref(), args.config.as_deref(), &args.sets).map_err(input)?;
+    let param = config::param(&args.param).map_err(|e| input(anyhow::anyhow!("--param {e}")))?;
+    if param == Param::TauEnd {
         return Err(input(anyhow::anyhow!(
             "--param run.tau_end: the run length is set by --tau-end, it cannot be swept"
         )));
     }
     let continuation = Continuation::from(args.continuation);
-    if continuation != Continuation::None && args.param.starts_with("initial.") {
+    if continuation != Continuation::None && matches!(param, Param::Theta0 | Param::ThetaDot0 | Param::XDot0) {
         return Err(input(anyhow::anyhow!(
             "--param {}: continuation replaces the initial state, so an initial.* key cannot be swept with --continuation {}",
             args.param,
@@ -288,15 +298,15 @@ fn prepare(args: &SweepArgs) -> Result<Prepared, BatchError> {
     let grid = Grid::new(args.from, args.to, args.step).map_err(input)?;
     let shard = args.shard.as_deref().map(Shard::parse).transpose().map_err(input)?;
     let plan = Plan::new(grid, continuation, shard).map_err(input)?;
-    let mut config = base.resolve(&[]).map_err(input)?;
+    let mut config = base.clone();
     let window = Window {
         transient: args.transient,
-        tau_end: args.tau_end.unwrap_or(config.tau_end),
+        tau_end: args.tau_end.unwrap_or(config.run.tau_end),
     };
     window.validate().map_err(|e| input(anyhow::anyhow!(e)))?;
-    config.tau_end = window.tau_end;
+    config.run.tau_end = window.tau_end;
     let meta = SweepMeta {
-        param: args.param.clone(),
+        param,
         grid,
         continuation,
         window,
@@ -327,13 +337,19 @@ pub fn run_with(args: &SweepArgs, lyapunov: Option<&LyapunovFn<'_>>) -> Result<(
     } = prepare(args)?;
     let spec = BlockSweep {
         base: &base,
-        param: &meta.param,
+        param: meta.param,
         window: meta.window,
         classify: meta.classify,
         lyapunov,
     };
-    spec.configs(&plan)
-        .map_err(|e| input(anyhow::anyhow!("--param {} = {}: {}", meta.param, e.value, e.error)))?;
+    spec.scenarios(&plan).map_err(|e| {
+        input(anyhow::anyhow!(
+            "--param {} = {}: {}",
+            meta.param.key(),
+            e.value,
+            e.error
+        ))
+    })?;
     let pool = thread_pool(args.threads)?;
     output::check_writable(&args.out)
         .with_context(|| "--out: cannot write the output directory".to_string())
@@ -342,8 +358,8 @@ pub fn run_with(args: &SweepArgs, lyapunov: Option<&LyapunovFn<'_>>) -> Result<(
     let start = Instant::now();
     let bar = progress_bar(plan.indices().len(), "values", args.quiet);
     let values = pool
-        .install(|| block_sweep(&spec, &plan, &bar))
-        .map_err(|e| BatchError::Run(anyhow::anyhow!("{} = {}: {}", meta.param, e.value, e.error)))?;
+        .install(|| block_sweep(&spec, &plan, &progress_fn(&bar)))
+        .map_err(|e| BatchError::Run(anyhow::anyhow!("{} = {}: {}", meta.param.key(), e.value, e.error)))?;
     bar.finish_and_clear();
     let wall = start.elapsed().as_secs_f64();
 
@@ -377,7 +393,7 @@ pub fn run_with(args: &SweepArgs, lyapunov: Option<&LyapunovFn<'_>>) -> Result<(
         let d = grid_decimals(meta.grid.from, meta.grid.step);
         crate::say!(
             "swept {} = {} … {} ({} values{}) in {wall:.1} s; {npoints} Poincaré points",
-            meta.param,
+            meta.param.key(),
             grid_num(meta.grid.from, d),
             grid_num(meta.grid.value(meta.grid.count - 1), d),
             values.len(),

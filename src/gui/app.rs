@@ -19,8 +19,8 @@ use crate::gui::panels::plots::{self, HistoryView, PhaseView, PoincareView, Spec
 use crate::gui::panels::scene::{self, Camera, SceneInput};
 use crate::gui::settings::Settings;
 use crate::gui::{block_view, export};
-use crate::io::config::Config;
 use crate::model::{EventKind, Mode};
+use crate::sim::Scenario;
 use crate::sim::protocol::{GhostState, MAX_GHOSTS, RunEnd, RunId, RunInfo, SimUpdate, Speed};
 use crate::sim::runner::SimHandle;
 
@@ -92,7 +92,7 @@ pub struct Message {
 pub struct RockingApp {
     link: Link,
     settings: Settings,
-    config: Config,
+    config: Scenario,
     edits: Edits,
     info: Option<RunInfo>,
     hist: RunHistory,
@@ -129,7 +129,7 @@ impl RockingApp {
     pub fn live(
         cc: &eframe::CreationContext<'_>,
         settings: Settings,
-        config: Config,
+        config: Scenario,
         speed: Speed,
         paused: bool,
     ) -> Self {
@@ -164,7 +164,7 @@ impl RockingApp {
     pub fn with_stream(
         cc: &eframe::CreationContext<'_>,
         settings: Settings,
-        config: Config,
+        config: Scenario,
         updates: Vec<SimUpdate>,
     ) -> Self {
         let run = updates.first().map_or(RunId(1), SimUpdate::run);
@@ -177,7 +177,7 @@ impl RockingApp {
         app
     }
 
-    fn base(cc: &eframe::CreationContext<'_>, link: Link, settings: Settings, config: Config) -> Self {
+    fn base(cc: &eframe::CreationContext<'_>, link: Link, settings: Settings, config: Scenario) -> Self {
         let gpu = match cc.wgpu_render_state.as_ref() {
             Some(rs) => {
                 block_view::install(rs);
@@ -238,7 +238,7 @@ impl RockingApp {
         self.paused
     }
     /// The configuration of the scene (what the panel shows).
-    pub fn config(&self) -> &Config {
+    pub fn config(&self) -> &Scenario {
         &self.config
     }
     /// What the current run is running, once it has started.
@@ -356,7 +356,7 @@ impl RockingApp {
     }
 
     /// Makes `settings` (resolved to `config`) the scene and restarts with it.
-    pub fn apply(&mut self, settings: Settings, config: Config) {
+    pub fn apply(&mut self, settings: Settings, config: Scenario) {
         self.settings = settings;
         self.config = config.clone();
         self.new_run();
@@ -769,7 +769,7 @@ impl RockingApp {
             geometry: info.geometry,
             sample,
             ghosts: &self.ghosts,
-            mu_s: info.config.mu_s,
+            mu_s: info.scenario.block.mu_s,
             terminal: match &self.end {
                 Some(RunEnd::Terminal { mode, .. }) => Some(*mode),
                 Some(RunEnd::Failed(_)) | None => None,
@@ -835,12 +835,10 @@ impl eframe::App for RockingApp {
                             });
                         }
                         if self.show.spectrum {
-                            let (dt, omega_h) = self
-                                .info
-                                .as_ref()
-                                .map_or((crate::sim::runner::LIVE_SAMPLE_DT, self.config.omega_h), |i| {
-                                    (i.sample_dt, i.config.omega_h)
-                                });
+                            let (dt, omega_h) = self.info.as_ref().map_or(
+                                (crate::sim::runner::LIVE_SAMPLE_DT, self.config.excitation.omega_h),
+                                |i| (i.sample_dt, i.scenario.excitation.omega_h),
+                            );
                             ui.vertical(|ui| {
                                 ui.label("Power spectrum of Θ (last 41 τ)");
                                 plots::spectrum_plot(ui, &self.hist, &mut self.spectrum, dt, omega_h);

@@ -17,12 +17,12 @@ pub mod settings;
 pub use app::RockingApp;
 pub use settings::Settings;
 
-use crate::io::config::Config;
+use crate::sim::Scenario;
 use crate::sim::protocol::Speed;
 
 /// Opens the window on `settings` (resolved to `config`) and runs until it
 /// is closed. The block starts moving at once, in real time.
-pub fn run(settings: Settings, config: Config) -> Result<(), String> {
+pub fn run(settings: Settings, config: Scenario) -> Result<(), String> {
     let title = format!("rocking — {}", settings.origin);
     let options = eframe::NativeOptions {
         viewport: egui::ViewportBuilder::default()

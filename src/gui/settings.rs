@@ -1,6 +1,6 @@
 //! The scene's settings as the user wrote them: the TOML table of explicit
 //! keys (from a preset, a file, or edits in the panel) and where it came
-//! from. Resolving goes through [`Config::from_table`], so the app accepts
+//! from. Resolving goes through [`Scenario::from_table`], so the app accepts
 //! exactly what the CLI accepts and refuses the rest with the same one-line
 //! message. Keys left out keep their documented defaults (e.g. Ω_v follows
 //! Ω_h), which a table of resolved values would lose.
@@ -9,8 +9,9 @@ use std::path::Path;
 
 use toml::Table;
 
-use crate::io::config::{Config, Source, parse_toml, preset_text, read_file};
+use crate::io::config::{Source, parse_toml, preset_text, read_file};
 use crate::io::table::set_dotted;
+use crate::sim::Scenario;
 
 /// The explicit keys of a scene and their source.
 #[derive(Clone, Debug, Default)]
@@ -36,7 +37,7 @@ impl Settings {
     }
 
     /// The settings in a TOML (or summary.json) file, resolved and checked.
-    pub fn open(path: &Path) -> Result<(Self, Config), String> {
+    pub fn open(path: &Path) -> Result<(Self, Scenario), String> {
         let (table, source) = read_file(path).map_err(|e| e.to_string())?;
         let s = Self {
             table,
@@ -49,7 +50,7 @@ impl Settings {
 
     /// The scene the command line names: `--config FILE` or `--preset NAME`
     /// (default `default`), then each `--set KEY=VALUE`, resolved and checked.
-    pub fn from_cli(preset: Option<&str>, file: Option<&Path>, sets: &[String]) -> Result<(Self, Config), String> {
+    pub fn from_cli(preset: Option<&str>, file: Option<&Path>, sets: &[String]) -> Result<(Self, Scenario), String> {
         let mut s = match (preset, file) {
             (Some(_), Some(_)) => return Err("give either --preset or --config, not both".into()),
             (_, Some(path)) => Self::open(path)?.0,
@@ -63,10 +64,10 @@ impl Settings {
     }
 
     /// Settings whose every key is explicit, from a resolved config (used
-    /// when the app is handed a `Config` rather than a table).
-    pub fn from_config(cfg: &Config) -> Self {
+    /// when the app is handed a `Scenario` rather than a table).
+    pub fn from_config(cfg: &Scenario) -> Self {
         let mut table = Table::new();
-        if let serde_json::Value::Object(sections) = cfg.to_json() {
+        if let serde_json::Value::Object(sections) = crate::io::config::to_json(cfg) {
             for (section, keys) in sections {
                 let serde_json::Value::Object(keys) = keys else {
                     continue;
@@ -101,8 +102,8 @@ impl Settings {
     }
 
     /// Resolves and validates.
-    pub fn resolve(&self) -> Result<Config, String> {
-        Config::from_table(&self.table, &self.source).map_err(|e| e.to_string())
+    pub fn resolve(&self) -> Result<Scenario, String> {
+        crate::io::config::from_table(&self.table, &self.source).map_err(|e| e.to_string())
     }
 
     /// The explicit value of `key` (`section.key`), as TOML text.
@@ -115,7 +116,7 @@ impl Settings {
     /// These settings with `key` set to `raw` (TOML value text; empty
     /// removes the key, restoring its default), resolved and checked.
     /// Nothing changes on error.
-    pub fn with(&self, key: &str, raw: &str) -> Result<(Self, Config), String> {
+    pub fn with(&self, key: &str, raw: &str) -> Result<(Self, Scenario), String> {
         let mut next = self.clone();
         let raw = raw.trim();
         if raw.is_empty() {
@@ -177,7 +178,7 @@ mod tests {
     fn an_edit_keeps_defaults_that_follow_other_keys() {
         let s = Settings::preset("fig3").expect("preset");
         let (s2, cfg) = s.with("excitation.omega_h", "5").expect("valid");
-        assert_eq!(cfg.omega_v, 5.0, "Ω_v defaults to Ω_h");
+        assert_eq!(cfg.excitation.omega_v(), 5.0, "Ω_v defaults to Ω_h");
         assert_eq!(s2.explicit("excitation.omega_h").as_deref(), Some("5"));
     }
 
@@ -194,7 +195,7 @@ mod tests {
     fn an_empty_value_restores_the_default() {
         let s = Settings::preset("default").expect("preset");
         let (_, cfg) = s.with("excitation.a_h", "").expect("valid");
-        assert_eq!(cfg.a_h, 0.0);
+        assert_eq!(cfg.excitation.a_h, 0.0);
     }
 
     #[test]
@@ -202,7 +203,7 @@ mod tests {
         let s = Settings::preset("fig16").expect("preset");
         let text = s.to_toml().expect("toml");
         let table = parse_toml(&text, "saved").expect("parses");
-        let back = Config::from_table(&table, &Source::default()).expect("valid");
+        let back = crate::io::config::from_table(&table, &Source::default()).expect("valid");
         assert_eq!(back, s.resolve().expect("valid"));
     }
 
@@ -210,6 +211,10 @@ mod tests {
     fn settings_from_a_resolved_config_resolve_to_it() {
         let cfg = Settings::preset("fig12").and_then(|s| s.resolve()).expect("valid");
         let back = Settings::from_config(&cfg).resolve().expect("valid");
-        assert_eq!(back, cfg);
+        // The resolved values are equal; `back` has every default written
+        // out (Ω_v, the impact friction, the method), so it no longer
+        // follows the values they default to, and the structs differ there.
+        use crate::io::config::to_json;
+        assert_eq!(to_json(&back), to_json(&cfg));
     }
 }

@@ -1,11 +1,15 @@
-//! Files in and out: the configuration (TOML, presets, `--set`), and the
-//! CSV/JSON outputs of a run. Every output carries the resolved
+//! Files in and out: the configuration (TOML, presets, `--set`, a previous
+//! `summary.json`) read into a typed [`Scenario`](crate::sim::Scenario), and
+//! the CSV/JSON outputs of a run. Every output carries the resolved
 //! configuration and the crate version.
+//!
+//! `io` imports `sim` (to build scenarios and write results); `sim` never
+//! imports `io`.
 
 pub mod config;
 pub mod output;
 pub mod presets;
 pub mod table;
 
-pub use config::{Config, load};
+pub use config::load;
 pub use table::ConfigError;

@@ -11,10 +11,10 @@ use std::path::{Path, PathBuf};
 
 use serde_json::json;
 
-use super::config::Config;
+use super::config::to_json;
 use crate::model::Mode;
 use crate::model::system::EventRecord;
-use crate::sim::{HistoryRow, RunResult, SectionRow};
+use crate::sim::{HistoryRow, RunResult, Scenario, SectionRow};
 
 /// A number for CSV/JSON: shortest round-trip form.
 fn num(x: f64) -> String {
@@ -80,7 +80,7 @@ pub fn history_csv(rows: &[HistoryRow]) -> String {
 
 /// `summary.json`: outcome, times, the energy audit, work counters and the
 /// complete resolved configuration with the crate version.
-pub fn summary_json(cfg: &Config, res: &RunResult) -> serde_json::Value {
+pub fn summary_json(cfg: &Scenario, res: &RunResult) -> serde_json::Value {
     let mode_time: serde_json::Map<String, serde_json::Value> = Mode::NAMES[..4]
         .iter()
         .zip(res.mode_time)
@@ -101,7 +101,7 @@ pub fn summary_json(cfg: &Config, res: &RunResult) -> serde_json::Value {
         "mode_time": mode_time,
         "energy": res.energy,
         "solver": {
-            "method": cfg.method.name(),
+            "method": cfg.run.method().name(),
             "steps": res.stats.accepted,
             "rejected_steps": res.stats.rejected,
             "rhs_evals": res.stats.rhs_evals,
@@ -116,7 +116,7 @@ pub fn summary_json(cfg: &Config, res: &RunResult) -> serde_json::Value {
         },
         "units": "normalised: tau = p t, theta = θ/ψ, x = x_G/R, energies per m g R (MODEL-DECISIONS)",
         "version": env!("CARGO_PKG_VERSION"),
-        "config": cfg.to_json(),
+        "config": to_json(cfg),
     })
 }
 

@@ -8,15 +8,64 @@ use std::collections::BTreeSet;
 
 use toml::{Table, Value};
 
-/// A configuration error: one line, naming the key (or file and line).
+use crate::sim::ScenarioError;
+
+/// A configuration error: one line, naming the key, or the file and line.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
-#[error("{0}")]
-pub struct ConfigError(pub String);
+pub enum ConfigError {
+    /// A key with a value of the wrong type, or a key or section that does
+    /// not exist.
+    #[error("{key}: {message}")]
+    Key {
+        /// `section.key` (or the section).
+        key: String,
+        /// What is wrong and what is allowed.
+        message: String,
+    },
+    /// A value that breaks a rule of the scenario (out of range, or in
+    /// conflict with another).
+    #[error(transparent)]
+    Scenario(#[from] ScenarioError),
+    /// A file that cannot be parsed, at a line.
+    #[error("{file}:{line}: {message}")]
+    Syntax {
+        /// The file (or `preset NAME`).
+        file: String,
+        /// 1-based line.
+        line: usize,
+        /// The parser's message.
+        message: String,
+    },
+    /// A file that cannot be read at all.
+    #[error("{file}: {message}")]
+    File {
+        /// The file.
+        file: String,
+        /// Why.
+        message: String,
+    },
+    /// A record file named by a key that cannot be read; the message names
+    /// the file and, where one applies, its line.
+    #[error("{key}: {message}")]
+    Record {
+        /// `excitation.file_h` or `excitation.file_v`.
+        key: &'static str,
+        /// The reader's one-line error.
+        message: String,
+    },
+    /// A command-line option used wrongly (`--set` without `=`, an unknown
+    /// preset, both `--preset` and `--config`).
+    #[error("{0}")]
+    Usage(String),
+}
 
 impl ConfigError {
     /// An error about `key`.
     pub fn key(key: &str, msg: impl std::fmt::Display) -> Self {
-        Self(format!("{key}: {msg}"))
+        Self::Key {
+            key: key.to_string(),
+            message: msg.to_string(),
+        }
     }
 }
 
@@ -170,19 +219,19 @@ impl<'a> TableReader<'a> {
 /// (`1.5`, `inf`, `"text"`) and falling back to a bare string (`ratio`).
 pub fn set_dotted(table: &mut Table, assignment: &str) -> Result<(), ConfigError> {
     let Some((key, raw)) = assignment.split_once('=') else {
-        return Err(ConfigError(format!(
+        return Err(ConfigError::Usage(format!(
             "--set {assignment}: expected KEY=VALUE, e.g. excitation.a_v=2.5"
         )));
     };
     let key = key.trim();
     let raw = raw.trim();
     let Some((section, name)) = key.split_once('.') else {
-        return Err(ConfigError(format!(
+        return Err(ConfigError::Usage(format!(
             "--set {assignment}: the key must be SECTION.KEY, e.g. excitation.a_v"
         )));
     };
     if section.is_empty() || name.is_empty() || name.contains('.') {
-        return Err(ConfigError(format!(
+        return Err(ConfigError::Usage(format!(
             "--set {assignment}: the key must be SECTION.KEY, e.g. excitation.a_v"
         )));
     }

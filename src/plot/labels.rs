@@ -4,7 +4,8 @@
 use plotters::style::RGBColor;
 
 use crate::analysis::classify::Response;
-use crate::io::config::{Config, ExcitationKind};
+use crate::sim::scenario::{ExcitationKind, LawKind};
+use crate::sim::{Param, Scenario};
 
 /// A number as short as it can be written without losing its value
 /// (`8`, `0.925`, `2.5`).
@@ -28,91 +29,100 @@ pub fn grid_num(x: f64, decimals: usize) -> String {
     format!("{x:.decimals$}")
 }
 
-/// The axis label of a config key, with its unit.
-pub fn param_label(key: &str) -> String {
-    let label = match key {
-        "excitation.a_v" => "A_v, vertical amplitude (units of ψ g)",
-        "excitation.a_h" => "A_h, horizontal amplitude (units of ψ g)",
-        "excitation.omega_h" => "Ω_h, horizontal frequency (units of p)",
-        "excitation.omega_v" => "Ω_v, vertical frequency (units of p)",
-        "excitation.phase_h" => "Φ_h, horizontal phase (rad)",
-        "excitation.phase_v" => "Φ_v, vertical phase (rad)",
-        "friction.static" => "μ_s, static friction coefficient",
-        "friction.kinetic" => "μ_k, kinetic friction coefficient",
-        "impact.r" => "r, angular-velocity ratio at impact",
-        "impact.e" => "e, vertical restitution at impact",
-        "block.width" => "B, block width (m)",
-        "block.height" => "H, block height (m)",
-        "initial.theta" => "Θ(0) = θ(0)/ψ",
-        "initial.theta_dot" => "Θ'(0) = dΘ/dτ at τ = 0",
-        other => other,
+/// The axis label of a parameter, with its unit.
+pub fn param_label(param: Param) -> String {
+    let label = match param {
+        Param::Av => "A_v, vertical amplitude (units of ψ g)",
+        Param::Ah => "A_h, horizontal amplitude (units of ψ g)",
+        Param::OmegaH => "Ω_h, horizontal frequency (units of p)",
+        Param::OmegaV => "Ω_v, vertical frequency (units of p)",
+        Param::PhaseH => "Φ_h, horizontal phase (rad)",
+        Param::PhaseV => "Φ_v, vertical phase (rad)",
+        Param::MuS => "μ_s, static friction coefficient",
+        Param::MuK => "μ_k, kinetic friction coefficient",
+        Param::ImpactR => "r, angular-velocity ratio at impact",
+        Param::ImpactE => "e, vertical restitution at impact",
+        Param::Width => "B, block width (m)",
+        Param::Height => "H, block height (m)",
+        Param::Theta0 => "Θ(0) = θ(0)/ψ",
+        Param::ThetaDot0 => "Θ'(0) = dΘ/dτ at τ = 0",
+        other => other.key(),
     };
     label.to_string()
 }
 
-/// The short symbol of a config key, for titles (`A_v`, `Ω_h`, …).
-pub fn param_symbol(key: &str) -> String {
-    let s = match key {
-        "excitation.a_v" => "A_v",
-        "excitation.a_h" => "A_h",
-        "excitation.omega_h" => "Ω_h",
-        "excitation.omega_v" => "Ω_v",
-        "friction.static" => "μ_s",
-        "friction.kinetic" => "μ_k",
-        "impact.r" => "r",
-        "impact.e" => "e",
-        "block.width" => "B",
-        "block.height" => "H",
-        other => other,
+/// The short symbol of a parameter, for titles (`A_v`, `Ω_h`, …).
+pub fn param_symbol(param: Param) -> String {
+    let s = match param {
+        Param::Av => "A_v",
+        Param::Ah => "A_h",
+        Param::OmegaH => "Ω_h",
+        Param::OmegaV => "Ω_v",
+        Param::MuS => "μ_s",
+        Param::MuK => "μ_k",
+        Param::ImpactR => "r",
+        Param::ImpactE => "e",
+        Param::Width => "B",
+        Param::Height => "H",
+        other => other.key(),
     };
     s.to_string()
 }
 
 /// The parameters of `cfg` that define a harmonic response, except those in
-/// `varied` (dotted keys): block, excitation, friction and impact law, e.g.
+/// `varied`: block, excitation, friction and impact law, e.g.
 /// `B × H = 1 × 4 m, Ω_h = Ω_v = 8, A_h = 3, no sliding, impact ratio r = 0.925`.
-pub fn fixed_parameters(cfg: &Config, varied: &[&str]) -> String {
-    let free = |k: &str| !varied.contains(&k);
+pub fn fixed_parameters(cfg: &Scenario, varied: &[Param]) -> String {
+    let free = |p: Param| !varied.contains(&p);
+    let x = &cfg.excitation;
     let mut parts = Vec::new();
-    if free("block.width") && free("block.height") {
-        parts.push(format!("B × H = {} × {} m", num(cfg.width), num(cfg.height)));
+    if free(Param::Width) && free(Param::Height) {
+        parts.push(format!(
+            "B × H = {} × {} m",
+            num(cfg.block.width),
+            num(cfg.block.height)
+        ));
     }
-    if cfg.kind == ExcitationKind::Harmonic {
-        let (oh, ov) = (free("excitation.omega_h"), free("excitation.omega_v"));
-        if oh && ov && cfg.omega_h == cfg.omega_v {
-            parts.push(format!("Ω_h = Ω_v = {}", num(cfg.omega_h)));
+    if x.kind == ExcitationKind::Harmonic {
+        let (oh, ov) = (free(Param::OmegaH), free(Param::OmegaV));
+        if oh && ov && x.omega_h == x.omega_v() {
+            parts.push(format!("Ω_h = Ω_v = {}", num(x.omega_h)));
         } else {
             if oh {
-                parts.push(format!("Ω_h = {}", num(cfg.omega_h)));
+                parts.push(format!("Ω_h = {}", num(x.omega_h)));
             }
             if ov {
-                parts.push(format!("Ω_v = {}", num(cfg.omega_v)));
+                parts.push(format!("Ω_v = {}", num(x.omega_v())));
             }
         }
-        if free("excitation.a_h") {
-            parts.push(format!("A_h = {}", num(cfg.a_h)));
+        if free(Param::Ah) {
+            parts.push(format!("A_h = {}", num(x.a_h)));
         }
-        if free("excitation.a_v") {
-            parts.push(format!("A_v = {}", num(cfg.a_v)));
+        if free(Param::Av) {
+            parts.push(format!("A_v = {}", num(x.a_v)));
         }
-        if free("excitation.phase_h") && cfg.phase_h != 0.0 {
-            parts.push(format!("Φ_h = {}", num(cfg.phase_h)));
+        if free(Param::PhaseH) && x.phase_h != 0.0 {
+            parts.push(format!("Φ_h = {}", num(x.phase_h)));
         }
-        if free("excitation.phase_v") && cfg.phase_v != 0.0 {
-            parts.push(format!("Φ_v = {}", num(cfg.phase_v)));
+        if free(Param::PhaseV) && x.phase_v != 0.0 {
+            parts.push(format!("Φ_v = {}", num(x.phase_v)));
         }
     }
-    if free("friction.static") && free("friction.kinetic") {
-        if cfg.mu_s.is_infinite() {
+    if free(Param::MuS) && free(Param::MuK) {
+        if cfg.block.mu_s.is_infinite() {
             parts.push("no sliding".to_string());
         } else {
-            parts.push(format!("μ_s = {}, μ_k = {}", num(cfg.mu_s), num(cfg.mu_k)));
+            parts.push(format!(
+                "μ_s = {}, μ_k = {}",
+                num(cfg.block.mu_s),
+                num(cfg.block.kinetic())
+            ));
         }
     }
-    match cfg.law.as_str() {
-        "ratio" if free("impact.r") => parts.push(format!("impact ratio r = {}", num(cfg.r))),
-        "impulse" if free("impact.e") => parts.push(format!("impulse impact, e = {}", num(cfg.e))),
-        "housner" => parts.push(format!("Housner impact (r = {:.4})", cfg.r)),
+    match cfg.impact.law {
+        LawKind::Ratio if free(Param::ImpactR) => parts.push(format!("impact ratio r = {}", num(cfg.impact_r()))),
+        LawKind::Impulse if free(Param::ImpactE) => parts.push(format!("impulse impact, e = {}", num(cfg.impact.e))),
+        LawKind::Housner => parts.push(format!("Housner impact (r = {:.4})", cfg.impact_r())),
         _ => {}
     }
     parts.join(", ")
@@ -178,17 +188,17 @@ pub fn legend_entries(responses: impl Iterator<Item = Response>) -> Vec<Response
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::analysis::steady::ParamBase;
+    use crate::io::config::load;
 
     #[test]
     fn fig4_title_names_its_fixed_parameters() {
-        let cfg = ParamBase::load(Some("fig4"), None, &[]).unwrap().resolve(&[]).unwrap();
+        let cfg = load(Some("fig4"), None, &[]).unwrap();
         assert_eq!(
-            fixed_parameters(&cfg, &["excitation.a_v"]),
+            fixed_parameters(&cfg, &[Param::Av]),
             "B × H = 1 × 4 m, Ω_h = Ω_v = 8, A_h = 3, no sliding, impact ratio r = 0.925"
         );
-        let cfg = ParamBase::load(Some("fig9"), None, &[]).unwrap().resolve(&[]).unwrap();
-        let t = fixed_parameters(&cfg, &["excitation.a_v"]);
+        let cfg = load(Some("fig9"), None, &[]).unwrap();
+        let t = fixed_parameters(&cfg, &[Param::Av]);
         assert!(t.contains("μ_s = 0.4, μ_k = 0.35"), "{t}");
     }
 
@@ -214,8 +224,8 @@ mod tests {
             ]
         );
         assert_eq!(response_label(Response::Periodic { period: 2 }), "period 2 (1,2)");
-        assert_eq!(param_label("excitation.a_v"), "A_v, vertical amplitude (units of ψ g)");
-        assert_eq!(param_label("run.zeno_eps"), "run.zeno_eps");
+        assert_eq!(param_label(Param::Av), "A_v, vertical amplitude (units of ψ g)");
+        assert_eq!(param_label(Param::ZenoEps), "run.zeno_eps");
     }
 
     #[test]

@@ -9,7 +9,6 @@
 //! configuration only (the model's equations are never altered); they are
 //! labelled as variants in every output and are never the default.
 
-use indicatif::ProgressBar;
 use rayon::prelude::*;
 
 use super::ReproduceError;
@@ -18,13 +17,13 @@ use crate::analysis::classify::{ClassifyOptions, Response};
 use crate::analysis::orbit_diagram::{
     BifurcationValue, BlockSweep, Continuation, Grid, Plan, ResponseRange, block_sweep, response_ranges,
 };
-use crate::analysis::steady::{ParamBase, Window, steady_response};
-use crate::io::config::Config;
+use crate::analysis::steady::{Window, steady_response};
+use crate::io::config::load;
 use crate::model::Geometry;
-use crate::sim::simulate;
+use crate::sim::{Param, Scenario, simulate};
 
 /// The swept key of every bifurcation diagram of the paper.
-pub const PARAM: &str = "excitation.a_v";
+pub const PARAM: Param = Param::Av;
 
 /// The paper's vertical restitution e = 0.925 (its section 4.1), used by
 /// the `printed-eq20` variant.
@@ -185,9 +184,9 @@ pub struct Diagram {
     pub figure: u32,
     /// How it was computed.
     pub variant: Variant,
-    /// The base configuration (A_v as in the preset; `run.tau_end` the
+    /// The base scenario (A_v as in the preset; `run.tau_end` the
     /// window's end).
-    pub config: Config,
+    pub config: Scenario,
     /// The `--set` assignments of the variant.
     pub sets: Vec<String>,
     /// Grid, window and classifier.
@@ -211,12 +210,12 @@ pub fn run_diagram(
         what: format!("bifurcation diagram ({})", variant.slug()),
         error: e,
     };
-    let plain = ParamBase::load(Some(figure.preset), None, &[]).map_err(|e| fail(e.to_string()))?;
-    let geo = plain.resolve(&[]).map_err(|e| fail(e.to_string()))?.geometry();
+    let plain = load(Some(figure.preset), None, &[]).map_err(|e| fail(e.to_string()))?;
+    let geo = plain.geometry();
     let sets = variant.sets(&geo);
-    let base = ParamBase::load(Some(figure.preset), None, &sets).map_err(|e| fail(e.to_string()))?;
-    let mut config = base.resolve(&[]).map_err(|e| fail(e.to_string()))?;
-    config.tau_end = settings.window.tau_end;
+    let base = load(Some(figure.preset), None, &sets).map_err(|e| fail(e.to_string()))?;
+    let mut config = base.clone();
+    config.run.tau_end = settings.window.tau_end;
     let plan = Plan::new(settings.grid, variant.continuation(), None).map_err(|e| fail(e.0))?;
     let spec = BlockSweep {
         base: &base,
@@ -225,7 +224,7 @@ pub fn run_diagram(
         classify: settings.classify,
         lyapunov: None,
     };
-    let values = block_sweep(&spec, &plan, &ProgressBar::hidden())
+    let values = block_sweep(&spec, &plan, &crate::analysis::silent)
         .map_err(|e| fail(format!("A_v = {}: {}", e.value, e.error)))?;
     Ok(Diagram {
         figure: figure.number,
@@ -256,7 +255,7 @@ pub fn tumble_times(d: &Diagram) -> Result<Vec<(f64, f64)>, ReproduceError> {
         ));
     }
     let preset = format!("fig{}", d.figure);
-    let base = ParamBase::load(Some(&preset), None, &d.sets).map_err(|e| fail(e.to_string()))?;
+    let base = load(Some(&preset), None, &d.sets).map_err(|e| fail(e.to_string()))?;
     let tumbled: Vec<f64> = d
         .values
         .iter()
@@ -266,15 +265,15 @@ pub fn tumble_times(d: &Diagram) -> Result<Vec<(f64, f64)>, ReproduceError> {
     tumbled
         .par_iter()
         .map(|&a_v| {
-            let mut cfg = base.resolve(&[(PARAM, a_v)]).map_err(|e| fail(e.to_string()))?;
-            cfg.tau_end = d.settings.window.tau_end;
+            let mut cfg = Param::apply(&base, &[(PARAM, a_v)]).map_err(|e| fail(e.to_string()))?;
+            cfg.run.tau_end = d.settings.window.tau_end;
             let model = cfg.model().map_err(|e| fail(e.to_string()))?;
             let mut opts = cfg.run_options();
             opts.output_dt = None;
             // As the diagram ran it (with section points; they no longer
             // shape the step sequence, but the run stays the diagram's).
             opts.section = true;
-            let res = simulate(model, &cfg.initial(), &opts).map_err(|e| fail(format!("A_v = {a_v}: {e}")))?;
+            let res = simulate(model, &cfg.initial, &opts).map_err(|e| fail(format!("A_v = {a_v}: {e}")))?;
             Ok((a_v, res.tumble_tau.unwrap_or(res.tau_end)))
         })
         .collect()
@@ -297,7 +296,7 @@ pub fn tumbled_neighbours(d: &Diagram, from: f64, to: f64, count: usize) -> Resu
         error: e,
     };
     let preset = format!("fig{}", d.figure);
-    let base = ParamBase::load(Some(&preset), None, &d.sets).map_err(|e| fail(e.to_string()))?;
+    let base = load(Some(&preset), None, &d.sets).map_err(|e| fail(e.to_string()))?;
     let tumbled: Vec<f64> = d
         .values
         .iter()
@@ -309,7 +308,7 @@ pub fn tumbled_neighbours(d: &Diagram, from: f64, to: f64, count: usize) -> Resu
         .par_iter()
         .map(|&(a_v, k)| {
             let value = a_v * (1.0 + k as f64 * super::response::NEIGHBOUR_STEP);
-            let cfg = base.resolve(&[(PARAM, value)]).map_err(|e| fail(e.to_string()))?;
+            let cfg = Param::apply(&base, &[(PARAM, value)]).map_err(|e| fail(e.to_string()))?;
             steady_response(&cfg, &d.settings.window, &d.settings.classify, None)
                 .map(|s| s.response)
                 .map_err(|e| fail(format!("A_v = {value}: {e}")))
@@ -686,14 +685,13 @@ mod tests {
         let r = printed_eq20_ratio(&geo, PAPER_E);
         assert!((r - (1.0 - 1.5 * 1.925 / 17.0)).abs() < 1e-12, "{r}");
         for v in Variant::INVESTIGATION {
-            let base = ParamBase::load(Some("fig4"), None, &v.sets(&geo)).unwrap();
-            let cfg = base.resolve(&[]).unwrap();
+            let cfg = load(Some("fig4"), None, &v.sets(&geo)).unwrap();
             match v {
-                Variant::Ralston => assert_eq!(cfg.method.name(), "ralston"),
-                Variant::Housner => assert_eq!(cfg.law, "housner"),
-                Variant::PrintedEq20 => assert_eq!(cfg.r, r),
-                Variant::TumbleAtSide => assert_eq!(cfg.tumble_theta, geo.side_theta()),
-                Variant::FlightStop => assert_eq!(cfg.flight, crate::model::FlightPolicy::Stop),
+                Variant::Ralston => assert_eq!(cfg.run.method().name(), "ralston"),
+                Variant::Housner => assert_eq!(cfg.impact.law.name(), "housner"),
+                Variant::PrintedEq20 => assert_eq!(cfg.impact_r(), r),
+                Variant::TumbleAtSide => assert_eq!(cfg.run.tumble_theta, geo.side_theta()),
+                Variant::FlightStop => assert_eq!(cfg.run.flight, crate::model::FlightPolicy::Stop),
                 Variant::ContinuationUp => assert_eq!(v.continuation(), Continuation::Up),
                 Variant::Paper | Variant::ImpulseLaw | Variant::ImpactRatio(_) => unreachable!(),
             }
@@ -703,11 +701,8 @@ mod tests {
     #[test]
     fn an_impact_ratio_variant_sets_the_ratio_law() {
         let geo = Geometry::new(1.0, 4.0);
-        let cfg = ParamBase::load(Some("fig4"), None, &Variant::ImpactRatio(0.87).sets(&geo))
-            .unwrap()
-            .resolve(&[])
-            .unwrap();
-        assert_eq!((cfg.law.as_str(), cfg.r), ("ratio", 0.87));
+        let cfg = load(Some("fig4"), None, &Variant::ImpactRatio(0.87).sets(&geo)).unwrap();
+        assert_eq!((cfg.impact.law.name(), cfg.impact_r()), ("ratio", 0.87));
         assert_eq!(Variant::ImpactRatio(0.87).slug(), "r0.87");
     }
 

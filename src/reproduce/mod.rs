@@ -31,14 +31,16 @@ pub mod response;
 pub mod scan;
 pub mod write;
 
-use indicatif::ProgressBar;
 use rayon::prelude::*;
 
 use crate::analysis::classify::ClassifyOptions;
 use crate::analysis::orbit_diagram::Grid;
 use crate::analysis::steady::Window;
+use crate::analysis::{Progress, ProgressFn};
 use crate::io::output::OutputError;
 use crate::plot::PlotError;
+use crate::sim::Scenario;
+use crate::sim::scenario::LawKind;
 use diagrams::{Diagram, DiagramSettings, R_SCAN, Variant, run_diagram, tumble_times, tumbled_neighbours};
 use paper::{FIGURES, FigureKind, PaperFigure};
 use response::{
@@ -202,7 +204,15 @@ impl Reproduction {
             .filter_map(|d| match d.variant {
                 Variant::Paper | Variant::Housner | Variant::PrintedEq20 | Variant::ImpactRatio(_) => {
                     let r = d.config.geometry().housner_r();
-                    Some((if d.config.law == "housner" { r } else { d.config.r }, d))
+                    let law = d.config.impact.law;
+                    Some((
+                        if law == LawKind::Housner {
+                            r
+                        } else {
+                            d.config.impact_r()
+                        },
+                        d,
+                    ))
                 }
                 Variant::Ralston
                 | Variant::ContinuationUp
@@ -231,7 +241,7 @@ enum Done {
 }
 
 /// The preset configuration of `f`.
-fn config_of(f: &PaperFigure) -> Result<crate::io::config::Config, ReproduceError> {
+fn config_of(f: &PaperFigure) -> Result<Scenario, ReproduceError> {
     crate::io::config::load(Some(f.preset), None, &[]).map_err(|e| ReproduceError::Figure {
         figure: f.number,
         what: "configuration".to_string(),
@@ -242,8 +252,8 @@ fn config_of(f: &PaperFigure) -> Result<crate::io::config::Config, ReproduceErro
 /// The paper's own impact law (its eqs. 17–27 with e = 0) as a variant of
 /// `cfg`: [`Variant::ImpulseLaw`] where the block can slide, and
 /// [`Variant::Housner`] (the same law without slip) where it cannot.
-pub fn paper_law(cfg: &crate::io::config::Config) -> Variant {
-    if cfg.mu_s.is_finite() {
+pub fn paper_law(cfg: &Scenario) -> Variant {
+    if cfg.block.mu_s.is_finite() {
         Variant::ImpulseLaw
     } else {
         Variant::Housner
@@ -295,7 +305,7 @@ fn jobs(options: &Options) -> Result<Vec<Job>, ReproduceError> {
 
 /// Computes every wanted figure on the current rayon pool; `progress`
 /// advances once per diagram, response example and scan.
-pub fn reproduce(options: &Options, progress: &ProgressBar) -> Result<Reproduction, ReproduceError> {
+pub fn reproduce(options: &Options, progress: &ProgressFn<'_>) -> Result<Reproduction, ReproduceError> {
     if let Some(only) = &options.only
         && let Some(bad) = only.iter().find(|n| paper::figure(**n).is_none())
     {
@@ -312,7 +322,7 @@ pub fn reproduce(options: &Options, progress: &ProgressBar) -> Result<Reproducti
     let response_settings = options.response_settings();
     let classify = diagram_settings.classify;
     let jobs = jobs(options)?;
-    progress.set_length(jobs.len() as u64 + u64::from(options.wants(SCANNED)));
+    progress(Progress::Total(jobs.len() as u64 + u64::from(options.wants(SCANNED))));
     let done = jobs
         .par_iter()
         .map(|job| {
@@ -322,7 +332,7 @@ pub fn reproduce(options: &Options, progress: &ProgressBar) -> Result<Reproducti
                 Job::ResponseVariant(f, v) => run_response_variant(f, v, &response_settings, &classify)
                     .map(|r| Done::ResponseVariant(Box::new(r))),
             };
-            progress.inc(1);
+            progress(Progress::Done);
             out
         })
         .collect::<Result<Vec<_>, _>>()?;
@@ -365,7 +375,7 @@ pub fn reproduce(options: &Options, progress: &ProgressBar) -> Result<Reproducti
             options.scan_window(),
             if options.quick { 4 } else { 8 },
         )?);
-        progress.inc(1);
+        progress(Progress::Done);
     }
     let tumbles = diagrams
         .iter()

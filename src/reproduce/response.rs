@@ -25,9 +25,9 @@ use crate::analysis::classify::{ClassifyOptions, Response, classify_points};
 use crate::analysis::lyapunov::{Lyapunov, LyapunovOptions, Method, NoExponent, lyapunov};
 use crate::analysis::section::{after_transient, block_coordinates};
 use crate::analysis::spectrum::{PAPER_DT, Peak, SpectrumOptions, SpectrumWindow, theta_spectrum};
-use crate::analysis::steady::{ParamBase, Window, steady_response};
-use crate::io::config::Config;
-use crate::sim::{Outcome, simulate};
+use crate::analysis::steady::{Window, steady_response};
+use crate::io::config::load;
+use crate::sim::{Outcome, Param, Scenario, simulate};
 
 /// Sampling step of the paper's run, τ (the paper's integration step).
 pub const HISTORY_DT: f64 = PAPER_DT;
@@ -128,7 +128,7 @@ pub struct ResponseExample {
     /// The paper's figure number.
     pub figure: u32,
     /// The configuration (the preset; `run.tau_end` that of the paper's run).
-    pub config: Config,
+    pub config: Scenario,
     /// The run lengths.
     pub settings: ResponseSettings,
     /// How the paper's run ended.
@@ -196,14 +196,14 @@ pub fn run_response(
         what: what.to_string(),
         error: e,
     };
-    let base = ParamBase::load(Some(figure.preset), None, &[]).map_err(|e| fail("configuration", e.to_string()))?;
-    let mut config = base.resolve(&[]).map_err(|e| fail("configuration", e.to_string()))?;
-    config.tau_end = settings.history_end;
+    let base = load(Some(figure.preset), None, &[]).map_err(|e| fail("configuration", e.to_string()))?;
+    let mut config = base.clone();
+    config.run.tau_end = settings.history_end;
     let model = config.model().map_err(|e| fail("configuration", e.to_string()))?;
     let Some(period) = model.excitation.forcing_period() else {
         return Err(fail("configuration", "the excitation is not harmonic".to_string()));
     };
-    let init = config.initial();
+    let init = config.initial;
 
     // 1. The paper's run.
     let mut opts = config.run_options();
@@ -228,7 +228,7 @@ pub fn run_response(
         .map(|r| r.theta.abs())
         .reduce(f64::max);
     let spec_opts = SpectrumOptions::default();
-    let omega_h = config.omega_h;
+    let omega_h = config.excitation.omega_h;
     let spectrum_paper = spectrum(&paper.history, SpectrumWindow::Paper, &spec_opts, omega_h);
 
     // 2. The long run.
@@ -278,10 +278,8 @@ pub fn run_response(
     // 4. The neighbours.
     let neighbours = (1..=settings.neighbours)
         .map(|k| {
-            let a_v = config.a_v * (1.0 + k as f64 * NEIGHBOUR_STEP);
-            let cfg = base
-                .resolve(&[("excitation.a_v", a_v)])
-                .map_err(|e| fail("neighbouring runs", e.to_string()))?;
+            let a_v = config.excitation.a_v * (1.0 + k as f64 * NEIGHBOUR_STEP);
+            let cfg = Param::apply(&base, &[(Param::Av, a_v)]).map_err(|e| fail("neighbouring runs", e.to_string()))?;
             let w = Window {
                 transient: settings.transient,
                 tau_end: settings.history_end,
@@ -436,8 +434,8 @@ pub struct ResponseVariant {
 /// the printed eq. 20 (r = 0.830) for every figure, and the paper's
 /// impact law with friction (eqs. 17–27) where the block can slide
 /// (without sliding it is Housner's law).
-pub fn response_variants(cfg: &Config) -> Vec<Variant> {
-    if cfg.mu_s.is_finite() {
+pub fn response_variants(cfg: &Scenario) -> Vec<Variant> {
+    if cfg.block.mu_s.is_finite() {
         vec![Variant::Housner, Variant::ImpulseLaw, Variant::PrintedEq20]
     } else {
         vec![Variant::Housner, Variant::PrintedEq20]
@@ -457,20 +455,17 @@ pub fn run_response_variant(
         what: format!("{what} ({})", variant.slug()),
         error: e,
     };
-    let plain = ParamBase::load(Some(figure.preset), None, &[]).map_err(|e| fail("configuration", e.to_string()))?;
-    let geo = plain
-        .resolve(&[])
-        .map_err(|e| fail("configuration", e.to_string()))?
-        .geometry();
+    let plain = load(Some(figure.preset), None, &[]).map_err(|e| fail("configuration", e.to_string()))?;
+    let geo = plain.geometry();
     let sets = variant.sets(&geo);
-    let base = ParamBase::load(Some(figure.preset), None, &sets).map_err(|e| fail("configuration", e.to_string()))?;
-    let mut config = base.resolve(&[]).map_err(|e| fail("configuration", e.to_string()))?;
-    config.tau_end = settings.history_end;
+    let base = load(Some(figure.preset), None, &sets).map_err(|e| fail("configuration", e.to_string()))?;
+    let mut config = base;
+    config.run.tau_end = settings.history_end;
     let model = config.model().map_err(|e| fail("configuration", e.to_string()))?;
     let Some(period) = model.excitation.forcing_period() else {
         return Err(fail("configuration", "the excitation is not harmonic".to_string()));
     };
-    let init = config.initial();
+    let init = config.initial;
     let mut opts = config.run_options();
     opts.output_dt = None;
     opts.section = true;

@@ -9,7 +9,6 @@ use super::ReproduceError;
 use super::diagrams::{Diagram, PARAM};
 use crate::analysis::classify::Response;
 use crate::analysis::lyapunov::{Lyapunov, LyapunovOptions, Method, lyapunov};
-use crate::analysis::steady::ParamBase;
 use crate::io::presets;
 
 /// The exponent of one value of a diagram.
@@ -59,8 +58,8 @@ pub fn lyapunov_scan(diagram: &Diagram, window: (f64, f64), batches: usize) -> R
     if presets::get(&preset).is_none() {
         return Err(fail(format!("no preset {preset}")));
     }
-    let base = ParamBase::load(Some(&preset), None, &diagram.sets).map_err(|e| fail(e.to_string()))?;
-    let period = std::f64::consts::TAU / diagram.config.omega_h;
+    let base = crate::io::config::load(Some(&preset), None, &diagram.sets).map_err(|e| fail(e.to_string()))?;
+    let period = std::f64::consts::TAU / diagram.config.excitation.omega_h;
     let opts = LyapunovOptions {
         method: Method::Tangent,
         transient_tau: window.0,
@@ -77,9 +76,9 @@ pub fn lyapunov_scan(diagram: &Diagram, window: (f64, f64), batches: usize) -> R
     let points = targets
         .par_iter()
         .map(|&(a_v, response)| {
-            let cfg = base.resolve(&[(PARAM, a_v)]).map_err(|e| fail(e.to_string()))?;
+            let cfg = crate::sim::Param::apply(&base, &[(PARAM, a_v)]).map_err(|e| fail(e.to_string()))?;
             let model = cfg.model().map_err(|e| fail(e.to_string()))?;
-            let exponent = match lyapunov(&model, &cfg.initial(), &opts) {
+            let exponent = match lyapunov(&model, &cfg.initial, &opts) {
                 Ok(Lyapunov::Exponents(r)) => Ok((r.largest_per_tau, r.stderr)),
                 Ok(Lyapunov::None { no_exponent, tau, .. }) => {
                     Err(format!("no exponent: {} at τ = {tau:.1}", no_exponent.name()))

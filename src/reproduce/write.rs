@@ -18,7 +18,7 @@ use super::response::{ResponseExample, SpectrumData};
 use super::{ReproduceError, Reproduction};
 use crate::analysis::classify::Response;
 use crate::analysis::lyapunov::Lyapunov;
-use crate::io::config::Config;
+use crate::io::config::to_json;
 use crate::io::output::OutputError;
 use crate::plot::Figure;
 use crate::plot::bifurcation::BifurcationFigure;
@@ -28,6 +28,8 @@ use crate::plot::poincare::PoincareFigure;
 use crate::plot::spectrum::SpectrumFigure;
 use crate::plot::time_history::TimeHistoryFigure;
 use crate::sim::Outcome;
+use crate::sim::Scenario;
+use crate::sim::scenario::LawKind;
 
 /// Where the files go: an output directory that is committed at the end.
 pub trait Sink {
@@ -63,33 +65,38 @@ pub fn diagram_stem(d: &Diagram) -> String {
 
 /// The parameters that define a response in a short line:
 /// `Ω_h = Ω_v = 8, A_h = 2, A_v = 2.5, no sliding`.
-pub fn short_params(cfg: &Config, with_a_v: bool) -> String {
+pub fn short_params(cfg: &Scenario, with_a_v: bool) -> String {
+    let x = &cfg.excitation;
     let mut parts = Vec::new();
-    if cfg.omega_h == cfg.omega_v {
-        parts.push(format!("Ω_h = Ω_v = {}", num(cfg.omega_h)));
+    if x.omega_h == x.omega_v() {
+        parts.push(format!("Ω_h = Ω_v = {}", num(x.omega_h)));
     } else {
-        parts.push(format!("Ω_h = {}, Ω_v = {}", num(cfg.omega_h), num(cfg.omega_v)));
+        parts.push(format!("Ω_h = {}, Ω_v = {}", num(x.omega_h), num(x.omega_v())));
     }
-    parts.push(format!("A_h = {}", num(cfg.a_h)));
+    parts.push(format!("A_h = {}", num(x.a_h)));
     if with_a_v {
-        parts.push(format!("A_v = {}", num(cfg.a_v)));
+        parts.push(format!("A_v = {}", num(x.a_v)));
     }
-    if cfg.mu_s.is_infinite() {
+    if cfg.block.mu_s.is_infinite() {
         parts.push("no sliding".to_string());
     } else {
-        parts.push(format!("μ_s = {}, μ_k = {}", num(cfg.mu_s), num(cfg.mu_k)));
+        parts.push(format!(
+            "μ_s = {}, μ_k = {}",
+            num(cfg.block.mu_s),
+            num(cfg.block.kinetic())
+        ));
     }
     parts.join(", ")
 }
 
 /// The impact law and block in a short line: `B × H = 1 × 4 m, impact ratio r = 0.925`.
-pub fn block_and_impact(cfg: &Config) -> String {
-    let law = match cfg.law.as_str() {
-        "housner" => format!("Housner impact r = {:.4}", cfg.geometry().housner_r()),
-        "impulse" => format!("impulse impact e = {}", num(cfg.e)),
-        _ => format!("impact ratio r = {}", short_num(cfg.r)),
+pub fn block_and_impact(cfg: &Scenario) -> String {
+    let law = match cfg.impact.law {
+        LawKind::Housner => format!("Housner impact r = {:.4}", cfg.geometry().housner_r()),
+        LawKind::Impulse => format!("impulse impact e = {}", num(cfg.impact.e)),
+        LawKind::Ratio => format!("impact ratio r = {}", short_num(cfg.impact_r())),
     };
-    format!("B × H = {} × {} m, {law}", num(cfg.width), num(cfg.height))
+    format!("B × H = {} × {} m, {law}", num(cfg.block.width), num(cfg.block.height))
 }
 
 /// A number with at most 4 decimals, trailing zeros dropped.
@@ -178,8 +185,8 @@ fn bifurcation_figure<'a>(
             format!(
                 "{}; B × H = {} × {} m",
                 short_params(&d.config, false),
-                num(d.config.width),
-                num(d.config.height)
+                num(d.config.block.width),
+                num(d.config.block.height)
             ),
         )
     };
@@ -277,8 +284,8 @@ fn write_ratio_map(
         ),
         subtitle: format!(
             "B × H = {} × {} m, ratio impact law (0.925 = preset, 0.9118 = Housner, 0.830 = eq. 20 as printed); Θ at τ_k for {} ≤ τ_k ≤ {}, from rest",
-            num(first.config.width),
-            num(first.config.height),
+            num(first.config.block.width),
+            num(first.config.block.height),
             num(w.transient),
             num(w.tau_end)
         ),
@@ -331,7 +338,7 @@ fn write_response(sink: &mut dyn Sink, r: &ResponseExample, names: &mut Vec<Stri
         ),
         tau: &tau,
         theta: &theta,
-        tumble_theta: Some(r.config.tumble_theta),
+        tumble_theta: Some(r.config.run.tumble_theta),
     };
     write_figure(sink, &format!("{stem}time_history"), &th, names)?;
     if let Ok(s) = &r.spectrum_paper {
@@ -397,7 +404,7 @@ fn reproduction_json(rep: &Reproduction) -> Json {
                     "from": r.from, "to": r.to, "outcome": r.response.name(), "period": r.response.period(),
                 })).collect::<Vec<_>>(),
                 "paper_comparison": comparison,
-                "config": d.config.to_json(),
+                "config": to_json(&d.config),
             })
         })
         .collect();
@@ -434,7 +441,7 @@ fn reproduction_json(rep: &Reproduction) -> Json {
                 })),
                 "steady_from": r.steady_from,
                 "neighbours": r.neighbours.iter().map(|x| x.to_string()).collect::<Vec<_>>(),
-                "config": r.config.to_json(),
+                "config": to_json(&r.config),
             })
         })
         .collect();

@@ -1,13 +1,20 @@
 //! Runs a block model with a chosen method and collects its outputs.
 //!
-//! This layer connects a concrete [`Model`](crate::model::Model) to a
+//! This layer holds the typed [`Scenario`] (what to run, validated once) and
+//! the typed [`Param`]s that analyses vary, and connects a concrete
+//! [`Model`](crate::model::Model) to a
 //! [`Stepper`](crate::integrate::Stepper) through the hybrid driver. It
-//! knows nothing of files or windows.
+//! knows nothing of files, config keys read from text, or windows.
 
 mod collect;
+pub mod param;
 pub mod protocol;
 mod run;
 pub mod runner;
+pub mod scenario;
+mod validate;
 
 pub use collect::{HistoryRow, SectionRow};
+pub use param::Param;
 pub use run::{EnergyAudit, InitialState, Method, Outcome, RunOptions, RunResult, SimError, initial_mode, simulate};
+pub use scenario::{Scenario, ScenarioError};

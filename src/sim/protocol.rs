@@ -18,7 +18,7 @@
 //!
 //! This module knows nothing of windows; the app turns these into pictures.
 
-use crate::io::config::Config;
+use super::Scenario;
 use crate::model::geometry::Geometry;
 use crate::model::system::EventRecord;
 use crate::model::{Mode, Sign, energy};
@@ -64,7 +64,7 @@ pub enum SimCommand {
         /// Id of the new run.
         run: RunId,
         /// The validated configuration.
-        config: Box<Config>,
+        scenario: Box<Scenario>,
     },
     /// Restart the current configuration from τ = 0.
     Reset {
@@ -167,7 +167,7 @@ pub struct GhostState {
 #[derive(Clone, Debug, PartialEq)]
 pub struct RunInfo {
     /// The configuration being run.
-    pub config: Config,
+    pub scenario: Scenario,
     /// The block's geometry (for the scene and the τ ↔ seconds conversion).
     pub geometry: Geometry,
     /// Period of the stroboscopic section, τ; `None` without harmonic

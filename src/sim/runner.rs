@@ -43,7 +43,7 @@ use crossbeam_channel::{Receiver, RecvTimeoutError, Sender, TrySendError};
 pub use session::{LIVE_SAMPLE_DT, MAX_CHUNK, Session, Start};
 
 use super::protocol::{Batch, MAX_GHOSTS, RunEnd, RunId, Sample, SimCommand, SimUpdate, Speed};
-use crate::io::config::Config;
+use crate::sim::Scenario;
 
 /// Wakes the consumer after a message is sent (the app's repaint request).
 pub type Waker = Box<dyn Fn() + Send + Sync>;
@@ -87,9 +87,9 @@ pub struct SimHandle {
 }
 
 impl SimHandle {
-    /// Starts the thread on run 1 of `config`, at `speed`, paused if
+    /// Starts the thread on run 1 of `scenario`, at `speed`, paused if
     /// `paused`. `waker` is called after every message sent.
-    pub fn spawn(config: Config, speed: Speed, paused: bool, waker: Waker) -> Result<Self, StartError> {
+    pub fn spawn(scenario: Scenario, speed: Speed, paused: bool, waker: Waker) -> Result<Self, StartError> {
         let (cmd_tx, cmd_rx) = crossbeam_channel::unbounded();
         let (up_tx, up_rx) = crossbeam_channel::bounded(UPDATE_CAPACITY);
         let run = RunId(1);
@@ -105,7 +105,7 @@ impl SimHandle {
             anchor: None,
             ghosts: (0, 0.0),
             deferred_finish: false,
-            config: config.clone(),
+            scenario: scenario.clone(),
         };
         let thread = std::thread::Builder::new()
             .name("sim".into())
@@ -134,17 +134,17 @@ impl SimHandle {
         let _ = self.commands.send(cmd);
     }
 
-    /// Starts a new run of `config` from τ = 0; returns its id.
-    pub fn set_params(&mut self, config: Config) -> RunId {
+    /// Starts a new run of `scenario` from τ = 0; returns its id.
+    pub fn set_params(&mut self, scenario: Scenario) -> RunId {
         let run = self.next_run();
         self.send(SimCommand::SetParams {
             run,
-            config: Box::new(config),
+            scenario: Box::new(scenario),
         });
         run
     }
 
-    /// Restarts the current config from τ = 0; returns the new run's id.
+    /// Restarts the current scenario from τ = 0; returns the new run's id.
     pub fn reset(&mut self) -> RunId {
         let run = self.next_run();
         self.send(SimCommand::Reset { run });
@@ -249,7 +249,7 @@ struct Worker {
     deferred_finish: bool,
     /// The configuration last asked for (what `Reset` restarts, even when
     /// it failed to start).
-    config: Config,
+    scenario: Scenario,
 }
 
 enum Flow {
@@ -259,8 +259,8 @@ enum Flow {
 
 impl Worker {
     fn run(mut self, run: RunId) {
-        let config = self.config.clone();
-        self.start(run, |r| Session::new(r, &config, Start::Initial));
+        let scenario = self.scenario.clone();
+        self.start(run, |r| Session::new(r, &scenario, Start::Initial));
         loop {
             let flow = match self.wait() {
                 Some(cmd) => self.handle(cmd),
@@ -314,14 +314,14 @@ impl Worker {
     fn handle(&mut self, cmd: SimCommand) -> Flow {
         match cmd {
             SimCommand::Shutdown => return Flow::Stop,
-            SimCommand::SetParams { run, config } => {
-                self.config = *config;
-                let config = self.config.clone();
-                self.start(run, |r| Session::new(r, &config, Start::Initial));
+            SimCommand::SetParams { run, scenario } => {
+                self.scenario = *scenario;
+                let scenario = self.scenario.clone();
+                self.start(run, |r| Session::new(r, &scenario, Start::Initial));
             }
             SimCommand::Reset { run } => {
-                let config = self.config.clone();
-                self.start(run, |r| Session::new(r, &config, Start::Initial));
+                let scenario = self.scenario.clone();
+                self.start(run, |r| Session::new(r, &scenario, Start::Initial));
             }
             SimCommand::ResetPerturbed { run, eps } => {
                 let last = self.last_sample;
@@ -386,7 +386,7 @@ impl Worker {
                 self.queue_paused();
             }
             Err(msg) => {
-                // Keep the old session's config for a later Reset, but it no
+                // Keep the old session's scenario for a later Reset, but it no
                 // longer produces output under the new id.
                 self.session = None;
                 self.outbox.push_back(SimUpdate::Finished {
@@ -551,11 +551,11 @@ fn merge(waiting: &mut Batch, next: Batch) {
     waiting.tau = next.tau;
 }
 
-/// Runs run `run` of `config` synchronously to `tau_end` (or its end) and
+/// Runs run `run` of `scenario` synchronously to `tau_end` (or its end) and
 /// returns what the thread would have streamed: `Started`, one `Batch`,
 /// and `Finished` if the run ended. For fixed streams (snapshots, tests).
-pub fn record(run: RunId, config: &Config, tau_end: f64) -> Vec<SimUpdate> {
-    let mut s = match Session::new(run, config, Start::Initial) {
+pub fn record(run: RunId, scenario: &Scenario, tau_end: f64) -> Vec<SimUpdate> {
+    let mut s = match Session::new(run, scenario, Start::Initial) {
         Ok(s) => s,
         Err(msg) => {
             return vec![SimUpdate::Finished {

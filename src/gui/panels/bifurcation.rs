@@ -31,9 +31,9 @@ use egui_plot::{Legend, Plot, PlotBounds, PlotPoint, PlotPoints, Points, Polygon
 use self::sweeper::{Column, MAX_VALUES, Reply, Request, Sweeper};
 use crate::analysis::classify::Response;
 use crate::analysis::orbit_diagram::Grid;
-use crate::analysis::steady::{ParamBase, Window};
+use crate::analysis::steady::Window;
 use crate::gui::settings::Settings;
-use crate::io::config::{Config, KNOWN_KEYS};
+use crate::sim::{Param, Scenario};
 
 /// The interactive window: transient 200 τ, end 300 τ. At Ω_h = 8 that is
 /// 128 section points per value (the classifier needs 64), and a third of
@@ -144,36 +144,24 @@ pub fn default_range(param: &str, current: f64) -> (f64, f64) {
 }
 
 /// The numeric keys a sweep may vary, with their current values in `cfg`
-/// (infinite for `inf`). Solver and analysis settings are left out: the
-/// window replaces the run's end, and the others do not change the physics.
-pub fn sweepable(cfg: &Config) -> Vec<(String, f64)> {
-    let json = cfg.to_json();
-    let mut out = Vec::new();
-    for (section, keys) in KNOWN_KEYS {
-        if matches!(*section, "run" | "analysis") {
-            continue;
-        }
-        for key in *keys {
-            if *key == "cycles" {
-                continue;
-            }
-            let value = match &json[*section][*key] {
-                serde_json::Value::Number(n) => n.as_f64(),
-                serde_json::Value::String(s) if s == "inf" => Some(f64::INFINITY),
-                _ => None,
-            };
-            if let Some(v) = value {
-                out.push((format!("{section}.{key}"), v));
-            }
-        }
-    }
-    out
+/// (infinite for `inf`). Solver settings are left out: the window replaces
+/// the run's end, and the others do not change the physics.
+pub fn sweepable(cfg: &Scenario) -> Vec<(String, f64)> {
+    Param::ALL
+        .into_iter()
+        .filter(|p| !p.key().starts_with("run."))
+        .filter(|p| *p != Param::XDot0 || cfg.initial.x_dot.is_some())
+        .map(|p| (p.key().to_string(), p.get(cfg)))
+        .collect()
 }
 
 /// The current value of `param` in `cfg`, if it is a finite number.
-fn current_value(cfg: &Config, param: &str) -> Option<f64> {
-    let (section, key) = param.split_once('.')?;
-    cfg.to_json()[section][key].as_f64().filter(|v| v.is_finite())
+fn current_value(cfg: &Scenario, param: &str) -> Option<f64> {
+    sweepable(cfg)
+        .into_iter()
+        .find(|(k, _)| k == param)
+        .map(|(_, v)| v)
+        .filter(|v| v.is_finite())
 }
 
 /// Colour of a response class in the diagram.
@@ -300,9 +288,18 @@ impl BifurcationView {
             }
         };
         self.expected = grid.count;
+        let base = settings.resolve();
+        let param = crate::io::config::param(&self.param).map_err(|e| e.to_string());
+        let (base, param) = match (base, param) {
+            (Ok(b), Ok(p)) => (b, p),
+            (Err(e), _) | (_, Err(e)) => {
+                self.invalid = Some(e);
+                return;
+            }
+        };
         let req = Request {
-            base: ParamBase::from_table(settings.table.clone(), settings.source.clone()),
-            param: self.param.clone(),
+            base,
+            param,
             grid,
             window: self.window,
         };
@@ -349,7 +346,7 @@ impl BifurcationView {
         self.edit = (x0, x1, self.count);
     }
 
-    fn full_range(&mut self, cfg: &Config) {
+    fn full_range(&mut self, cfg: &Scenario) {
         let (from, to) = default_range(&self.param, current_value(cfg, &self.param).unwrap_or(0.0));
         self.from = from;
         self.to = to;
@@ -359,7 +356,7 @@ impl BifurcationView {
 
     /// Draws the view for the scene `settings` (resolved to `cfg`),
     /// starting or restarting the sweep as needed.
-    pub fn show(&mut self, ui: &mut egui::Ui, settings: &Settings, cfg: &Config) {
+    pub fn show(&mut self, ui: &mut egui::Ui, settings: &Settings, cfg: &Scenario) {
         self.retired.retain(|s| !s.finished());
         self.receive();
         self.controls(ui, cfg);
@@ -371,7 +368,7 @@ impl BifurcationView {
         self.plot(ui, cfg);
     }
 
-    fn controls(&mut self, ui: &mut egui::Ui, cfg: &Config) {
+    fn controls(&mut self, ui: &mut egui::Ui, cfg: &Scenario) {
         ui.horizontal_wrapped(|ui| {
             let label = ui.label("Sweep");
             let keys = sweepable(cfg);
@@ -463,7 +460,7 @@ impl BifurcationView {
         });
     }
 
-    fn plot(&mut self, ui: &mut egui::Ui, cfg: &Config) {
+    fn plot(&mut self, ui: &mut egui::Ui, cfg: &Scenario) {
         let current = current_value(cfg, &self.param);
         let (from, to) = (self.from, self.to);
         let y_zoom = self.y_zoom;

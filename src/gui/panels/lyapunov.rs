@@ -26,7 +26,7 @@ use egui::Color32;
 use egui_plot::{HLine, Line, Plot, PlotPoints};
 
 use crate::analysis::lyapunov::{Lyapunov, LyapunovOptions, Method, lyapunov};
-use crate::io::config::Config;
+use crate::sim::Scenario;
 
 /// Discarded start of every window, τ. 200 τ (a third of the paper's 600)
 /// keeps the first number quick; the longer stages dilute what remains of
@@ -57,7 +57,7 @@ struct Worker {
 }
 
 impl Worker {
-    fn start(cfg: Config, waker: Arc<dyn Fn() + Send + Sync>) -> Result<Self, String> {
+    fn start(cfg: Scenario, waker: Arc<dyn Fn() + Send + Sync>) -> Result<Self, String> {
         let cancel = Arc::new(AtomicBool::new(false));
         let flag = Arc::clone(&cancel);
         let (tx, rx) = unbounded();
@@ -74,7 +74,7 @@ impl Worker {
                         return waker();
                     }
                 };
-                let init = cfg.initial();
+                let init = cfg.initial;
                 for total_tau in STAGES {
                     if flag.load(Ordering::Relaxed) {
                         return;
@@ -124,7 +124,7 @@ impl Drop for Worker {
 /// The Lyapunov view's state.
 #[derive(Default)]
 pub struct LyapunovView {
-    key: Option<Config>,
+    key: Option<Scenario>,
     worker: Option<Worker>,
     retired: Vec<Worker>,
     latest: Option<Stage>,
@@ -167,7 +167,7 @@ impl LyapunovView {
         }
     }
 
-    fn restart(&mut self, cfg: &Config, ctx: &egui::Context) {
+    fn restart(&mut self, cfg: &Scenario, ctx: &egui::Context) {
         if let Some(w) = self.worker.take() {
             w.cancel.store(true, Ordering::Relaxed);
             self.retired.push(w);
@@ -187,7 +187,7 @@ impl LyapunovView {
 
     /// Draws the view for the scene `cfg`, (re)starting the estimate when
     /// the scene changed.
-    pub fn show(&mut self, ui: &mut egui::Ui, cfg: &Config) {
+    pub fn show(&mut self, ui: &mut egui::Ui, cfg: &Scenario) {
         self.retired.retain(|w| !w.finished());
         if self.key.as_ref() != Some(cfg) {
             self.restart(cfg, ui.ctx());

@@ -1,12 +1,12 @@
 //! The parameter panel: every config key, grouped as block, friction,
 //! impact, excitation, initial state and solver, each with its unit, range
 //! and a tooltip. A value is committed when its field loses focus (or on
-//! Enter); the whole scene is then re-validated by `Config::from_table`, and
+//! Enter); the whole scene is then re-validated by `Scenario::from_table`, and
 //! a refused value leaves the scene unchanged and shows the one-line reason.
 
 use std::collections::HashMap;
 
-use crate::io::config::Config;
+use crate::sim::Scenario;
 
 /// How a key is edited.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -271,12 +271,12 @@ pub struct Edits {
 /// Draws the panel. Returns the `(key, raw value)` the user committed, if any.
 pub fn show(
     ui: &mut egui::Ui,
-    cfg: &Config,
+    cfg: &Scenario,
     explicit: &dyn Fn(&str) -> bool,
     edits: &mut Edits,
 ) -> Option<(&'static str, String)> {
     let mut commit = None;
-    let json = cfg.to_json();
+    let json = crate::io::config::to_json(cfg);
     for (group, keys) in GROUPS {
         egui::CollapsingHeader::new(*group)
             .default_open(matches!(*group, "Block" | "Friction" | "Excitation" | "Initial state"))

@@ -6,7 +6,7 @@
 //! forcing period, split so that no chunk exceeds [`MAX_CHUNK`]). A chunk
 //! ends with the step that reaches its end, taken whole
 //! ([`Driver::advance_past`]), so chunk ends put no stops in the step
-//! sequence: a live run with the same config follows the batch trajectory
+//! sequence: a live run with the same scenario follows the batch trajectory
 //! bit for bit (up to the batch run's last step, shortened to end on its
 //! τ_end), whatever the playback speed or pauses. (The paper's fixed-step
 //! method stops on chunk ends, which are its section-time stops.) What a
@@ -18,9 +18,9 @@ use std::collections::VecDeque;
 
 use crate::integrate::hybrid::{Advance, Driver, Observer, Outputs};
 use crate::integrate::{Dop853, Dopri5, Ralston, Stepper, Taylor};
-use crate::io::config::Config;
 use crate::model::system::{EventRecord, ModelError, N, THETA, THETA_DOT, X, X_DOT};
 use crate::model::{BlockSystem, Mode};
+use crate::sim::Scenario;
 use crate::sim::protocol::{BaseMotion, Batch, GhostState, RunEnd, RunId, RunInfo, Sample, SectionPoint};
 use crate::sim::{InitialState, Method, initial_mode};
 
@@ -53,8 +53,8 @@ macro_rules! with_driver {
 }
 
 impl AnyDriver {
-    fn new(config: &Config, system: BlockSystem, mode: Mode, t0: f64, y0: [f64; N], outputs: Outputs) -> Self {
-        let opts = config.run_options();
+    fn new(scenario: &Scenario, system: BlockSystem, mode: Mode, t0: f64, y0: [f64; N], outputs: Outputs) -> Self {
+        let opts = scenario.run_options();
         fn make<S: Stepper<N>>(
             s: S,
             system: BlockSystem,
@@ -208,7 +208,7 @@ impl ChunkGrid {
 /// Where a run starts.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Start {
-    /// τ = 0 and the config's initial state.
+    /// τ = 0 and the scenario's initial state.
     Initial,
     /// From the state `y` in `mode` at `tau`, with Θ increased by `eps`.
     Perturbed {
@@ -276,15 +276,15 @@ pub struct Session {
 }
 
 impl Session {
-    /// Starts run `run` of `config` from `start`. Errors (a record file that
+    /// Starts run `run` of `scenario` from `start`. Errors (a record file that
     /// cannot be read, an inadmissible start) are one-line messages.
-    pub fn new(run: RunId, config: &Config, start: Start) -> Result<Self, String> {
-        let model = config.model().map_err(|e| e.to_string())?;
+    pub fn new(run: RunId, scenario: &Scenario, start: Start) -> Result<Self, String> {
+        let model = scenario.model().map_err(|e| e.to_string())?;
         let section_period = model.excitation.forcing_period();
         let mut system = BlockSystem::new(model);
         let (tau0, mode0, y0) = match start {
             Start::Initial => {
-                let (m, mut y) = initial_mode(&system.model, &config.initial()).map_err(|e| e.to_string())?;
+                let (m, mut y) = initial_mode(&system.model, &scenario.initial).map_err(|e| e.to_string())?;
                 let m = system.settle(m, 0.0, &mut y);
                 (0.0, m, y)
             }
@@ -314,11 +314,11 @@ impl Session {
             section_period,
         };
         let geometry = system.model.geo;
-        let driver = AnyDriver::new(config, system, mode0, tau0, y0, outputs);
+        let driver = AnyDriver::new(scenario, system, mode0, tau0, y0, outputs);
         Ok(Self {
             run,
             info: RunInfo {
-                config: config.clone(),
+                scenario: scenario.clone(),
                 geometry,
                 section_period,
                 tau0,
@@ -501,7 +501,7 @@ impl Session {
                 sample_dt: Some(LIVE_SAMPLE_DT),
                 section_period: None,
             };
-            let mut driver = AnyDriver::new(&self.info.config, system, m, tau, y0, outputs);
+            let mut driver = AnyDriver::new(&self.info.scenario, system, m, tau, y0, outputs);
             let mut states = VecDeque::new();
             // Bring the ghost level with the main trajectory's computed τ.
             let done = !matches!(
@@ -521,10 +521,10 @@ impl Session {
         }
     }
 
-    /// A new run of the same config from the state shown at the playhead,
+    /// A new run of the same scenario from the state shown at the playhead,
     /// with Θ + `eps`.
     pub fn perturbed(&self, run: RunId, eps: f64, last_sample: Option<&Sample>) -> Result<Session, String> {
         let (tau, mode, y) = self.shown_state(last_sample);
-        Session::new(run, &self.info.config, Start::Perturbed { tau, y, mode, eps })
+        Session::new(run, &self.info.scenario, Start::Perturbed { tau, y, mode, eps })
     }
 }

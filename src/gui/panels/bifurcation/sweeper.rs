@@ -22,11 +22,11 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::thread::JoinHandle;
 
 use crossbeam_channel::{Receiver, Sender, unbounded};
-use indicatif::ProgressBar;
 
 use crate::analysis::classify::{ClassifyOptions, Response};
 use crate::analysis::orbit_diagram::{BlockSweep, Continuation, Grid, Plan, sweep};
-use crate::analysis::steady::{ParamBase, Window, steady_response};
+use crate::analysis::steady::{Window, steady_response};
+use crate::sim::{Param, Scenario};
 
 /// Most values one interactive sweep may have: 2001 values of 255 points
 /// each is about 4 MB, and more columns than a screen has pixels add nothing.
@@ -36,9 +36,9 @@ pub const MAX_VALUES: usize = 2001;
 #[derive(Clone, Debug)]
 pub struct Request {
     /// The scene with the swept key free.
-    pub base: ParamBase,
-    /// The swept key, `section.key`.
-    pub param: String,
+    pub base: Scenario,
+    /// The swept parameter.
+    pub param: Param,
     /// The values.
     pub grid: Grid,
     /// Transient and end of each run, τ.
@@ -152,22 +152,21 @@ fn run(req: &Request, cancel: &AtomicBool, tx: &Sender<Reply>, waker: &Waker) {
     let classify = ClassifyOptions::default();
     let spec = BlockSweep {
         base: &req.base,
-        param: &req.param,
+        param: req.param,
         window: req.window,
         classify,
         lyapunov: None,
     };
     // Every value's configuration is checked before anything runs.
-    if let Err(e) = spec.configs(&plan) {
+    if let Err(e) = spec.scenarios(&plan) {
         return send(Reply::Invalid(e.to_string()));
     }
-    let result = sweep(&plan, &ProgressBar::hidden(), |value, _: Option<&()>| {
+    let result = sweep(&plan, &crate::analysis::silent, |value, _: Option<&()>| {
         if cancel.load(Ordering::Relaxed) {
             return Err(Cancelled);
         }
-        let out = req
-            .base
-            .resolve(&[(req.param.as_str(), value)])
+        let out = spec
+            .scenario(value)
             .map_err(|e| e.to_string())
             .and_then(|cfg| steady_response(&cfg, &req.window, &classify, None).map_err(|e| e.to_string()));
         if cancel.load(Ordering::Relaxed) {

@@ -1,0 +1,537 @@
+//! The scenario: everything one run needs — the block, its contact and
+//! impact laws, the excitation, the initial state, how to integrate and what
+//! to analyse — typed and validated once.
+//!
+//! A scenario is made by the config layer (`io::config` reads TOML, JSON and
+//! `--set` into one) or in code; the batch run, the simulation thread and
+//! every analysis take one. Analyses that vary a parameter set it through a
+//! typed [`Param`](super::param::Param) and call [`Scenario::validate`]
+//! again, so a sweep point is checked by exactly the rules a config file is.
+//!
+//! Values a user may leave out and whose default depends on another value
+//! (Ω_v = Ω_h, μ_k = μ_s, Housner's ratio from the block's slenderness, the
+//! method from the tolerance, …) are kept as `None`, so that varying the
+//! value they follow moves them too; the accessors resolve them.
+//!
+//! Units are the normalised ones of MODEL-DECISIONS (τ = p t, Θ = θ/ψ,
+//! amplitudes in ψ g, frequencies in p) unless a field says otherwise.
+
+use std::path::PathBuf;
+
+use super::run::{InitialState, Method, RunOptions};
+use crate::integrate::Tolerances;
+use crate::integrate::hybrid::Limits;
+use crate::model::excitation::record::Series;
+use crate::model::excitation::{Excitation, Harmonic, Pulse, PulsePair, PulseShape, RecordExcitation};
+use crate::model::{FlightPolicy, Geometry, ImpactLaw, Model};
+
+/// Largest kinetic friction coefficient accepted (exclusive): the
+/// slide-rock denominator (1−γ) + γ(sin²φ − sσμ_k sin φ cos φ) stays
+/// positive for every block and angle exactly when μ_k < 4/3; beyond it
+/// slide-rock has no unique solution (the Painlevé paradox), and the
+/// slipping impact's denominator fails at the same bound.
+pub const MU_K_LIMIT: f64 = 4.0 / 3.0;
+
+/// Largest |amplitude| accepted, units of ψ g: a guard against typos far
+/// beyond any physical shaking (the block is in flight long before).
+pub const AMPLITUDE_LIMIT: f64 = 1e6;
+
+/// Most rows of the time history one run may keep (`run.output_dt`).
+pub const MAX_HISTORY_ROWS: f64 = 5e7;
+
+/// The block and its contact with the base.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Block {
+    /// Width B, m, > 0. Default 1 (the paper's).
+    pub width: f64,
+    /// Height H, m, > 0. Default 4 (the paper's).
+    pub height: f64,
+    /// Static friction coefficient μ_s ≥ 0, or infinite (no sliding, the
+    /// paper's sec. 4.1; the default).
+    pub mu_s: f64,
+    /// Kinetic friction coefficient μ_k, 0 ≤ μ_k ≤ μ_s; `None`: μ_s.
+    pub mu_k: Option<f64>,
+}
+
+impl Block {
+    /// The block's geometry.
+    pub fn geometry(&self) -> Geometry {
+        Geometry::new(self.width, self.height)
+    }
+
+    /// μ_k, resolved.
+    pub fn kinetic(&self) -> f64 {
+        self.mu_k.unwrap_or(self.mu_s)
+    }
+}
+
+/// Which impact law (`impact.law`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LawKind {
+    /// Housner's angular-momentum conservation (the default).
+    Housner,
+    /// A given angular-velocity ratio r.
+    Ratio,
+    /// The paper's impulse–momentum law with restitution and friction.
+    Impulse,
+}
+
+impl LawKind {
+    /// Config name.
+    pub fn name(self) -> &'static str {
+        match self {
+            LawKind::Housner => "housner",
+            LawKind::Ratio => "ratio",
+            LawKind::Impulse => "impulse",
+        }
+    }
+}
+
+/// The impact law and its coefficients.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Impact {
+    /// The law.
+    pub law: LawKind,
+    /// Ratio r of the ratio law, in [0, 1]; `None`: Housner's 1 − 1.5 sin²ψ
+    /// (0 for blocks squat enough that it is negative).
+    pub r: Option<f64>,
+    /// Vertical restitution e of the impulse law, in [0, 1]. Default 0.
+    pub e: f64,
+    /// Static friction μ̄_s during impact; `None`: the block's μ_s (as in
+    /// the paper).
+    pub mu_s: Option<f64>,
+    /// Kinetic friction μ̄_k during impact; `None`: min(μ_k, μ̄_s).
+    pub mu_k: Option<f64>,
+}
+
+/// Which excitation (`excitation.kind`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ExcitationKind {
+    /// No base motion.
+    None,
+    /// 2-D harmonic.
+    Harmonic,
+    /// Analytic pulse.
+    Pulse,
+    /// Recorded ground motion.
+    Record,
+}
+
+impl ExcitationKind {
+    /// Config name.
+    pub fn name(self) -> &'static str {
+        match self {
+            ExcitationKind::None => "none",
+            ExcitationKind::Harmonic => "harmonic",
+            ExcitationKind::Pulse => "pulse",
+            ExcitationKind::Record => "record",
+        }
+    }
+}
+
+/// Shape of a pulse (`excitation.shape`); the number of cycles of type C is
+/// kept apart, in [`ExcitationSpec::cycles`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ShapeKind {
+    /// Makris type A (the default).
+    OneSine,
+    /// Makris type B.
+    OneCosine,
+    /// Type C_n.
+    TypeC,
+}
+
+impl ShapeKind {
+    /// Config name.
+    pub fn name(self) -> &'static str {
+        match self {
+            ShapeKind::OneSine => "one-sine",
+            ShapeKind::OneCosine => "one-cosine",
+            ShapeKind::TypeC => "type-c",
+        }
+    }
+}
+
+/// A ground-motion record read by the config layer, with where it came from
+/// (for `summary.json`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Record {
+    /// The file, as the config named it (resolved against the config's
+    /// folder).
+    pub path: PathBuf,
+    /// Its samples.
+    pub series: Series,
+}
+
+/// The base motion.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ExcitationSpec {
+    /// Which kind. Default harmonic.
+    pub kind: ExcitationKind,
+    /// A_h, units of ψ g (harmonic and pulse). Default 0.
+    pub a_h: f64,
+    /// A_v, units of ψ g. Default 0.
+    pub a_v: f64,
+    /// Ω_h, units of p, > 0. Default 8 (the paper's).
+    pub omega_h: f64,
+    /// Ω_v, units of p, > 0; `None`: Ω_h.
+    pub omega_v: Option<f64>,
+    /// Φ_h, rad. Default 0.
+    pub phase_h: f64,
+    /// Φ_v, rad. Default 0.
+    pub phase_v: f64,
+    /// Pulse shape. Default one-sine.
+    pub shape: ShapeKind,
+    /// n of a type-C_n pulse, 1..=[`pulse::MAX_TYPE_C_CYCLES`]. Default 1.
+    pub cycles: u32,
+    /// Horizontal record (required for `Record`).
+    pub record_h: Option<Record>,
+    /// Optional vertical record.
+    pub record_v: Option<Record>,
+    /// Factor on the horizontal record. Default 1.
+    pub scale_h: f64,
+    /// Factor on the vertical record. Default 1.
+    pub scale_v: f64,
+}
+
+impl ExcitationSpec {
+    /// Ω_v, resolved.
+    pub fn omega_v(&self) -> f64 {
+        self.omega_v.unwrap_or(self.omega_h)
+    }
+
+    /// The forcing period 2π/Ω_h of harmonic excitation, τ; `None` for the
+    /// other kinds.
+    pub fn forcing_period(&self) -> Option<f64> {
+        (self.kind == ExcitationKind::Harmonic).then(|| std::f64::consts::TAU / self.omega_h)
+    }
+}
+
+/// How to integrate and when to stop.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RunSpec {
+    /// End of the run, τ, in (0, 1e9]. Default 800 (the paper's 200,000
+    /// steps of 0.004).
+    pub tau_end: f64,
+    /// Method; `None`: by tolerance, [`Method::default_for`].
+    pub method: Option<Method>,
+    /// Relative tolerance, in (0, 1). Default 1e-10.
+    pub rtol: f64,
+    /// Absolute tolerance, in (0, 1). Default 1e-12.
+    pub atol: f64,
+    /// Fixed step of `ralston`, in (0, 1). Default 0.004 (the paper's).
+    pub step: f64,
+    /// Spacing of the time history, τ; 0 keeps none. Default 0.02.
+    pub output_dt: f64,
+    /// |Θ| at which the block has tumbled, in (0, π/(2ψ)]. Default 1.
+    pub tumble_theta: f64,
+    /// What happens when the normal force vanishes. Default stop.
+    pub flight: FlightPolicy,
+    /// Impact accumulation threshold on |Θ'|, in [0, 1). Default 1e-5.
+    pub zeno_eps: f64,
+    /// Most steps. Default 10⁹.
+    pub max_steps: u64,
+    /// Most events. Default 10⁸.
+    pub max_events: u64,
+}
+
+impl RunSpec {
+    /// The method, resolved.
+    pub fn method(&self) -> Method {
+        self.method.unwrap_or_else(|| Method::default_for(self.rtol))
+    }
+}
+
+/// Which Lyapunov method a batch run adds (`analysis.lyapunov_method`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LyapunovChoice {
+    /// Tangent dynamics with saltation matrices: the whole spectrum (the
+    /// default: it needs no separation parameter).
+    Tangent,
+    /// Benettin's two trajectories on the stroboscopic map.
+    Benettin,
+    /// Both on one trajectory, with their paired difference.
+    Both,
+}
+
+impl LyapunovChoice {
+    /// Config name.
+    pub fn name(self) -> &'static str {
+        match self {
+            LyapunovChoice::Tangent => "tangent",
+            LyapunovChoice::Benettin => "benettin",
+            LyapunovChoice::Both => "both",
+        }
+    }
+}
+
+/// The part of the history a batch run's spectrum is taken over
+/// (`analysis.spectrum_window`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SpectrumRange {
+    /// The whole history (the default).
+    All,
+    /// The paper's samples 3000–7095 at Δτ = 0.004 (τ 12–28.384).
+    Paper,
+}
+
+impl SpectrumRange {
+    /// Config name.
+    pub fn name(self) -> &'static str {
+        match self {
+            SpectrumRange::All => "all",
+            SpectrumRange::Paper => "paper",
+        }
+    }
+}
+
+/// τ at which the paper's spectrum window ends.
+pub const PAPER_SPECTRUM_END: f64 = 28.384;
+
+/// What a batch run computes besides the run itself.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Analyses {
+    /// Lyapunov exponents too. Default false: they need a second,
+    /// tangent-augmented integration of the whole run. Harmonic excitation
+    /// only (the exponents of the periodically forced system).
+    pub lyapunov: bool,
+    /// Which Lyapunov method.
+    pub lyapunov_method: LyapunovChoice,
+    /// The power spectrum of Θ(τ) too. Default false. Needs a history.
+    pub spectrum: bool,
+    /// Over which part of the history.
+    pub spectrum_window: SpectrumRange,
+}
+
+/// Everything one run needs. See the module docs.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Scenario {
+    /// The block and its friction.
+    pub block: Block,
+    /// The impact law.
+    pub impact: Impact,
+    /// The base motion.
+    pub excitation: ExcitationSpec,
+    /// The initial state.
+    pub initial: InitialState,
+    /// How to integrate.
+    pub run: RunSpec,
+    /// What a batch run adds.
+    pub analyses: Analyses,
+}
+
+impl Default for Scenario {
+    /// The paper's block (B = 1 m, H = 4 m) at rest under no shaking, with
+    /// every default of the config file.
+    fn default() -> Self {
+        let limits = Limits::default();
+        Self {
+            block: Block {
+                width: 1.0,
+                height: 4.0,
+                mu_s: f64::INFINITY,
+                mu_k: None,
+            },
+            impact: Impact {
+                law: LawKind::Housner,
+                r: None,
+                e: 0.0,
+                mu_s: None,
+                mu_k: None,
+            },
+            excitation: ExcitationSpec {
+                kind: ExcitationKind::Harmonic,
+                a_h: 0.0,
+                a_v: 0.0,
+                omega_h: 8.0,
+                omega_v: None,
+                phase_h: 0.0,
+                phase_v: 0.0,
+                shape: ShapeKind::OneSine,
+                cycles: 1,
+                record_h: None,
+                record_v: None,
+                scale_h: 1.0,
+                scale_v: 1.0,
+            },
+            initial: InitialState {
+                theta: 0.0,
+                theta_dot: 0.0,
+                x_dot: None,
+            },
+            run: RunSpec {
+                tau_end: 800.0,
+                method: None,
+                rtol: 1e-10,
+                atol: 1e-12,
+                step: 0.004,
+                output_dt: 0.02,
+                tumble_theta: 1.0,
+                flight: FlightPolicy::Stop,
+                zeno_eps: 1e-5,
+                max_steps: limits.max_steps,
+                max_events: limits.max_events,
+            },
+            analyses: Analyses {
+                lyapunov: false,
+                lyapunov_method: LyapunovChoice::Tangent,
+                spectrum: false,
+                spectrum_window: SpectrumRange::All,
+            },
+        }
+    }
+}
+
+/// A scenario that breaks a rule: one line naming the config key.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("{key}: {message}")]
+pub struct ScenarioError {
+    /// The key, as the user writes it (e.g. `excitation.a_v`), possibly
+    /// with a note (`friction.kinetic (absent, so equal to …)`).
+    pub key: String,
+    /// What is wrong and what is allowed.
+    pub message: String,
+}
+
+impl ScenarioError {
+    /// An error about `key`.
+    pub fn new(key: impl Into<String>, message: impl std::fmt::Display) -> Self {
+        Self {
+            key: key.into(),
+            message: message.to_string(),
+        }
+    }
+}
+
+impl Scenario {
+    /// The block's geometry.
+    pub fn geometry(&self) -> Geometry {
+        self.block.geometry()
+    }
+
+    /// The ratio r, resolved.
+    pub fn impact_r(&self) -> f64 {
+        // Housner's ratio is negative for squat blocks (ψ > 54.7°, where a
+        // single-corner impact reverses the rotation and the block lands
+        // flat, docs/model.md §7.5): the default ratio is then 0.
+        self.impact.r.unwrap_or_else(|| self.geometry().housner_r().max(0.0))
+    }
+
+    /// μ̄_s during impact, resolved.
+    pub fn impact_mu_s(&self) -> f64 {
+        self.impact.mu_s.unwrap_or(self.block.mu_s)
+    }
+
+    /// μ̄_k during impact, resolved.
+    pub fn impact_mu_k(&self) -> f64 {
+        self.impact.mu_k.unwrap_or(self.block.kinetic().min(self.impact_mu_s()))
+    }
+
+    /// The impact law with its coefficients.
+    pub fn impact_law(&self) -> ImpactLaw {
+        match self.impact.law {
+            LawKind::Ratio => ImpactLaw::Ratio { r: self.impact_r() },
+            LawKind::Impulse => ImpactLaw::Impulse {
+                e: self.impact.e,
+                mu_s: self.impact_mu_s(),
+                mu_k: self.impact_mu_k(),
+            },
+            LawKind::Housner => ImpactLaw::Housner,
+        }
+    }
+
+    /// The excitation. Fails only for a pulse the model refuses (the error
+    /// names the amplitude's key).
+    pub fn excitation(&self) -> Result<Excitation, ScenarioError> {
+        let geo = self.geometry();
+        let x = &self.excitation;
+        Ok(match x.kind {
+            ExcitationKind::None => Excitation::None,
+            ExcitationKind::Harmonic => Excitation::Harmonic(Harmonic {
+                a_h: x.a_h,
+                a_v: x.a_v,
+                omega_h: x.omega_h,
+                omega_v: x.omega_v(),
+                phase_h: x.phase_h,
+                phase_v: x.phase_v,
+                psi: geo.psi,
+            }),
+            ExcitationKind::Pulse => {
+                let shape = match x.shape {
+                    ShapeKind::OneCosine => PulseShape::OneCosine,
+                    ShapeKind::TypeC => PulseShape::TypeC { n: x.cycles },
+                    ShapeKind::OneSine => PulseShape::OneSine,
+                };
+                let make = |amp: f64, omega: f64, key: &str| {
+                    Pulse::new(shape, amp * geo.psi, omega).map_err(|e| ScenarioError::new(key, e))
+                };
+                let horizontal = make(x.a_h, x.omega_h, "excitation.a_h")?;
+                let vertical = if x.a_v != 0.0 {
+                    Some(make(x.a_v, x.omega_v(), "excitation.a_v")?)
+                } else {
+                    None
+                };
+                Excitation::Pulse(PulsePair { horizontal, vertical })
+            }
+            ExcitationKind::Record => {
+                let Some(h) = &x.record_h else {
+                    return Err(ScenarioError::new(
+                        "excitation.file_h",
+                        "is required when excitation.kind = \"record\"",
+                    ));
+                };
+                let v = x.record_v.as_ref().map(|r| r.series.clone());
+                Excitation::Record(Box::new(RecordExcitation::new(
+                    h.series.clone(),
+                    v,
+                    geo.p,
+                    x.scale_h,
+                    x.scale_v,
+                )))
+            }
+        })
+    }
+
+    /// The model.
+    pub fn model(&self) -> Result<Model, ScenarioError> {
+        Ok(Model {
+            geo: self.geometry(),
+            mu_s: self.block.mu_s,
+            mu_k: self.block.kinetic(),
+            law: self.impact_law(),
+            excitation: self.excitation()?,
+            tumble_theta: self.run.tumble_theta,
+            flight: self.run.flight,
+            zeno_eps: self.run.zeno_eps,
+        })
+    }
+
+    /// The run options. The section is taken for harmonic excitation.
+    pub fn run_options(&self) -> RunOptions {
+        RunOptions {
+            tau_end: self.run.tau_end,
+            method: self.run.method(),
+            tol: Tolerances {
+                rtol: self.run.rtol,
+                atol: self.run.atol,
+                h_max: f64::INFINITY,
+                h_fixed: self.run.step,
+            },
+            output_dt: (self.run.output_dt > 0.0).then_some(self.run.output_dt),
+            section: self.excitation.kind == ExcitationKind::Harmonic,
+            limits: Limits {
+                max_steps: self.run.max_steps,
+                max_events: self.run.max_events,
+                ..Limits::default()
+            },
+        }
+    }
+
+    /// This scenario started from `seed` instead of its own initial state
+    /// (continuation).
+    pub fn seeded(&self, seed: &InitialState) -> Self {
+        let mut s = self.clone();
+        s.initial = *seed;
+        s
+    }
+}

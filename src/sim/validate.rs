@@ -1,0 +1,310 @@
+//! The rules a [`Scenario`] must satisfy, checked in the order of the config
+//! file's sections so that the first broken rule is the one reported. Every
+//! message names the key as the user writes it and says what is allowed.
+
+use super::scenario::{
+    AMPLITUDE_LIMIT, ExcitationKind, MAX_HISTORY_ROWS, MU_K_LIMIT, PAPER_SPECTRUM_END, Scenario, ScenarioError,
+    SpectrumRange,
+};
+use crate::model::excitation::pulse;
+
+/// `Ok` if `ok`, else "`key`: `value` is out of range: must be `allowed`".
+fn check(key: &str, ok: bool, allowed: &str, value: f64) -> Result<(), ScenarioError> {
+    if ok {
+        Ok(())
+    } else {
+        Err(ScenarioError::new(
+            key,
+            format!("{value} is out of range: must be {allowed}"),
+        ))
+    }
+}
+
+impl Scenario {
+    /// Checks every rule; the first broken one is the error.
+    pub fn validate(&self) -> Result<(), ScenarioError> {
+        self.validate_block()?;
+        self.validate_impact()?;
+        self.validate_excitation()?;
+        self.validate_run()?;
+        self.validate_initial()?;
+        self.validate_analyses()
+    }
+
+    fn validate_block(&self) -> Result<(), ScenarioError> {
+        let b = &self.block;
+        check(
+            "block.width",
+            b.width > 0.0 && b.width.is_finite(),
+            "> 0 (metres)",
+            b.width,
+        )?;
+        check(
+            "block.height",
+            b.height > 0.0 && b.height.is_finite(),
+            "> 0 (metres)",
+            b.height,
+        )?;
+        check("friction.static", b.mu_s >= 0.0, ">= 0 or inf", b.mu_s)?;
+        let mu_k = b.kinetic();
+        // An absent kinetic coefficient takes the static one; an error about
+        // it must then say so, or the user is told about a key never written.
+        let kinetic_key = if b.mu_k.is_some() {
+            "friction.kinetic"
+        } else {
+            "friction.kinetic (absent, so equal to friction.static)"
+        };
+        check(kinetic_key, mu_k >= 0.0, ">= 0 or inf", mu_k)?;
+        check(
+            kinetic_key,
+            mu_k <= b.mu_s,
+            &format!("<= friction.static ({})", b.mu_s),
+            mu_k,
+        )?;
+        check(
+            kinetic_key,
+            mu_k.is_finite() || b.mu_s.is_infinite(),
+            "finite when friction.static is finite",
+            mu_k,
+        )?;
+        check(
+            kinetic_key,
+            mu_k < MU_K_LIMIT || b.mu_s.is_infinite(),
+            "< 4/3 (larger kinetic friction makes slide-rock ill-posed: the Painlevé paradox, docs/model.md §4)",
+            mu_k,
+        )
+    }
+
+    fn validate_impact(&self) -> Result<(), ScenarioError> {
+        let r = self.impact_r();
+        check("impact.r", (0.0..=1.0).contains(&r), "in [0, 1]", r)?;
+        let e = self.impact.e;
+        check("impact.e", (0.0..=1.0).contains(&e), "in [0, 1]", e)?;
+        let (mu_s, mu_k) = (self.impact_mu_s(), self.impact_mu_k());
+        check("impact.static", mu_s >= 0.0, ">= 0 or inf", mu_s)?;
+        check("impact.kinetic", mu_k >= 0.0, ">= 0 or inf", mu_k)?;
+        check(
+            "impact.kinetic",
+            mu_k < MU_K_LIMIT || mu_s.is_infinite(),
+            "< 4/3 (larger kinetic friction makes the slipping impact ill-posed, docs/model.md §7.2)",
+            mu_k,
+        )?;
+        check(
+            "impact.kinetic",
+            mu_k <= mu_s,
+            &format!("<= impact.static ({mu_s})"),
+            mu_k,
+        )
+    }
+
+    fn validate_excitation(&self) -> Result<(), ScenarioError> {
+        let x = &self.excitation;
+        check(
+            "excitation.a_h",
+            x.a_h.abs() <= AMPLITUDE_LIMIT,
+            "a finite amplitude |A_h| <= 1e6 (units of ψg)",
+            x.a_h,
+        )?;
+        check(
+            "excitation.a_v",
+            x.a_v.abs() <= AMPLITUDE_LIMIT,
+            "a finite amplitude |A_v| <= 1e6 (units of ψg)",
+            x.a_v,
+        )?;
+        check(
+            "excitation.omega_h",
+            x.omega_h > 0.0 && x.omega_h <= 1e6,
+            "in (0, 1e6] (units of p)",
+            x.omega_h,
+        )?;
+        let omega_v = x.omega_v();
+        check(
+            "excitation.omega_v",
+            omega_v > 0.0 && omega_v <= 1e6,
+            "in (0, 1e6] (units of p)",
+            omega_v,
+        )?;
+        check(
+            "excitation.phase_h",
+            x.phase_h.abs() <= 1e6,
+            "|Φ_h| <= 1e6 rad",
+            x.phase_h,
+        )?;
+        check(
+            "excitation.phase_v",
+            x.phase_v.abs() <= 1e6,
+            "|Φ_v| <= 1e6 rad",
+            x.phase_v,
+        )?;
+        if !(1..=pulse::MAX_TYPE_C_CYCLES).contains(&x.cycles) {
+            return Err(ScenarioError::new(
+                "excitation.cycles",
+                format!(
+                    "{} is out of range: must be in 1..={}",
+                    x.cycles,
+                    pulse::MAX_TYPE_C_CYCLES
+                ),
+            ));
+        }
+        check(
+            "excitation.scale_h",
+            x.scale_h.abs() <= 1e3,
+            "|scale| <= 1000",
+            x.scale_h,
+        )?;
+        check(
+            "excitation.scale_v",
+            x.scale_v.abs() <= 1e3,
+            "|scale| <= 1000",
+            x.scale_v,
+        )?;
+        if x.kind == ExcitationKind::Record && x.record_h.is_none() {
+            return Err(ScenarioError::new(
+                "excitation.file_h",
+                "is required when excitation.kind = \"record\"",
+            ));
+        }
+        Ok(())
+    }
+
+    fn validate_run(&self) -> Result<(), ScenarioError> {
+        let r = &self.run;
+        check("run.rtol", r.rtol > 0.0 && r.rtol < 1.0, "in (0, 1)", r.rtol)?;
+        check("run.atol", r.atol > 0.0 && r.atol < 1.0, "in (0, 1)", r.atol)?;
+        check("run.step", r.step > 0.0 && r.step < 1.0, "in (0, 1)", r.step)?;
+        check(
+            "run.tau_end",
+            r.tau_end > 0.0 && r.tau_end <= 1e9,
+            "in (0, 1e9]",
+            r.tau_end,
+        )?;
+        check(
+            "run.output_dt",
+            r.output_dt >= 0.0 && r.output_dt.is_finite(),
+            ">= 0 (0 writes no history)",
+            r.output_dt,
+        )?;
+        if r.output_dt > 0.0 && r.tau_end / r.output_dt > MAX_HISTORY_ROWS {
+            return Err(ScenarioError::new(
+                "run.output_dt",
+                format!(
+                    "{} gives more than 5e7 history rows over run.tau_end = {}; use a larger step or 0",
+                    r.output_dt, r.tau_end
+                ),
+            ));
+        }
+        let side = self.geometry().side_theta();
+        check(
+            "run.tumble_theta",
+            r.tumble_theta > 0.0 && r.tumble_theta <= side,
+            &format!("in (0, π/(2ψ) = {side}]"),
+            r.tumble_theta,
+        )?;
+        check(
+            "run.zeno_eps",
+            (0.0..1.0).contains(&r.zeno_eps),
+            "in [0, 1)",
+            r.zeno_eps,
+        )?;
+        if r.max_steps == 0 {
+            return Err(ScenarioError::new("run.max_steps", "must be >= 1"));
+        }
+        Ok(())
+    }
+
+    fn validate_initial(&self) -> Result<(), ScenarioError> {
+        let i = &self.initial;
+        let tumble = self.run.tumble_theta;
+        check(
+            "initial.theta",
+            i.theta.abs() < tumble,
+            &format!("|Θ| < run.tumble_theta ({tumble})"),
+            i.theta,
+        )?;
+        check(
+            "initial.theta_dot",
+            i.theta_dot.abs() <= 1e6,
+            "|Θ'| <= 1e6",
+            i.theta_dot,
+        )?;
+        if let Some(x) = i.x_dot {
+            check("initial.x_dot", x.abs() <= 1e6, "|X'| <= 1e6", x)?;
+        }
+        Ok(())
+    }
+
+    fn validate_analyses(&self) -> Result<(), ScenarioError> {
+        let a = &self.analyses;
+        if a.lyapunov && self.excitation.kind != ExcitationKind::Harmonic {
+            return Err(ScenarioError::new(
+                "analysis.lyapunov",
+                "needs excitation.kind = \"harmonic\" (the exponents of the periodically forced block)",
+            ));
+        }
+        if a.spectrum && self.run.output_dt <= 0.0 {
+            return Err(ScenarioError::new(
+                "analysis.spectrum",
+                "needs run.output_dt > 0 (the spectrum is computed from the history)",
+            ));
+        }
+        if a.spectrum && a.spectrum_window == SpectrumRange::Paper && self.run.tau_end < PAPER_SPECTRUM_END {
+            return Err(ScenarioError::new(
+                "analysis.spectrum_window",
+                "\"paper\" needs run.tau_end >= 28.384 (the paper's window is τ 12–28.384)",
+            ));
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_default_scenario_is_valid() {
+        assert_eq!(Scenario::default().validate(), Ok(()));
+    }
+
+    #[test]
+    fn each_rule_names_its_key() {
+        type Break = fn(&mut Scenario);
+        let cases: Vec<(&str, Break)> = vec![
+            ("block.width", |s| s.block.width = 0.0),
+            ("friction.kinetic (absent", |s| s.block.mu_s = 2.0),
+            ("friction.kinetic:", |s| {
+                s.block.mu_s = 0.5;
+                s.block.mu_k = Some(0.6);
+            }),
+            ("impact.r", |s| s.impact.r = Some(1.5)),
+            ("excitation.omega_v", |s| s.excitation.omega_v = Some(-1.0)),
+            ("excitation.cycles", |s| s.excitation.cycles = 0),
+            ("run.output_dt", |s| {
+                s.run.tau_end = 1e9;
+                s.run.output_dt = 1.0;
+            }),
+            ("initial.theta", |s| s.initial.theta = 1.0),
+            ("analysis.spectrum", |s| {
+                s.analyses.spectrum = true;
+                s.run.output_dt = 0.0;
+            }),
+        ];
+        for (key, break_it) in cases {
+            let mut s = Scenario::default();
+            break_it(&mut s);
+            let e = s.validate().unwrap_err().to_string();
+            assert!(e.starts_with(key), "{key}: {e}");
+        }
+    }
+
+    #[test]
+    fn defaults_that_follow_another_value_move_with_it() {
+        let mut s = Scenario::default();
+        s.excitation.omega_h = 5.0;
+        assert_eq!(s.excitation.omega_v(), 5.0);
+        s.block.width = 2.0;
+        assert_eq!(s.impact_r(), s.geometry().housner_r().max(0.0));
+        s.run.rtol = 1e-3;
+        assert_eq!(s.run.method(), super::super::Method::Dop853);
+    }
+}
