@@ -9,8 +9,8 @@ use std::path::Path;
 
 use toml::Table;
 
+use crate::io::config::set_dotted;
 use crate::io::config::{Source, parse_toml, preset_text, read_file};
-use crate::io::table::set_dotted;
 use crate::sim::Scenario;
 
 /// The explicit keys of a scene and their source.

@@ -9,7 +9,5 @@
 pub mod config;
 pub mod output;
 pub mod presets;
-pub mod table;
 
-pub use config::load;
-pub use table::ConfigError;
+pub use config::{ConfigError, load};

@@ -12,7 +12,7 @@ use crate::model::system::{EventRecord, FRICTION_LOSS, ModelError, N, Tally, WOR
 use crate::model::{BlockSystem, Mode, Model, Sign};
 
 /// Integration method (config `run.method`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, serde::Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Method {
     /// Dormand–Prince 8(5,3) with 7th-order dense output (the default at

@@ -2,7 +2,7 @@
 //! impact laws, the excitation, the initial state, how to integrate and what
 //! to analyse — typed and validated once.
 //!
-//! A scenario is made by the config layer (`io::config` reads TOML, JSON and
+//! A scenario is made by the config layer (which reads TOML, JSON and
 //! `--set` into one) or in code; the batch run, the simulation thread and
 //! every analysis take one. Analyses that vary a parameter set it through a
 //! typed [`Param`](super::param::Param) and call [`Scenario::validate`]
@@ -66,7 +66,8 @@ impl Block {
 }
 
 /// Which impact law (`impact.law`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
 pub enum LawKind {
     /// Housner's angular-momentum conservation (the default).
     Housner,
@@ -105,7 +106,8 @@ pub struct Impact {
 }
 
 /// Which excitation (`excitation.kind`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
 pub enum ExcitationKind {
     /// No base motion.
     None,
@@ -131,7 +133,8 @@ impl ExcitationKind {
 
 /// Shape of a pulse (`excitation.shape`); the number of cycles of type C is
 /// kept apart, in [`ExcitationSpec::cycles`].
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
 pub enum ShapeKind {
     /// Makris type A (the default).
     OneSine,
@@ -243,7 +246,8 @@ impl RunSpec {
 }
 
 /// Which Lyapunov method a batch run adds (`analysis.lyapunov_method`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
 pub enum LyapunovChoice {
     /// Tangent dynamics with saltation matrices: the whole spectrum (the
     /// default: it needs no separation parameter).
@@ -267,7 +271,8 @@ impl LyapunovChoice {
 
 /// The part of the history a batch run's spectrum is taken over
 /// (`analysis.spectrum_window`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
 pub enum SpectrumRange {
     /// The whole history (the default).
     All,

@@ -16,14 +16,18 @@ use std::path::{Path, PathBuf};
 use serde_json::{Value as Json, json};
 use toml::Table;
 
-use super::table::{ConfigError, TableReader, line_of, set_dotted};
+mod error;
+mod raw;
+mod set;
+
+pub use error::ConfigError;
+pub use set::{line_of, set_dotted};
+
 use crate::model::FlightPolicy;
 use crate::model::excitation::record;
-use crate::sim::scenario::{
-    Analyses, Block, ExcitationKind, ExcitationSpec, Impact, LawKind, LyapunovChoice, Record, RunSpec, ShapeKind,
-    SpectrumRange,
-};
-use crate::sim::{InitialState, Method, Param, Scenario};
+use crate::sim::scenario::{Analyses, Block, ExcitationSpec, Impact, Record, RunSpec};
+use crate::sim::{InitialState, Param, Scenario};
+use raw::{Coefficient, Count, Finite, RawConfig};
 
 /// Every section and key the config accepts.
 pub const KNOWN_KEYS: &[(&str, &[&str])] = &[
@@ -155,19 +159,6 @@ fn file_error(file: &str, message: impl std::fmt::Display) -> ConfigError {
     }
 }
 
-/// `section.key` as a boolean, or `None` if absent (a non-table section is
-/// reported by [`TableReader::reject_unknown`]).
-fn boolean(table: &Table, section: &str, key: &str) -> Result<Option<bool>, ConfigError> {
-    match table.get(section).and_then(|s| s.as_table()).and_then(|s| s.get(key)) {
-        None => Ok(None),
-        Some(toml::Value::Boolean(b)) => Ok(Some(*b)),
-        Some(other) => Err(ConfigError::key(
-            &format!("{section}.{key}"),
-            format!("expected true or false, found {other}"),
-        )),
-    }
-}
-
 /// Reads the record file `path` names, naming `key` in errors.
 fn read_record(key: &'static str, path: Option<&str>, source: &Source) -> Result<Option<Record>, ConfigError> {
     let Some(p) = path else {
@@ -182,114 +173,114 @@ fn read_record(key: &'static str, path: Option<&str>, source: &Source) -> Result
     Ok(Some(Record { path, series }))
 }
 
+/// The first key or section of `table` that the config does not know, as
+/// an error listing the known ones (serde's `deny_unknown_fields` would
+/// refuse it too, but without the list).
+fn reject_unknown(table: &Table) -> Result<(), ConfigError> {
+    for (section, value) in table {
+        let Some((_, keys)) = KNOWN_KEYS.iter().find(|(s, _)| s == section) else {
+            let sections: Vec<&str> = KNOWN_KEYS.iter().map(|(s, _)| *s).collect();
+            return Err(ConfigError::key(
+                section,
+                format!("unknown section (known: {})", sections.join(", ")),
+            ));
+        };
+        if let toml::Value::Table(sec) = value
+            && let Some(key) = sec.keys().find(|k| !keys.contains(&k.as_str()))
+        {
+            return Err(ConfigError::key(
+                &format!("{section}.{key}"),
+                format!("unknown key (known in [{section}]: {})", keys.join(", ")),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Deserialises `table` into the config's shape; a value of the wrong type
+/// is an error naming its key.
+fn raw(table: &Table) -> Result<RawConfig, ConfigError> {
+    reject_unknown(table)?;
+    serde_path_to_error::deserialize(toml::Value::Table(table.clone())).map_err(|e| {
+        let key = e.path().to_string();
+        let message = e.into_inner().message().to_string();
+        if key == "." {
+            ConfigError::Usage(message)
+        } else {
+            ConfigError::Key { key, message }
+        }
+    })
+}
+
 /// Resolves `table` into a scenario and validates it. Record paths are
 /// relative to `source.base_dir`; the records are read here, so a scenario
 /// never refers to a file it has not read.
 pub fn from_table(table: &Table, source: &Source) -> Result<Scenario, ConfigError> {
+    let raw = raw(table)?;
     let d = Scenario::default();
-    let mut r = TableReader::new(table);
+    let num = |x: Option<Finite>| x.map(|v| v.0);
+    let coef = |x: Option<Coefficient>| x.map(|v| v.0);
     let block = Block {
-        width: r.number("block", "width", false)?.unwrap_or(d.block.width),
-        height: r.number("block", "height", false)?.unwrap_or(d.block.height),
-        mu_s: r.number("friction", "static", true)?.unwrap_or(d.block.mu_s),
-        mu_k: r.number("friction", "kinetic", true)?,
+        width: num(raw.block.width).unwrap_or(d.block.width),
+        height: num(raw.block.height).unwrap_or(d.block.height),
+        mu_s: coef(raw.friction.mu_s).unwrap_or(d.block.mu_s),
+        mu_k: coef(raw.friction.mu_k),
     };
     let impact = Impact {
-        law: match r.choice("impact", "law", &["housner", "ratio", "impulse"])? {
-            None | Some("housner") => LawKind::Housner,
-            Some("ratio") => LawKind::Ratio,
-            Some(_) => LawKind::Impulse,
-        },
-        r: r.number("impact", "r", false)?,
-        e: r.number("impact", "e", false)?.unwrap_or(d.impact.e),
-        mu_s: r.number("impact", "static", true)?,
-        mu_k: r.number("impact", "kinetic", true)?,
+        law: raw.impact.law.unwrap_or(d.impact.law),
+        r: num(raw.impact.r),
+        e: num(raw.impact.e).unwrap_or(d.impact.e),
+        mu_s: coef(raw.impact.mu_s),
+        mu_k: coef(raw.impact.mu_k),
     };
-    let kind = match r.choice("excitation", "kind", &["harmonic", "pulse", "record", "none"])? {
-        None | Some("harmonic") => ExcitationKind::Harmonic,
-        Some("pulse") => ExcitationKind::Pulse,
-        Some("record") => ExcitationKind::Record,
-        Some(_) => ExcitationKind::None,
+    let (x, dx) = (&raw.excitation, &d.excitation);
+    let cycles = match x.cycles {
+        None => dx.cycles,
+        // Past u32, the scenario's range check could not see the value.
+        Some(Count(n)) => u32::try_from(n).unwrap_or(u32::MAX),
     };
-    let dx = &d.excitation;
-    let shape = match r.choice("excitation", "shape", &["one-sine", "one-cosine", "type-c"])? {
-        None | Some("one-sine") => ShapeKind::OneSine,
-        Some("one-cosine") => ShapeKind::OneCosine,
-        Some(_) => ShapeKind::TypeC,
-    };
-    let cycles = r.count("excitation", "cycles")?.map_or(Ok(dx.cycles), |n| {
-        u32::try_from(n).map_err(|_| {
-            ConfigError::key(
-                "excitation.cycles",
-                format!(
-                    "{n} is out of range: must be in 1..={}",
-                    crate::model::excitation::pulse::MAX_TYPE_C_CYCLES
-                ),
-            )
-        })
-    })?;
-    let file_h = r.string("excitation", "file_h")?;
-    let file_v = r.string("excitation", "file_v")?;
-    let mut excitation = ExcitationSpec {
-        kind,
-        a_h: r.number("excitation", "a_h", false)?.unwrap_or(dx.a_h),
-        a_v: r.number("excitation", "a_v", false)?.unwrap_or(dx.a_v),
-        omega_h: r.number("excitation", "omega_h", false)?.unwrap_or(dx.omega_h),
-        omega_v: r.number("excitation", "omega_v", false)?,
-        phase_h: r.number("excitation", "phase_h", false)?.unwrap_or(dx.phase_h),
-        phase_v: r.number("excitation", "phase_v", false)?.unwrap_or(dx.phase_v),
-        shape,
+    let excitation = ExcitationSpec {
+        kind: x.kind.unwrap_or(dx.kind),
+        a_h: num(x.a_h).unwrap_or(dx.a_h),
+        a_v: num(x.a_v).unwrap_or(dx.a_v),
+        omega_h: num(x.omega_h).unwrap_or(dx.omega_h),
+        omega_v: num(x.omega_v),
+        phase_h: num(x.phase_h).unwrap_or(dx.phase_h),
+        phase_v: num(x.phase_v).unwrap_or(dx.phase_v),
+        shape: x.shape.unwrap_or(dx.shape),
         cycles,
-        record_h: None,
-        record_v: None,
-        scale_h: r.number("excitation", "scale_h", false)?.unwrap_or(dx.scale_h),
-        scale_v: r.number("excitation", "scale_v", false)?.unwrap_or(dx.scale_v),
+        record_h: read_record("excitation.file_h", x.file_h.as_deref(), source)?,
+        record_v: read_record("excitation.file_v", x.file_v.as_deref(), source)?,
+        scale_h: num(x.scale_h).unwrap_or(dx.scale_h),
+        scale_v: num(x.scale_v).unwrap_or(dx.scale_v),
     };
-    let dr = &d.run;
+    let (r, dr) = (&raw.run, &d.run);
+    let count = |c: Option<Count>| c.map(|c| c.0);
     let run = RunSpec {
-        tau_end: r.number("run", "tau_end", false)?.unwrap_or(dr.tau_end),
-        method: match r.choice("run", "method", &["dop853", "dopri5", "ralston", "taylor"])? {
-            None => None,
-            Some("dop853") => Some(Method::Dop853),
-            Some("dopri5") => Some(Method::Dopri5),
-            Some("taylor") => Some(Method::Taylor),
-            Some(_) => Some(Method::Ralston),
-        },
-        rtol: r.number("run", "rtol", false)?.unwrap_or(dr.rtol),
-        atol: r.number("run", "atol", false)?.unwrap_or(dr.atol),
-        step: r.number("run", "step", false)?.unwrap_or(dr.step),
-        output_dt: r.number("run", "output_dt", false)?.unwrap_or(dr.output_dt),
-        tumble_theta: r.number("run", "tumble_theta", false)?.unwrap_or(dr.tumble_theta),
-        flight: match r.choice("run", "flight", &["stop", "ignore"])? {
-            None | Some("stop") => FlightPolicy::Stop,
-            Some(_) => FlightPolicy::Ignore,
-        },
-        zeno_eps: r.number("run", "zeno_eps", false)?.unwrap_or(dr.zeno_eps),
-        max_steps: r.count("run", "max_steps")?.unwrap_or(dr.max_steps),
-        max_events: r.count("run", "max_events")?.unwrap_or(dr.max_events),
+        tau_end: num(r.tau_end).unwrap_or(dr.tau_end),
+        method: r.method,
+        rtol: num(r.rtol).unwrap_or(dr.rtol),
+        atol: num(r.atol).unwrap_or(dr.atol),
+        step: num(r.step).unwrap_or(dr.step),
+        output_dt: num(r.output_dt).unwrap_or(dr.output_dt),
+        tumble_theta: num(r.tumble_theta).unwrap_or(dr.tumble_theta),
+        flight: r.flight.map_or(dr.flight, FlightPolicy::from),
+        zeno_eps: num(r.zeno_eps).unwrap_or(dr.zeno_eps),
+        max_steps: count(r.max_steps).unwrap_or(dr.max_steps),
+        max_events: count(r.max_events).unwrap_or(dr.max_events),
     };
     let initial = InitialState {
-        theta: r.number("initial", "theta", false)?.unwrap_or(0.0),
-        theta_dot: r.number("initial", "theta_dot", false)?.unwrap_or(0.0),
-        x_dot: r.number("initial", "x_dot", false)?,
+        theta: num(raw.initial.theta).unwrap_or(d.initial.theta),
+        theta_dot: num(raw.initial.theta_dot).unwrap_or(d.initial.theta_dot),
+        x_dot: num(raw.initial.x_dot),
     };
+    let (a, da) = (&raw.analysis, &d.analyses);
     let analyses = Analyses {
-        lyapunov: boolean(table, "analysis", "lyapunov")?.unwrap_or(false),
-        lyapunov_method: match r.choice("analysis", "lyapunov_method", &["tangent", "benettin", "both"])? {
-            None | Some("tangent") => LyapunovChoice::Tangent,
-            Some("benettin") => LyapunovChoice::Benettin,
-            Some(_) => LyapunovChoice::Both,
-        },
-        spectrum: boolean(table, "analysis", "spectrum")?.unwrap_or(false),
-        spectrum_window: match r.choice("analysis", "spectrum_window", &["all", "paper"])? {
-            None | Some("all") => SpectrumRange::All,
-            Some(_) => SpectrumRange::Paper,
-        },
+        lyapunov: a.lyapunov.unwrap_or(da.lyapunov),
+        lyapunov_method: a.lyapunov_method.unwrap_or(da.lyapunov_method),
+        spectrum: a.spectrum.unwrap_or(da.spectrum),
+        spectrum_window: a.spectrum_window.unwrap_or(da.spectrum_window),
     };
-    r.reject_unknown(KNOWN_KEYS)?;
-
-    excitation.record_h = read_record("excitation.file_h", file_h, source)?;
-    excitation.record_v = read_record("excitation.file_v", file_v, source)?;
     let scenario = Scenario {
         block,
         impact,
