@@ -1,0 +1,107 @@
+//! The README's command examples, run as a user would run them, so that the
+//! README cannot drift from what the program prints.
+//!
+//! Every ```` ```console ```` block of `README.md` is a session: lines
+//! starting with `$ ` are commands, the lines after one are its expected
+//! output (stdout, then stderr). The blocks run in order in one temporary
+//! folder, so a later block can read what an earlier one wrote. `rocking`
+//! is this crate's binary; any other command runs through `sh -c`.
+//! Expected output is matched by snapbox: `[..]` stands for any text within
+//! a line (the README writes timings so), `...` on a line of its own for any
+//! number of lines.
+
+use std::path::Path;
+use std::process::Command;
+
+/// One `$ command` of the README with the output it shows.
+struct Example {
+    /// The README line of the command (for messages).
+    line: usize,
+    /// The command line after `$ `.
+    command: String,
+    /// The output the README shows.
+    expected: String,
+}
+
+/// The examples of every ```` ```console ```` block of `text`, in order.
+fn examples(text: &str) -> Vec<Example> {
+    let mut out: Vec<Example> = Vec::new();
+    let mut in_console = false;
+    for (i, line) in text.lines().enumerate() {
+        let fence = line.trim_start();
+        if fence.starts_with("```") {
+            in_console = !in_console && fence.trim_start_matches('`').trim() == "console";
+            continue;
+        }
+        if !in_console {
+            continue;
+        }
+        if let Some(command) = line.strip_prefix("$ ") {
+            out.push(Example {
+                line: i + 1,
+                command: command.to_string(),
+                expected: String::new(),
+            });
+        } else if let Some(last) = out.last_mut() {
+            last.expected.push_str(line);
+            last.expected.push('\n');
+        }
+    }
+    // A blank line separates one command's output from the next command.
+    for e in &mut out {
+        let trimmed = e.expected.trim_end().len();
+        e.expected.truncate(trimmed);
+        if !e.expected.is_empty() {
+            e.expected.push('\n');
+        }
+    }
+    out
+}
+
+/// Runs `command` in `dir`: `rocking …` is this crate's binary (its words
+/// split on white space, as the README's commands need no quoting), the
+/// rest goes to `sh -c`. Returns stdout followed by stderr.
+fn run(command: &str, dir: &Path) -> (bool, String) {
+    let words: Vec<&str> = command.split_whitespace().collect();
+    let output = if words.first() == Some(&"rocking") {
+        Command::new(env!("CARGO_BIN_EXE_rocking"))
+            .args(&words[1..])
+            .current_dir(dir)
+            .output()
+    } else {
+        Command::new("sh").arg("-c").arg(command).current_dir(dir).output()
+    }
+    .unwrap_or_else(|e| panic!("{command}: {e}"));
+    let mut text = String::from_utf8_lossy(&output.stdout).into_owned();
+    text.push_str(&String::from_utf8_lossy(&output.stderr));
+    (output.status.success(), text)
+}
+
+#[test]
+fn the_readme_examples_print_what_the_readme_shows() {
+    let readme = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md")).expect("README.md");
+    let examples = examples(&readme);
+    assert!(
+        examples.iter().filter(|e| e.command.starts_with("rocking")).count() >= 2,
+        "the README shows at least a batch run and a sweep"
+    );
+    let dir = std::env::temp_dir().join(format!("rocking-readme-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    for e in &examples {
+        let (ok, actual) = run(&e.command, &dir);
+        assert!(ok, "README.md:{}: `{}` failed:\n{actual}", e.line, e.command);
+        snapbox::assert_data_eq!(actual, e.expected.clone());
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn examples_are_read_from_console_blocks_only() {
+    let text = "```sh\n$ not this\n```\n\n```console\n$ rocking a\none\ntwo\n$ head b\n```\n";
+    let ex = examples(text);
+    assert_eq!(ex.len(), 2);
+    assert_eq!((ex[0].line, ex[0].command.as_str()), (6, "rocking a"));
+    assert_eq!(ex[0].expected, "one\ntwo\n");
+    assert_eq!(ex[1].expected, "");
+}
