@@ -12,10 +12,11 @@ use std::path::{Path, PathBuf};
 use serde_json::{Value as Json, json};
 use toml::Table;
 
+use super::record;
 use super::table::{ConfigError, TableReader, line_of, set_dotted};
 use crate::integrate::Tolerances;
 use crate::integrate::hybrid::Limits;
-use crate::model::excitation::{Excitation, Harmonic, Pulse, PulseShape, RecordExcitation, pulse, record};
+use crate::model::excitation::{Excitation, Harmonic, Pulse, PulseShape, RecordExcitation, Series, pulse};
 use crate::model::{FlightPolicy, Geometry, ImpactLaw, Model};
 use crate::sim::{InitialState, Method, RunOptions};
 
@@ -590,7 +591,7 @@ impl Config {
                 Excitation::Pulse(crate::model::excitation::PulsePair { horizontal, vertical })
             }
             ExcitationKind::Record => {
-                let read = |p: &Option<PathBuf>| -> Result<Option<record::Series>, ConfigError> {
+                let read = |p: &Option<PathBuf>| -> Result<Option<Series>, ConfigError> {
                     match p {
                         None => Ok(None),
                         Some(p) => record::read_record(p).map(Some).map_err(|e| ConfigError(e.to_string())),
