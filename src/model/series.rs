@@ -17,7 +17,8 @@ use super::dynamics::Tilt;
 use super::excitation::Excitation;
 use super::geometry::{GAMMA, Geometry};
 use super::mode::Mode;
-use super::system::{FRICTION_LOSS, Model, N, THETA, THETA_DOT, WORK, X, X_DOT};
+use super::params::Model;
+use super::state::{FRICTION_LOSS, N, THETA, THETA_DOT, WORK, X, X_DOT};
 
 /// One more than the highest order with a series (rocking needs the tilt to
 /// one order beyond the rest): 29, for the Taylor stepper's highest order

@@ -38,7 +38,8 @@ use super::excitation::Excitation;
 use super::geometry::{GAMMA, Geometry};
 use super::impact::{self, ImpactLaw, PreImpact};
 use super::mode::{Mode, Sign};
-use super::system::{Model, N, THETA, THETA_DOT, X_DOT};
+use super::params::Model;
+use super::state::{N, THETA, THETA_DOT, X_DOT};
 
 /// Dimension of the tangent coordinates `z = (Θ, Θ', X')`.
 pub const DIM: usize = 3;
