@@ -1,5 +1,6 @@
 //! Files in and out: the configuration (TOML, presets, `--set`, a previous
-//! `summary.json`) read into a typed [`Scenario`](crate::sim::Scenario), and
+//! `summary.json`) read into a typed [`Scenario`](crate::sim::Scenario),
+//! recorded ground motions (`record`: PEER `.AT2` and two-column text), and
 //! the CSV/JSON outputs of a run. Every output carries the resolved
 //! configuration and the crate version.
 //!
@@ -9,5 +10,6 @@
 pub mod config;
 pub mod output;
 pub mod presets;
+pub mod record;
 
 pub use config::{ConfigError, load};

@@ -10,7 +10,9 @@ pub mod excitation;
 pub mod geometry;
 pub mod impact;
 pub mod mode;
+pub mod params;
 pub mod series;
+pub mod state;
 pub mod system;
 pub mod variational;
 
@@ -18,4 +20,5 @@ pub use excitation::{Excitation, Harmonic};
 pub use geometry::Geometry;
 pub use impact::ImpactLaw;
 pub use mode::{Mode, Sign};
-pub use system::{BlockSystem, EventKind, EventRecord, FlightPolicy, Model};
+pub use params::{FlightPolicy, Model};
+pub use system::{BlockSystem, EventKind, EventRecord};

@@ -24,7 +24,7 @@ pub use error::ConfigError;
 pub use set::{line_of, set_dotted};
 
 use crate::model::FlightPolicy;
-use crate::model::excitation::record;
+use crate::io::record;
 use crate::sim::scenario::{Analyses, Block, ExcitationSpec, Impact, Record, RunSpec};
 use crate::sim::{InitialState, Param, Scenario};
 use raw::{Coefficient, Count, Finite, RawConfig};
