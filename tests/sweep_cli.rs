@@ -335,3 +335,77 @@ fn batch_still_works_beside_the_subcommands() {
     let o = rocking().args(["--batch", "sweep"]).output().unwrap();
     assert_eq!(o.status.code(), Some(2));
 }
+
+/// Rows of a CSV file after its header, split into cells.
+fn csv_rows(path: &Path) -> Vec<Vec<String>> {
+    std::fs::read_to_string(path)
+        .unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').map(str::to_string).collect())
+        .collect()
+}
+
+#[test]
+fn a_sweep_value_is_the_batch_run_at_the_value_typed() {
+    // In binary 2.2 + 1·0.1 is 2.3000000000000003, which in a chaotic window
+    // can be another run than 2.3: the sweep must run 2.3 itself.
+    let dir = tmpdir("decimal");
+    let sweep = dir.join("sweep");
+    let args = [
+        "sweep",
+        "--preset",
+        "fig4",
+        "--param",
+        "excitation.a_v",
+        "--from",
+        "2.2",
+        "--to",
+        "2.4",
+        "--step",
+        "0.1",
+        "--transient",
+        "100",
+        "--tau-end",
+        "160",
+        "-q",
+    ];
+    ok(&run(&args, &sweep));
+    let classes = csv_rows(&sweep.join("classes.csv"));
+    let values: Vec<&str> = classes.iter().map(|r| r[0].as_str()).collect();
+    assert_eq!(values, ["2.2", "2.3", "2.4"], "the values as typed");
+    let batch = dir.join("batch");
+    let o = rocking()
+        .args([
+            "--batch",
+            "--preset",
+            "fig4",
+            "--set",
+            "excitation.a_v=2.3",
+            "--set",
+            "run.tau_end=160",
+            "-q",
+        ])
+        .arg("--out")
+        .arg(&batch)
+        .output()
+        .expect("runs");
+    ok(&o);
+    // The sweep's points at 2.3 are the batch run's section points from τ 100.
+    let from_sweep: Vec<(String, String, String)> = csv_rows(&sweep.join("points.csv"))
+        .into_iter()
+        .filter(|r| r[0] == "2.3")
+        .map(|r| (r[2].clone(), r[3].clone(), r[4].clone()))
+        .collect();
+    let from_batch: Vec<(String, String, String)> = csv_rows(&batch.join("poincare.csv"))
+        .into_iter()
+        .filter(|r| r[1].parse::<f64>().expect("tau") >= 100.0)
+        .map(|r| (r[1].clone(), r[2].clone(), r[3].clone()))
+        .collect();
+    assert!(
+        !from_sweep.is_empty(),
+        "A_v = 2.3 rocks (periods 2–4), so it has points"
+    );
+    assert_eq!(from_sweep, from_batch);
+    let _ = std::fs::remove_dir_all(&dir);
+}

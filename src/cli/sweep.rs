@@ -82,7 +82,8 @@ pub struct SweepArgs {
     /// Last value (included within half a step).
     #[arg(long, value_name = "B", allow_negative_numbers = true)]
     pub to: f64,
-    /// Spacing of the values (> 0); value i is A + i·S.
+    /// Spacing of the values (> 0); value i is A + i·S on the decimal grid
+    /// as typed (2.3, not 2.3000000000000003).
     #[arg(long, value_name = "S", allow_negative_numbers = true)]
     pub step: f64,
     /// Section points before this τ are discarded (the paper's 600).

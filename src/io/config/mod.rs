@@ -23,8 +23,8 @@ mod set;
 pub use error::ConfigError;
 pub use set::{line_of, set_dotted};
 
-use crate::model::FlightPolicy;
 use crate::io::record;
+use crate::model::FlightPolicy;
 use crate::sim::scenario::{Analyses, Block, ExcitationSpec, Impact, Record, RunSpec};
 use crate::sim::{InitialState, Param, Scenario};
 use raw::{Coefficient, Count, Finite, RawConfig};
