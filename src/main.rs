@@ -38,7 +38,11 @@ fn main() {
 /// (the `default` preset unless `--preset`/`--config`/`--set` say otherwise).
 #[cfg(feature = "gui")]
 fn open_window(cli: &Cli) -> ! {
-    let scene = rocking::gui::Settings::from_cli(cli.preset.as_deref(), cli.config.as_deref(), &cli.sets);
+    let scene = rocking::gui::Settings::from_cli(
+        cli.scene.preset.as_deref(),
+        cli.scene.config.as_deref(),
+        &cli.scene.sets,
+    );
     let (settings, config) = match scene {
         Ok(s) => s,
         Err(e) => {

@@ -4,7 +4,6 @@ use anyhow::Context as _;
 
 use super::Cli;
 use crate::analysis::lyapunov::{self, Lyapunov, LyapunovError, LyapunovOptions, Method};
-use crate::io::config;
 use crate::io::output;
 use crate::sim::scenario::{LyapunovChoice, SpectrumRange};
 use crate::sim::{self, Scenario};
@@ -21,8 +20,7 @@ pub enum BatchError {
 /// Runs `--batch` as described by `cli`. Nothing is written unless the run
 /// succeeds.
 pub fn run(cli: &Cli) -> Result<(), BatchError> {
-    let cfg: Scenario = config::load(cli.preset.as_deref(), cli.config.as_deref(), &cli.sets)
-        .map_err(|e| BatchError::Input(e.into()))?;
+    let cfg: Scenario = cli.scene.load().map_err(|e| BatchError::Input(e.into()))?;
     let model = cfg.model().map_err(|e| BatchError::Input(e.into()))?;
     output::check_writable(&cli.out)
         .with_context(|| "--out: cannot write the output directory".to_string())

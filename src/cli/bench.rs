@@ -6,8 +6,8 @@ use anyhow::Context as _;
 use clap::Args;
 
 use super::batch::BatchError;
-use super::staging::Staging;
 use crate::bench::{self, BenchOptions};
+use crate::io::staging::Staging;
 use crate::plot::Figure as _;
 use crate::plot::work_precision::WorkPrecisionFigure;
 

@@ -20,14 +20,15 @@ use std::time::Instant;
 use anyhow::{Context as _, anyhow};
 use serde_json::json;
 
+use super::args::{SceneArgs, StudyArgs};
 use super::batch::BatchError;
-use super::staging::Staging;
 use super::sweep::{progress_bar, progress_fn, thread_pool};
 use crate::analysis::classify::{ClassifyOptions, Response};
 use crate::analysis::outcome_map::{Axis, BlockMap, Cell, block_map};
-use crate::analysis::steady::{LyapunovFn, Window};
+use crate::analysis::steady::LyapunovFn;
 use crate::io::config;
 use crate::io::output;
+use crate::io::staging::Staging;
 use crate::plot::Figure as _;
 use crate::plot::labels::{fixed_parameters, num, param_label, param_symbol};
 use crate::plot::outcome_map::{MapColouring, OutcomeMapFigure};
@@ -36,32 +37,18 @@ use crate::sim::Param;
 /// Arguments of `rocking map`.
 #[derive(Debug, Clone, clap::Args)]
 pub struct MapArgs {
-    /// A preset (default, fig3 … fig19); the default preset if neither this
-    /// nor --config is given.
-    #[arg(long, value_name = "NAME")]
-    pub preset: Option<String>,
-    /// A config file: TOML, or a summary.json to reuse its config.
-    #[arg(long, value_name = "FILE")]
-    pub config: Option<PathBuf>,
-    /// Override one key, e.g. --set friction.static=0.4 (repeatable).
-    #[arg(long = "set", value_name = "KEY=VALUE")]
-    pub sets: Vec<String>,
+    /// The scene.
+    #[command(flatten)]
+    pub scene: SceneArgs,
     /// Horizontal axis: config key, first and last value, number of values.
     #[arg(long = "x", num_args = 4, value_names = ["KEY", "A", "B", "N"], allow_negative_numbers = true, required = true)]
     pub x: Vec<String>,
     /// Vertical axis: config key, first and last value, number of values.
     #[arg(long = "y", num_args = 4, value_names = ["KEY", "A", "B", "N"], allow_negative_numbers = true, required = true)]
     pub y: Vec<String>,
-    /// Section points before this τ are discarded (the paper's 600).
-    #[arg(long, value_name = "T", default_value_t = 600.0, allow_negative_numbers = true)]
-    pub transient: f64,
-    /// End of each run, τ (default: the config's run.tau_end, 800 in the
-    /// paper presets).
-    #[arg(long = "tau-end", value_name = "T", allow_negative_numbers = true)]
-    pub tau_end: Option<f64>,
-    /// Worker threads (default: one per core). The output does not depend on it.
-    #[arg(long, value_name = "N")]
-    pub threads: Option<usize>,
+    /// Window and threads.
+    #[command(flatten)]
+    pub study: StudyArgs,
     /// Also compute the largest Lyapunov exponent of each cell (tangent
     /// dynamics with saltation matrices, τ 600–2600 by default; about half a
     /// second per cell in release) into the `lyapunov` column.
@@ -124,7 +111,7 @@ pub fn run(args: &MapArgs) -> Result<(), BatchError> {
 /// decides between quasiperiodic and chaotic, and adds the λ-coloured map.
 pub fn run_with(args: &MapArgs, lyapunov: Option<&LyapunovFn<'_>>) -> Result<(), BatchError> {
     let input = BatchError::Input;
-    let base = config::load(args.preset.as_deref(), args.config.as_deref(), &args.sets).map_err(|e| input(e.into()))?;
+    let base = args.scene.load().map_err(|e| input(e.into()))?;
     let (x, x_param) = axis("--x", &args.x).map_err(input)?;
     let (y, y_param) = axis("--y", &args.y).map_err(input)?;
     if x_param == y_param {
@@ -138,11 +125,7 @@ pub fn run_with(args: &MapArgs, lyapunov: Option<&LyapunovFn<'_>>) -> Result<(),
         }
     }
     let mut config = base.clone();
-    let window = Window {
-        transient: args.transient,
-        tau_end: args.tau_end.unwrap_or(config.run.tau_end),
-    };
-    window.validate().map_err(|e| input(anyhow!(e)))?;
+    let window = args.study.window(&base).map_err(|e| input(anyhow!(e)))?;
     config.run.tau_end = window.tau_end;
     let spec = BlockMap {
         base: &base,
@@ -156,7 +139,7 @@ pub fn run_with(args: &MapArgs, lyapunov: Option<&LyapunovFn<'_>>) -> Result<(),
     };
     spec.check()
         .map_err(|e| input(anyhow!("--x {} = {}, --y {} = {}: {}", x.key, e.x, y.key, e.y, e.error)))?;
-    let pool = thread_pool(args.threads)?;
+    let pool = thread_pool(args.study.threads)?;
     output::check_writable(&args.out)
         .with_context(|| "--out: cannot write the output directory".to_string())
         .map_err(input)?;

@@ -14,13 +14,13 @@ use anyhow::{Context as _, anyhow, bail};
 use serde_json::Value as Json;
 
 use super::batch::BatchError;
-use super::staging::Staging;
 use super::sweep::{CLASSES_HEADER, POINTS_HEADER, SweepMeta};
 use crate::analysis::classify::{ClassifyOptions, Response};
 use crate::analysis::orbit_diagram::{Continuation, Grid, Shard};
 use crate::analysis::steady::Window;
 use crate::io::config;
 use crate::io::output;
+use crate::io::staging::Staging;
 use crate::plot::Figure as _;
 
 /// Arguments of `rocking merge`.

@@ -13,12 +13,12 @@ macro_rules! say {
 
 use crate::analysis::lyapunov;
 
+pub mod args;
 pub mod batch;
 pub mod bench;
 pub mod map;
 pub mod merge;
 pub mod reproduce;
-pub mod staging;
 pub mod sweep;
 
 use std::path::PathBuf;
@@ -39,15 +39,9 @@ pub struct Cli {
     /// events.csv, poincare.csv and history.csv into --out.
     #[arg(long)]
     pub batch: bool,
-    /// A preset from assets/presets (default, fig3 … fig19).
-    #[arg(long, value_name = "NAME")]
-    pub preset: Option<String>,
-    /// A config file: TOML, or a summary.json to repeat its run.
-    #[arg(long, value_name = "FILE")]
-    pub config: Option<PathBuf>,
-    /// Override one key, e.g. --set excitation.a_v=2.5 (repeatable).
-    #[arg(long = "set", value_name = "KEY=VALUE")]
-    pub sets: Vec<String>,
+    /// The scene (for --batch and the app).
+    #[command(flatten)]
+    pub scene: args::SceneArgs,
     /// Output directory.
     #[arg(long, value_name = "DIR", default_value = "out")]
     pub out: PathBuf,

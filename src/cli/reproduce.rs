@@ -14,9 +14,9 @@ use std::time::Instant;
 use anyhow::{Context as _, anyhow};
 
 use super::batch::BatchError;
-use super::staging::Staging;
 use super::sweep::{progress_bar, progress_fn, thread_pool};
 use crate::io::output::{self, OutputError};
+use crate::io::staging::Staging;
 use crate::reproduce::paper::parse_figure;
 use crate::reproduce::write::{Sink, write_all};
 use crate::reproduce::{Options, reproduce};

@@ -24,8 +24,8 @@ use anyhow::Context as _;
 use indicatif::{ProgressBar, ProgressStyle};
 use serde_json::{Value as Json, json};
 
+use super::args::{SceneArgs, StudyArgs};
 use super::batch::BatchError;
-use super::staging::Staging;
 use crate::analysis::Progress;
 use crate::analysis::classify::{ClassifyOptions, Response};
 use crate::analysis::orbit_diagram::{
@@ -34,6 +34,7 @@ use crate::analysis::orbit_diagram::{
 use crate::analysis::steady::{LyapunovFn, Window};
 use crate::io::config::{self, to_json};
 use crate::io::output;
+use crate::io::staging::Staging;
 use crate::plot::Figure as _;
 use crate::plot::bifurcation::BifurcationFigure;
 use crate::plot::labels::{fixed_parameters, grid_decimals, grid_num, num, param_label, param_symbol};
@@ -63,16 +64,9 @@ impl From<ContinuationArg> for Continuation {
 /// Arguments of `rocking sweep`.
 #[derive(Debug, Clone, clap::Args)]
 pub struct SweepArgs {
-    /// A preset (default, fig3 … fig19); the default preset if neither this
-    /// nor --config is given.
-    #[arg(long, value_name = "NAME")]
-    pub preset: Option<String>,
-    /// A config file: TOML, or a summary.json / sweep.json to reuse its config.
-    #[arg(long, value_name = "FILE")]
-    pub config: Option<PathBuf>,
-    /// Override one key, e.g. --set excitation.a_h=2 (repeatable).
-    #[arg(long = "set", value_name = "KEY=VALUE")]
-    pub sets: Vec<String>,
+    /// The scene.
+    #[command(flatten)]
+    pub scene: SceneArgs,
     /// The config key swept, e.g. excitation.a_v.
     #[arg(long, value_name = "KEY")]
     pub param: String,
@@ -86,13 +80,9 @@ pub struct SweepArgs {
     /// as typed (2.3, not 2.3000000000000003).
     #[arg(long, value_name = "S", allow_negative_numbers = true)]
     pub step: f64,
-    /// Section points before this τ are discarded (the paper's 600).
-    #[arg(long, value_name = "T", default_value_t = 600.0, allow_negative_numbers = true)]
-    pub transient: f64,
-    /// End of each run, τ (default: the config's run.tau_end, 800 in the
-    /// paper presets).
-    #[arg(long = "tau-end", value_name = "T", allow_negative_numbers = true)]
-    pub tau_end: Option<f64>,
+    /// Window and threads.
+    #[command(flatten)]
+    pub study: StudyArgs,
     /// Seed each value from the previous one's final state, sweeping up or
     /// down (sequential), or not at all (parallel).
     #[arg(long, value_enum, default_value = "none")]
@@ -101,9 +91,6 @@ pub struct SweepArgs {
     /// jobs; join the shards with `rocking merge`.
     #[arg(long, value_name = "K/N")]
     pub shard: Option<String>,
-    /// Worker threads (default: one per core). The output does not depend on it.
-    #[arg(long, value_name = "N")]
-    pub threads: Option<usize>,
     /// Also compute the largest Lyapunov exponent of each value (tangent
     /// dynamics with saltation matrices, τ 600–2600 by default; about half a
     /// second per value in release) into the `lyapunov` column.
@@ -281,7 +268,7 @@ struct Prepared {
 }
 
 fn prepare(args: &SweepArgs) -> Result<Prepared, BatchError> {
-    let base = config::load(args.preset.as_deref(), args.config.as_deref(), &args.sets).map_err(input)?;
+    let base = args.scene.load().map_err(input)?;
     let param = config::param(&args.param).map_err(|e| input(anyhow::anyhow!("--param {e}")))?;
     if param == Param::TauEnd {
         return Err(input(anyhow::anyhow!(
@@ -300,11 +287,7 @@ fn prepare(args: &SweepArgs) -> Result<Prepared, BatchError> {
     let shard = args.shard.as_deref().map(Shard::parse).transpose().map_err(input)?;
     let plan = Plan::new(grid, continuation, shard).map_err(input)?;
     let mut config = base.clone();
-    let window = Window {
-        transient: args.transient,
-        tau_end: args.tau_end.unwrap_or(config.run.tau_end),
-    };
-    window.validate().map_err(|e| input(anyhow::anyhow!(e)))?;
+    let window = args.study.window(&base).map_err(|e| input(anyhow::anyhow!(e)))?;
     config.run.tau_end = window.tau_end;
     let meta = SweepMeta {
         param,
@@ -351,7 +334,7 @@ pub fn run_with(args: &SweepArgs, lyapunov: Option<&LyapunovFn<'_>>) -> Result<(
             e.error
         ))
     })?;
-    let pool = thread_pool(args.threads)?;
+    let pool = thread_pool(args.study.threads)?;
     output::check_writable(&args.out)
         .with_context(|| "--out: cannot write the output directory".to_string())
         .map_err(BatchError::Input)?;

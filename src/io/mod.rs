@@ -11,5 +11,6 @@ pub mod config;
 pub mod output;
 pub mod presets;
 pub mod record;
+pub mod staging;
 
 pub use config::{ConfigError, load};

@@ -12,6 +12,7 @@ use std::path::{Path, PathBuf};
 use serde_json::json;
 
 use super::config::to_json;
+use super::staging::Staging;
 use crate::model::Mode;
 use crate::model::system::EventRecord;
 use crate::sim::{HistoryRow, RunResult, Scenario, SectionRow};
@@ -152,7 +153,10 @@ pub fn check_writable(dir: &Path) -> Result<(), OutputError> {
     if dir.exists() && !dir.is_dir() {
         return Err(OutputError::NotADirectory(dir.display().to_string()));
     }
-    let parent = staging_parent(dir);
+    let parent = match dir.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
+        _ => PathBuf::from("."),
+    };
     std::fs::create_dir_all(&parent).map_err(io_err(&parent))?;
     let probe = parent.join(format!(".rocking-probe-{}", std::process::id()));
     std::fs::write(&probe, b"").map_err(io_err(&parent))?;
@@ -160,16 +164,9 @@ pub fn check_writable(dir: &Path) -> Result<(), OutputError> {
     Ok(())
 }
 
-fn staging_parent(dir: &Path) -> PathBuf {
-    match dir.parent() {
-        Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
-        _ => PathBuf::from("."),
-    }
-}
-
 /// Writes `files` (name, contents) into `dir` so that no half-written set is
-/// ever left: everything goes to a staging directory beside `dir` first,
-/// and is moved into place only once every file is complete.
+/// ever left ([`Staging`]). Every file is checked before anything is
+/// created.
 pub fn write_all(dir: &Path, files: &[(&str, String)]) -> Result<(), OutputError> {
     // CSV cells are numbers and lower-case names, none of which contains
     // "NaN" or "inf": finding either means a non-finite number.
@@ -178,34 +175,9 @@ pub fn write_all(dir: &Path, files: &[(&str, String)]) -> Result<(), OutputError
             return Err(OutputError::NonFinite(name.to_string()));
         }
     }
-    if dir.exists() && !dir.is_dir() {
-        return Err(OutputError::NotADirectory(dir.display().to_string()));
+    let mut staging = Staging::new(dir)?;
+    for (name, text) in files {
+        staging.text(name, text)?;
     }
-    let parent = staging_parent(dir);
-    std::fs::create_dir_all(&parent).map_err(io_err(&parent))?;
-    let base = dir
-        .file_name()
-        .map_or_else(|| "out".into(), |n| n.to_string_lossy().into_owned());
-    let staging = parent.join(format!(".{base}.partial-{}", std::process::id()));
-    let result = (|| {
-        std::fs::create_dir_all(&staging).map_err(io_err(&staging))?;
-        for (name, text) in files {
-            let p = staging.join(name);
-            std::fs::write(&p, text).map_err(io_err(&p))?;
-        }
-        if !dir.exists() {
-            std::fs::rename(&staging, dir).map_err(io_err(dir))?;
-        } else {
-            for (name, _) in files {
-                let (from, to) = (staging.join(name), dir.join(name));
-                std::fs::rename(&from, &to).map_err(io_err(&to))?;
-            }
-            std::fs::remove_dir(&staging).map_err(io_err(&staging))?;
-        }
-        Ok(())
-    })();
-    if result.is_err() {
-        let _ = std::fs::remove_dir_all(&staging);
-    }
-    result
+    staging.commit()
 }

@@ -1,18 +1,18 @@
-//! An output directory that appears whole or not at all, for outputs that
-//! include binary files (PNG figures).
+//! An output directory that appears whole or not at all: the one writer
+//! every command's output goes through.
 //!
-//! [`io::output::write_all`](crate::io::output::write_all) takes text only;
-//! the figures are written by plotters straight to a path. So the files go
-//! into a staging directory beside the target — text through
-//! [`Staging::text`], figures through the paths [`Staging::path`] hands out —
-//! and [`Staging::commit`] moves them into place at the end, as `write_all`
-//! does. Dropping an uncommitted staging removes it, so an error midway
-//! leaves nothing behind. CSV text is refused if it holds a non-finite
-//! number, as in `write_all`.
+//! The files go into a hidden staging directory beside the target — text
+//! through [`Staging::text`], figures (which plotters writes straight to a
+//! path) through the paths [`Staging::path`] hands out — and
+//! [`Staging::commit`] moves them into place at the end. Dropping an
+//! uncommitted staging removes it, so an error midway leaves nothing
+//! behind. CSV text is refused if it holds a non-finite number.
+//! [`write_all`](super::output::write_all) stages a set of text files in one
+//! call.
 
 use std::path::{Path, PathBuf};
 
-use crate::io::output::OutputError;
+use super::output::OutputError;
 
 /// A staging directory for the files of one output directory.
 #[derive(Debug)]
@@ -45,7 +45,7 @@ impl Staging {
         let base = dir
             .file_name()
             .map_or_else(|| "out".into(), |n| n.to_string_lossy().into_owned());
-        let staging = parent.join(format!(".{base}.staging-{}", std::process::id()));
+        let staging = parent.join(format!(".{base}.partial-{}", std::process::id()));
         if staging.exists() {
             std::fs::remove_dir_all(&staging).map_err(io_err(&staging))?;
         }
