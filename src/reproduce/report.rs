@@ -10,12 +10,12 @@
 use std::fmt::Write as _;
 
 use super::diagrams::{
-    Diagram, RangeComparison, Variant, cascade, compare_ranges, counts_text, intermittency_switches,
-    is_period_doubling, short,
+    Diagram, RangeComparison, cascade, compare_ranges, counts_text, intermittency_switches, is_period_doubling, short,
 };
+use super::format::{block_and_impact, diagram_stem, prefix, short_num, short_params};
 use super::paper::{FIGURES, FigureKind, PaperFigure};
 use super::response::{ResponseExample, SpectrumData, TransientExponent, TransientWindow};
-use super::write::{block_and_impact, diagram_stem, prefix, short_num, short_params};
+use super::variant::Variant;
 use super::{INVESTIGATED, Reproduction, SCANNED};
 use crate::analysis::classify::Response;
 use crate::analysis::lyapunov::{Lyapunov, LyapunovResult};

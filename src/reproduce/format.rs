@@ -1,0 +1,71 @@
+//! Short text shared by the files and the report: file-name stems and
+//! the parameters and numbers of titles and tables. Here rather than in
+//! [`super::write`] so that the report ([`super::report`]), which
+//! `write` runs, does not import from it in turn.
+
+use super::diagrams::Diagram;
+use super::variant::Variant;
+use crate::io::config::Config;
+use crate::plot::labels::num;
+
+/// `figNN_` for figure `n`.
+pub fn prefix(n: u32) -> String {
+    format!("fig{n:02}_")
+}
+
+/// The base name of a diagram's files: `fig04_` or `fig04_variant_ralston_`.
+pub fn diagram_stem(d: &Diagram) -> String {
+    match d.variant {
+        Variant::Paper => prefix(d.figure),
+        Variant::Ralston
+        | Variant::ContinuationUp
+        | Variant::Housner
+        | Variant::PrintedEq20
+        | Variant::TumbleAtSide
+        | Variant::FlightStop
+        | Variant::ImpulseLaw
+        | Variant::ImpactRatio(_) => format!("{}variant_{}_", prefix(d.figure), d.variant.slug()),
+    }
+}
+
+/// The parameters that define a response in a short line:
+/// `Ω_h = Ω_v = 8, A_h = 2, A_v = 2.5, no sliding`.
+pub fn short_params(cfg: &Config, with_a_v: bool) -> String {
+    let mut parts = Vec::new();
+    if cfg.omega_h == cfg.omega_v {
+        parts.push(format!("Ω_h = Ω_v = {}", num(cfg.omega_h)));
+    } else {
+        parts.push(format!("Ω_h = {}, Ω_v = {}", num(cfg.omega_h), num(cfg.omega_v)));
+    }
+    parts.push(format!("A_h = {}", num(cfg.a_h)));
+    if with_a_v {
+        parts.push(format!("A_v = {}", num(cfg.a_v)));
+    }
+    if cfg.mu_s.is_infinite() {
+        parts.push("no sliding".to_string());
+    } else {
+        parts.push(format!("μ_s = {}, μ_k = {}", num(cfg.mu_s), num(cfg.mu_k)));
+    }
+    parts.join(", ")
+}
+
+/// The impact law and block in a short line: `B × H = 1 × 4 m, impact ratio r = 0.925`.
+pub fn block_and_impact(cfg: &Config) -> String {
+    let law = match cfg.law.as_str() {
+        "housner" => format!("Housner impact r = {:.4}", cfg.geometry().housner_r()),
+        "impulse" => format!("impulse impact e = {}", num(cfg.e)),
+        _ => format!("impact ratio r = {}", short_num(cfg.r)),
+    };
+    format!("B × H = {} × {} m, {law}", num(cfg.width), num(cfg.height))
+}
+
+/// A number with at most 4 decimals, trailing zeros dropped.
+pub fn short_num(x: f64) -> String {
+    let s = format!("{x:.4}");
+    let s = s.trim_end_matches('0').trim_end_matches('.');
+    if s.is_empty() || s == "-" {
+        "0".to_string()
+    } else {
+        s.to_string()
+    }
+}
