@@ -7,7 +7,9 @@ use std::fmt::Write as _;
 
 use super::Row;
 use super::claims::{explains, exponent_range_verdict, range_tol, ratio_scan_verdict, survival_verdict};
-use super::markdown::{cascade_text, median, pct, range_cell, ranges_line, variant_row};
+use super::markdown::{
+    cascade_text, median, paper_statements, pct, range_cell, range_columns, ranges_line, variant_row,
+};
 use crate::analysis::classify::Response;
 use crate::plot::labels::{grid_decimals, grid_num};
 use crate::reproduce::diagrams::{Diagram, Verdict, compare_ranges, counts, counts_text, intermittency_switches};
@@ -30,10 +32,7 @@ pub(super) fn diagram_section(out: &mut String, rows: &mut Vec<Row>, rep: &Repro
         "![Fig. {n} reproduced]({stem}bifurcation.png)\n\n(`{stem}bifurcation.svg`; data `{stem}classes.csv`, `{stem}points.csv`.)\n",
         n = f.number
     );
-    out.push_str("**The paper:**\n\n");
-    for s in f.statements {
-        let _ = writeln!(out, "> {s}\n");
-    }
+    paper_statements(out, f);
     let dec = grid_decimals(d.settings.grid.from, d.settings.grid.step);
     let tol = range_tol(d.settings.grid.step);
     if !f.ranges.is_empty() {
@@ -202,15 +201,7 @@ pub(super) fn investigation_section(out: &mut String, rows: &mut Vec<Row>, rep: 
         "Each variant changes one thing through the configuration (the model's equations are never altered) and is labelled VARIANT in its figure; none is a default. ",
     );
     out.push_str("Cells give our run of the paper's mode (first–last A_v) or the share of matching values, and the verdict by the rules of the figure's section.\n\n");
-    let mut head = String::from("| variant | settings |");
-    let mut rule = String::from("|---|---|");
-    for r in f.ranges {
-        let _ = write!(head, " paper {}–{}: {} |", r.from, r.to, r.expect.label());
-        rule.push_str("---|");
-    }
-    head.push_str(" first tumble | all values |");
-    rule.push_str("---|---|");
-    let _ = writeln!(out, "{head}\n{rule}");
+    range_columns(out, &["variant", "settings"], f.ranges, &["first tumble", "all values"]);
     let mut last_range: Vec<(Variant, usize, usize, usize)> = Vec::new();
     let base_responses = base.responses();
     let mut identical: Vec<String> = Vec::new();
@@ -392,15 +383,7 @@ fn ratio_scan_section(
         short_num(scan[scan.len() - 1].0),
         prefix(f.number)
     );
-    let mut head = String::from("| r |");
-    let mut rule = String::from("|---|");
-    for r in f.ranges {
-        let _ = write!(head, " paper {}–{}: {} |", r.from, r.to, r.expect.label());
-        rule.push_str("---|");
-    }
-    head.push_str(" first tumble | tumbled |");
-    rule.push_str("---|---|");
-    let _ = writeln!(out, "{head}\n{rule}");
+    range_columns(out, &["r"], f.ranges, &["first tumble", "tumbled"]);
     let mut agreeing: Vec<(f64, usize)> = Vec::new();
     for (r, d) in &scan {
         let cmp = compare_ranges(&d.responses(), f.ranges, tol);

@@ -9,7 +9,7 @@ use super::claims::{
     amplitude_verdict, best_exponent, class_verdict, exponent_verdict, lyapunov_result, lyapunov_verdict, near_quoted,
     neighbours_verdict,
 };
-use super::markdown::{lyapunov_text, neighbours_text, peaks_text, response_word};
+use super::markdown::{lyapunov_text, neighbours_text, paper_statements, peaks_text, response_word};
 use crate::analysis::classify::Response;
 use crate::analysis::lyapunov::{Lyapunov, LyapunovResult};
 use crate::reproduce::Reproduction;
@@ -52,10 +52,7 @@ pub(super) fn response_section(out: &mut String, rows: &mut Vec<Row>, rep: &Repr
         "(c) ![Fig. {n} (c) Poincaré map]({p}poincare.png)\n\n(SVG beside each PNG; the Poincaré points in `{p}poincare.csv`.)\n",
         n = f.number
     );
-    out.push_str("**The paper:**\n\n");
-    for s in f.statements {
-        let _ = writeln!(out, "> {s}\n");
-    }
+    paper_statements(out, f);
     let _ = writeln!(
         out,
         "**Ours** ({}; {}):\n",

@@ -9,6 +9,7 @@ use crate::analysis::orbit_diagram::ResponseRange;
 use crate::plot::labels::grid_num;
 use crate::reproduce::diagrams::{Diagram, RangeComparison, cascade, counts, counts_text, is_period_doubling, short};
 use crate::reproduce::format::diagram_stem;
+use crate::reproduce::paper::{PaperFigure, PaperRange};
 use crate::reproduce::response::{ResponseExample, SpectrumData};
 use crate::reproduce::variant::Variant;
 
@@ -168,4 +169,32 @@ pub(super) fn median(v: &[f64]) -> Option<f64> {
     let mut s = v.to_vec();
     s.sort_by(f64::total_cmp);
     s.get(s.len() / 2).copied()
+}
+
+/// The paper's statements about `f`, quoted.
+pub(super) fn paper_statements(out: &mut String, f: &PaperFigure) {
+    out.push_str("**The paper:**\n\n");
+    for s in f.statements {
+        let _ = writeln!(out, "> {s}\n");
+    }
+}
+
+/// The head of a table with a column per paper range: the `first`
+/// columns, `paper 0–0.84: (1,1)` and so on, then the `last` columns.
+pub(super) fn range_columns(out: &mut String, first: &[&str], ranges: &[PaperRange], last: &[&str]) {
+    let mut head = String::from("|");
+    let mut rule = String::from("|");
+    for c in first {
+        let _ = write!(head, " {c} |");
+        rule.push_str("---|");
+    }
+    for r in ranges {
+        let _ = write!(head, " paper {}–{}: {} |", r.from, r.to, r.expect.label());
+        rule.push_str("---|");
+    }
+    for c in last {
+        let _ = write!(head, " {c} |");
+        rule.push_str("---|");
+    }
+    let _ = writeln!(out, "{head}\n{rule}");
 }

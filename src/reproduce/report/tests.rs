@@ -238,6 +238,9 @@ fn regions_are_compared_by_their_shares() {
         Some(("tumbled 2/10 vs 4/10", "agrees"))
     );
     assert_eq!(done(&tumbling_narrower(&y, &x)).map(|d| d.1), Some("differs"));
+    // Equal shares are not wider or narrower.
+    assert_eq!(done(&tumbling_narrower(&x, &x)).map(|d| d.1), Some("differs"));
+    assert_eq!(done(&periodic_narrower(&x, &x)).map(|d| d.1), Some("differs"));
     let z = shares(0.2, 0.6, 0.2);
     assert_eq!(done(&chaotic_wider(&z, &x)), Some(("chaotic 6/10 vs 3/10", "agrees")));
     assert_eq!(done(&chaotic_wider(&x, &y)).map(|d| d.1), Some("differs"));
