@@ -5,13 +5,12 @@ use std::fmt::Write as _;
 
 use crate::analysis::classify::Response;
 use crate::analysis::lyapunov::Lyapunov;
-use crate::analysis::orbit_diagram::ResponseRange;
+use crate::analysis::orbit_diagram::{Continuation, ResponseRange};
 use crate::plot::labels::grid_num;
 use crate::reproduce::diagrams::{Diagram, RangeComparison, cascade, counts, counts_text, is_period_doubling, short};
 use crate::reproduce::format::diagram_stem;
 use crate::reproduce::paper::{PaperFigure, PaperRange};
 use crate::reproduce::response::{ResponseExample, SpectrumData};
-use crate::reproduce::variant::Variant;
 
 /// A share of `count` values as `n/count`.
 pub(super) fn of(share: f64, count: usize) -> String {
@@ -132,17 +131,13 @@ pub(super) fn neighbours_text(r: &ResponseExample) -> String {
 /// One row of a variant table: the variant, its settings, a cell per paper
 /// range, first tumble and all counts.
 pub(super) fn variant_row(d: &Diagram, cmp: &[RangeComparison], dec: usize) -> String {
+    // A variant without `--set` assignments changes how the values are
+    // seeded, or nothing.
     let sets = if d.sets.is_empty() {
-        match d.variant {
-            Variant::ContinuationUp => "`--continuation up`".to_string(),
-            Variant::Paper
-            | Variant::Ralston
-            | Variant::Housner
-            | Variant::PrintedEq20
-            | Variant::TumbleAtSide
-            | Variant::FlightStop
-            | Variant::ImpulseLaw
-            | Variant::ImpactRatio(_) => "preset".to_string(),
+        match d.variant.continuation() {
+            Continuation::Up => "`--continuation up`".to_string(),
+            Continuation::Down => "`--continuation down`".to_string(),
+            Continuation::None => "preset".to_string(),
         }
     } else {
         d.sets.iter().map(|s| format!("`{s}`")).collect::<Vec<_>>().join(" ")
