@@ -11,7 +11,7 @@
 //!   **variants** test the candidate reasons one at a time: the paper's
 //!   integrator, continuation, other impact ratios (including the paper's
 //!   eq. 20 as printed), the tumble criterion and the flight policy
-//!   ([`diagrams::Variant`]). They change the configuration only, never
+//!   ([`variant::Variant`]). They change the configuration only, never
 //!   the model's equations, and are never the default.
 //! - The report ([`report`]) quotes the paper ([`paper`]), tabulates paper
 //!   against ours, and says where they agree and where they differ.
@@ -25,10 +25,12 @@
 //! that tumbles) is a reported outcome, never NaN.
 
 pub mod diagrams;
+pub mod format;
 pub mod paper;
 pub mod report;
 pub mod response;
 pub mod scan;
+pub mod variant;
 pub mod write;
 
 use rayon::prelude::*;
@@ -41,12 +43,13 @@ use crate::io::output::OutputError;
 use crate::plot::PlotError;
 use crate::sim::Scenario;
 use crate::sim::scenario::LawKind;
-use diagrams::{Diagram, DiagramSettings, R_SCAN, Variant, run_diagram, tumble_times, tumbled_neighbours};
+use diagrams::{Diagram, DiagramSettings, run_diagram, tumble_times, tumbled_neighbours};
 use paper::{FIGURES, FigureKind, PaperFigure};
 use response::{
     ResponseExample, ResponseSettings, ResponseVariant, response_variants, run_response, run_response_variant,
 };
 use scan::{Scan, lyapunov_scan};
+use variant::{R_SCAN, Variant};
 
 /// The figures whose diagrams are investigated with the variants: the
 /// paper's Figs. 3 and 4, the only ones for which it gives mode ranges.

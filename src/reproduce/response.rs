@@ -19,8 +19,8 @@
 //! Poincaré map and long spectrum then show the rocking before the tumble.
 
 use super::ReproduceError;
-use super::diagrams::Variant;
 use super::paper::PaperFigure;
+use super::variant::Variant;
 use crate::analysis::classify::{ClassifyOptions, Response, classify_points};
 use crate::analysis::lyapunov::{Lyapunov, LyapunovOptions, Method, NoExponent, lyapunov};
 use crate::analysis::section::{after_transient, block_coordinates};
