@@ -7,6 +7,7 @@
 //! knows nothing of files, config keys read from text, or windows.
 
 mod collect;
+pub mod job;
 pub mod param;
 pub mod protocol;
 mod run;

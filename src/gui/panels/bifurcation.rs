@@ -22,7 +22,6 @@
 
 pub mod sweeper;
 
-use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use egui::Color32;
@@ -304,7 +303,7 @@ impl BifurcationView {
             window: self.window,
         };
         let ctx = ctx.clone();
-        match Sweeper::start(req, Arc::new(move || ctx.request_repaint())) {
+        match sweeper::start(req, Box::new(move || ctx.request_repaint())) {
             Ok(s) => {
                 self.sweeper = Some(s);
                 self.sweeps += 1;

@@ -12,21 +12,19 @@
 //! - The stages stop at the first answer without a finite exponent
 //!   (tumbling, rest, flat phases) or error: a longer window would say the
 //!   same.
+//! - The computation is a [`Job`] whose channel holds every stage, so it
+//!   never waits on the view.
 //! - A new scene cancels the old computation (checked between stages; the
 //!   stage running finishes in the background and is discarded) and starts
 //!   over. Hidden, the view does no work: the computation is cancelled and
 //!   starts over when shown again.
 
-use std::sync::Arc;
-use std::sync::atomic::{AtomicBool, Ordering};
-use std::thread::JoinHandle;
-
-use crossbeam_channel::{Receiver, unbounded};
 use egui::Color32;
 use egui_plot::{HLine, Line, Plot, PlotPoints};
 
 use crate::analysis::lyapunov::{Lyapunov, LyapunovOptions, Method, lyapunov};
 use crate::sim::Scenario;
+use crate::sim::job::{Job, Link, Waker};
 
 /// Discarded start of every window, τ. 200 τ (a third of the paper's 600)
 /// keeps the first number quick; the longer stages dilute what remains of
@@ -50,73 +48,43 @@ pub struct Stage {
     pub answer: Result<Lyapunov, String>,
 }
 
-struct Worker {
-    cancel: Arc<AtomicBool>,
-    rx: Receiver<Stage>,
-    thread: Option<JoinHandle<()>>,
+/// The background estimate of one scene.
+type Worker = Job<Stage>;
+
+/// Starts the stages of `cfg` on a thread named `lyapunov`.
+fn start(cfg: Scenario, waker: Waker) -> Result<Worker, String> {
+    Job::spawn("lyapunov", STAGES.len(), waker, move |link| stages(&cfg, &link))
+        .map_err(|e| format!("cannot start the lyapunov thread: {e}"))
 }
 
-impl Worker {
-    fn start(cfg: Scenario, waker: Arc<dyn Fn() + Send + Sync>) -> Result<Self, String> {
-        let cancel = Arc::new(AtomicBool::new(false));
-        let flag = Arc::clone(&cancel);
-        let (tx, rx) = unbounded();
-        let thread = std::thread::Builder::new()
-            .name("lyapunov".into())
-            .spawn(move || {
-                let model = match cfg.model() {
-                    Ok(m) => m,
-                    Err(e) => {
-                        let _ = tx.send(Stage {
-                            total_tau: STAGES[0],
-                            answer: Err(e.to_string()),
-                        });
-                        return waker();
-                    }
-                };
-                let init = cfg.initial;
-                for total_tau in STAGES {
-                    if flag.load(Ordering::Relaxed) {
-                        return;
-                    }
-                    let opts = LyapunovOptions {
-                        method: Method::Tangent,
-                        transient_tau: TRANSIENT_TAU,
-                        total_tau,
-                        ..LyapunovOptions::default()
-                    };
-                    let answer = lyapunov(&model, &init, &opts).map_err(|e| e.to_string());
-                    let last = !matches!(answer, Ok(Lyapunov::Exponents(_)));
-                    if flag.load(Ordering::Relaxed) {
-                        return;
-                    }
-                    // The view may have gone (a newer scene): fine.
-                    let _ = tx.send(Stage { total_tau, answer });
-                    waker();
-                    if last {
-                        return;
-                    }
-                }
-            })
-            .map_err(|e| format!("cannot start the lyapunov thread: {e}"))?;
-        Ok(Self {
-            cancel,
-            rx,
-            thread: Some(thread),
-        })
-    }
-
-    fn finished(&self) -> bool {
-        self.thread.as_ref().is_none_or(JoinHandle::is_finished)
-    }
-}
-
-impl Drop for Worker {
-    fn drop(&mut self) {
-        self.cancel.store(true, Ordering::Relaxed);
-        if let Some(t) = self.thread.take() {
-            // A panic was already reported on stderr; nothing more to do.
-            let _ = t.join();
+/// Sends each stage of `cfg` as it is done, until one has no finite
+/// exponent or the job is cancelled.
+fn stages(cfg: &Scenario, link: &Link<Stage>) {
+    let model = match cfg.model() {
+        Ok(m) => m,
+        Err(e) => {
+            // Refused only when cancelled: nothing more to do either way.
+            let _ = link.send(Stage {
+                total_tau: STAGES[0],
+                answer: Err(e.to_string()),
+            });
+            return;
+        }
+    };
+    for total_tau in STAGES {
+        if link.cancelled() {
+            return;
+        }
+        let opts = LyapunovOptions {
+            method: Method::Tangent,
+            transient_tau: TRANSIENT_TAU,
+            total_tau,
+            ..LyapunovOptions::default()
+        };
+        let answer = lyapunov(&model, &cfg.initial, &opts).map_err(|e| e.to_string());
+        let last = !matches!(answer, Ok(Lyapunov::Exponents(_)));
+        if link.cancelled() || link.send(Stage { total_tau, answer }).is_err() || last {
+            return;
         }
     }
 }
@@ -162,21 +130,21 @@ impl LyapunovView {
             if !w.finished() {
                 self.key = None;
             }
-            w.cancel.store(true, Ordering::Relaxed);
+            w.cancel();
             self.retired.push(w);
         }
     }
 
     fn restart(&mut self, cfg: &Scenario, ctx: &egui::Context) {
         if let Some(w) = self.worker.take() {
-            w.cancel.store(true, Ordering::Relaxed);
+            w.cancel();
             self.retired.push(w);
         }
         self.key = Some(cfg.clone());
         self.latest = None;
         self.error = None;
         let ctx = ctx.clone();
-        match Worker::start(cfg.clone(), Arc::new(move || ctx.request_repaint())) {
+        match start(cfg.clone(), Box::new(move || ctx.request_repaint())) {
             Ok(w) => {
                 self.worker = Some(w);
                 self.runs += 1;
@@ -193,7 +161,7 @@ impl LyapunovView {
             self.restart(cfg, ui.ctx());
         }
         if let Some(w) = &self.worker {
-            for s in w.rx.try_iter() {
+            for s in w.drain() {
                 self.stages += 1;
                 self.latest = Some(s);
             }
@@ -258,7 +226,7 @@ impl Drop for LyapunovView {
     fn drop(&mut self) {
         // Cancel all first so they stop together; each Worker joins on drop.
         for w in self.retired.iter().chain(self.worker.iter()) {
-            w.cancel.store(true, Ordering::Relaxed);
+            w.cancel();
         }
     }
 }

@@ -8,29 +8,30 @@
 //!   computes it (from the configuration's initial state, no continuation).
 //! - Results arrive value by value, in completion order (rayon spreads the
 //!   values over the cores, so the diagram fills in across its whole range).
-//!   The channel is unbounded but holds at most one message per value plus
-//!   one, and a sweep has at most [`MAX_VALUES`] values.
-//! - Cancellation: a flag checked before each value. A cancelled sweep
-//!   finishes the values already running (at most one per core) and sends
-//!   nothing more; the view drops its channel at once, so nothing stale is
-//!   ever drawn.
+//! - The sweep is a [`Job`] named `bifurcation`. Its reply channel holds
+//!   [`CAPACITY`] messages, one per value plus `Done` for the largest
+//!   sweep, so a sweep never waits on a slow view; one larger than the
+//!   view allows would wait for room (backpressure), and cancelling ends
+//!   the wait.
+//! - Cancellation: a flag checked before and after each value. A cancelled
+//!   sweep finishes the values already running (at most one per core) and
+//!   sends nothing more; the view stops reading it at once, so nothing
+//!   stale is ever drawn.
 //! - The thread is joined when its [`Sweeper`] is dropped (after cancelling
 //!   it), so no sweep outlives the view.
-
-use std::sync::Arc;
-use std::sync::atomic::{AtomicBool, Ordering};
-use std::thread::JoinHandle;
-
-use crossbeam_channel::{Receiver, Sender, unbounded};
 
 use crate::analysis::classify::{ClassifyOptions, Response};
 use crate::analysis::orbit_diagram::{BlockSweep, Continuation, Grid, Plan, sweep};
 use crate::analysis::steady::{Window, steady_response};
+use crate::sim::job::{Job, Link, Waker};
 use crate::sim::{Param, Scenario};
 
 /// Most values one interactive sweep may have: 2001 values of 255 points
 /// each is about 4 MB, and more columns than a screen has pixels add nothing.
 pub const MAX_VALUES: usize = 2001;
+
+/// Replies the channel holds: every value of the largest sweep plus `Done`.
+pub const CAPACITY: usize = MAX_VALUES + 1;
 
 /// What to compute.
 #[derive(Clone, Debug)]
@@ -76,15 +77,10 @@ pub enum Reply {
     Done,
 }
 
-/// Called after each message so the GUI wakes to draw it.
-pub type Waker = Arc<dyn Fn() + Send + Sync>;
-
-/// A running (or finished) sweep.
-pub struct Sweeper {
-    cancel: Arc<AtomicBool>,
-    rx: Receiver<Reply>,
-    thread: Option<JoinHandle<()>>,
-}
+/// A running (or finished) sweep: [`Job::drain`] its replies,
+/// [`Job::cancel`] it, ask whether it [`Job::finished`]; dropping it
+/// cancels and joins.
+pub type Sweeper = Job<Reply>;
 
 /// The closure's error when the sweep was cancelled.
 struct Cancelled;
@@ -95,55 +91,17 @@ impl std::fmt::Display for Cancelled {
     }
 }
 
-impl Sweeper {
-    /// Starts `req` on a thread named `bifurcation`.
-    pub fn start(req: Request, waker: Waker) -> Result<Self, String> {
-        let cancel = Arc::new(AtomicBool::new(false));
-        let (tx, rx) = unbounded();
-        let flag = Arc::clone(&cancel);
-        let thread = std::thread::Builder::new()
-            .name("bifurcation".into())
-            .spawn(move || run(&req, &flag, &tx, &waker))
-            .map_err(|e| format!("cannot start the bifurcation thread: {e}"))?;
-        Ok(Self {
-            cancel,
-            rx,
-            thread: Some(thread),
-        })
-    }
-
-    /// Asks the thread to stop before its next value.
-    pub fn cancel(&self) {
-        self.cancel.store(true, Ordering::Relaxed);
-    }
-
-    /// The messages received so far, without waiting.
-    pub fn drain(&self) -> Vec<Reply> {
-        self.rx.try_iter().collect()
-    }
-
-    /// Whether the thread has ended.
-    pub fn finished(&self) -> bool {
-        self.thread.as_ref().is_none_or(JoinHandle::is_finished)
-    }
+/// Starts `req` on a thread named `bifurcation`.
+pub fn start(req: Request, waker: Waker) -> Result<Sweeper, String> {
+    Job::spawn("bifurcation", CAPACITY, waker, move |link| run(&req, &link))
+        .map_err(|e| format!("cannot start the bifurcation thread: {e}"))
 }
 
-impl Drop for Sweeper {
-    fn drop(&mut self) {
-        self.cancel();
-        if let Some(t) = self.thread.take() {
-            // A panic in the thread has already been reported on stderr;
-            // there is nothing more to do with it here.
-            let _ = t.join();
-        }
-    }
-}
-
-fn run(req: &Request, cancel: &AtomicBool, tx: &Sender<Reply>, waker: &Waker) {
+fn run(req: &Request, link: &Link<Reply>) {
     let send = |r: Reply| {
-        // The view may have dropped the receiver (a newer sweep): fine.
-        let _ = tx.send(r);
-        waker();
+        // Refused only when cancelled (a newer sweep, a hidden view): the
+        // checks around each value then stop the sweep.
+        let _ = link.send(r);
     };
     let plan = match Plan::new(req.grid, Continuation::None, None) {
         Ok(p) => p,
@@ -162,14 +120,14 @@ fn run(req: &Request, cancel: &AtomicBool, tx: &Sender<Reply>, waker: &Waker) {
         return send(Reply::Invalid(e.to_string()));
     }
     let result = sweep(&plan, &crate::analysis::silent, |value, _: Option<&()>| {
-        if cancel.load(Ordering::Relaxed) {
+        if link.cancelled() {
             return Err(Cancelled);
         }
         let out = spec
             .scenario(value)
             .map_err(|e| e.to_string())
             .and_then(|cfg| steady_response(&cfg, &req.window, &classify, None).map_err(|e| e.to_string()));
-        if cancel.load(Ordering::Relaxed) {
+        if link.cancelled() {
             return Err(Cancelled);
         }
         send(match out {

@@ -1,0 +1,195 @@
+//! The top bar (File, Presets and View menus, playback, perturbation, speed
+//! and ghosts) and the keyboard shortcuts that mirror its buttons.
+
+use super::{Message, RockingApp};
+use crate::gui::export;
+use crate::gui::settings::Settings;
+use crate::sim::protocol::{MAX_GHOSTS, Speed};
+
+impl RockingApp {
+    /// Space plays or pauses, R resets, S steps, unless a text field has
+    /// the keyboard.
+    pub(super) fn keys(&mut self, ui: &egui::Ui) {
+        if ui.ctx().egui_wants_keyboard_input() {
+            return;
+        }
+        let (space, r, s) = ui.input(|i| {
+            (
+                i.key_pressed(egui::Key::Space),
+                i.key_pressed(egui::Key::R),
+                i.key_pressed(egui::Key::S),
+            )
+        });
+        if space {
+            self.toggle_pause();
+        }
+        if r {
+            self.reset();
+        }
+        if s {
+            self.step();
+        }
+    }
+
+    pub(super) fn controls(&mut self, ui: &mut egui::Ui) {
+        ui.horizontal_wrapped(|ui| {
+            ui.menu_button("File", |ui| self.file_menu(ui));
+            ui.menu_button("Presets", |ui| {
+                for (name, text) in crate::io::presets::PRESETS {
+                    let title = text.lines().next().unwrap_or("").trim_start_matches('#').trim();
+                    if ui.button(*name).on_hover_text(title).clicked() {
+                        self.load_preset(name);
+                        ui.close();
+                    }
+                }
+            });
+            ui.menu_button("View", |ui| {
+                ui.checkbox(&mut self.show.params, "Parameters");
+                ui.checkbox(&mut self.show.scene, "Block scene");
+                ui.checkbox(&mut self.show.phase, "Phase portrait");
+                ui.checkbox(&mut self.show.poincare, "Poincaré points");
+                ui.checkbox(&mut self.show.history, "Time history");
+                ui.checkbox(&mut self.show.spectrum, "Power spectrum");
+                ui.checkbox(&mut self.show.bifurcation, "Bifurcation diagram");
+                ui.checkbox(&mut self.show.lyapunov, "Lyapunov exponent");
+                ui.separator();
+                ui.checkbox(&mut self.forces, "Contact force and friction cone");
+            });
+            ui.separator();
+            let label = if self.paused { "Play" } else { "Pause" };
+            if ui.button(label).on_hover_text("Space").clicked() {
+                self.toggle_pause();
+            }
+            if ui
+                .button("Step")
+                .on_hover_text("S: advance one forcing period 2π/Ω_h and pause")
+                .clicked()
+            {
+                self.step();
+            }
+            if ui.button("Reset").on_hover_text("R: restart from τ = 0").clicked() {
+                self.reset();
+            }
+            if ui
+                .button("Reset perturbed")
+                .on_hover_text("Restart from the state shown with Θ + ε")
+                .clicked()
+            {
+                self.reset_perturbed();
+            }
+            let eps_label = ui.label("ε");
+            ui.add(
+                egui::DragValue::new(&mut self.eps)
+                    .range(-0.5..=0.5)
+                    .speed(1e-6)
+                    .custom_formatter(|v, _| format!("{v:.1e}")),
+            )
+            .labelled_by(eps_label.id)
+            .on_hover_text("Perturbation of Θ for Reset perturbed, units of ψ");
+            ui.separator();
+            let speed_label = ui.label("Speed");
+            let r = ui
+                .add_enabled(
+                    !self.max_speed,
+                    egui::Slider::new(&mut self.speed, Speed::MIN_MULTIPLE..=Speed::MAX_MULTIPLE)
+                        .logarithmic(true)
+                        .suffix("×")
+                        .max_decimals(2),
+                )
+                .labelled_by(speed_label.id)
+                .on_hover_text("Multiple of real time in the block's physical seconds (1 s = p τ)");
+            if r.changed() {
+                self.send_speed();
+            }
+            if ui.checkbox(&mut self.max_speed, "As fast as possible").changed() {
+                self.send_speed();
+            }
+            ui.separator();
+            let ghosts_label = ui.label("Ghosts");
+            let r = ui
+                .add(egui::DragValue::new(&mut self.ghost_count).range(0..=MAX_GHOSTS))
+                .labelled_by(ghosts_label.id)
+                .on_hover_text("Copies started from Θ perturbed by up to the ghost ε, drawn translucent");
+            let eps_label = ui.label("ghost ε");
+            let r2 = ui
+                .add(
+                    egui::DragValue::new(&mut self.ghost_eps)
+                        .range(1e-12..=0.5)
+                        .speed(1e-4)
+                        .custom_formatter(|v, _| format!("{v:.1e}")),
+                )
+                .labelled_by(eps_label.id);
+            if r.changed() || r2.changed() {
+                self.send_ghosts();
+            }
+        });
+    }
+
+    fn file_menu(&mut self, ui: &mut egui::Ui) {
+        if ui.button("Open scene…").clicked() {
+            ui.close();
+            if let Some(path) = rfd::FileDialog::new()
+                .add_filter("scene", &["toml", "json"])
+                .pick_file()
+            {
+                match Settings::open(&path) {
+                    Ok((s, c)) => self.apply(s, c),
+                    Err(e) => self.message = Some(Message { text: e, error: true }),
+                }
+            }
+        }
+        if ui.button("Save scene…").clicked() {
+            ui.close();
+            if let Some(path) = save_dialog("scene", "toml", "scene.toml") {
+                let r = self
+                    .settings
+                    .to_toml()
+                    .and_then(|t| export::write_atomic(&path, t.as_bytes()));
+                self.message = Some(written(r, || format!("saved {}", path.display())));
+            }
+        }
+        if ui.button("Export plots (PNG)…").clicked() {
+            ui.close();
+            if let Some(path) = save_dialog("PNG", "png", "plots.png") {
+                let r = export::plots_png(
+                    &path,
+                    &self.hist,
+                    self.tau,
+                    self.history_view.window,
+                    self.phase.trail_tau,
+                );
+                self.message = Some(written(r, || format!("wrote {}", path.display())));
+            }
+        }
+        if ui.button("Export data (CSV)…").clicked() {
+            ui.close();
+            if let Some(dir) = rfd::FileDialog::new().pick_folder() {
+                let r = export::data_csv(&dir, &self.hist);
+                self.message = Some(written(r, || {
+                    format!("wrote history.csv, poincare.csv, events.csv in {}", dir.display())
+                }));
+            }
+        }
+    }
+}
+
+/// Asks where to save a `filter` file (extension `ext`), proposing `name`;
+/// `None` if the user cancelled.
+fn save_dialog(filter: &str, ext: &str, name: &str) -> Option<std::path::PathBuf> {
+    rfd::FileDialog::new()
+        .add_filter(filter, &[ext])
+        .set_file_name(name)
+        .save_file()
+}
+
+/// The status-bar line after writing a file: `done()` if it was written,
+/// else why not.
+fn written(r: Result<(), String>, done: impl FnOnce() -> String) -> Message {
+    match r {
+        Ok(()) => Message {
+            text: done(),
+            error: false,
+        },
+        Err(e) => Message { text: e, error: true },
+    }
+}

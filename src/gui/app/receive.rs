@@ -1,0 +1,82 @@
+//! The message loop: updates from the simulation thread (or the fixed
+//! stream) drained under a time budget and stored, filtered by run id.
+
+use std::time::Duration;
+
+use super::{Link, Message, RockingApp};
+use crate::model::EventKind;
+use crate::sim::protocol::{RunEnd, SimUpdate};
+
+/// Time per frame the app spends receiving updates: leaves most of a 60 Hz
+/// frame to layout and drawing (rerun's `receive_messages` budget).
+const DRAIN_BUDGET: Duration = Duration::from_millis(8);
+
+impl RockingApp {
+    fn ingest(&mut self, u: SimUpdate, now: f64) {
+        match u {
+            SimUpdate::Started { info, .. } => {
+                self.tau = info.tau0;
+                self.info = Some(*info);
+            }
+            SimUpdate::Paused { paused, tau, .. } => {
+                self.paused = paused;
+                self.tau = tau;
+            }
+            SimUpdate::Batch { batch, .. } => {
+                for s in batch.samples {
+                    self.hist.push_sample(s);
+                }
+                let mut impact = false;
+                for e in batch.events {
+                    impact |= e.kind == EventKind::Impact;
+                    self.hist.push_event(e);
+                }
+                for p in batch.section {
+                    self.hist.push_section(p);
+                }
+                self.hist.dropped_samples += batch.dropped_samples;
+                if !batch.ghosts.is_empty() || self.ghost_count == 0 {
+                    self.ghosts = batch.ghosts;
+                }
+                if batch.tau.is_finite() {
+                    self.tau = batch.tau;
+                }
+                if impact {
+                    self.flash_at = Some(now);
+                }
+            }
+            SimUpdate::Finished { end, .. } => {
+                if let RunEnd::Failed(msg) = &end {
+                    self.message = Some(Message {
+                        text: format!("run stopped: {msg}"),
+                        error: true,
+                    });
+                }
+                self.end = Some(end);
+            }
+        }
+    }
+
+    pub(super) fn receive(&mut self, ctx: &egui::Context) {
+        let now = ctx.input(|i| i.time);
+        let mut got = Vec::new();
+        let more = match &mut self.link {
+            Link::Live(h) => {
+                h.drain(DRAIN_BUDGET, 4096, |u| got.push(u));
+                // Whatever the budget left is picked up next frame.
+                h.has_pending()
+            }
+            Link::Fixed { pending, run } => {
+                let run = *run;
+                got.extend(pending.drain(..).filter(|u| u.run() == run));
+                false
+            }
+        };
+        for u in got {
+            self.ingest(u, now);
+        }
+        if more {
+            ctx.request_repaint();
+        }
+    }
+}

@@ -1,0 +1,61 @@
+//! The status bar: playhead, mode, counts, speed, how the run ended, frame
+//! times (live app only) and the last message.
+
+use super::{Link, RockingApp};
+use crate::gui::panels::scene;
+use crate::sim::protocol::RunEnd;
+
+impl RockingApp {
+    pub(super) fn status(&mut self, ui: &mut egui::Ui) {
+        ui.horizontal_wrapped(|ui| {
+            let p = self.info.as_ref().map_or(self.config.geometry().p, |i| i.geometry.p);
+            ui.label(format!("τ = {:.2}", self.tau));
+            ui.label(format!("t = {:.2} s", self.tau / p));
+            let mode = self.hist.samples.last().map_or("–", |s| s.mode.name());
+            ui.label(format!("mode: {mode}"));
+            ui.label(format!("impacts: {}", self.hist.impacts));
+            ui.label(format!(
+                "Poincaré points: {}",
+                self.hist.section.points().len() as u64 + self.hist.section.dropped
+            ));
+            let rate = if self.max_speed {
+                "max".to_string()
+            } else {
+                format!("{:.2} τ/s", self.speed * p)
+            };
+            ui.label(format!("speed: {rate}"));
+            if let Some(end) = &self.end {
+                match end {
+                    RunEnd::Terminal { mode, tau } => {
+                        ui.colored_label(scene::mode_color(*mode), format!("{} at τ = {tau:.3}", mode.name()));
+                    }
+                    RunEnd::Failed(_) => {
+                        ui.colored_label(egui::Color32::from_rgb(230, 80, 80), "failed");
+                    }
+                }
+            }
+            if self.paused {
+                ui.label("paused");
+            }
+            // Wall-clock numbers only in the live app: a fixed stream must
+            // draw the same pixels every time (snapshots).
+            if matches!(self.link, Link::Live(_)) {
+                ui.label(format!(
+                    "app {:.1} ms/frame, {:.1} ms between frames",
+                    self.frame_ms, self.frame_interval_ms
+                ))
+                .on_hover_text(
+                    "CPU time of the app's own code per frame, and the interval between frames (rendering included)",
+                );
+            }
+            if let Some(m) = &self.message {
+                let color = if m.error {
+                    egui::Color32::from_rgb(235, 90, 90)
+                } else {
+                    ui.visuals().weak_text_color()
+                };
+                ui.colored_label(color, &m.text);
+            }
+        });
+    }
+}
