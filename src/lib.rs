@@ -7,12 +7,41 @@
 //! harmonic excitation* — with the paper's printed equations re-derived
 //! (`docs/model.md`).
 //!
-//! Layers point one way: [`model`] (equations) → [`integrate`] (methods,
-//! knows nothing of blocks) → [`sim`] (runs a model with a method) →
-//! [`io`] and the `rocking` binary.
+//! ## Layers
+//!
+//! Dependencies point one way; each layer imports only those to its left:
+//!
+//! [`model`] → [`integrate`] → [`sim`] → [`analysis`] → ([`io`], [`plot`],
+//! [`reproduce`], `cli`, `gui`)
+//!
+//! - [`model`]: equations only — geometry, modes, dynamics, impact laws,
+//!   energy, the excitations (a record is a series of samples; reading
+//!   files is [`io::record`]'s), and the block as a
+//!   [`HybridSystem`](integrate::hybrid::HybridSystem).
+//! - [`integrate`]: methods only, knowing nothing of blocks — the steppers
+//!   (DOP853, DOPRI5, Taylor, Ralston), root finding and the hybrid driver.
+//!   (The model implements the driver's trait, so `model` names
+//!   `integrate`'s trait, never its methods.)
+//! - [`sim`]: the typed, validated [`Scenario`](sim::Scenario) and
+//!   [`Param`](sim::Param), one run ([`sim::simulate`]), the simulation
+//!   thread of the app ([`sim::runner`]) and the background-job type it and
+//!   the app's panels share ([`sim::job`]).
+//! - [`analysis`]: sections, classification, spectra, Lyapunov exponents,
+//!   bifurcation diagrams and outcome maps, on scenarios varied through
+//!   typed parameters; progress through a callback.
+//! - [`io`]: the config file (TOML, presets, `--set`, `summary.json`) read
+//!   into a scenario — the only place that knows the string keys —,
+//!   records, and the output files written whole or not at all.
+//! - [`plot`] draws figures; [`reproduce`] recomputes the paper's figures
+//!   and writes the report.
+//! - `cli` (the `rocking` binary's commands) and `gui` (the desktop app,
+//!   feature `gui`) sit on top.
+//!
+//! `cli` and `bench` are public only so that the binary, the benches and
+//! the tests can reach them; they are not a library API and are hidden from
+//! the docs.
 
 pub mod analysis;
-pub mod bench;
 pub mod integrate;
 pub mod io;
 pub mod model;
@@ -20,6 +49,15 @@ pub mod plot;
 pub mod reproduce;
 pub mod sim;
 
+/// The `rocking` binary's command line (for `src/main.rs` and the tests;
+/// not a library API).
+#[doc(hidden)]
 pub mod cli;
+
+/// The benchmark scenes of `rocking bench`, `cargo bench` and the examples
+/// (not a library API).
+#[doc(hidden)]
+pub mod bench;
+
 #[cfg(feature = "gui")]
 pub mod gui;

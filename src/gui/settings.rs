@@ -1,6 +1,6 @@
 //! The scene's settings as the user wrote them: the TOML table of explicit
 //! keys (from a preset, a file, or edits in the panel) and where it came
-//! from. Resolving goes through [`Scenario::from_table`], so the app accepts
+//! from. Resolving goes through [`from_table`](crate::io::config::from_table), so the app accepts
 //! exactly what the CLI accepts and refuses the rest with the same one-line
 //! message. Keys left out keep their documented defaults (e.g. Ω_v follows
 //! Ω_h), which a table of resolved values would lose.

@@ -17,5 +17,8 @@ mod validate;
 
 pub use collect::{HistoryRow, SectionRow};
 pub use param::Param;
-pub use run::{EnergyAudit, InitialState, Method, Outcome, RunOptions, RunResult, SimError, initial_mode, simulate};
+pub use run::{
+    EnergyAudit, InitialState, Method, Outcome, RunOptions, RunResult, SimError, TAYLOR_DEFAULT_RTOL, initial_mode,
+    simulate,
+};
 pub use scenario::{Scenario, ScenarioError};

@@ -185,7 +185,7 @@ pub struct ExcitationSpec {
     pub phase_v: f64,
     /// Pulse shape. Default one-sine.
     pub shape: ShapeKind,
-    /// n of a type-C_n pulse, 1..=[`pulse::MAX_TYPE_C_CYCLES`]. Default 1.
+    /// n of a type-C_n pulse, 1..=[`MAX_TYPE_C_CYCLES`](crate::model::excitation::pulse::MAX_TYPE_C_CYCLES). Default 1.
     pub cycles: u32,
     /// Horizontal record (required for `Record`).
     pub record_h: Option<Record>,
