@@ -292,7 +292,7 @@ impl RockingApp {
 
     /// Adds section points directly (measurements of the plot with many
     /// points in a fixed stream).
-    pub fn push_section_points(&mut self, points: impl IntoIterator<Item = crate::sim::protocol::SectionPoint>) {
+    pub fn push_section_points(&mut self, points: impl IntoIterator<Item = crate::sim::SectionRow>) {
         for p in points {
             self.hist.push_section(p);
         }

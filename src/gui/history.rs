@@ -17,7 +17,8 @@ use std::collections::VecDeque;
 use egui_plot::PlotPoint;
 
 use crate::model::system::EventRecord;
-use crate::sim::protocol::{Sample, SectionPoint};
+use crate::sim::SectionRow;
+use crate::sim::protocol::Sample;
 
 /// A ring buffer of fixed capacity: pushing into a full ring drops the oldest.
 #[derive(Clone, Debug)]
@@ -143,7 +144,7 @@ pub struct RunHistory {
     /// Section points.
     pub section: SectionStore,
     /// Section points with mode and τ, for the CSV export (the newest).
-    pub section_rows: Ring<SectionPoint>,
+    pub section_rows: Ring<SectionRow>,
     /// Impacts seen in this run.
     pub impacts: u64,
     /// Samples the simulation thread dropped because the app fell behind.
@@ -213,7 +214,7 @@ impl RunHistory {
     }
 
     /// Adds a section point unless it has a non-finite value.
-    pub fn push_section(&mut self, p: SectionPoint) {
+    pub fn push_section(&mut self, p: SectionRow) {
         if [p.tau, p.theta, p.theta_dot, p.x, p.x_dot]
             .iter()
             .all(|v| v.is_finite())
@@ -428,7 +429,7 @@ mod tests {
     #[test]
     fn non_finite_items_are_refused_and_counted() {
         let mut h = RunHistory::default();
-        h.push_section(SectionPoint {
+        h.push_section(SectionRow {
             k: 0,
             tau: 0.0,
             theta: f64::NAN,

@@ -8,6 +8,7 @@
 
 mod collect;
 pub mod job;
+pub mod method;
 pub mod param;
 pub mod protocol;
 mod run;

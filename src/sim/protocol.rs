@@ -133,24 +133,10 @@ pub struct Sample {
     pub friction: f64,
 }
 
-/// A point of the stroboscopic (Poincaré) section, τ_k = 2πk/Ω_h.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct SectionPoint {
-    /// k, counting from τ = 0.
-    pub k: u64,
-    /// τ_k.
-    pub tau: f64,
-    /// Θ(τ_k).
-    pub theta: f64,
-    /// Θ'(τ_k).
-    pub theta_dot: f64,
-    /// X(τ_k), relative to the base, per R.
-    pub x: f64,
-    /// X'(τ_k).
-    pub x_dot: f64,
-    /// Mode at τ_k.
-    pub mode: Mode,
-}
+/// A point of the stroboscopic (Poincaré) section, τ_k = 2πk/Ω_h: the
+/// batch run's [`SectionRow`] (one type for both; this is the name the
+/// protocol has always used).
+pub use super::SectionRow as SectionPoint;
 
 /// The latest state of one ghost copy.
 #[derive(Clone, Copy, Debug, PartialEq)]

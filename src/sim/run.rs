@@ -5,8 +5,9 @@ use std::time::Instant;
 use serde::Serialize;
 
 use super::collect::{Collector, HistoryRow, SectionRow};
+use super::method::{StepperVisitor, with_stepper};
 use crate::integrate::hybrid::{Driver, Limits, Outputs};
-use crate::integrate::{Dop853, Dopri5, Ralston, StepStats, Stepper, Taylor, Tolerances};
+use crate::integrate::{StepStats, Stepper, Tolerances};
 use crate::model::dynamics::Tilt;
 use crate::model::system::{EventRecord, FRICTION_LOSS, ModelError, N, Tally, WORK};
 use crate::model::{BlockSystem, Mode, Model, Sign};
@@ -223,12 +224,21 @@ pub fn initial_mode(model: &Model, init: &InitialState) -> Result<(Mode, [f64; N
 /// Runs `model` from `init` with `opts`.
 pub fn simulate(model: Model, init: &InitialState, opts: &RunOptions) -> Result<RunResult, SimError> {
     let (mode0, y0) = initial_mode(&model, init)?;
-    match opts.method {
-        Method::Dop853 => run_with(Dop853::new(opts.tol), model, mode0, y0, opts),
-        Method::Dopri5 => run_with(Dopri5::new(opts.tol), model, mode0, y0, opts),
-        Method::Ralston => run_with(Ralston::new(opts.tol), model, mode0, y0, opts),
-        Method::Taylor => run_with(Taylor::new(opts.tol), model, mode0, y0, opts),
+    /// The run, waiting for its stepper.
+    struct Run<'a> {
+        model: Model,
+        mode0: Mode,
+        y0: [f64; N],
+        opts: &'a RunOptions,
     }
+    impl StepperVisitor for Run<'_> {
+        type Output = Result<RunResult, SimError>;
+        fn visit<S: Stepper<N> + Send + 'static>(self, stepper: S) -> Self::Output {
+            run_with(stepper, self.model, self.mode0, self.y0, self.opts)
+        }
+    }
+    let run = Run { model, mode0, y0, opts };
+    with_stepper(opts.method, opts.tol, run)
 }
 
 fn run_with<S: Stepper<N>>(

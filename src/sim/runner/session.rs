@@ -16,13 +16,15 @@
 
 use std::collections::VecDeque;
 
-use crate::integrate::hybrid::{Advance, Driver, Observer, Outputs};
-use crate::integrate::{Dop853, Dopri5, Ralston, Stepper, Taylor};
+use crate::integrate::Stepper;
+use crate::integrate::hybrid::{Advance, Driver, Limits, Observer, Outputs};
 use crate::model::system::{EventRecord, ModelError, N, THETA, THETA_DOT, X, X_DOT};
 use crate::model::{BlockSystem, Mode};
 use crate::sim::Scenario;
-use crate::sim::protocol::{BaseMotion, Batch, GhostState, RunEnd, RunId, RunInfo, Sample, SectionPoint};
-use crate::sim::{InitialState, Method, initial_mode};
+use crate::sim::SectionRow;
+use crate::sim::method::{StepperVisitor, with_stepper};
+use crate::sim::protocol::{BaseMotion, Batch, GhostState, RunEnd, RunId, RunInfo, Sample};
+use crate::sim::{InitialState, initial_mode};
 
 /// Spacing of the live samples, τ. Fine enough that the paper's block
 /// (p ≈ 1.9 s⁻¹) shows a new pose about 40 times a second at ×0.1 playback;
@@ -32,72 +34,92 @@ pub const LIVE_SAMPLE_DT: f64 = 0.005;
 /// Longest chunk, τ: bounds the data produced ahead of the playhead.
 pub const MAX_CHUNK: f64 = 1.0;
 
-/// The driver with its method chosen at run time (boxed: the variants
-/// differ in size by a kilobyte, and a ghost ensemble holds a hundred).
-enum AnyDriver {
-    Dop853(Box<Driver<Dop853<N>, BlockSystem, N>>),
-    Dopri5(Box<Driver<Dopri5<N>, BlockSystem, N>>),
-    Ralston(Box<Driver<Ralston<N>, BlockSystem, N>>),
-    Taylor(Box<Driver<Taylor<N>, BlockSystem, N>>),
-}
-
-macro_rules! with_driver {
-    ($d:expr, $v:ident => $body:expr) => {
-        match $d {
-            AnyDriver::Dop853($v) => $body,
-            AnyDriver::Dopri5($v) => $body,
-            AnyDriver::Ralston($v) => $body,
-            AnyDriver::Taylor($v) => $body,
-        }
-    };
-}
-
-impl AnyDriver {
-    fn new(scenario: &Scenario, system: BlockSystem, mode: Mode, t0: f64, y0: [f64; N], outputs: Outputs) -> Self {
-        let opts = scenario.run_options();
-        fn make<S: Stepper<N>>(
-            s: S,
-            system: BlockSystem,
-            mode: Mode,
-            t0: f64,
-            y0: [f64; N],
-            limits: crate::integrate::hybrid::Limits,
-            outputs: Outputs,
-        ) -> Box<Driver<S, BlockSystem, N>> {
-            Box::new(Driver::new(s, system, mode, t0, y0, limits, outputs))
-        }
-        match opts.method {
-            Method::Dop853 => {
-                AnyDriver::Dop853(make(Dop853::new(opts.tol), system, mode, t0, y0, opts.limits, outputs))
-            }
-            Method::Dopri5 => {
-                AnyDriver::Dopri5(make(Dopri5::new(opts.tol), system, mode, t0, y0, opts.limits, outputs))
-            }
-            Method::Ralston => {
-                AnyDriver::Ralston(make(Ralston::new(opts.tol), system, mode, t0, y0, opts.limits, outputs))
-            }
-            Method::Taylor => {
-                AnyDriver::Taylor(make(Taylor::new(opts.tol), system, mode, t0, y0, opts.limits, outputs))
-            }
-        }
-    }
-
-    fn t(&self) -> f64 {
-        with_driver!(self, d => d.t())
-    }
-
-    fn y(&self) -> [f64; N] {
-        with_driver!(self, d => *d.y())
-    }
-
-    fn mode(&self) -> Mode {
-        with_driver!(self, d => d.mode())
-    }
-
+/// The driver of a live run, whatever its method: a trait object, so the
+/// session and a hundred ghosts hold one pointer each. Dispatch is per
+/// chunk and per output, not per step: the stepping inside
+/// [`Driver::advance_past`] stays monomorphised.
+trait LiveDriver: Send {
+    fn t(&self) -> f64;
+    fn y(&self) -> [f64; N];
+    fn mode(&self) -> Mode;
     /// To `t_end` or past it, by whole steps ([`Driver::advance_past`]).
-    fn advance<O: Observer<Mode, EventRecord, N>>(&mut self, t_end: f64, obs: &mut O) -> Result<Advance, ModelError> {
-        with_driver!(self, d => d.advance_past(t_end, obs))
+    fn advance(&mut self, t_end: f64, obs: &mut dyn Observer<Mode, EventRecord, N>) -> Result<Advance, ModelError>;
+}
+
+/// An observer behind a `dyn` pointer, for the generic driver.
+struct Forward<'a>(&'a mut dyn Observer<Mode, EventRecord, N>);
+
+impl Observer<Mode, EventRecord, N> for Forward<'_> {
+    fn sample(&mut self, t: f64, mode: Mode, y: &[f64; N]) {
+        self.0.sample(t, mode, y);
     }
+    fn section(&mut self, k: u64, t: f64, mode: Mode, y: &[f64; N]) {
+        self.0.section(k, t, mode, y);
+    }
+    fn event(&mut self, t: f64, before: Mode, y_before: &[f64; N], record: EventRecord) {
+        self.0.event(t, before, y_before, record);
+    }
+}
+
+impl<S: Stepper<N> + Send> LiveDriver for Driver<S, BlockSystem, N> {
+    fn t(&self) -> f64 {
+        Driver::t(self)
+    }
+    fn y(&self) -> [f64; N] {
+        *Driver::y(self)
+    }
+    fn mode(&self) -> Mode {
+        Driver::mode(self)
+    }
+    fn advance(&mut self, t_end: f64, obs: &mut dyn Observer<Mode, EventRecord, N>) -> Result<Advance, ModelError> {
+        self.advance_past(t_end, &mut Forward(obs))
+    }
+}
+
+type AnyDriver = Box<dyn LiveDriver>;
+
+/// A live driver of `scenario`'s method.
+fn live_driver(
+    scenario: &Scenario,
+    system: BlockSystem,
+    mode: Mode,
+    t0: f64,
+    y0: [f64; N],
+    outputs: Outputs,
+) -> AnyDriver {
+    /// The driver, waiting for its stepper.
+    struct Make {
+        system: BlockSystem,
+        mode: Mode,
+        t0: f64,
+        y0: [f64; N],
+        limits: Limits,
+        outputs: Outputs,
+    }
+    impl StepperVisitor for Make {
+        type Output = AnyDriver;
+        fn visit<S: Stepper<N> + Send + 'static>(self, stepper: S) -> AnyDriver {
+            Box::new(Driver::new(
+                stepper,
+                self.system,
+                self.mode,
+                self.t0,
+                self.y0,
+                self.limits,
+                self.outputs,
+            ))
+        }
+    }
+    let opts = scenario.run_options();
+    let make = Make {
+        system,
+        mode,
+        t0,
+        y0,
+        limits: opts.limits,
+        outputs,
+    };
+    with_stepper(opts.method, opts.tol, make)
 }
 
 /// Output produced ahead of the playhead.
@@ -105,7 +127,7 @@ impl AnyDriver {
 struct Queue {
     samples: VecDeque<Sample>,
     events: VecDeque<EventRecord>,
-    section: VecDeque<SectionPoint>,
+    section: VecDeque<SectionRow>,
 }
 
 /// The main trajectory's observer: turns driver output into protocol data.
@@ -141,7 +163,7 @@ impl Observer<Mode, EventRecord, N> for MainSink<'_> {
     }
 
     fn section(&mut self, k: u64, t: f64, mode: Mode, y: &[f64; N]) {
-        self.queue.section.push_back(SectionPoint {
+        self.queue.section.push_back(SectionRow {
             k,
             tau: t,
             theta: y[THETA],
@@ -314,7 +336,7 @@ impl Session {
             section_period,
         };
         let geometry = system.model.geo;
-        let driver = AnyDriver::new(scenario, system, mode0, tau0, y0, outputs);
+        let driver = live_driver(scenario, system, mode0, tau0, y0, outputs);
         Ok(Self {
             run,
             info: RunInfo {
@@ -501,7 +523,7 @@ impl Session {
                 sample_dt: Some(LIVE_SAMPLE_DT),
                 section_period: None,
             };
-            let mut driver = AnyDriver::new(&self.info.scenario, system, m, tau, y0, outputs);
+            let mut driver = live_driver(&self.info.scenario, system, m, tau, y0, outputs);
             let mut states = VecDeque::new();
             // Bring the ghost level with the main trajectory's computed τ.
             let done = !matches!(
