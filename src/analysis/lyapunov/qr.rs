@@ -1,84 +1,62 @@
-//! Householder QR of a small fixed-size matrix, without allocation.
+//! QR re-orthonormalisation of the tangent vectors on nalgebra's
+//! fixed-size matrices, and the conversions between those and the arrays
+//! of the [`TangentSystem`](super::TangentSystem) interface.
 //!
-//! Used to re-orthonormalise the tangent vectors (the columns of Φ) and to
-//! read off their growth factors `R_ii` (Benettin et al. 1980; Householder
-//! rather than Gram–Schmidt so that `Q` stays orthogonal even when a column
-//! is annihilated by a rank-deficient reset).
+//! The QR re-orthonormalises the tangent vectors (the columns of Φ) and
+//! reads off their growth factors `R_ii` (Benettin et al. 1980). It is
+//! Householder, not Gram–Schmidt, so that `Q` stays orthogonal even when a
+//! column is annihilated by a rank-deficient reset: nalgebra skips the
+//! reflection of a column that is zero from the diagonal down, which
+//! leaves that column of `Q` a unit vector orthogonal to the others.
 
-/// A `D × D` matrix, row-major; the tangent vectors are its columns.
+use nalgebra::{Const, DimMin, SMatrix, SVector};
+
+/// A `D × D` matrix, row-major (`m[row][column]`); the tangent vectors are
+/// its columns. The array form of the [`TangentSystem`](super::TangentSystem)
+/// interface (and of `model::variational`, which builds the block's
+/// matrices); the machinery converts it to a `Matrix` at the boundary.
 pub type Square<const D: usize> = [[f64; D]; D];
 
-/// The identity.
-pub fn identity<const D: usize>() -> Square<D> {
-    let mut m = [[0.0; D]; D];
-    for (i, row) in m.iter_mut().enumerate() {
-        row[i] = 1.0;
-    }
-    m
+/// A `D × D` matrix as the machinery computes with it.
+pub type Matrix<const D: usize> = SMatrix<f64, D, D>;
+
+/// A vector of `D` tangent coordinates.
+pub type Vector<const D: usize> = SVector<f64, D>;
+
+/// The [`Matrix`] of a row-major [`Square`].
+pub fn matrix<const D: usize>(a: &Square<D>) -> Matrix<D> {
+    Matrix::from_fn(|i, j| a[i][j])
 }
 
-/// `a · b`.
-pub fn mul<const D: usize>(a: &Square<D>, b: &Square<D>) -> Square<D> {
-    let mut out = [[0.0; D]; D];
-    for i in 0..D {
-        for k in 0..D {
-            let aik = a[i][k];
-            for j in 0..D {
-                out[i][j] += aik * b[k][j];
-            }
-        }
-    }
-    out
+/// The row-major [`Square`] of a [`Matrix`].
+pub fn square<const D: usize>(m: &Matrix<D>) -> Square<D> {
+    std::array::from_fn(|i| std::array::from_fn(|j| m[(i, j)]))
 }
 
-// Explicit row and column indices read like the algorithm (Golub & Van
-// Loan, alg. 5.2.1); iterator chains over columns would not.
-#[allow(clippy::needless_range_loop)]
 /// `a = Q R` with orthonormal columns in `Q` and `R_ii >= 0`. Returns `Q`
-/// and the diagonal of `R`. A column already zero below the diagonal is
-/// left alone (its `R_ii` is its diagonal entry, possibly 0).
-pub fn qr<const D: usize>(a: &Square<D>) -> (Square<D>, [f64; D]) {
-    let mut r = *a;
-    let mut q = identity::<D>();
-    for k in 0..D {
-        let norm = (k..D).map(|i| r[i][k] * r[i][k]).sum::<f64>().sqrt();
-        if norm == 0.0 {
-            continue;
-        }
-        // Reflect x = r[k.., k] onto −sign(x_k)‖x‖ e_k (no cancellation).
-        let alpha = if r[k][k] > 0.0 { -norm } else { norm };
-        let mut v = [0.0; D];
-        for i in k..D {
-            v[i] = r[i][k];
-        }
-        v[k] -= alpha;
-        let v2 = (k..D).map(|i| v[i] * v[i]).sum::<f64>();
-        if v2 == 0.0 {
-            continue;
-        }
-        for j in k..D {
-            let f = 2.0 * (k..D).map(|i| v[i] * r[i][j]).sum::<f64>() / v2;
-            for i in k..D {
-                r[i][j] -= f * v[i];
-            }
-        }
-        for row in q.iter_mut() {
-            let f = 2.0 * (k..D).map(|i| row[i] * v[i]).sum::<f64>() / v2;
-            for i in k..D {
-                row[i] -= f * v[i];
-            }
-        }
-    }
-    let mut diag = [0.0; D];
-    for k in 0..D {
-        if r[k][k] < 0.0 {
-            for row in q.iter_mut() {
-                row[k] = -row[k];
-            }
-        }
-        diag[k] = r[k][k].abs();
-    }
-    (q, diag)
+/// and the diagonal of `R`. A column that is zero from the diagonal down
+/// gets no reflection and `R_ii = 0`.
+///
+/// The bound holds for every `D` up to 127 (nalgebra's `DimMin` goes
+/// through typenum); a caller generic in `D` must repeat it.
+pub fn qr_matrix<const D: usize>(a: &Matrix<D>) -> (Matrix<D>, Vector<D>)
+where
+    Const<D>: DimMin<Const<D>, Output = Const<D>>,
+{
+    let qr = a.qr();
+    // nalgebra's `r()` puts |R_ii| on the diagonal and `q()` flips the
+    // matching columns of Q, so A = Q R holds with R_ii >= 0: log R_ii is
+    // the growth of the i-th direction, whatever the reflections' signs.
+    (qr.q(), qr.r().diagonal())
+}
+
+/// `qr_matrix` on the array form, for callers of the array interface.
+pub fn qr<const D: usize>(a: &Square<D>) -> (Square<D>, [f64; D])
+where
+    Const<D>: DimMin<Const<D>, Output = Const<D>>,
+{
+    let (q, r) = qr_matrix(&matrix(a));
+    (square(&q), r.into())
 }
 
 #[cfg(test)]
@@ -126,6 +104,14 @@ mod tests {
         let (q0, d0) = qr(&[[0.0; 2]; 2]);
         assert_eq!(d0, [0.0, 0.0]);
         assert_eq!(q0, identity());
+    }
+
+    fn identity<const D: usize>() -> Square<D> {
+        square(&Matrix::identity())
+    }
+
+    fn mul<const D: usize>(a: &Square<D>, b: &Square<D>) -> Square<D> {
+        square(&(matrix(a) * matrix(b)))
     }
 
     fn transpose<const D: usize>(a: &Square<D>) -> Square<D> {

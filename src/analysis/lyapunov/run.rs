@@ -15,6 +15,7 @@ use super::qr;
 use super::tangent::{Augmented, Quiet, TangentError, TangentSystem};
 use crate::integrate::hybrid::{Advance, Driver, Limits, Observer, Outputs};
 use crate::integrate::{Dop853, Tolerances};
+use nalgebra::{Const, DimMin};
 
 /// When to renormalise and what to keep.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -109,7 +110,8 @@ where
 /// Lyapunov exponents of `sys` from `(0, y0)` in `mode0`, per unit time:
 /// by tangent dynamics and/or two trajectories as `request` says, with
 /// renormalisation and accumulation as `schedule` says. `NA` must be
-/// `N + D·D` (checked at compile time).
+/// `N + D·D` (checked at compile time). The bound on `D` is the QR's
+/// (it holds for every `D` up to 127).
 pub fn exponents<S, const N: usize, const D: usize, const NA: usize>(
     sys: S,
     mode0: S::Mode,
@@ -121,6 +123,7 @@ pub fn exponents<S, const N: usize, const D: usize, const NA: usize>(
 ) -> Result<Outcome<S::Mode, D>, TangentError<S::Error>>
 where
     S: TangentSystem<N, D> + Clone,
+    Const<D>: DimMin<Const<D>, Output = Const<D>>,
 {
     let period = schedule.period;
     let outputs = Outputs {
@@ -138,7 +141,7 @@ where
         .map(|d0| Perturbed::new(sys.clone(), mode0, y0, d0, tol, limits));
     let mut fiducial = if request.tangent {
         let aug = Augmented::<S, N, D, NA>::new(sys);
-        let ya0 = Augmented::<S, N, D, NA>::pack(&y0, &qr::identity());
+        let ya0 = Augmented::<S, N, D, NA>::pack(&y0, &qr::Matrix::identity());
         Fiducial::Tangent(Driver::new(
             Dop853::<NA>::new(tol),
             aug,
@@ -188,8 +191,8 @@ where
             && k > 0
         {
             let (_, phi) = Augmented::<S, N, D, NA>::unpack(d.y());
-            let (q, r) = qr::qr(&phi);
-            if q.iter().flatten().chain(r.iter()).any(|v| !v.is_finite()) {
+            let (q, r) = qr::qr_matrix(&phi);
+            if q.iter().chain(r.iter()).any(|v| !v.is_finite()) {
                 return Err(TangentError::NonFinite { t: t_k });
             }
             if accumulating && let Some(acc) = acc_tangent.as_mut() {

@@ -17,8 +17,13 @@
 //! The generic machinery is written against [`TangentSystem`]; the block
 //! implements it in `block.rs`, the tests on small systems with known
 //! exponents. The renormalisation loop is in `run.rs`.
+//!
+//! The interface speaks arrays ([`Square`], `[f64; D]`: what
+//! `model::variational` builds the block's matrices as); the machinery
+//! converts them to nalgebra's fixed-size [`Matrix`] and [`Vector`] where
+//! they enter, and computes with those.
 
-use super::qr::{self, Square};
+use super::qr::{self, Matrix, Square, Vector};
 use crate::integrate::hybrid::{DriverError, HybridSystem, Jump, MAX_GUARDS, Observer};
 
 /// What the Lyapunov machinery needs beyond a [`HybridSystem`]: tangent
@@ -91,7 +96,10 @@ pub enum TangentError<E> {
 }
 
 /// The system with its tangent vectors appended to the state:
-/// `[y (N), Φ (D×D, row-major)]`, `NA = N + D·D`.
+/// `[y (N), Φ (D×D, row-major)]`, `NA = N + D·D`. Row-major although
+/// nalgebra stores column-major: the integrator's error norm sums the
+/// components in state order, so this order keeps its step sizes (and the
+/// results) those of the array-based code it replaced.
 #[derive(Clone, Debug)]
 pub struct Augmented<S, const N: usize, const D: usize, const NA: usize> {
     /// The system.
@@ -129,24 +137,27 @@ where
     }
 
     /// The augmented state of `y` with tangent vectors `phi`.
-    pub fn pack(y: &[f64; N], phi: &Square<D>) -> [f64; NA] {
+    pub fn pack(y: &[f64; N], phi: &Matrix<D>) -> [f64; NA] {
         let mut out = [0.0; NA];
         out[..N].copy_from_slice(y);
-        for i in 0..D {
-            out[N + i * D..N + (i + 1) * D].copy_from_slice(&phi[i]);
-        }
+        Self::put_phi(phi, &mut out);
         out
     }
 
     /// The state and tangent vectors of an augmented state.
-    pub fn unpack(ya: &[f64; NA]) -> ([f64; N], Square<D>) {
-        let mut y = [0.0; N];
-        y.copy_from_slice(&ya[..N]);
-        let mut phi = [[0.0; D]; D];
-        for (i, row) in phi.iter_mut().enumerate() {
-            row.copy_from_slice(&ya[N + i * D..N + (i + 1) * D]);
-        }
-        (y, phi)
+    pub fn unpack(ya: &[f64; NA]) -> ([f64; N], Matrix<D>) {
+        (Self::state(ya), Self::phi(ya))
+    }
+
+    /// Φ, stored row-major after the state.
+    fn phi(ya: &[f64; NA]) -> Matrix<D> {
+        Matrix::from_row_slice(&ya[N..])
+    }
+
+    /// Stores `phi` row-major after the state.
+    fn put_phi(phi: &Matrix<D>, ya: &mut [f64; NA]) {
+        // The column-major storage of Φᵀ is Φ row-major.
+        ya[N..].copy_from_slice(phi.transpose().as_slice());
     }
 
     fn state(ya: &[f64; NA]) -> [f64; N] {
@@ -163,37 +174,35 @@ where
         t: f64,
         y: &[f64; N],
         jump: &Jump<S::Mode, S::Record, N>,
-    ) -> Result<(Square<D>, usize), TangentError<S::Error>> {
+    ) -> Result<(Matrix<D>, usize), TangentError<S::Error>> {
         if self.inner.is_terminal(jump.mode) {
             // The run ends here; the tangent vectors are not used again.
-            return Ok(([[0.0; D]; D], 0));
+            return Ok((Matrix::zeros(), 0));
         }
         let (jr, dim) = self.inner.reset_jacobian(before, index, y, jump.mode, &jump.y);
+        let jr = qr::matrix(&jr);
         let (n, g_t) = self
             .inner
             .guard_gradient(before, index, t, y)
             .ok_or(TangentError::NoGradient { index, t })?;
+        let n = Vector::from(n);
         if n.iter().all(|&v| v == 0.0) {
             return Ok((jr, dim));
         }
         let mut rate = [0.0; N];
         self.inner.rhs(before, t, y, &mut rate);
-        let f_before = self.inner.coords(&rate);
+        let f_before = Vector::from(self.inner.coords(&rate));
         self.inner.rhs(jump.mode, jump.t, &jump.y, &mut rate);
-        let f_after = self.inner.coords(&rate);
-        let den: f64 = n.iter().zip(&f_before).map(|(a, b)| a * b).sum::<f64>() + g_t;
+        let f_after = Vector::from(self.inner.coords(&rate));
+        let den = n.dot(&f_before) + g_t;
         if den == 0.0 || !den.is_finite() {
             return Err(TangentError::Grazing { t });
         }
-        let mut s = jr;
-        for i in 0..D {
-            let jr_f: f64 = (0..D).map(|k| jr[i][k] * f_before[k]).sum();
-            let c = (f_after[i] - jr_f) / den;
-            for j in 0..D {
-                s[i][j] += c * n[j];
-            }
-        }
-        if s.iter().flatten().any(|v| !v.is_finite()) {
+        // Divided before the outer product, as `c nᵀ` with `c = (f⁺ − J_R f⁻)/den`:
+        // the same roundings as the array code this replaced.
+        let c = (f_after - jr * f_before) / den;
+        let s = jr + c * n.transpose();
+        if s.iter().any(|v| !v.is_finite()) {
             return Err(TangentError::Grazing { t });
         }
         Ok((s, dim))
@@ -213,16 +222,8 @@ where
         let mut dy = [0.0; N];
         self.inner.rhs(mode, t, &y, &mut dy);
         dya[..N].copy_from_slice(&dy);
-        let j = self.inner.jacobian(mode, t, &y);
-        for i in 0..D {
-            for c in 0..D {
-                let mut acc = 0.0;
-                for (k, jik) in j[i].iter().enumerate() {
-                    acc += jik * ya[N + k * D + c];
-                }
-                dya[N + i * D + c] = acc;
-            }
-        }
+        let j = qr::matrix(&self.inner.jacobian(mode, t, &y));
+        Self::put_phi(&(j * Self::phi(ya)), dya);
     }
 
     fn guards(&self, mode: S::Mode, t: f64, ya: &[f64; NA], g: &mut [f64; MAX_GUARDS]) -> usize {
@@ -251,7 +252,7 @@ where
             let dims = self.inner.tangent_dim(mode).min(self.inner.tangent_dim(jump.mode));
             self.min_dim = self.min_dim.min(dim).min(dims);
         }
-        let phi_after = qr::mul(&s, &phi);
+        let phi_after = s * phi;
         Ok(Jump {
             mode: jump.mode,
             t: jump.t,
