@@ -17,6 +17,7 @@ use serde::Serialize;
 
 use crate::integrate::Tolerances;
 use crate::integrate::hybrid::Limits;
+use crate::io::csv::{self, Num, Row};
 use crate::model::excitation::Excitation;
 use crate::model::{EventKind, FlightPolicy, Geometry, Harmonic, ImpactLaw, Model};
 use crate::sim::{InitialState, Method, RunOptions, RunResult, SimError, simulate};
@@ -400,22 +401,45 @@ pub fn targets(scene: &str, records: &[Record]) -> Targets {
     }
 }
 
+/// A row of `work_precision.csv`.
+#[derive(serde::Serialize)]
+struct CsvRecord<'a> {
+    scene: &'a str,
+    method: &'a str,
+    setting: Num,
+    wall_s: Num,
+    rhs_evals: u64,
+    steps: u64,
+    error: Num,
+    impact_time_error: Option<Num>,
+    impacts: u64,
+}
+
+impl Row for CsvRecord<'_> {
+    const HEADER: &'static [&'static str] = &[
+        "scene",
+        "method",
+        "setting",
+        "wall_s",
+        "rhs_evals",
+        "steps",
+        "error",
+        "impact_time_error",
+        "impacts",
+    ];
+}
+
 /// Records as CSV (`scene,method,setting,wall_s,rhs_evals,steps,error,impact_time_error,impacts`).
 pub fn to_csv(records: &[Record]) -> String {
-    let mut s = String::from("scene,method,setting,wall_s,rhs_evals,steps,error,impact_time_error,impacts\n");
-    for r in records {
-        s.push_str(&format!(
-            "{},{},{:?},{:?},{},{},{:?},{},{}\n",
-            r.scene,
-            r.method,
-            r.setting,
-            r.wall_s,
-            r.rhs_evals,
-            r.steps,
-            r.error,
-            r.impact_time_error.map_or(String::new(), |e| format!("{e:?}")),
-            r.impacts
-        ));
-    }
-    s
+    csv::to_string(records.iter().map(|r| CsvRecord {
+        scene: &r.scene,
+        method: &r.method,
+        setting: Num(r.setting),
+        wall_s: Num(r.wall_s),
+        rhs_evals: r.rhs_evals,
+        steps: r.steps,
+        error: Num(r.error),
+        impact_time_error: r.impact_time_error.map(Num),
+        impacts: r.impacts,
+    }))
 }

@@ -4,6 +4,7 @@ use anyhow::Context as _;
 
 use super::Cli;
 use crate::analysis::lyapunov::{self, Lyapunov, LyapunovError, LyapunovOptions, Method};
+use crate::io::csv::{self, Num, Row};
 use crate::io::output;
 use crate::sim::scenario::{LyapunovChoice, SpectrumRange};
 use crate::sim::{self, Scenario};
@@ -126,7 +127,6 @@ fn lyapunov_summary(cfg: &Scenario) -> Result<Lyapunov, BatchError> {
 /// ten dominant peaks for `summary.json`.
 fn spectrum_of(cfg: &Scenario, res: &sim::RunResult) -> Result<(String, serde_json::Value), BatchError> {
     use crate::analysis::spectrum::{SpectrumOptions, SpectrumWindow, theta_spectrum};
-    use std::fmt::Write as _;
     let window = match cfg.analyses.spectrum_window {
         SpectrumRange::Paper => SpectrumWindow::Paper,
         SpectrumRange::All => SpectrumWindow::All,
@@ -134,11 +134,26 @@ fn spectrum_of(cfg: &Scenario, res: &sim::RunResult) -> Result<(String, serde_js
     let sp = theta_spectrum(&res.history, window, &SpectrumOptions::default())
         .context("analysis.spectrum")
         .map_err(BatchError::Run)?;
-    let mut csv = String::from("freq,omega,omega_over_omega_h,psd\n");
-    for (f, p) in sp.freq.iter().zip(&sp.psd) {
-        let omega = std::f64::consts::TAU * f;
-        let _ = writeln!(csv, "{f:?},{omega:?},{:?},{p:?}", omega / cfg.excitation.omega_h);
+    /// A row of `spectrum.csv`.
+    #[derive(serde::Serialize)]
+    struct SpectrumRow {
+        freq: Num,
+        omega: Num,
+        omega_over_omega_h: Num,
+        psd: Num,
     }
+    impl Row for SpectrumRow {
+        const HEADER: &'static [&'static str] = &["freq", "omega", "omega_over_omega_h", "psd"];
+    }
+    let csv = csv::to_string(sp.freq.iter().zip(&sp.psd).map(|(&f, &p)| {
+        let omega = std::f64::consts::TAU * f;
+        SpectrumRow {
+            freq: Num(f),
+            omega: Num(omega),
+            omega_over_omega_h: Num(omega / cfg.excitation.omega_h),
+            psd: Num(p),
+        }
+    }));
     let peaks = sp.peaks(10, 1e-6, cfg.excitation.omega_h);
     let summary = serde_json::json!({
         "window": cfg.analyses.spectrum_window.name(),

@@ -13,7 +13,6 @@
 //! Bad input exits 2 with a one-line error naming the flag or key, before
 //! anything runs or is written.
 
-use std::fmt::Write as _;
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -27,6 +26,7 @@ use crate::analysis::classify::{ClassifyOptions, Response};
 use crate::analysis::outcome_map::{Axis, BlockMap, Cell, block_map};
 use crate::analysis::steady::LyapunovFn;
 use crate::io::config;
+use crate::io::csv::{self, Num, Row};
 use crate::io::output;
 use crate::io::staging::Staging;
 use crate::plot::Figure as _;
@@ -79,27 +79,31 @@ fn axis(flag: &str, parts: &[String]) -> anyhow::Result<(Axis, Param)> {
     Ok((Axis::new(flag, key, a, b, n)?, param))
 }
 
-/// The CSV cell of a number (shortest round-trip form).
-fn cell(x: f64) -> String {
-    format!("{x:?}")
+/// A row of `map.csv`: one cell and its steady response.
+#[derive(serde::Serialize)]
+struct MapRow {
+    x: Num,
+    y: Num,
+    outcome: &'static str,
+    period: Option<u32>,
+    max_abs_theta: Num,
+    lyapunov: Option<Num>,
+}
+
+impl Row for MapRow {
+    const HEADER: &'static [&'static str] = &["x", "y", "outcome", "period", "max_abs_theta", "lyapunov"];
 }
 
 /// `map.csv` of `cells` (in row order).
 pub fn map_csv(cells: &[Cell]) -> String {
-    let mut s = String::from("x,y,outcome,period,max_abs_theta,lyapunov\n");
-    for c in cells {
-        let _ = writeln!(
-            s,
-            "{},{},{},{},{},{}",
-            cell(c.x),
-            cell(c.y),
-            c.response.name(),
-            c.response.period().map_or(String::new(), |k| k.to_string()),
-            cell(c.max_abs_theta),
-            c.lyapunov.map_or(String::new(), cell)
-        );
-    }
-    s
+    csv::to_string(cells.iter().map(|c| MapRow {
+        x: Num(c.x),
+        y: Num(c.y),
+        outcome: c.response.name(),
+        period: c.response.period(),
+        max_abs_theta: Num(c.max_abs_theta),
+        lyapunov: c.lyapunov.map(Num),
+    }))
 }
 
 /// Runs `rocking map` without Lyapunov exponents.
@@ -221,4 +225,33 @@ pub fn run_with(args: &MapArgs, lyapunov: Option<&LyapunovFn<'_>>) -> Result<(),
         crate::say!("wrote {}", args.out.display());
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn map_csv_header_is_the_row_fields() {
+        let r = MapRow {
+            x: Num(0.5),
+            y: Num(8.0),
+            outcome: "chaotic",
+            period: None,
+            max_abs_theta: Num(0.25),
+            lyapunov: Some(Num(0.1)),
+        };
+        assert_eq!(csv::header_of(&r), csv::header::<MapRow>());
+        let cell = Cell {
+            x: 0.5,
+            y: 8.0,
+            response: crate::analysis::classify::Response::Periodic { period: 2 },
+            max_abs_theta: 0.25,
+            lyapunov: None,
+        };
+        assert_eq!(
+            map_csv(&[cell]),
+            "x,y,outcome,period,max_abs_theta,lyapunov\n0.5,8.0,periodic,2,0.25,\n"
+        );
+    }
 }

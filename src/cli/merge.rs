@@ -14,13 +14,15 @@ use anyhow::{Context as _, anyhow, bail};
 use serde_json::Value as Json;
 
 use super::batch::BatchError;
-use super::sweep::{CLASSES_HEADER, POINTS_HEADER, SweepMeta};
+use super::sweep::SweepMeta;
 use crate::analysis::classify::{ClassifyOptions, Response};
 use crate::analysis::orbit_diagram::{Continuation, Grid, Shard};
 use crate::analysis::steady::Window;
 use crate::io::config;
+use crate::io::csv;
 use crate::io::output;
 use crate::io::staging::Staging;
+use crate::io::sweep_files::{ClassRow, PointRow};
 use crate::plot::Figure as _;
 
 /// Arguments of `rocking merge`.
@@ -43,25 +45,14 @@ struct ShardDir {
     shard: Shard,
     /// `sweep.json` with its `shard` entry set to null.
     common: Json,
-    /// classes.csv rows (no header, no newline).
-    classes: Vec<String>,
-    /// points.csv rows (no header, no newline), in file order.
-    points: Vec<String>,
+    /// classes.csv rows with their lines.
+    classes: Vec<(u64, ClassRow)>,
+    /// points.csv rows with their lines, in file order.
+    points: Vec<(u64, PointRow)>,
 }
 
 fn read_text(path: &Path) -> anyhow::Result<String> {
     std::fs::read_to_string(path).with_context(|| path.display().to_string())
-}
-
-/// The rows of a CSV after checking its header.
-fn rows(path: &Path, header: &str) -> anyhow::Result<Vec<String>> {
-    let text = read_text(path)?;
-    let mut lines = text.lines();
-    match lines.next() {
-        Some(h) if h == header => {}
-        _ => bail!("{}:1: expected the header `{header}`", path.display()),
-    }
-    Ok(lines.map(str::to_string).collect())
 }
 
 fn read_shard(dir: &Path) -> anyhow::Result<ShardDir> {
@@ -95,8 +86,8 @@ fn read_shard(dir: &Path) -> anyhow::Result<ShardDir> {
         dir: dir.to_path_buf(),
         shard,
         common,
-        classes: rows(&dir.join("classes.csv"), CLASSES_HEADER)?,
-        points: rows(&dir.join("points.csv"), POINTS_HEADER)?,
+        classes: csv::read(&dir.join("classes.csv"))?,
+        points: csv::read(&dir.join("points.csv"))?,
     })
 }
 
@@ -166,11 +157,6 @@ fn meta_of(common: &Json, json_path: &Path) -> anyhow::Result<SweepMeta> {
     })
 }
 
-/// The value cell (first field) of a CSV row.
-fn value_cell(row: &str) -> &str {
-    row.split(',').next().unwrap_or("")
-}
-
 /// Runs `rocking merge`.
 pub fn run(args: &MergeArgs) -> Result<(), BatchError> {
     let input = BatchError::Input;
@@ -223,8 +209,8 @@ pub fn run(args: &MergeArgs) -> Result<(), BatchError> {
 
     // Each shard's classes rows must be exactly its values, in order; its
     // points rows must come in blocks of those values, in the same order.
-    let mut classes_out = format!("{CLASSES_HEADER}\n");
-    let mut points_out = format!("{POINTS_HEADER}\n");
+    let mut class_rows: Vec<&ClassRow> = Vec::with_capacity(grid.count);
+    let mut point_rows: Vec<&PointRow> = Vec::new();
     let mut class_pos = vec![0usize; n];
     let mut point_pos = vec![0usize; n];
     let mut values: Vec<(f64, Response)> = Vec::with_capacity(grid.count);
@@ -234,79 +220,61 @@ pub fn run(args: &MergeArgs) -> Result<(), BatchError> {
         let Some(s) = by_index[k] else {
             return Err(input(anyhow!("shard {k}/{n} is missing")));
         };
-        let expected = format!("{:?}", grid.value(i));
+        let expected = grid.value(i);
         let classes_path = s.dir.join("classes.csv");
-        let Some(row) = s.classes.get(class_pos[k]) else {
+        let Some((line, row)) = s.classes.get(class_pos[k]) else {
             return Err(input(anyhow!(
-                "{}: ends before value {expected} (row {})",
-                classes_path.display(),
-                class_pos[k] + 2
+                "{}: ends before value {expected:?}",
+                classes_path.display()
             )));
         };
-        if value_cell(row) != expected {
+        if row.value.0.to_bits() != expected.to_bits() {
             return Err(input(anyhow!(
-                "{}:{}: value {} where the sweep has {expected}",
+                "{}:{line}: value {:?} where the sweep has {expected:?}",
                 classes_path.display(),
-                class_pos[k] + 2,
-                value_cell(row)
+                row.value.0
             )));
         }
-        let fields: Vec<&str> = row.split(',').collect();
-        let response = match fields.as_slice() {
-            [_, outcome, period, _, _] => {
-                let period = if period.is_empty() { None } else { period.parse().ok() };
-                Response::from_name(outcome, period)
-            }
-            _ => None,
-        }
-        .ok_or_else(|| {
-            anyhow!(
-                "{}:{}: expected `{CLASSES_HEADER}`",
-                classes_path.display(),
-                class_pos[k] + 2
-            )
-        })
-        .map_err(input)?;
+        let response = Response::from_name(&row.outcome, row.period)
+            .ok_or_else(|| {
+                anyhow!(
+                    "{}:{line}: unknown outcome {:?} (period {:?})",
+                    classes_path.display(),
+                    row.outcome,
+                    row.period
+                )
+            })
+            .map_err(input)?;
         class_pos[k] += 1;
-        classes_out.push_str(row);
-        classes_out.push('\n');
-        values.push((grid.value(i), response));
-        while let Some(p) = s.points.get(point_pos[k]).filter(|p| value_cell(p) == expected) {
-            let theta = p
-                .split(',')
-                .nth(3)
-                .and_then(|t| t.parse::<f64>().ok())
-                .ok_or_else(|| {
-                    anyhow!(
-                        "{}:{}: expected `{POINTS_HEADER}`",
-                        s.dir.join("points.csv").display(),
-                        point_pos[k] + 2
-                    )
-                })
-                .map_err(input)?;
-            points.push((grid.value(i), theta));
-            points_out.push_str(p);
-            points_out.push('\n');
+        class_rows.push(row);
+        values.push((expected, response));
+        while let Some((_, p)) = s
+            .points
+            .get(point_pos[k])
+            .filter(|(_, p)| p.value.0.to_bits() == expected.to_bits())
+        {
+            points.push((expected, p.theta.0));
+            point_rows.push(p);
             point_pos[k] += 1;
         }
     }
     for s in &shards {
         let k = s.shard.index;
-        if class_pos[k] != s.classes.len() {
+        if let Some((line, _)) = s.classes.get(class_pos[k]) {
             return Err(input(anyhow!(
-                "{}:{}: a row beyond the shard's values",
-                s.dir.join("classes.csv").display(),
-                class_pos[k] + 2
+                "{}:{line}: a row beyond the shard's values",
+                s.dir.join("classes.csv").display()
             )));
         }
-        if point_pos[k] != s.points.len() {
+        if let Some((line, _)) = s.points.get(point_pos[k]) {
             return Err(input(anyhow!(
-                "{}:{}: a point whose value is not the shard's, or out of order",
-                s.dir.join("points.csv").display(),
-                point_pos[k] + 2
+                "{}:{line}: a point whose value is not the shard's, or out of order",
+                s.dir.join("points.csv").display()
             )));
         }
     }
+    let classes_out = csv::to_string(class_rows.into_iter().cloned());
+    let points_out = csv::to_string(point_rows.into_iter().cloned());
 
     output::check_writable(&args.out)
         .with_context(|| "--out: cannot write the output directory".to_string())

@@ -15,7 +15,6 @@
 //! Bad input exits 2 with a one-line error naming the flag or key, before
 //! anything runs or is written; the directory appears whole or not at all.
 
-use std::fmt::Write as _;
 use std::io::IsTerminal as _;
 use std::path::PathBuf;
 use std::time::Instant;
@@ -28,13 +27,12 @@ use super::args::{SceneArgs, StudyArgs};
 use super::batch::BatchError;
 use crate::analysis::Progress;
 use crate::analysis::classify::{ClassifyOptions, Response};
-use crate::analysis::orbit_diagram::{
-    BifurcationValue, BlockSweep, Continuation, Grid, Plan, Shard, block_sweep, response_ranges,
-};
+use crate::analysis::orbit_diagram::{BlockSweep, Continuation, Grid, Plan, Shard, block_sweep, response_ranges};
 use crate::analysis::steady::{LyapunovFn, Window};
 use crate::io::config::{self, to_json};
 use crate::io::output;
 use crate::io::staging::Staging;
+use crate::io::sweep_files::{classes_csv, points_csv};
 use crate::plot::Figure as _;
 use crate::plot::bifurcation::BifurcationFigure;
 use crate::plot::labels::{fixed_parameters, grid_decimals, grid_num, num, param_label, param_symbol};
@@ -168,57 +166,6 @@ impl SweepMeta {
             step: self.grid.step,
         }
     }
-}
-
-/// A number for CSV: shortest round-trip form (as `io::output` writes).
-fn cell(x: f64) -> String {
-    format!("{x:?}")
-}
-
-/// The header of `classes.csv`.
-pub const CLASSES_HEADER: &str = "value,outcome,period,max_abs_theta,lyapunov";
-/// The header of `points.csv`.
-pub const POINTS_HEADER: &str = "value,k,tau,theta,theta_dot";
-
-/// The `classes.csv` row of one value (no newline).
-pub fn class_row(v: &BifurcationValue) -> String {
-    format!(
-        "{},{},{},{},{}",
-        cell(v.value),
-        v.response.name(),
-        v.response.period().map_or(String::new(), |k| k.to_string()),
-        cell(v.max_abs_theta),
-        v.lyapunov.map_or(String::new(), cell)
-    )
-}
-
-/// `classes.csv` of `values`.
-pub fn classes_csv(values: &[BifurcationValue]) -> String {
-    let mut s = format!("{CLASSES_HEADER}\n");
-    for v in values {
-        s.push_str(&class_row(v));
-        s.push('\n');
-    }
-    s
-}
-
-/// `points.csv` of `values`.
-pub fn points_csv(values: &[BifurcationValue]) -> String {
-    let mut s = format!("{POINTS_HEADER}\n");
-    for v in values {
-        let value = cell(v.value);
-        for p in &v.points {
-            let _ = writeln!(
-                s,
-                "{value},{},{},{},{}",
-                p.k,
-                cell(p.tau),
-                cell(p.theta),
-                cell(p.theta_dot)
-            );
-        }
-    }
-    s
 }
 
 /// A progress bar on a terminal's stderr, hidden otherwise (or when quiet).
@@ -390,38 +337,4 @@ pub fn run_with(args: &SweepArgs, lyapunov: Option<&LyapunovFn<'_>>) -> Result<(
         crate::say!("wrote {}", args.out.display());
     }
     Ok(())
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::model::{Mode, Sign};
-    use crate::sim::SectionRow;
-
-    #[test]
-    fn csv_rows_use_round_trip_numbers_and_empty_cells() {
-        let v = BifurcationValue {
-            value: 0.1 + 0.2,
-            response: Response::Periodic { period: 2 },
-            max_abs_theta: 0.25,
-            lyapunov: None,
-            points: vec![SectionRow {
-                k: 3,
-                tau: 2.5,
-                theta: -0.125,
-                theta_dot: 1.0,
-                x: 0.0,
-                x_dot: 0.0,
-                mode: Mode::Rock { pivot: Sign::Neg },
-            }],
-        };
-        assert_eq!(
-            classes_csv(std::slice::from_ref(&v)),
-            "value,outcome,period,max_abs_theta,lyapunov\n0.30000000000000004,periodic,2,0.25,\n"
-        );
-        assert_eq!(
-            points_csv(&[v]),
-            "value,k,tau,theta,theta_dot\n0.30000000000000004,3,2.5,-0.125,1.0\n"
-        );
-    }
 }

@@ -8,9 +8,11 @@
 //! imports `io`.
 
 pub mod config;
+pub mod csv;
 pub mod output;
 pub mod presets;
 pub mod record;
 pub mod staging;
+pub mod sweep_files;
 
 pub use config::{ConfigError, load};

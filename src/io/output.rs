@@ -6,77 +6,112 @@
 //! stepper stops with an error first); a non-finite number reaching a
 //! writer is an error, never written.
 
-use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
+use serde::Serialize;
 use serde_json::json;
 
 use super::config::to_json;
+use super::csv::{self, Num, Row};
 use super::staging::Staging;
 use crate::model::Mode;
 use crate::model::system::EventRecord;
 use crate::sim::{HistoryRow, RunResult, Scenario, SectionRow};
 
-/// A number for CSV/JSON: shortest round-trip form.
-fn num(x: f64) -> String {
-    format!("{x:?}")
+/// A row of `events.csv`.
+#[derive(Serialize)]
+struct EventRow {
+    tau: Num,
+    kind: &'static str,
+    mode_before: &'static str,
+    mode_after: &'static str,
+    theta: Num,
+    theta_dot_before: Num,
+    theta_dot_after: Num,
+    x_dot: Num,
+}
+
+impl Row for EventRow {
+    const HEADER: &'static [&'static str] = &[
+        "tau",
+        "kind",
+        "mode_before",
+        "mode_after",
+        "theta",
+        "theta_dot_before",
+        "theta_dot_after",
+        "x_dot",
+    ];
 }
 
 /// `events.csv`.
 pub fn events_csv(events: &[EventRecord]) -> String {
-    let mut s = String::from("tau,kind,mode_before,mode_after,theta,theta_dot_before,theta_dot_after,x_dot\n");
-    for e in events {
-        let _ = writeln!(
-            s,
-            "{},{},{},{},{},{},{},{}",
-            num(e.tau),
-            e.kind.name(),
-            e.before.name(),
-            e.after.name(),
-            num(e.theta),
-            num(e.theta_dot_before),
-            num(e.theta_dot_after),
-            num(e.x_dot)
-        );
-    }
-    s
+    csv::to_string(events.iter().map(|e| EventRow {
+        tau: Num(e.tau),
+        kind: e.kind.name(),
+        mode_before: e.before.name(),
+        mode_after: e.after.name(),
+        theta: Num(e.theta),
+        theta_dot_before: Num(e.theta_dot_before),
+        theta_dot_after: Num(e.theta_dot_after),
+        x_dot: Num(e.x_dot),
+    }))
+}
+
+/// A row of `poincare.csv`.
+#[derive(Serialize)]
+struct PoincareRow {
+    k: u64,
+    tau: Num,
+    theta: Num,
+    theta_dot: Num,
+    x: Num,
+    x_dot: Num,
+    mode: &'static str,
+}
+
+impl Row for PoincareRow {
+    const HEADER: &'static [&'static str] = &["k", "tau", "theta", "theta_dot", "x", "x_dot", "mode"];
 }
 
 /// `poincare.csv`.
 pub fn poincare_csv(points: &[SectionRow]) -> String {
-    let mut s = String::from("k,tau,theta,theta_dot,x,x_dot,mode\n");
-    for p in points {
-        let _ = writeln!(
-            s,
-            "{},{},{},{},{},{},{}",
-            p.k,
-            num(p.tau),
-            num(p.theta),
-            num(p.theta_dot),
-            num(p.x),
-            num(p.x_dot),
-            p.mode.name()
-        );
-    }
-    s
+    csv::to_string(points.iter().map(|p| PoincareRow {
+        k: p.k,
+        tau: Num(p.tau),
+        theta: Num(p.theta),
+        theta_dot: Num(p.theta_dot),
+        x: Num(p.x),
+        x_dot: Num(p.x_dot),
+        mode: p.mode.name(),
+    }))
+}
+
+/// A row of `history.csv`.
+#[derive(Serialize)]
+struct HistoryCsvRow {
+    tau: Num,
+    theta: Num,
+    theta_dot: Num,
+    x: Num,
+    x_dot: Num,
+    mode: &'static str,
+}
+
+impl Row for HistoryCsvRow {
+    const HEADER: &'static [&'static str] = &["tau", "theta", "theta_dot", "x", "x_dot", "mode"];
 }
 
 /// `history.csv`.
 pub fn history_csv(rows: &[HistoryRow]) -> String {
-    let mut s = String::from("tau,theta,theta_dot,x,x_dot,mode\n");
-    for r in rows {
-        let _ = writeln!(
-            s,
-            "{},{},{},{},{},{}",
-            num(r.tau),
-            num(r.theta),
-            num(r.theta_dot),
-            num(r.x),
-            num(r.x_dot),
-            r.mode.name()
-        );
-    }
-    s
+    csv::to_string(rows.iter().map(|r| HistoryCsvRow {
+        tau: Num(r.tau),
+        theta: Num(r.theta),
+        theta_dot: Num(r.theta_dot),
+        x: Num(r.x),
+        x_dot: Num(r.x_dot),
+        mode: r.mode.name(),
+    }))
 }
 
 /// `summary.json`: outcome, times, the energy audit, work counters and the
@@ -180,4 +215,75 @@ pub fn write_all(dir: &Path, files: &[(&str, String)]) -> Result<(), OutputError
         staging.text(name, text)?;
     }
     staging.commit()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::{EventKind, Sign};
+
+    #[test]
+    fn headers_are_the_row_fields() {
+        let e = EventRow {
+            tau: Num(0.0),
+            kind: "impact",
+            mode_before: "rock",
+            mode_after: "rock",
+            theta: Num(0.0),
+            theta_dot_before: Num(0.0),
+            theta_dot_after: Num(0.0),
+            x_dot: Num(0.0),
+        };
+        assert_eq!(csv::header_of(&e), csv::header::<EventRow>());
+        let p = PoincareRow {
+            k: 0,
+            tau: Num(0.0),
+            theta: Num(0.0),
+            theta_dot: Num(0.0),
+            x: Num(0.0),
+            x_dot: Num(0.0),
+            mode: "rest",
+        };
+        assert_eq!(csv::header_of(&p), csv::header::<PoincareRow>());
+        let h = HistoryCsvRow {
+            tau: Num(0.0),
+            theta: Num(0.0),
+            theta_dot: Num(0.0),
+            x: Num(0.0),
+            x_dot: Num(0.0),
+            mode: "rest",
+        };
+        assert_eq!(csv::header_of(&h), csv::header::<HistoryCsvRow>());
+    }
+
+    #[test]
+    fn numbers_are_written_shortest_round_trip() {
+        let rows = [HistoryRow {
+            tau: 0.1 + 0.2,
+            theta: 1e-5,
+            theta_dot: -1.0,
+            x: 1e16,
+            x_dot: 0.0001,
+            mode: Mode::Rock { pivot: Sign::Neg },
+        }];
+        assert_eq!(
+            history_csv(&rows),
+            "tau,theta,theta_dot,x,x_dot,mode\n0.30000000000000004,1e-5,-1.0,1e16,0.0001,rock\n"
+        );
+        assert_eq!(history_csv(&[]), "tau,theta,theta_dot,x,x_dot,mode\n");
+        let e = EventRecord {
+            tau: 2.5,
+            kind: EventKind::Impact,
+            before: Mode::Rock { pivot: Sign::Pos },
+            after: Mode::Rest,
+            theta: 0.0,
+            theta_dot_before: 0.25,
+            theta_dot_after: 0.0,
+            x_dot: 0.0,
+        };
+        assert_eq!(
+            events_csv(&[e]).lines().nth(1),
+            Some("2.5,impact,rock,rest,0.0,0.25,0.0,0.0")
+        );
+    }
 }

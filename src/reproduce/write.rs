@@ -6,7 +6,6 @@
 //! CSV numbers are written in their shortest round-trip form, so the files
 //! are a function of the computation alone.
 
-use std::fmt::Write as _;
 use std::path::PathBuf;
 
 use serde_json::{Value as Json, json};
@@ -21,7 +20,9 @@ use super::{ReproduceError, Reproduction};
 use crate::analysis::classify::Response;
 use crate::analysis::lyapunov::Lyapunov;
 use crate::io::config::to_json;
+use crate::io::csv::{self, Num, Row};
 use crate::io::output::OutputError;
+use crate::io::sweep_files::point_rows;
 use crate::plot::Figure;
 use crate::plot::bifurcation::BifurcationFigure;
 use crate::plot::labels::{grid_decimals, grid_num, num, param_label};
@@ -43,43 +44,44 @@ pub trait Sink {
 /// and its first harmonics, where the paper's spectra have their lines).
 pub const MAX_HARMONIC: f64 = 5.0;
 
-fn cell(x: f64) -> String {
-    format!("{x:?}")
+/// A row of a diagram's `classes.csv` (no Lyapunov column: the paper's
+/// diagrams are computed without exponents).
+#[derive(serde::Serialize)]
+struct DiagramClassRow {
+    value: Num,
+    outcome: &'static str,
+    period: Option<u32>,
+    max_abs_theta: Num,
+}
+
+impl Row for DiagramClassRow {
+    const HEADER: &'static [&'static str] = &["value", "outcome", "period", "max_abs_theta"];
+}
+
+/// A row of a response example's `poincare.csv`.
+#[derive(serde::Serialize)]
+struct ThetaRow {
+    theta: Num,
+    theta_dot: Num,
+}
+
+impl Row for ThetaRow {
+    const HEADER: &'static [&'static str] = &["theta", "theta_dot"];
 }
 
 /// `classes.csv` of a diagram: `value,outcome,period,max_abs_theta`.
 pub fn classes_csv(d: &Diagram) -> String {
-    let mut s = String::from("value,outcome,period,max_abs_theta\n");
-    for v in &d.values {
-        let _ = writeln!(
-            s,
-            "{},{},{},{}",
-            cell(v.value),
-            v.response.name(),
-            v.response.period().map_or(String::new(), |k| k.to_string()),
-            cell(v.max_abs_theta)
-        );
-    }
-    s
+    csv::to_string(d.values.iter().map(|v| DiagramClassRow {
+        value: Num(v.value),
+        outcome: v.response.name(),
+        period: v.response.period(),
+        max_abs_theta: Num(v.max_abs_theta),
+    }))
 }
 
 /// `points.csv` of a diagram: `value,k,tau,theta,theta_dot`.
 pub fn points_csv(d: &Diagram) -> String {
-    let mut s = String::from("value,k,tau,theta,theta_dot\n");
-    for v in &d.values {
-        for p in &v.points {
-            let _ = writeln!(
-                s,
-                "{},{},{},{},{}",
-                cell(v.value),
-                p.k,
-                cell(p.tau),
-                cell(p.theta),
-                cell(p.theta_dot)
-            );
-        }
-    }
-    s
+    csv::to_string(point_rows(&d.values))
 }
 
 fn bifurcation_figure<'a>(
@@ -299,12 +301,12 @@ fn write_response(sink: &mut dyn Sink, r: &ResponseExample, names: &mut Vec<Stri
         points: &r.poincare,
     };
     write_figure(sink, &format!("{stem}poincare"), &pm, names)?;
-    let mut csv = String::from("theta,theta_dot\n");
-    for (a, b) in &r.poincare {
-        let _ = writeln!(csv, "{},{}", cell(*a), cell(*b));
-    }
+    let text = csv::to_string(r.poincare.iter().map(|&(theta, theta_dot)| ThetaRow {
+        theta: Num(theta),
+        theta_dot: Num(theta_dot),
+    }));
     let name = format!("{stem}poincare.csv");
-    sink.text(&name, &csv)?;
+    sink.text(&name, &text)?;
     names.push(name);
     Ok(())
 }
