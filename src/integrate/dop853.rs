@@ -16,12 +16,11 @@
 //! (rtol 1e-10) it uses fewer evaluations than DOPRI5, and its dense output is
 //! accurate enough for root finding to machine precision.
 
+use super::controller::err_scale;
 use super::dop853_tableau::{A, B, C, D, E3, E5, N_DENSE_ROWS, N_STAGES, N_STAGES_EXTENDED};
-use super::dopri5::{
-    Controller, H_FALLBACK, MAX_REJECTIONS, all_finite, combine, combine_leading, err_scale, h_min, hermite,
-    hermite_leading, hermite_spread, hinit, next_step_size,
-};
-use super::stepper::{Rhs, StepError, StepStats, Stepper, Tolerances};
+use super::embedded::{EmbeddedRk, Pair};
+use super::stages::{all_finite, combine, combine_leading};
+use super::stepper::{Rhs, StepError};
 
 /// Index of the FSAL stage `f(t + h, y_new)`.
 const FSAL: usize = N_STAGES;
@@ -31,74 +30,74 @@ const FSAL: usize = N_STAGES;
 /// Adaptive, 8th order, 12 evaluations of `f` per accepted step (11 stages
 /// plus the FSAL stage, which is evaluated only once the step is accepted),
 /// 11 per rejected attempt, and 3 more the first time dense output is asked
-/// for after a step.
+/// for after a step. The stage slots are in the tableau's 0-based layout:
+/// `k[0] = f(t_old, y_old)`, `k[12] = f(t, y)`, `k[13..16]` the extra
+/// dense-output stages once computed.
+pub type Dop853<const N: usize> = EmbeddedRk<Dop853Pair, N, N_STAGES_EXTENDED>;
+
+/// The DOP853 pair, for [`EmbeddedRk`].
+#[derive(Clone, Copy, Debug)]
+pub struct Dop853Pair;
+
+/// DOP853's dense output: the polynomial of the last step, built on the
+/// first call that needs it.
 #[derive(Clone, Debug)]
-pub struct Dop853<const N: usize> {
-    tol: Tolerances,
-    ctrl: Controller,
-    t: f64,
-    t_old: f64,
-    y: [f64; N],
-    y_old: [f64; N],
-    /// Stages of the last accepted step, in the tableau's 0-based layout:
-    /// `k[0] = f(t_old, y_old)`, `k[12] = f(t, y)`, `k[13..16]` the extra
-    /// dense-output stages once computed.
-    k: [[f64; N]; N_STAGES_EXTENDED],
+pub struct Dop853Dense<const N: usize> {
     /// Coefficients of the dense polynomial in scipy's `F` form, valid when
-    /// `dense_ready`.
+    /// `ready`.
     cont: [[f64; N]; 3 + N_DENSE_ROWS],
     /// The extra stages and `cont` have been computed for the last step.
-    dense_ready: bool,
-    /// `k[12]` holds `f(t, y)` and must become `k[0]` before the next step
-    /// (deferred so dense output still sees the old `k[0]`).
-    fsal_pending: bool,
-    /// A step has been taken since the last restart.
-    has_step: bool,
-    /// `restart` has been called at least once.
-    started: bool,
-    /// Size of the last accepted step.
-    h_used: f64,
-    /// Proposed size of the next step; 0 until the first `hinit`.
-    h_next: f64,
-    /// The last accepted step size not shortened to land on a stop (or a
-    /// shortened one, if larger): the largest step with evidence that the
-    /// current solution allows it. 0 before the first step.
-    h_trusted: f64,
-    stats: StepStats,
+    ready: bool,
 }
 
-impl<const N: usize> Dop853<N> {
-    /// A stepper with the given tolerances. Call [`Stepper::restart`] before
-    /// the first step (a step without it starts from `t = 0`, `y = 0`).
-    pub fn new(tol: Tolerances) -> Self {
-        Self {
-            tol,
-            // Hairer's defaults for DOP853: SAFE = 0.9, FAC1 = 0.333,
-            // FAC2 = 6, BETA = 0, EXPO1 = 1/8 - BETA * 0.2.
-            ctrl: Controller::new(0.9, 0.333, 6.0, 0.0, 1.0 / 8.0),
-            t: 0.0,
-            t_old: 0.0,
-            y: [0.0; N],
-            y_old: [0.0; N],
-            k: [[0.0; N]; N_STAGES_EXTENDED],
+impl<const N: usize> Pair<N, N_STAGES_EXTENDED> for Dop853Pair {
+    const NAME: &'static str = "dop853";
+    const ORDER: i32 = 8;
+    const FSAL: usize = FSAL;
+    const FSAL_AFTER_TEST: bool = true;
+    const RETRY_NON_FINITE: bool = true;
+    // Hairer's defaults for DOP853: SAFE = 0.9, FAC1 = 0.333, FAC2 = 6,
+    // BETA = 0, EXPO1 = 1/8 - BETA * 0.2 (no Lund stabilisation).
+    const CONTROL: [f64; 5] = [0.9, 0.333, 6.0, 0.0, 1.0 / 8.0];
+
+    type Dense = Dop853Dense<N>;
+
+    fn new_dense() -> Dop853Dense<N> {
+        Dop853Dense {
             cont: [[0.0; N]; 3 + N_DENSE_ROWS],
-            dense_ready: false,
-            fsal_pending: false,
-            has_step: false,
-            started: false,
-            h_used: 0.0,
-            h_next: 0.0,
-            h_trusted: 0.0,
-            stats: StepStats::default(),
+            ready: false,
         }
     }
 
-    /// Evaluates `f` into stage `i` and counts it.
-    fn eval<F: Rhs<N>>(&mut self, f: &F, t: f64, y: &[f64; N], i: usize) {
-        f.eval(t, y, &mut self.k[i]);
-        self.stats.rhs_evals += 1;
+    #[inline]
+    fn invalidate(dense: &mut Dop853Dense<N>) {
+        dense.ready = false;
     }
 
+    #[inline]
+    fn attempt<F: Rhs<N>>(
+        rk: &mut Dop853<N>,
+        f: &F,
+        h: f64,
+        t_new: f64,
+        y_new: &mut [f64; N],
+    ) -> Result<f64, StepError> {
+        rk.attempt(f, h, t_new, y_new)
+    }
+
+    /// 7th-order dense output. The first call after a step evaluates the
+    /// three extra stages (counted in `rhs_evals`); later calls on the same
+    /// step are free.
+    #[inline]
+    fn dense_inside<F: Rhs<N>>(rk: &mut Dop853<N>, f: &F, theta: f64, out: &mut [f64; N], count: usize) {
+        if !rk.dense.ready {
+            rk.prepare_dense(f);
+        }
+        rk.interpolate(theta, out, count);
+    }
+}
+
+impl<const N: usize> Dop853<N> {
     /// One attempt of size `h` ending at `t_new`: fills `k[1..12]` and
     /// `y_new`, returns Hairer's combined error norm.
     fn attempt<F: Rhs<N>>(&mut self, f: &F, h: f64, t_new: f64, y_new: &mut [f64; N]) -> Result<f64, StepError> {
@@ -165,9 +164,9 @@ impl<const N: usize> Dop853<N> {
         let (f_old, f_new) = (self.k[0], self.k[FSAL]);
         for n in 0..N {
             let dy = self.y[n] - self.y_old[n];
-            self.cont[0][n] = dy;
-            self.cont[1][n] = h * f_old[n] - dy;
-            self.cont[2][n] = 2.0 * dy - h * (f_new[n] + f_old[n]);
+            self.dense.cont[0][n] = dy;
+            self.dense.cont[1][n] = h * f_old[n] - dy;
+            self.dense.cont[2][n] = 2.0 * dy - h * (f_new[n] + f_old[n]);
             for (r, drow) in D.iter().enumerate() {
                 let mut s = 0.0;
                 for (dj, kj) in drow.iter().zip(&self.k) {
@@ -175,10 +174,10 @@ impl<const N: usize> Dop853<N> {
                         s += dj * kj[n];
                     }
                 }
-                self.cont[3 + r][n] = h * s;
+                self.dense.cont[3 + r][n] = h * s;
             }
         }
-        self.dense_ready = true;
+        self.dense.ready = true;
     }
 
     /// The dense polynomial at `theta`, Horner-like in `θ` and `1 - θ`
@@ -187,233 +186,12 @@ impl<const N: usize> Dop853<N> {
         let th1 = 1.0 - theta;
         for n in 0..count.min(N) {
             let mut acc = 0.0;
-            for (i, c) in self.cont.iter().enumerate().rev() {
+            for (i, c) in self.dense.cont.iter().enumerate().rev() {
                 acc += c[n];
                 acc *= if i % 2 == 0 { theta } else { th1 };
             }
             out[n] = self.y_old[n] + acc;
         }
-    }
-}
-
-impl<const N: usize> Stepper<N> for Dop853<N> {
-    fn name(&self) -> &'static str {
-        "dop853"
-    }
-
-    /// Starts at `(t, y)`: evaluates `f(t, y)` (discarding FSAL and dense
-    /// data) and, on the very first restart only, estimates the initial step
-    /// with Hairer's `hinit` (one more evaluation). Later restarts keep the
-    /// last step-size estimate.
-    fn restart<F: Rhs<N>>(&mut self, f: &F, t: f64, y: &[f64; N]) {
-        self.t = t;
-        self.t_old = t;
-        self.y = *y;
-        self.y_old = *y;
-        self.eval(f, t, y, 0);
-        self.fsal_pending = false;
-        self.dense_ready = false;
-        self.has_step = false;
-        self.started = true;
-        self.h_used = 0.0;
-        // A reset (an impact, a stick–slip switch) starts a new solution.
-        // The proposal carried over may have grown on a step whose error
-        // estimate saw the smooth continuation of the old mode across the
-        // event, which says nothing about the new one: start no larger than
-        // the last step that passed. At loose tolerances this removes about
-        // one rejected step per impact (see docs/performance.md).
-        if self.h_trusted > 0.0 {
-            self.h_next = self.h_next.min(self.h_trusted);
-        }
-        self.ctrl.reset();
-        if self.h_next <= 0.0 {
-            let (y0, f0) = (self.y, self.k[0]);
-            if let Some(h) = hinit(f, t, &y0, &f0, 8, &self.tol, &mut self.stats.rhs_evals) {
-                self.h_next = h;
-            }
-        }
-    }
-
-    fn step<F: Rhs<N>>(&mut self, f: &F, t_stop: f64) -> Result<(), StepError> {
-        if t_stop.is_nan() || t_stop <= self.t {
-            return Err(StepError::StepSizeUnderflow {
-                t: self.t,
-                h: t_stop - self.t,
-            });
-        }
-        if !self.started {
-            let y = self.y;
-            self.restart(f, self.t, &y);
-        }
-        if self.fsal_pending {
-            self.k[0] = self.k[FSAL];
-            self.fsal_pending = false;
-        }
-        // The stages of the last step are being overwritten: until this step
-        // is accepted, dense output only knows the current point (this
-        // matters if the step fails).
-        self.has_step = false;
-        self.t_old = self.t;
-        self.y_old = self.y;
-        self.dense_ready = false;
-        if !all_finite(&self.k[0]) || !all_finite(&self.y) {
-            return Err(StepError::NonFinite { t: self.t });
-        }
-        let mut h = if self.h_next > 0.0 { self.h_next } else { H_FALLBACK };
-        let mut after_reject = false;
-        let mut rejections = 0;
-        let mut y_new = [0.0; N];
-        loop {
-            let h_proposed = h;
-            let h_cap = h.min(self.tol.h_max);
-            let dist = t_stop - self.t;
-            let (h_try, mut clamped) = if h_cap >= dist { (dist, true) } else { (h_cap, false) };
-            if !clamped && (h_try.is_nan() || h_try < h_min(self.t)) {
-                return Err(StepError::StepSizeUnderflow { t: self.t, h: h_try });
-            }
-            let mut t_new = if clamped { t_stop } else { self.t + h_try };
-            if t_new >= t_stop {
-                t_new = t_stop;
-                clamped = true;
-            }
-            // A stage that left the domain where `f` is finite (the block's
-            // slide-rock near its Painlevé limit, where the denominator D
-            // falls to zero just beyond the state) is a step too large, as
-            // Hairer's codes treat a NaN error: cut it hard and retry. Only
-            // when that does not help is the state reported non-finite.
-            let err = match self.attempt(f, h_try, t_new, &mut y_new) {
-                Ok(err) => err,
-                Err(e @ StepError::NonFinite { .. }) => {
-                    if rejections + 1 >= MAX_REJECTIONS || h_try * self.ctrl.fac_min() < h_min(self.t) {
-                        return Err(e);
-                    }
-                    f64::NAN
-                }
-                Err(e) => return Err(e),
-            };
-            let d = self.ctrl.decide(err, h_try, after_reject);
-            if d.accept {
-                // The FSAL stage is needed only by an accepted step (Hairer
-                // evaluates it after the error test too).
-                self.eval(f, t_new, &y_new, FSAL);
-                if !all_finite(&self.k[FSAL]) {
-                    return Err(StepError::NonFinite { t: self.t });
-                }
-                self.h_next = next_step_size(&d, h_try, clamped, h_proposed, self.tol.h_max);
-                self.t = t_new;
-                self.y = y_new;
-                self.h_used = h_try;
-                self.h_trusted = if clamped { self.h_trusted.max(h_try) } else { h_try };
-                self.fsal_pending = true;
-                self.has_step = true;
-                self.stats.accepted += 1;
-                return Ok(());
-            }
-            self.stats.rejected += 1;
-            rejections += 1;
-            if rejections >= MAX_REJECTIONS {
-                return Err(StepError::StepSizeUnderflow { t: self.t, h: d.h_new });
-            }
-            after_reject = true;
-            h = d.h_new;
-        }
-    }
-
-    fn t(&self) -> f64 {
-        self.t
-    }
-
-    fn y(&self) -> &[f64; N] {
-        &self.y
-    }
-
-    fn t_prev(&self) -> f64 {
-        self.t_old
-    }
-
-    /// 7th-order dense output. The first call after a step evaluates the
-    /// three extra stages (counted in `rhs_evals`); later calls on the same
-    /// step are free. Returns the stored end states bit for bit at `t_prev()`
-    /// and `t()` without evaluating anything, and `y()` when no step has been
-    /// taken since the last restart. Outside `[t_prev(), t()]` the polynomial
-    /// extrapolates.
-    fn dense<F: Rhs<N>>(&mut self, f: &F, t: f64, out: &mut [f64; N]) {
-        if !self.has_step || t == self.t {
-            *out = self.y;
-        } else if t == self.t_old {
-            *out = self.y_old;
-        } else {
-            if !self.dense_ready {
-                self.prepare_dense(f);
-            }
-            self.interpolate((t - self.t_old) / self.h_used, out, N);
-        }
-    }
-
-    fn dense_leading<F: Rhs<N>>(&mut self, f: &F, t: f64, out: &mut [f64; N], count: usize) {
-        if !self.has_step || t == self.t {
-            out[..count].copy_from_slice(&self.y[..count]);
-        } else if t == self.t_old {
-            out[..count].copy_from_slice(&self.y_old[..count]);
-        } else {
-            if !self.dense_ready {
-                self.prepare_dense(f);
-            }
-            self.interpolate((t - self.t_old) / self.h_used, out, count);
-        }
-    }
-
-    fn hermite_leading(&self, t: f64, out: &mut [f64; N], count: usize) -> bool {
-        if !self.has_step {
-            return false;
-        }
-        let (f0, f1) = (&self.k[0], &self.k[FSAL]);
-        hermite_leading(
-            &self.y_old,
-            &self.y,
-            f0,
-            f1,
-            self.h_used,
-            (t - self.t_old) / self.h_used,
-            out,
-            count,
-        );
-        true
-    }
-
-    fn hermite(&self, t: f64, out: &mut [f64; N]) -> bool {
-        if !self.has_step {
-            return false;
-        }
-        // k[0] is f(t_old, y_old) until the next step moves the FSAL stage.
-        let (f0, f1) = (&self.k[0], &self.k[FSAL]);
-        hermite(
-            &self.y_old,
-            &self.y,
-            f0,
-            f1,
-            self.h_used,
-            (t - self.t_old) / self.h_used,
-            out,
-        );
-        true
-    }
-
-    fn hermite_spread(&self, out: &mut [f64; N]) -> bool {
-        if !self.has_step {
-            return false;
-        }
-        let (f0, f1) = (&self.k[0], &self.k[FSAL]);
-        hermite_spread(&self.y_old, &self.y, f0, f1, self.h_used, out);
-        true
-    }
-
-    fn stats(&self) -> StepStats {
-        self.stats
-    }
-
-    fn step_size(&self) -> f64 {
-        self.h_next
     }
 }
 
@@ -423,6 +201,7 @@ mod tests {
     use super::super::dopri5::tests::{
         assert_rel_close, cosine, decay, norm_err, observed_orders, osc, osc_exact, run,
     };
+    use super::super::stepper::{Stepper, Tolerances};
     use super::*;
 
     fn tol(rtol: f64, atol: f64) -> Tolerances {

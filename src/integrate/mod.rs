@@ -9,12 +9,15 @@
 //!   reset maps and restarts.
 //! - Non-finite states are reported as [`StepError::NonFinite`], never passed on.
 
+mod controller;
 pub mod dop853;
 mod dop853_tableau;
 pub mod dopri5;
+pub mod embedded;
 pub mod hybrid;
 pub mod ralston;
 pub mod root;
+mod stages;
 pub mod stepper;
 pub mod taylor;
 

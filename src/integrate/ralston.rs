@@ -15,7 +15,8 @@
 //! ([`Stepper::undo_and_shrink`]), then puts the step back with
 //! [`Ralston::reset_step`] after handling the event.
 
-use super::dopri5::{all_finite, combine, h_min};
+use super::controller::h_min;
+use super::stages::{all_finite, combine};
 use super::stepper::{Rhs, StepError, StepStats, Stepper, Tolerances};
 
 /// Ralston's node and weights.
