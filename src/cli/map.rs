@@ -28,8 +28,6 @@ use crate::analysis::steady::LyapunovFn;
 use crate::io::config;
 use crate::io::csv::{self, Num, Row};
 use crate::io::output;
-use crate::io::staging::Staging;
-use crate::plot::Figure as _;
 use crate::plot::labels::{fixed_parameters, num, param_label, param_symbol};
 use crate::plot::outcome_map::{MapColouring, OutcomeMapFigure};
 use crate::sim::Param;
@@ -191,24 +189,17 @@ pub fn run_with(args: &MapArgs, lyapunov: Option<&LyapunovFn<'_>>) -> Result<(),
         colouring,
     };
     let with_lyapunov = cells.iter().any(|c| c.lyapunov.is_some());
-    let mut staging = Staging::new(&args.out).context("--out").map_err(BatchError::Run)?;
-    let write = |staging: &mut Staging| -> anyhow::Result<()> {
+    super::write::staged(&args.out, |staging| {
         staging.text("map.csv", &map_csv(&cells))?;
         staging.text("map.json", &(serde_json::to_string_pretty(&meta)? + "\n"))?;
         let outcome = figure(MapColouring::Outcome);
-        outcome.write_png(&staging.path("map.png"))?;
-        staging.text("map.svg", &outcome.to_svg()?)?;
+        super::write::figure(staging, "map", &outcome)?;
         if with_lyapunov {
             let lyap = figure(MapColouring::Lyapunov);
-            lyap.write_png(&staging.path("map_lyapunov.png"))?;
-            staging.text("map_lyapunov.svg", &lyap.to_svg()?)?;
+            super::write::figure(staging, "map_lyapunov", &lyap)?;
         }
         Ok(())
-    };
-    write(&mut staging)
-        .and_then(|()| Ok(staging.commit()?))
-        .with_context(|| format!("writing {}", args.out.display()))
-        .map_err(BatchError::Run)?;
+    })?;
 
     if !args.quiet {
         let mut counts: Vec<(String, usize)> = Vec::new();

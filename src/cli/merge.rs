@@ -21,9 +21,7 @@ use crate::analysis::steady::Window;
 use crate::io::config;
 use crate::io::csv;
 use crate::io::output;
-use crate::io::staging::Staging;
 use crate::io::sweep_files::{ClassRow, PointRow};
-use crate::plot::Figure as _;
 
 /// Arguments of `rocking merge`.
 #[derive(Debug, Clone, clap::Args)]
@@ -279,20 +277,14 @@ pub fn run(args: &MergeArgs) -> Result<(), BatchError> {
     output::check_writable(&args.out)
         .with_context(|| "--out: cannot write the output directory".to_string())
         .map_err(input)?;
-    let mut staging = Staging::new(&args.out).context("--out").map_err(BatchError::Run)?;
-    let write = |staging: &mut Staging| -> anyhow::Result<()> {
+    super::write::staged(&args.out, |staging| {
         staging.text("classes.csv", &classes_out)?;
         staging.text("points.csv", &points_out)?;
         staging.text("sweep.json", &(serde_json::to_string_pretty(&first.common)? + "\n"))?;
         let fig = meta.figure(&values, &points);
-        fig.write_png(&staging.path("bifurcation.png"))?;
-        staging.text("bifurcation.svg", &fig.to_svg()?)?;
+        super::write::figure(staging, "bifurcation", &fig)?;
         Ok(())
-    };
-    write(&mut staging)
-        .and_then(|()| Ok(staging.commit()?))
-        .with_context(|| format!("writing {}", args.out.display()))
-        .map_err(BatchError::Run)?;
+    })?;
     if !args.quiet {
         crate::say!(
             "merged {n} shards: {} values, {} points; wrote {}",

@@ -20,6 +20,7 @@ pub mod map;
 pub mod merge;
 pub mod reproduce;
 pub mod sweep;
+pub mod write;
 
 use std::path::PathBuf;
 

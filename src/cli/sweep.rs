@@ -31,9 +31,7 @@ use crate::analysis::orbit_diagram::{BlockSweep, Continuation, Grid, Plan, Shard
 use crate::analysis::steady::{LyapunovFn, Window};
 use crate::io::config::{self, to_json};
 use crate::io::output;
-use crate::io::staging::Staging;
 use crate::io::sweep_files::{classes_csv, points_csv};
-use crate::plot::Figure as _;
 use crate::plot::bifurcation::BifurcationFigure;
 use crate::plot::labels::{fixed_parameters, grid_decimals, grid_num, num, param_label, param_symbol};
 use crate::sim::{Param, Scenario};
@@ -294,8 +292,7 @@ pub fn run_with(args: &SweepArgs, lyapunov: Option<&LyapunovFn<'_>>) -> Result<(
     bar.finish_and_clear();
     let wall = start.elapsed().as_secs_f64();
 
-    let mut staging = Staging::new(&args.out).context("--out").map_err(BatchError::Run)?;
-    let write = |staging: &mut Staging| -> anyhow::Result<()> {
+    super::write::staged(&args.out, |staging| {
         staging.text("classes.csv", &classes_csv(&values))?;
         staging.text("points.csv", &points_csv(&values))?;
         staging.text(
@@ -309,15 +306,10 @@ pub fn run_with(args: &SweepArgs, lyapunov: Option<&LyapunovFn<'_>>) -> Result<(
                 .flat_map(|v| v.points.iter().map(move |p| (v.value, p.theta)))
                 .collect();
             let fig = meta.figure(&classes, &points);
-            fig.write_png(&staging.path("bifurcation.png"))?;
-            staging.text("bifurcation.svg", &fig.to_svg()?)?;
+            super::write::figure(staging, "bifurcation", &fig)?;
         }
         Ok(())
-    };
-    write(&mut staging)
-        .and_then(|()| Ok(staging.commit()?))
-        .with_context(|| format!("writing {}", args.out.display()))
-        .map_err(BatchError::Run)?;
+    })?;
 
     if !args.quiet {
         let npoints: usize = values.iter().map(|v| v.points.len()).sum();

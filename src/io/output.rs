@@ -6,14 +6,14 @@
 //! stepper stops with an error first); a non-finite number reaching a
 //! writer is an error, never written.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use serde::Serialize;
 use serde_json::json;
 
 use super::config::to_json;
 use super::csv::{self, Num, Row};
-use super::staging::Staging;
+use super::staging::{self, Staging};
 use crate::model::Mode;
 use crate::model::system::EventRecord;
 use crate::sim::{HistoryRow, RunResult, Scenario, SectionRow};
@@ -188,10 +188,7 @@ pub fn check_writable(dir: &Path) -> Result<(), OutputError> {
     if dir.exists() && !dir.is_dir() {
         return Err(OutputError::NotADirectory(dir.display().to_string()));
     }
-    let parent = match dir.parent() {
-        Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
-        _ => PathBuf::from("."),
-    };
+    let parent = staging::parent_of(dir);
     std::fs::create_dir_all(&parent).map_err(io_err(&parent))?;
     let probe = parent.join(format!(".rocking-probe-{}", std::process::id()));
     std::fs::write(&probe, b"").map_err(io_err(&parent))?;

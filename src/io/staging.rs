@@ -14,6 +14,15 @@ use std::path::{Path, PathBuf};
 
 use super::output::OutputError;
 
+/// The folder `dir` is made in (`.` for a bare name): where its staging
+/// directory goes, so the final rename stays on one file system.
+pub fn parent_of(dir: &Path) -> PathBuf {
+    match dir.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
+        _ => PathBuf::from("."),
+    }
+}
+
 /// A staging directory for the files of one output directory.
 #[derive(Debug)]
 pub struct Staging {
@@ -37,10 +46,7 @@ impl Staging {
         if dir.exists() && !dir.is_dir() {
             return Err(OutputError::NotADirectory(dir.display().to_string()));
         }
-        let parent = match dir.parent() {
-            Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
-            _ => PathBuf::from("."),
-        };
+        let parent = parent_of(dir);
         std::fs::create_dir_all(&parent).map_err(io_err(&parent))?;
         let base = dir
             .file_name()
