@@ -104,15 +104,41 @@ impl Decimal {
     }
 }
 
-/// Errors in a sweep's definition, each naming the CLI flag.
+/// Errors in a sweep's or map's definition, each naming the CLI flag.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
-#[error("{0}")]
-pub struct PlanError(pub String);
+pub enum PlanError {
+    /// A flag's value is not allowed: `--step 0: must be finite and > 0`.
+    #[error("{flag} {value}: {message}")]
+    Flag {
+        /// The flag, e.g. `--step`.
+        flag: String,
+        /// Its value as given.
+        value: String,
+        /// What is allowed.
+        message: String,
+    },
+    /// Shards of a continuation sweep, whose values depend on each other.
+    #[error(
+        "--shard cannot be combined with --continuation {0}: each value is seeded from the previous one, so the values cannot be split"
+    )]
+    ShardedContinuation(&'static str),
+}
+
+impl PlanError {
+    /// `flag value: message`.
+    pub fn flag(flag: &str, value: impl std::fmt::Display, message: impl std::fmt::Display) -> Self {
+        Self::Flag {
+            flag: flag.to_string(),
+            value: value.to_string(),
+            message: message.to_string(),
+        }
+    }
+}
 
 impl Grid {
     /// Validates and counts the values.
     pub fn new(from: f64, to: f64, step: f64) -> Result<Self, PlanError> {
-        let bad = |flag: &str, v: f64, what: &str| Err(PlanError(format!("{flag} {v}: {what}")));
+        let bad = |flag: &str, v: f64, what: &str| Err(PlanError::flag(flag, v, what));
         if !from.is_finite() {
             return bad("--from", from, "must be finite");
         }
@@ -200,7 +226,7 @@ pub struct Shard {
 impl Shard {
     /// Parses `K/N` (0 ≤ K < N).
     pub fn parse(text: &str) -> Result<Self, PlanError> {
-        let bad = |what: &str| Err(PlanError(format!("--shard {text}: {what}")));
+        let bad = |what: &str| Err(PlanError::flag("--shard", text, what));
         let Some((k, n)) = text.split_once('/') else {
             return bad("expected K/N, e.g. 0/4 (K counts from 0)");
         };
@@ -232,10 +258,7 @@ impl Plan {
     /// A plan; sharding a continuation sweep is an error.
     pub fn new(grid: Grid, continuation: Continuation, shard: Option<Shard>) -> Result<Self, PlanError> {
         if shard.is_some() && continuation != Continuation::None {
-            return Err(PlanError(format!(
-                "--shard cannot be combined with --continuation {}: each value is seeded from the previous one, so the values cannot be split",
-                continuation.name()
-            )));
+            return Err(PlanError::ShardedContinuation(continuation.name()));
         }
         Ok(Self {
             grid,
@@ -456,10 +479,20 @@ mod tests {
         assert_eq!(Grid::new(0.0, 1.0, 0.6).unwrap().count, 3);
         assert_eq!(Grid::new(0.0, 0.3, 1.0).unwrap().count, 1);
         assert_eq!(Grid::new(1.0, 1.0, 0.5).unwrap().count, 1);
-        assert!(Grid::new(0.0, 1.0, 0.0).unwrap_err().0.starts_with("--step"));
-        assert!(Grid::new(1.0, 0.0, 0.1).unwrap_err().0.starts_with("--to"));
-        assert!(Grid::new(f64::NAN, 0.0, 0.1).unwrap_err().0.starts_with("--from"));
-        assert!(Grid::new(1e20, 2e20, 1.0).unwrap_err().0.starts_with("--step"));
+        assert!(Grid::new(0.0, 1.0, 0.0).unwrap_err().to_string().starts_with("--step"));
+        assert!(Grid::new(1.0, 0.0, 0.1).unwrap_err().to_string().starts_with("--to"));
+        assert!(
+            Grid::new(f64::NAN, 0.0, 0.1)
+                .unwrap_err()
+                .to_string()
+                .starts_with("--from")
+        );
+        assert!(
+            Grid::new(1e20, 2e20, 1.0)
+                .unwrap_err()
+                .to_string()
+                .starts_with("--step")
+        );
     }
 
     #[test]
@@ -492,7 +525,10 @@ mod tests {
         assert_eq!(all, (0..11).collect::<Vec<_>>());
         assert_eq!(Shard::parse("1/4").unwrap(), Shard { index: 1, count: 4 });
         for bad in ["4/4", "1", "a/2", "0/0", "-1/3"] {
-            assert!(Shard::parse(bad).unwrap_err().0.starts_with("--shard"), "{bad}");
+            assert!(
+                Shard::parse(bad).unwrap_err().to_string().starts_with("--shard"),
+                "{bad}"
+            );
         }
         assert!(Plan::new(g, Continuation::Up, Some(Shard { index: 0, count: 2 })).is_err());
     }

@@ -41,7 +41,7 @@ pub struct Axis {
 impl Axis {
     /// Validates an axis; errors name `flag` (e.g. `--x`).
     pub fn new(flag: &str, key: &str, from: f64, to: f64, n: usize) -> Result<Self, PlanError> {
-        let bad = |what: String| Err(PlanError(format!("{flag} {key} {from} {to} {n}: {what}")));
+        let bad = |what: String| Err(PlanError::flag(flag, format!("{key} {from} {to} {n}"), what));
         if !from.is_finite() || !to.is_finite() {
             return bad("A and B must be finite".into());
         }
@@ -198,7 +198,12 @@ mod tests {
         assert_eq!(a.value(0), 0.1);
         assert_eq!(a.values().len(), 7);
         assert_eq!(Axis::new("--x", "k", 2.0, 5.0, 1).unwrap().values(), vec![2.0]);
-        assert!(Axis::new("--y", "k", 1.0, 1.0, 3).unwrap_err().0.starts_with("--y k"));
+        assert!(
+            Axis::new("--y", "k", 1.0, 1.0, 3)
+                .unwrap_err()
+                .to_string()
+                .starts_with("--y k")
+        );
         assert!(Axis::new("--x", "k", 0.0, 1.0, 0).is_err());
         assert!(Axis::new("--x", "k", f64::INFINITY, 1.0, 2).is_err());
     }

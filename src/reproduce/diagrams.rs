@@ -75,7 +75,7 @@ pub fn run_diagram(
     let base = load(Some(figure.preset), None, &sets).map_err(|e| fail(e.to_string()))?;
     let mut config = base.clone();
     config.run.tau_end = settings.window.tau_end;
-    let plan = Plan::new(settings.grid, variant.continuation(), None).map_err(|e| fail(e.0))?;
+    let plan = Plan::new(settings.grid, variant.continuation(), None).map_err(|e| fail(e.to_string()))?;
     let spec = BlockSweep {
         base: &base,
         param: PARAM,

@@ -73,7 +73,7 @@ impl Options {
     /// The A_v grid: the paper's 0 to 3 in steps of 0.02, or 0.25 (quick).
     pub fn grid(&self) -> Result<Grid, ReproduceError> {
         let step = if self.quick { 0.25 } else { 0.02 };
-        Grid::new(0.0, 3.0, step).map_err(|e| ReproduceError::Options(e.0))
+        Grid::new(0.0, 3.0, step).map_err(|e| ReproduceError::Options(e.to_string()))
     }
 
     /// The response run lengths.
