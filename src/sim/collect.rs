@@ -40,6 +40,36 @@ pub struct SectionRow {
     pub mode: Mode,
 }
 
+impl HistoryRow {
+    /// The row of state `y` in `mode` at τ = `t`.
+    pub fn of_state(t: f64, mode: Mode, y: &[f64; N]) -> Self {
+        Self {
+            tau: t,
+            theta: y[THETA],
+            theta_dot: y[THETA_DOT],
+            x: y[X],
+            x_dot: y[X_DOT],
+            mode,
+        }
+    }
+}
+
+impl SectionRow {
+    /// Section point `k` of state `y` in `mode` at τ = `t`.
+    pub fn of_state(k: u64, t: f64, mode: Mode, y: &[f64; N]) -> Self {
+        let r = HistoryRow::of_state(t, mode, y);
+        Self {
+            k,
+            tau: r.tau,
+            theta: r.theta,
+            theta_dot: r.theta_dot,
+            x: r.x,
+            x_dot: r.x_dot,
+            mode,
+        }
+    }
+}
+
 /// Collects samples, section points and events, and the time per mode.
 #[derive(Debug, Default)]
 pub(crate) struct Collector {
@@ -54,28 +84,13 @@ impl Observer<Mode, EventRecord, N> for Collector {
     fn sample(&mut self, t: f64, mode: Mode, y: &[f64; N]) {
         self.max_abs_theta = self.max_abs_theta.max(y[THETA].abs());
         if self.keep_history {
-            self.history.push(HistoryRow {
-                tau: t,
-                theta: y[THETA],
-                theta_dot: y[THETA_DOT],
-                x: y[X],
-                x_dot: y[X_DOT],
-                mode,
-            });
+            self.history.push(HistoryRow::of_state(t, mode, y));
         }
     }
 
     fn section(&mut self, k: u64, t: f64, mode: Mode, y: &[f64; N]) {
         self.max_abs_theta = self.max_abs_theta.max(y[THETA].abs());
-        self.section.push(SectionRow {
-            k,
-            tau: t,
-            theta: y[THETA],
-            theta_dot: y[THETA_DOT],
-            x: y[X],
-            x_dot: y[X_DOT],
-            mode,
-        });
+        self.section.push(SectionRow::of_state(k, t, mode, y));
     }
 
     fn event(&mut self, _t: f64, _before: Mode, y_before: &[f64; N], record: EventRecord) {

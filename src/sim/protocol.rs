@@ -18,7 +18,7 @@
 //!
 //! This module knows nothing of windows; the app turns these into pictures.
 
-use super::Scenario;
+use super::{HistoryRow, Scenario};
 use crate::model::geometry::Geometry;
 use crate::model::system::EventRecord;
 use crate::model::{Mode, Sign, energy};
@@ -105,22 +105,14 @@ pub enum SimCommand {
 /// Most ghost copies: the 1–100.
 pub const MAX_GHOSTS: usize = 100;
 
-/// One state on the regular output grid, with what the scene needs to draw
-/// it without doing any mechanics.
+/// One state on the regular output grid — the batch run's history row —
+/// with what the scene needs to draw it without doing any mechanics. Its
+/// state's fields read through it (`sample.theta`).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Sample {
-    /// τ.
-    pub tau: f64,
-    /// Θ.
-    pub theta: f64,
-    /// Θ'.
-    pub theta_dot: f64,
-    /// X: centre of mass relative to the base, per R.
-    pub x: f64,
-    /// X'.
-    pub x_dot: f64,
-    /// Contact mode.
-    pub mode: Mode,
+    /// τ, Θ, Θ', X (centre of mass relative to the base, per R), X' and
+    /// the contact mode.
+    pub state: HistoryRow,
     /// Base acceleration a_h/g.
     pub a_h: f64,
     /// Base acceleration a_v/g.
@@ -131,6 +123,14 @@ pub struct Sample {
     pub normal: f64,
     /// Horizontal contact force on the block per unit weight, F/(mg).
     pub friction: f64,
+}
+
+impl std::ops::Deref for Sample {
+    type Target = HistoryRow;
+
+    fn deref(&self) -> &HistoryRow {
+        &self.state
+    }
 }
 
 /// A point of the stroboscopic (Poincaré) section, τ_k = 2πk/Ω_h: the

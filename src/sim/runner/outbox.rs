@@ -122,12 +122,14 @@ mod tests {
 
     fn sample(tau: f64) -> Sample {
         Sample {
-            tau,
-            theta: 0.0,
-            theta_dot: 0.0,
-            x: 0.0,
-            x_dot: 0.0,
-            mode: crate::model::Mode::Rest,
+            state: crate::sim::HistoryRow {
+                tau,
+                theta: 0.0,
+                theta_dot: 0.0,
+                x: 0.0,
+                x_dot: 0.0,
+                mode: crate::model::Mode::Rest,
+            },
             a_h: 0.0,
             a_v: 0.0,
             base_x: 0.0,

@@ -21,9 +21,9 @@ use crate::integrate::hybrid::{Advance, Driver, Limits, Observer, Outputs};
 use crate::model::system::{EventRecord, ModelError, N, THETA, THETA_DOT, X, X_DOT};
 use crate::model::{BlockSystem, Mode};
 use crate::sim::Scenario;
-use crate::sim::SectionRow;
 use crate::sim::method::{StepperVisitor, with_stepper};
 use crate::sim::protocol::{BaseMotion, Batch, GhostState, RunEnd, RunId, RunInfo, Sample};
+use crate::sim::{HistoryRow, SectionRow};
 use crate::sim::{InitialState, initial_mode};
 
 /// Spacing of the live samples, τ. Fine enough that the paper's block
@@ -148,12 +148,7 @@ impl Observer<Mode, EventRecord, N> for MainSink<'_> {
             (acc.normal, acc.friction)
         };
         self.queue.samples.push_back(Sample {
-            tau: t,
-            theta: y[THETA],
-            theta_dot: y[THETA_DOT],
-            x: y[X],
-            x_dot: y[X_DOT],
-            mode,
+            state: HistoryRow::of_state(t, mode, y),
             a_h: fo.a,
             a_v: fo.av,
             base_x,
@@ -163,15 +158,7 @@ impl Observer<Mode, EventRecord, N> for MainSink<'_> {
     }
 
     fn section(&mut self, k: u64, t: f64, mode: Mode, y: &[f64; N]) {
-        self.queue.section.push_back(SectionRow {
-            k,
-            tau: t,
-            theta: y[THETA],
-            theta_dot: y[THETA_DOT],
-            x: y[X],
-            x_dot: y[X_DOT],
-            mode,
-        });
+        self.queue.section.push_back(SectionRow::of_state(k, t, mode, y));
     }
 
     fn event(&mut self, _t: f64, _before: Mode, _y_before: &[f64; N], record: EventRecord) {
