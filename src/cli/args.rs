@@ -60,3 +60,19 @@ impl StudyArgs {
         Ok(window)
     }
 }
+
+/// What a steady-response study writes (`sweep` and `map`).
+#[derive(Debug, Clone, clap::Args)]
+pub struct StudyOutput {
+    /// Also compute the largest Lyapunov exponent of each value or cell
+    /// (tangent dynamics with saltation matrices, τ 600–2600 by default;
+    /// about half a second each in release) into the `lyapunov` column.
+    #[arg(long)]
+    pub lyapunov: bool,
+    /// Output directory.
+    #[arg(long, value_name = "DIR")]
+    pub out: PathBuf,
+    /// Print nothing but errors.
+    #[arg(long, short)]
+    pub quiet: bool,
+}

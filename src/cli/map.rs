@@ -13,13 +13,12 @@
 //! Bad input exits 2 with a one-line error naming the flag or key, before
 //! anything runs or is written.
 
-use std::path::PathBuf;
 use std::time::Instant;
 
 use anyhow::{Context as _, anyhow};
 use serde_json::json;
 
-use super::args::{SceneArgs, StudyArgs};
+use super::args::{SceneArgs, StudyArgs, StudyOutput};
 use super::batch::BatchError;
 use super::sweep::{progress_bar, progress_fn, thread_pool};
 use crate::analysis::classify::{ClassifyOptions, Response};
@@ -47,17 +46,9 @@ pub struct MapArgs {
     /// Window and threads.
     #[command(flatten)]
     pub study: StudyArgs,
-    /// Also compute the largest Lyapunov exponent of each cell (tangent
-    /// dynamics with saltation matrices, τ 600–2600 by default; about half a
-    /// second per cell in release) into the `lyapunov` column.
-    #[arg(long)]
-    pub lyapunov: bool,
-    /// Output directory.
-    #[arg(long, value_name = "DIR")]
-    pub out: PathBuf,
-    /// Print nothing but errors.
-    #[arg(long, short)]
-    pub quiet: bool,
+    /// Output folder, Lyapunov exponents, quiet.
+    #[command(flatten)]
+    pub output: StudyOutput,
 }
 
 /// Parses `KEY A B N` of `--x`/`--y` into the axis and its parameter.
@@ -142,12 +133,12 @@ pub fn run_with(args: &MapArgs, lyapunov: Option<&LyapunovFn<'_>>) -> Result<(),
     spec.check()
         .map_err(|e| input(anyhow!("--x {} = {}, --y {} = {}: {}", x.key, e.x, y.key, e.y, e.error)))?;
     let pool = thread_pool(args.study.threads)?;
-    output::check_writable(&args.out)
+    output::check_writable(&args.output.out)
         .with_context(|| "--out: cannot write the output directory".to_string())
         .map_err(input)?;
 
     let start = Instant::now();
-    let bar = progress_bar(x.n * y.n, "cells", args.quiet);
+    let bar = progress_bar(x.n * y.n, "cells", args.output.quiet);
     let cells = pool
         .install(|| block_map(&spec, &progress_fn(&bar)))
         .map_err(|e| BatchError::Run(anyhow!("{} = {}, {} = {}: {}", x.key, e.x, y.key, e.y, e.error)))?;
@@ -189,7 +180,7 @@ pub fn run_with(args: &MapArgs, lyapunov: Option<&LyapunovFn<'_>>) -> Result<(),
         colouring,
     };
     let with_lyapunov = cells.iter().any(|c| c.lyapunov.is_some());
-    super::write::staged(&args.out, |staging| {
+    super::write::staged(&args.output.out, |staging| {
         staging.text("map.csv", &map_csv(&cells))?;
         staging.text("map.json", &(serde_json::to_string_pretty(&meta)? + "\n"))?;
         let outcome = figure(MapColouring::Outcome);
@@ -201,7 +192,7 @@ pub fn run_with(args: &MapArgs, lyapunov: Option<&LyapunovFn<'_>>) -> Result<(),
         Ok(())
     })?;
 
-    if !args.quiet {
+    if !args.output.quiet {
         let mut counts: Vec<(String, usize)> = Vec::new();
         for c in &cells {
             let name = c.response.to_string();
@@ -213,7 +204,7 @@ pub fn run_with(args: &MapArgs, lyapunov: Option<&LyapunovFn<'_>>) -> Result<(),
         counts.sort();
         let summary: Vec<String> = counts.iter().map(|(n, c)| format!("{n}: {c}")).collect();
         crate::say!("mapped {} × {} cells in {wall:.1} s; {}", x.n, y.n, summary.join(", "));
-        crate::say!("wrote {}", args.out.display());
+        crate::say!("wrote {}", args.output.out.display());
     }
     Ok(())
 }

@@ -80,10 +80,12 @@ impl Command {
     /// Runs the subcommand.
     pub fn run(&self) -> Result<(), batch::BatchError> {
         match self {
-            Command::Sweep(args) if args.lyapunov => sweep::run_with(args, Some(&lyapunov::largest_for_scenario)),
+            Command::Sweep(args) if args.output.lyapunov => {
+                sweep::run_with(args, Some(&lyapunov::largest_for_scenario))
+            }
             Command::Sweep(args) => sweep::run(args),
             Command::Merge(args) => merge::run(args),
-            Command::Map(args) if args.lyapunov => map::run_with(args, Some(&lyapunov::largest_for_scenario)),
+            Command::Map(args) if args.output.lyapunov => map::run_with(args, Some(&lyapunov::largest_for_scenario)),
             Command::Map(args) => map::run(args),
             Command::Reproduce(args) => reproduce::run(args),
             Command::Bench(args) => bench::run(args),

@@ -16,14 +16,13 @@
 //! anything runs or is written; the directory appears whole or not at all.
 
 use std::io::IsTerminal as _;
-use std::path::PathBuf;
 use std::time::Instant;
 
 use anyhow::Context as _;
 use indicatif::{ProgressBar, ProgressStyle};
 use serde_json::{Value as Json, json};
 
-use super::args::{SceneArgs, StudyArgs};
+use super::args::{SceneArgs, StudyArgs, StudyOutput};
 use super::batch::BatchError;
 use crate::analysis::Progress;
 use crate::analysis::classify::{ClassifyOptions, Response};
@@ -87,17 +86,9 @@ pub struct SweepArgs {
     /// jobs; join the shards with `rocking merge`.
     #[arg(long, value_name = "K/N")]
     pub shard: Option<String>,
-    /// Also compute the largest Lyapunov exponent of each value (tangent
-    /// dynamics with saltation matrices, τ 600–2600 by default; about half a
-    /// second per value in release) into the `lyapunov` column.
-    #[arg(long)]
-    pub lyapunov: bool,
-    /// Output directory.
-    #[arg(long, value_name = "DIR")]
-    pub out: PathBuf,
-    /// Print nothing but errors.
-    #[arg(long, short)]
-    pub quiet: bool,
+    /// Output folder, Lyapunov exponents, quiet.
+    #[command(flatten)]
+    pub output: StudyOutput,
 }
 
 /// Everything about a sweep except its results: what `sweep.json` records
@@ -280,19 +271,19 @@ pub fn run_with(args: &SweepArgs, lyapunov: Option<&LyapunovFn<'_>>) -> Result<(
         ))
     })?;
     let pool = thread_pool(args.study.threads)?;
-    output::check_writable(&args.out)
+    output::check_writable(&args.output.out)
         .with_context(|| "--out: cannot write the output directory".to_string())
         .map_err(BatchError::Input)?;
 
     let start = Instant::now();
-    let bar = progress_bar(plan.indices().len(), "values", args.quiet);
+    let bar = progress_bar(plan.indices().len(), "values", args.output.quiet);
     let values = pool
         .install(|| block_sweep(&spec, &plan, &progress_fn(&bar)))
         .map_err(|e| BatchError::Run(anyhow::anyhow!("{} = {}: {}", meta.param.key(), e.value, e.error)))?;
     bar.finish_and_clear();
     let wall = start.elapsed().as_secs_f64();
 
-    super::write::staged(&args.out, |staging| {
+    super::write::staged(&args.output.out, |staging| {
         staging.text("classes.csv", &classes_csv(&values))?;
         staging.text("points.csv", &points_csv(&values))?;
         staging.text(
@@ -311,7 +302,7 @@ pub fn run_with(args: &SweepArgs, lyapunov: Option<&LyapunovFn<'_>>) -> Result<(
         Ok(())
     })?;
 
-    if !args.quiet {
+    if !args.output.quiet {
         let npoints: usize = values.iter().map(|v| v.points.len()).sum();
         let d = grid_decimals(meta.grid.from, meta.grid.step);
         crate::say!(
@@ -326,7 +317,7 @@ pub fn run_with(args: &SweepArgs, lyapunov: Option<&LyapunovFn<'_>>) -> Result<(
         for r in response_ranges(&pairs) {
             crate::say!("  {} … {}: {}", grid_num(r.from, d), grid_num(r.to, d), r.response);
         }
-        crate::say!("wrote {}", args.out.display());
+        crate::say!("wrote {}", args.output.out.display());
     }
     Ok(())
 }

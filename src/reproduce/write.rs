@@ -19,6 +19,7 @@ use super::variant::Variant;
 use super::{ReproduceError, Reproduction};
 use crate::analysis::classify::Response;
 use crate::analysis::lyapunov::Lyapunov;
+use crate::analysis::orbit_diagram::Continuation;
 use crate::io::config::to_json;
 use crate::io::csv::{self, Num, Row};
 use crate::io::output::OutputError;
@@ -92,16 +93,10 @@ fn bifurcation_figure<'a>(
     let g = d.settings.grid;
     let w = d.settings.window;
     let dec = grid_decimals(g.from, g.step);
-    let seeding = match d.variant {
-        Variant::ContinuationUp => "continuation upwards",
-        Variant::Paper
-        | Variant::Ralston
-        | Variant::Housner
-        | Variant::PrintedEq20
-        | Variant::TumbleAtSide
-        | Variant::FlightStop
-        | Variant::ImpulseLaw
-        | Variant::ImpactRatio(_) => "each value from rest",
+    let seeding = match d.variant.continuation() {
+        Continuation::Up => "continuation upwards",
+        Continuation::Down => "continuation downwards",
+        Continuation::None => "each value from rest",
     };
     // Variants name the change in the title and the parameters below it;
     // the preset names the parameters in the title (a line must fit 1200 px).
