@@ -109,15 +109,7 @@ pub fn fixed_parameters(cfg: &Scenario, varied: &[Param]) -> String {
         }
     }
     if free(Param::MuS) && free(Param::MuK) {
-        if cfg.block.mu_s.is_infinite() {
-            parts.push("no sliding".to_string());
-        } else {
-            parts.push(format!(
-                "μ_s = {}, μ_k = {}",
-                num(cfg.block.mu_s),
-                num(cfg.block.kinetic())
-            ));
-        }
+        parts.push(friction_text(cfg));
     }
     match cfg.impact.law {
         LawKind::Ratio if free(Param::ImpactR) => parts.push(format!("impact ratio r = {}", num(cfg.impact_r()))),
@@ -126,6 +118,15 @@ pub fn fixed_parameters(cfg: &Scenario, varied: &[Param]) -> String {
         _ => {}
     }
     parts.join(", ")
+}
+
+/// The block's friction for a title: `no sliding` or `μ_s = 0.4, μ_k = 0.35`.
+pub fn friction_text(cfg: &Scenario) -> String {
+    if cfg.block.mu_s.is_infinite() {
+        "no sliding".to_string()
+    } else {
+        format!("μ_s = {}, μ_k = {}", num(cfg.block.mu_s), num(cfg.block.kinetic()))
+    }
 }
 
 /// The colour of a response class: periods 1, 2, 3, 4 in distinct hues,

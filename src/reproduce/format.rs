@@ -5,7 +5,7 @@
 
 use super::diagrams::Diagram;
 use super::variant::Variant;
-use crate::plot::labels::num;
+use crate::plot::labels::{friction_text, num};
 use crate::sim::Scenario;
 use crate::sim::scenario::LawKind;
 
@@ -43,15 +43,7 @@ pub fn short_params(cfg: &Scenario, with_a_v: bool) -> String {
     if with_a_v {
         parts.push(format!("A_v = {}", num(x.a_v)));
     }
-    if cfg.block.mu_s.is_infinite() {
-        parts.push("no sliding".to_string());
-    } else {
-        parts.push(format!(
-            "μ_s = {}, μ_k = {}",
-            num(cfg.block.mu_s),
-            num(cfg.block.kinetic())
-        ));
-    }
+    parts.push(friction_text(cfg));
     parts.join(", ")
 }
 
