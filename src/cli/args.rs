@@ -43,7 +43,8 @@ pub struct StudyArgs {
     /// paper presets).
     #[arg(long = "tau-end", value_name = "T", allow_negative_numbers = true)]
     pub tau_end: Option<f64>,
-    /// Worker threads (default: one per core). The output does not depend on it.
+    /// Worker threads (default: one per core; at most 4 per core). The output
+    /// does not depend on it.
     #[arg(long, value_name = "N")]
     pub threads: Option<usize>,
 }

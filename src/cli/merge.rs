@@ -155,9 +155,41 @@ fn meta_of(common: &Json, json_path: &Path) -> anyhow::Result<SweepMeta> {
     })
 }
 
+/// `path` made absolute with its symbolic links resolved, as far as it
+/// exists (a folder not yet made keeps its remaining components).
+fn resolved(path: &Path) -> PathBuf {
+    let mut existing = path.to_path_buf();
+    let mut rest = Vec::new();
+    while !existing.as_os_str().is_empty() && std::fs::canonicalize(&existing).is_err() {
+        if let Some(name) = existing.file_name() {
+            rest.push(name.to_os_string());
+        }
+        existing = existing.parent().map(Path::to_path_buf).unwrap_or_default();
+    }
+    let base = if existing.as_os_str().is_empty() {
+        std::env::current_dir().unwrap_or_default()
+    } else {
+        std::fs::canonicalize(&existing).unwrap_or(existing)
+    };
+    rest.into_iter().rev().fold(base, |p, c| p.join(c))
+}
+
+/// Whether folder `out` is `shard` or contains it (writing `out` would
+/// replace the shard being read).
+fn contains(out: &Path, shard: &Path) -> bool {
+    resolved(shard).starts_with(resolved(out))
+}
+
 /// Runs `rocking merge`.
 pub fn run(args: &MergeArgs) -> Result<(), BatchError> {
     let input = BatchError::Input;
+    if let Some(shard) = args.shards.iter().find(|s| contains(&args.out, s)) {
+        return Err(input(anyhow!(
+            "--out {}: is or contains the shard {} being merged; write the merge elsewhere",
+            args.out.display(),
+            shard.display()
+        )));
+    }
     let shards: Vec<ShardDir> = args
         .shards
         .iter()

@@ -178,10 +178,23 @@ pub fn progress_fn(bar: &ProgressBar) -> impl Fn(Progress) + Sync + '_ {
     }
 }
 
+/// Most worker threads per core: sweep values are CPU-bound, so threads
+/// beyond the cores only add switching; a few per core is room for a user
+/// who oversubscribes on purpose.
+pub const MAX_THREADS_PER_CORE: usize = 4;
+
 /// A rayon pool of `threads` workers (default: one per core), named.
 pub fn thread_pool(threads: Option<usize>) -> Result<rayon::ThreadPool, BatchError> {
-    if threads == Some(0) {
-        return Err(BatchError::Input(anyhow::anyhow!("--threads 0: must be >= 1")));
+    let cores = std::thread::available_parallelism().map_or(1, usize::from);
+    let most = MAX_THREADS_PER_CORE * cores;
+    match threads {
+        Some(0) => return Err(BatchError::Input(anyhow::anyhow!("--threads 0: must be >= 1"))),
+        Some(n) if n > most => {
+            return Err(BatchError::Input(anyhow::anyhow!(
+                "--threads {n}: at most {most} ({MAX_THREADS_PER_CORE} per core on {cores} cores); more only adds switching"
+            )));
+        }
+        _ => {}
     }
     rayon::ThreadPoolBuilder::new()
         .num_threads(threads.unwrap_or(0))

@@ -23,6 +23,33 @@ pub fn parent_of(dir: &Path) -> PathBuf {
     }
 }
 
+/// Removes the staging folders `.{base}.partial-PID` in `parent` left by
+/// processes that no longer run (killed while writing): they are never
+/// output, and would otherwise stay forever. A process is alive while
+/// `/proc/PID` exists; where there is no `/proc`, nothing is removed.
+fn remove_stale(parent: &Path, base: &str) {
+    let prefix = format!(".{base}.partial-");
+    let Ok(entries) = std::fs::read_dir(parent) else {
+        return;
+    };
+    if !Path::new("/proc/self").exists() {
+        return;
+    }
+    for entry in entries.flatten() {
+        let name = entry.file_name();
+        let Some(pid) = name.to_str().and_then(|n| n.strip_prefix(&prefix)) else {
+            continue;
+        };
+        let Ok(pid) = pid.parse::<u32>() else {
+            continue;
+        };
+        if pid != std::process::id() && !Path::new("/proc").join(pid.to_string()).exists() {
+            // Best effort: a folder that cannot be removed is still not output.
+            let _ = std::fs::remove_dir_all(entry.path());
+        }
+    }
+}
+
 /// A staging directory for the files of one output directory.
 #[derive(Debug)]
 pub struct Staging {
@@ -51,6 +78,7 @@ impl Staging {
         let base = dir
             .file_name()
             .map_or_else(|| "out".into(), |n| n.to_string_lossy().into_owned());
+        remove_stale(&parent, &base);
         let staging = parent.join(format!(".{base}.partial-{}", std::process::id()));
         if staging.exists() {
             std::fs::remove_dir_all(&staging).map_err(io_err(&staging))?;

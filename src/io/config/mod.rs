@@ -94,12 +94,28 @@ pub fn parse_toml(text: &str, file: &str) -> Result<Table, ConfigError> {
     })
 }
 
+/// Largest config file read, bytes: a config is a page of text; anything
+/// near this is not one.
+pub const MAX_CONFIG_BYTES: u64 = 1 << 20;
+
 /// Reads a config file: TOML, or a `summary.json` / JSON config (whose
 /// `config` object is used if present).
 pub fn read_file(path: &Path) -> Result<(Table, Source), ConfigError> {
     let name = path.display().to_string();
     if path.is_dir() {
         return Err(file_error(&name, "is a directory, expected a config file"));
+    }
+    // Only a regular file of bounded size: `/dev/zero` would be read
+    // without end and a FIFO would block forever.
+    let meta = std::fs::metadata(path).map_err(|e| file_error(&name, e))?;
+    if !meta.is_file() {
+        return Err(file_error(&name, "not a regular file (a config is read from a file)"));
+    }
+    if meta.len() > MAX_CONFIG_BYTES {
+        return Err(file_error(
+            &name,
+            format!("{} bytes; a config file is at most 1 MB", meta.len()),
+        ));
     }
     let text = std::fs::read_to_string(path).map_err(|e| file_error(&name, e))?;
     if text.trim().is_empty() {

@@ -43,6 +43,20 @@ pub enum RecordError {
         /// The path as given.
         file: String,
     },
+    /// The path is not a regular file (a device, a FIFO).
+    #[error("{file}: not a regular file (a record is read from a file)")]
+    NotAFile {
+        /// The path as given.
+        file: String,
+    },
+    /// The file is larger than [`MAX_RECORD_BYTES`].
+    #[error("{file}: {bytes} bytes; a record file is at most 200 MB")]
+    FileTooLarge {
+        /// The path as given.
+        file: String,
+        /// Its size.
+        bytes: u64,
+    },
     /// The file is empty or holds only whitespace.
     #[error("{file}: empty file")]
     Empty {
@@ -179,6 +193,10 @@ pub enum RecordError {
     },
 }
 
+/// Largest record file read, bytes: a day of 200 Hz samples in text is
+/// about 50 MB; beyond 200 MB a file is not a ground-motion record.
+pub const MAX_RECORD_BYTES: u64 = 200 << 20;
+
 /// Reads a ground-acceleration record from `path`.
 ///
 /// Two formats are recognised:
@@ -200,7 +218,8 @@ pub enum RecordError {
 ///
 /// # Errors
 /// A [`RecordError`] naming the file (as given) and the 1-based line for: an
-/// I/O failure, a directory, an empty file, a bad AT2 header (unparseable
+/// I/O failure, a directory, a device or FIFO, a file over
+/// [`MAX_RECORD_BYTES`], an empty file, a bad AT2 header (unparseable
 /// NPTS/DT, NPTS = 0, DT <= 0, not in g), a count of values other than NPTS,
 /// a wrong number of columns, a field that is not a finite number, a negative
 /// or non-increasing time, |a| > [`MAX_ABS_ACCEL_G`], or fewer than 2
@@ -214,6 +233,15 @@ pub fn read_record(path: &Path) -> Result<Series, RecordError> {
     let metadata = std::fs::metadata(path).map_err(io_error)?;
     if metadata.is_dir() {
         return Err(RecordError::IsDirectory { file });
+    }
+    if !metadata.is_file() {
+        return Err(RecordError::NotAFile { file });
+    }
+    if metadata.len() > MAX_RECORD_BYTES {
+        return Err(RecordError::FileTooLarge {
+            file,
+            bytes: metadata.len(),
+        });
     }
     let bytes = std::fs::read(path).map_err(io_error)?;
     // Lossy: station names in old headers or comments may be Latin-1; a

@@ -1,0 +1,203 @@
+//! Nothing lost, nothing unbounded (issue "Nothing lost"): the defects of
+//! that issue fixed so far, each as a named test, run as a user runs the
+//! commands.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn rocking() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_rocking"))
+}
+
+fn tmpdir(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("rocking-integrity-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).expect("temp dir");
+    d
+}
+
+/// Exit 2 and a one-line error containing `needle`.
+fn refused(o: &Output, needle: &str) {
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "stderr: {err}");
+    assert!(err.contains(needle), "{err:?} does not name {needle:?}");
+    assert_eq!(err.trim().lines().count(), 1, "one line: {err:?}");
+}
+
+/// A short Fig. 4 sweep in `shards` shards, into `dir/sh{k}`.
+fn shards(dir: &Path, shards: usize) -> Vec<PathBuf> {
+    (0..shards)
+        .map(|k| {
+            let out = dir.join(format!("sh{k}"));
+            let o = rocking()
+                .args([
+                    "sweep",
+                    "--preset",
+                    "fig4",
+                    "--param",
+                    "excitation.a_v",
+                    "--from",
+                    "1.9",
+                    "--to",
+                    "2.3",
+                    "--step",
+                    "0.2",
+                    "--transient",
+                    "100",
+                    "--tau-end",
+                    "160",
+                    "-q",
+                    "--shard",
+                ])
+                .arg(format!("{k}/{shards}"))
+                .arg("--out")
+                .arg(&out)
+                .output()
+                .expect("runs");
+            assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+            out
+        })
+        .collect()
+}
+
+#[test]
+fn merge_refuses_an_output_folder_that_is_or_contains_a_shard() {
+    let dir = tmpdir("merge-out");
+    let sh = shards(&dir, 2);
+    let before = std::fs::read(sh[0].join("classes.csv")).expect("classes");
+    // --out is a shard itself, and --out is a folder holding the shards.
+    for out in [sh[0].clone(), dir.clone(), dir.join("sh1/../sh0")] {
+        let o = rocking()
+            .arg("merge")
+            .arg("--out")
+            .arg(&out)
+            .args(&sh)
+            .output()
+            .expect("runs");
+        refused(&o, "--out");
+    }
+    assert_eq!(std::fs::read(sh[0].join("classes.csv")).expect("classes"), before);
+    // Beside the shards it merges.
+    let o = rocking()
+        .arg("merge")
+        .arg("--out")
+        .arg(dir.join("merged"))
+        .args(&sh)
+        .arg("-q")
+        .output()
+        .expect("runs");
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn merge_refuses_a_shard_cut_mid_row() {
+    let dir = tmpdir("merge-cut");
+    let sh = shards(&dir, 2);
+    let points = sh[1].join("points.csv");
+    let text = std::fs::read_to_string(&points).expect("points");
+    // Cut in the middle of the second data row: 4 of its 5 columns.
+    let second_row_end = text.match_indices('\n').nth(2).expect("rows").0;
+    let cut = text[..second_row_end].rfind(',').expect("a comma");
+    std::fs::write(&points, &text[..cut]).expect("cut");
+    let out = dir.join("merged");
+    let o = rocking()
+        .arg("merge")
+        .arg("--out")
+        .arg(&out)
+        .args(&sh)
+        .output()
+        .expect("runs");
+    refused(&o, "points.csv:3");
+    assert!(!out.exists(), "nothing written");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn a_staging_folder_left_by_a_killed_run_is_removed_by_the_next_run() {
+    let dir = tmpdir("stale");
+    // No process has this id (above Linux's pid_max of 2^22).
+    let stale = dir.join(".out.partial-999999999");
+    std::fs::create_dir_all(&stale).expect("stale folder");
+    std::fs::write(stale.join("history.csv"), "tau,theta\n0.0,0.0\n").expect("file");
+    let o = rocking()
+        .args(["--batch", "--preset", "fig4", "--set", "run.tau_end=5", "-q", "--out"])
+        .arg(dir.join("out"))
+        .output()
+        .expect("runs");
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(!stale.exists(), "the dead run's staging folder is gone");
+    let left: Vec<String> = std::fs::read_dir(&dir)
+        .expect("dir")
+        .map(|e| e.expect("entry").file_name().to_string_lossy().into_owned())
+        .collect();
+    assert_eq!(left, ["out"]);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn only_regular_files_are_read_as_configs_or_records() {
+    let o = rocking()
+        .args(["--batch", "--config", "/dev/zero", "--out", "/tmp/never"])
+        .output()
+        .expect("runs");
+    refused(&o, "/dev/zero: not a regular file");
+    let o = rocking()
+        .args([
+            "--batch",
+            "--set",
+            "excitation.kind=record",
+            "--set",
+            "excitation.file_h=/dev/zero",
+            "--out",
+            "/tmp/never",
+        ])
+        .output()
+        .expect("runs");
+    refused(&o, "/dev/zero: not a regular file");
+    let dir = tmpdir("big");
+    let big = dir.join("big.toml");
+    let mut text = String::from("[block]\nwidth = 1.0\n");
+    while text.len() <= 1 << 20 {
+        text.push_str("# padding padding padding padding padding padding padding padding\n");
+    }
+    std::fs::write(&big, text).expect("big");
+    let o = rocking()
+        .arg("--batch")
+        .arg("--config")
+        .arg(&big)
+        .args(["--out", "/tmp/never"])
+        .output()
+        .expect("runs");
+    refused(&o, "a config file is at most 1 MB");
+    assert!(!Path::new("/tmp/never").exists());
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn threads_are_capped_by_the_cores() {
+    let dir = tmpdir("threads");
+    let o = rocking()
+        .args([
+            "sweep",
+            "--preset",
+            "fig4",
+            "--param",
+            "excitation.a_v",
+            "--from",
+            "1",
+            "--to",
+            "2",
+            "--step",
+            "0.5",
+            "--threads",
+            "100000",
+            "--out",
+        ])
+        .arg(dir.join("out"))
+        .output()
+        .expect("runs");
+    refused(&o, "--threads 100000: at most");
+    assert!(!dir.join("out").exists());
+    let _ = std::fs::remove_dir_all(&dir);
+}
