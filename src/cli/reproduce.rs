@@ -35,8 +35,8 @@ pub struct ReproduceArgs {
     /// Only these figures, e.g. --only fig4,fig12 (the paper's Figs. 3–19).
     #[arg(long, value_name = "FIGS", value_delimiter = ',')]
     pub only: Vec<String>,
-    /// Worker threads (default: one per core). The figures and CSV files do
-    /// not depend on it.
+    /// Worker threads (default: one per core; at most 4 per core). The
+    /// figures and CSV files do not depend on it.
     #[arg(long, value_name = "N")]
     pub threads: Option<usize>,
     /// Print nothing but errors.
