@@ -333,7 +333,7 @@ mod tests {
         assert_eq!(
             history_csv(&rows, &geo),
             format!(
-                "tau,theta,theta_dot,x,x_dot,mode,t_s,theta_rad,sliding_m\n0.30000000000000004,1e-5,-1.0,1e16,0.0001,slide,{},{},5e15\n",
+                "tau,theta,theta_dot,x,x_dot,mode,t_s,theta_rad,sliding_m\n0.30000000000000004,1e-5,-1.0,1e16,0.0001,slide,{},{},5000000000000000.0\n",
                 format!("{:?}", t_s),
                 format!("{:?}", 1e-5 * geo.psi)
             )
