@@ -50,14 +50,17 @@ fn batch_default_scene_writes_every_file_with_its_columns() {
             "theta",
             "theta_dot_before",
             "theta_dot_after",
-            "x_dot"
+            "x_dot",
+            "t_s",
+            "theta_rad",
+            "sliding_m"
         ]
     );
     assert!(rows.len() > 20);
     let kinds = ["uplift", "slip", "stick", "impact", "rest", "tumble", "flight"];
     let mut last = f64::NEG_INFINITY;
     for r in &rows {
-        assert_eq!(r.len(), 8);
+        assert_eq!(r.len(), 11);
         let tau: f64 = r[0].parse().expect("tau");
         assert!(tau > last, "event times increase");
         last = tau;
@@ -82,10 +85,23 @@ fn batch_default_scene_writes_every_file_with_its_columns() {
     }
 
     let (h, rows) = read_csv(&out.join("history.csv"));
-    assert_eq!(h, ["tau", "theta", "theta_dot", "x", "x_dot", "mode"]);
+    assert_eq!(
+        h,
+        [
+            "tau",
+            "theta",
+            "theta_dot",
+            "x",
+            "x_dot",
+            "mode",
+            "t_s",
+            "theta_rad",
+            "sliding_m"
+        ]
+    );
     assert_eq!(rows.len(), 6001, "τ 0..120 every 0.02");
     for r in &rows {
-        for c in &r[..5] {
+        for c in r[..5].iter().chain(&r[6..]) {
             assert!(c.parse::<f64>().expect("number").is_finite());
         }
     }
@@ -211,7 +227,11 @@ fn malformed_files_are_named_with_their_line() {
     rejects(&["--config", cfg.to_str().expect("utf8")], "bad.toml:3");
     let cfg2 = dir.join("rec.toml");
     let bad = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/bad_line.txt");
-    std::fs::write(&cfg2, format!("[excitation]\nkind = \"record\"\nfile_h = \"{bad}\"\n")).expect("write");
+    std::fs::write(
+        &cfg2,
+        format!("[excitation]\nkind = \"record\"\nfile_h = \"{bad}\"\nunit_h = \"g\"\n"),
+    )
+    .expect("write");
     rejects(&["--config", cfg2.to_str().expect("utf8")], "bad_line.txt:4");
     rejects(&["--config", dir.to_str().expect("utf8")], "is a directory");
     let _ = std::fs::remove_dir_all(&dir);

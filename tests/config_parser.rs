@@ -111,7 +111,13 @@ fn check_valid(cfg: &Scenario) {
     fn no_nan(v: &serde_json::Value, key: &str) {
         match v {
             serde_json::Value::Null => {
-                assert!(["file_h", "file_v", "x_dot"].contains(&key), "{key} is null (NaN?)");
+                assert!(
+                    [
+                        "file_h", "file_v", "unit_h", "unit_v", "dt_h", "dt_v", "x_dot", "tau_end", "tail_s"
+                    ]
+                    .contains(&key),
+                    "{key} is null (NaN?)"
+                );
             }
             serde_json::Value::Object(m) => m.iter().for_each(|(k, v)| no_nan(v, k)),
             _ => {}
@@ -128,7 +134,7 @@ fn assert_one_line(msg: &str) {
 /// Parses `text` as a file named `file` would be.
 fn parse(text: &str, file: &str) -> Result<Scenario, String> {
     let table = config::parse_toml(text, file).map_err(|e| e.to_string())?;
-    config::from_table(&table, &Source::default()).map_err(|e| e.to_string())
+    config::from_table(&table, &Source::preset()).map_err(|e| e.to_string())
 }
 
 proptest! {

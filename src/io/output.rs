@@ -14,9 +14,9 @@ use serde_json::json;
 use super::config::to_json;
 use super::csv::{self, Num, Row};
 use super::staging::{self, Staging};
-use crate::model::{Geometry, Mode};
-use crate::model::system::EventRecord;
 use crate::model::geometry::G;
+use crate::model::system::EventRecord;
+use crate::model::{Geometry, Mode};
 use crate::sim::scenario::ExcitationKind;
 use crate::sim::{HistoryRow, Physical, RunResult, Scenario, SectionRow};
 
@@ -66,7 +66,7 @@ pub fn events_csv(events: &[EventRecord], geo: &Geometry) -> String {
         x_dot: Num(e.x_dot),
         t_s: Num(e.tau / geo.p),
         theta_rad: Num(e.theta * geo.psi),
-        sliding_m: Num(geo.sliding(e.before, e.theta, e.x) * geo.r),
+        sliding_m: Num(geo.sliding(e.theta, e.x) * geo.r),
     }))
 }
 
@@ -139,7 +139,7 @@ pub fn history_csv(rows: &[HistoryRow], geo: &Geometry) -> String {
         mode: r.mode.name(),
         t_s: Num(r.tau / geo.p),
         theta_rad: Num(r.theta * geo.psi),
-        sliding_m: Num(geo.sliding(r.mode, r.theta, r.x) * geo.r),
+        sliding_m: Num(geo.sliding(r.theta, r.x) * geo.r),
     }))
 }
 

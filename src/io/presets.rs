@@ -22,7 +22,10 @@ pub const PRESETS: &[(&str, &str)] = &[
     ("fig18", include_str!("../../assets/presets/fig18.toml")),
     ("fig19", include_str!("../../assets/presets/fig19.toml")),
     ("kobe-rack", include_str!("../../assets/presets/kobe-rack.toml")),
-    ("elcentro-statue", include_str!("../../assets/presets/elcentro-statue.toml")),
+    (
+        "elcentro-statue",
+        include_str!("../../assets/presets/elcentro-statue.toml"),
+    ),
 ];
 
 /// The TOML text of preset `name`.

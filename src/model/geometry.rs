@@ -62,18 +62,17 @@ impl Geometry {
 
     /// The sliding displacement per R (docs/model.md §1.6): where the
     /// middle of the block's base would be, relative to the base's origin,
-    /// if the block were tipped back flat about its current pivot,
-    /// `U = X + s(sin(ψ(1 − |Θ|)) − sin ψ)` for pivot side `s`, and `U = X`
-    /// when flat. Rocking about a sticking pivot leaves it unchanged; only
-    /// slip moves it, and it is continuous across impacts (Θ = 0).
-    pub fn sliding(&self, mode: super::Mode, theta: f64, x: f64) -> f64 {
-        match mode {
-            super::Mode::Rock { pivot } | super::Mode::SlideRock { pivot, .. } => {
-                let s = pivot.value();
-                x + s * ((self.psi * (1.0 - theta.abs())).sin() - self.sin_psi)
-            }
-            _ => x,
+    /// if the block were tipped back flat about its pivot,
+    /// `U = X + s(sin(ψ(1 − |Θ|)) − sin ψ)` with the pivot side
+    /// `s = sign Θ` (MODEL-DECISIONS), and `U = X` when flat (Θ = 0, where
+    /// both corners give the same value). Rocking about a sticking pivot
+    /// leaves it unchanged; only slip moves it, and it is continuous across
+    /// impacts. Holds in every mode, the terminal ones included.
+    pub fn sliding(&self, theta: f64, x: f64) -> f64 {
+        if theta == 0.0 {
+            return x;
         }
+        x + theta.signum() * ((self.psi * (1.0 - theta.abs())).sin() - self.sin_psi)
     }
 
     /// Height the lifted corner reaches at rotation |Θ|, m: B·sin(ψ|Θ|)

@@ -21,7 +21,11 @@ pub enum AccelUnit {
 
 impl AccelUnit {
     /// Every unit, in the order the docs list them.
-    pub const ALL: [AccelUnit; 3] = [AccelUnit::G, AccelUnit::MetresPerSecond2, AccelUnit::CentimetresPerSecond2];
+    pub const ALL: [AccelUnit; 3] = [
+        AccelUnit::G,
+        AccelUnit::MetresPerSecond2,
+        AccelUnit::CentimetresPerSecond2,
+    ];
 
     /// The unit's name in configs and outputs: `g`, `m/s2`, `cm/s2`.
     pub fn name(self) -> &'static str {

@@ -124,13 +124,15 @@ impl Physical {
         let theta = geo.psi * res.max_abs_theta;
         let [rest, slide, rock, slide_rock] = res.mode_time.map(sec);
         let peaks = |r: &Option<super::scenario::Record>, scale: f64| {
-            r.as_ref().filter(|_| s.excitation.kind == ExcitationKind::Record).map(|r| RecordPeaks {
-                file: r.path.display().to_string(),
-                unit: r.unit.name(),
-                scale,
-                peaks: r.series.peaks(scale),
-                duration_s: r.series.duration_s(),
-            })
+            r.as_ref()
+                .filter(|_| s.excitation.kind == ExcitationKind::Record)
+                .map(|r| RecordPeaks {
+                    file: r.path.display().to_string(),
+                    unit: r.unit.name(),
+                    scale,
+                    peaks: r.series.peaks(scale),
+                    duration_s: r.series.duration_s(),
+                })
         };
         Physical {
             overturned: end_state == EndState::Overturned,
@@ -181,14 +183,28 @@ impl Physical {
         } else {
             ""
         };
-        let motion = format!(
-            "peak rotation {:.2}° ({:.2} α), uplift {}, sliding {} ({} at the end)",
-            self.max_rotation_deg,
-            self.max_rotation_over_alpha,
-            length(self.max_uplift_m),
-            length(self.max_sliding_m),
-            length(self.residual_sliding_m.abs())
-        );
+        let rocking = if self.max_rotation_rad > 0.0 {
+            format!(
+                "peak rotation {:.2}° ({:.2} α), uplift {}",
+                self.max_rotation_deg,
+                self.max_rotation_over_alpha,
+                length(self.max_uplift_m)
+            )
+        } else {
+            "no rocking".to_string()
+        };
+        // Below a nanometre a sliding displacement is round-off of a block
+        // that never slipped.
+        let sliding = if self.max_sliding_m > 1e-9 {
+            format!(
+                "sliding {} ({} at the end)",
+                length(self.max_sliding_m),
+                length(self.residual_sliding_m.abs())
+            )
+        } else {
+            "no sliding".to_string()
+        };
+        let motion = format!("{rocking}, {sliding}");
         match self.end_state {
             EndState::Overturned => format!(
                 "overturned at t = {:.2} s{input}",
@@ -210,9 +226,12 @@ impl Physical {
     }
 }
 
-/// A length for people: mm below 1 m, else m.
+/// A length for people: mm with two decimals below 1 mm, whole mm below
+/// 1 m, else m with two decimals.
 fn length(m: f64) -> String {
-    if m.abs() < 1.0 {
+    if m.abs() < 1e-3 {
+        format!("{:.2} mm", m * 1e3)
+    } else if m.abs() < 1.0 {
         format!("{:.0} mm", m * 1e3)
     } else {
         format!("{m:.2} m")

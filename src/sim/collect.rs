@@ -1,8 +1,8 @@
 //! The observer that gathers a run's outputs.
 
 use crate::integrate::hybrid::Observer;
-use crate::model::{Geometry, Mode};
 use crate::model::system::{EventRecord, N, THETA, THETA_DOT, X, X_DOT};
+use crate::model::{Geometry, Mode};
 
 /// One row of the regular time history.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -100,10 +100,10 @@ impl Observer<Mode, EventRecord, N> for Collector {
         self.section.push(SectionRow::of_state(k, t, mode, y));
     }
 
-    fn event(&mut self, _t: f64, before: Mode, y_before: &[f64; N], record: EventRecord) {
+    fn event(&mut self, _t: f64, _before: Mode, y_before: &[f64; N], record: EventRecord) {
         self.max_abs_theta = self.max_abs_theta.max(y_before[THETA].abs());
         if let Some(geo) = &self.geometry {
-            let u = geo.sliding(before, y_before[THETA], y_before[X]);
+            let u = geo.sliding(y_before[THETA], y_before[X]);
             self.max_abs_sliding = self.max_abs_sliding.max(u.abs());
         }
         self.events.push(record);

@@ -282,7 +282,7 @@ fn run_with<S: Stepper<N>>(
         keep_history: opts.output_dt.is_some(),
         max_abs_theta: y0[0].abs(),
         geometry: Some(geometry),
-        max_abs_sliding: geometry.sliding(mode0, y0[0], y0[X]).abs(),
+        max_abs_sliding: geometry.sliding(y0[0], y0[X]).abs(),
         ..Collector::default()
     };
     match opts.rest_after {
@@ -293,7 +293,12 @@ fn run_with<S: Stepper<N>>(
             driver.advance(rest_after.min(opts.tau_end), &mut obs)?;
             // After the record the ground is still, so rest is for ever:
             // go on in short legs and stop at the first that ends at rest.
-            while driver.t() < opts.tau_end && matches!(driver.mode(), Mode::Slide { .. } | Mode::Rock { .. } | Mode::SlideRock { .. }) {
+            while driver.t() < opts.tau_end
+                && matches!(
+                    driver.mode(),
+                    Mode::Slide { .. } | Mode::Rock { .. } | Mode::SlideRock { .. }
+                )
+            {
                 driver.advance((driver.t() + REST_CHECK_TAU).min(opts.tau_end), &mut obs)?;
             }
         }
@@ -359,7 +364,7 @@ fn run_with<S: Stepper<N>>(
         relative_residual: if scale > 0.0 { residual.abs() / scale } else { 0.0 },
     };
     let max_abs_theta = obs.max_abs_theta.max(tally.max_abs_theta).max(y[0].abs());
-    let final_sliding = geometry.sliding(final_mode, y[0], y[X]);
+    let final_sliding = geometry.sliding(y[0], y[X]);
     let max_abs_sliding = obs.max_abs_sliding.max(final_sliding.abs());
     let mut stats = driver.stepper().stats();
     stats.accepted = stats.accepted.max(driver.steps());

@@ -221,7 +221,10 @@ fn read_record(keys: &RecordKeys<'_>, source: &Source) -> Result<Option<Record>,
             )
         })?),
     };
-    let dt = keys.dt.map(|q| q.resolve(&keys.key("dt"), Dimension::Seconds, &Geometry::new(1.0, 1.0))).transpose()?;
+    let dt = keys
+        .dt
+        .map(|q| q.resolve(&keys.key("dt"), Dimension::Seconds, &Geometry::new(1.0, 1.0)))
+        .transpose()?;
     let Some(p) = keys.file else {
         for (name, given) in [("unit", unit.is_some()), ("dt", dt.is_some())] {
             if given {
@@ -237,7 +240,9 @@ fn read_record(keys: &RecordKeys<'_>, source: &Source) -> Result<Option<Record>,
             RecordError::NoUnit { .. } | RecordError::HeaderNoUnit { .. } | RecordError::UnitConflict { .. } => {
                 keys.key("unit")
             }
-            RecordError::NoStep { .. } | RecordError::StatedStep { .. } => keys.key("dt"),
+            RecordError::NoStep { .. } | RecordError::StatedStep { .. } | RecordError::Columns { expected: 1, .. } => {
+                keys.key("dt")
+            }
             _ => keys.key("file"),
         };
         ConfigError::Key {
@@ -286,7 +291,10 @@ fn record_scale(
     if peak == 0.0 {
         return Err(ConfigError::key(
             &key,
-            format!("{} has no motion (PGA 0), it cannot be scaled to a PGA", record.path.display()),
+            format!(
+                "{} has no motion (PGA 0), it cannot be scaled to a PGA",
+                record.path.display()
+            ),
         ));
     }
     Ok(target / peak)
@@ -342,7 +350,9 @@ pub fn from_table(table: &Table, source: &Source) -> Result<Scenario, ConfigErro
     // Sizes first: every other quantity with a unit converts with the
     // block's ψ, p and R.
     let metres = |key: &str, q: Option<Quantity>, default: f64| -> Result<f64, ConfigError> {
-        q.map_or(Ok(default), |q| q.resolve(key, Dimension::Length, &Geometry::new(1.0, 1.0)))
+        q.map_or(Ok(default), |q| {
+            q.resolve(key, Dimension::Length, &Geometry::new(1.0, 1.0))
+        })
     };
     let block = Block {
         width: metres("block.width", raw.block.width, d.block.width)?,

@@ -137,9 +137,7 @@ impl Dimension {
     fn fits(self) -> &'static str {
         match self {
             Dimension::Length => "a length: m, cm, mm (bare: m)",
-            Dimension::Amplitude => {
-                "an acceleration: g, m/s2, cm/s2 (gal), g*tan(alpha) (bare: units of psi*g)"
-            }
+            Dimension::Amplitude => "an acceleration: g, m/s2, cm/s2 (gal), g*tan(alpha) (bare: units of psi*g)",
             Dimension::Pga => "an acceleration with its unit: g, m/s2, cm/s2, g*tan(alpha), e.g. \"0.4 g\"",
             Dimension::Frequency => "a frequency: Hz, rad/s (bare: units of p)",
             Dimension::Phase => "an angle: rad, deg (bare: rad)",
@@ -239,7 +237,10 @@ fn parse_quantity(text: &str) -> Result<Quantity, String> {
         return Ok(Quantity { value, unit: None });
     }
     match Unit::parse(unit_text) {
-        Some(unit) => Ok(Quantity { value, unit: Some(unit) }),
+        Some(unit) => Ok(Quantity {
+            value,
+            unit: Some(unit),
+        }),
         None => Err(format!(
             "unknown unit \"{unit_text}\" in \"{text}\" (known: g, m/s2, cm/s2, gal, g*tan(alpha), m, cm, mm, Hz, rad/s, deg/s, rad, deg, s, ms, m/s, cm/s)"
         )),
@@ -318,16 +319,32 @@ mod tests {
 
     #[test]
     fn numbers_and_units_are_split_with_or_without_a_space() {
-        assert_eq!(q("0.35 g"), Quantity { value: 0.35, unit: Some(Unit::Accel(AccelUnit::G)) });
+        assert_eq!(
+            q("0.35 g"),
+            Quantity {
+                value: 0.35,
+                unit: Some(Unit::Accel(AccelUnit::G))
+            }
+        );
         assert_eq!(q("0.35g").unit, Some(Unit::Accel(AccelUnit::G)));
-        assert_eq!(q("1e-3 s"), Quantity { value: 1e-3, unit: Some(Unit::Second) });
+        assert_eq!(
+            q("1e-3 s"),
+            Quantity {
+                value: 1e-3,
+                unit: Some(Unit::Second)
+            }
+        );
         assert_eq!(q("-2 deg").value, -2.0);
         assert_eq!(q(" 340 gal ").unit, Some(Unit::Accel(AccelUnit::CentimetresPerSecond2)));
         assert_eq!(q("1.2 g*tan(alpha)").unit, Some(Unit::Uplift));
         assert_eq!(q("2.5 Hz").unit, Some(Unit::Hertz));
         assert_eq!(q("7"), Quantity { value: 7.0, unit: None });
         assert!(parse_quantity("abc").unwrap_err().contains("found string \"abc\""));
-        assert!(parse_quantity("2 furlongs").unwrap_err().contains("unknown unit \"furlongs\""));
+        assert!(
+            parse_quantity("2 furlongs")
+                .unwrap_err()
+                .contains("unknown unit \"furlongs\"")
+        );
         assert!(parse_quantity("1e999 g").is_err());
     }
 
@@ -341,20 +358,40 @@ mod tests {
         assert!(close(r("0.35 g", Dimension::Amplitude).unwrap(), 0.35 / geo.psi));
         assert!(close(r("3.4335 m/s2", Dimension::Amplitude).unwrap(), 0.35 / geo.psi));
         assert!(close(r("343.35 cm/s2", Dimension::Amplitude).unwrap(), 0.35 / geo.psi));
-        assert!(close(r("1 g*tan(alpha)", Dimension::Amplitude).unwrap(), geo.tan_psi / geo.psi));
-        assert!(close(r("2.5 Hz", Dimension::Frequency).unwrap(), 5.0 * std::f64::consts::PI / geo.p));
+        assert!(close(
+            r("1 g*tan(alpha)", Dimension::Amplitude).unwrap(),
+            geo.tan_psi / geo.psi
+        ));
+        assert!(close(
+            r("2.5 Hz", Dimension::Frequency).unwrap(),
+            5.0 * std::f64::consts::PI / geo.p
+        ));
         assert!(close(r("15.7 rad/s", Dimension::Frequency).unwrap(), 15.7 / geo.p));
         assert!(close(r("30 s", Dimension::Tau).unwrap(), 30.0 * geo.p));
-        assert!(close(r("2 deg", Dimension::Rotation).unwrap(), 2.0_f64.to_radians() / geo.psi));
+        assert!(close(
+            r("2 deg", Dimension::Rotation).unwrap(),
+            2.0_f64.to_radians() / geo.psi
+        ));
         assert!(close(r("0.03 rad", Dimension::Rotation).unwrap(), 0.03 / geo.psi));
-        assert!(close(r("90 deg", Dimension::Phase).unwrap(), std::f64::consts::FRAC_PI_2));
+        assert!(close(
+            r("90 deg", Dimension::Phase).unwrap(),
+            std::f64::consts::FRAC_PI_2
+        ));
         assert!(close(r("0.1 m/s", Dimension::Velocity).unwrap(), 0.1 / (geo.r * geo.p)));
         assert!(close(r("0.4 g", Dimension::Pga).unwrap(), 0.4));
         assert_eq!(r("1.5", Dimension::Amplitude).unwrap(), 1.5);
         let m = r("2 m", Dimension::Frequency).unwrap_err().to_string();
-        assert_eq!(m, "k.k: unit \"m\" does not fit: a frequency: Hz, rad/s (bare: units of p)");
+        assert_eq!(
+            m,
+            "k.k: unit \"m\" does not fit: a frequency: Hz, rad/s (bare: units of p)"
+        );
         assert!(r("0.3 g", Dimension::Length).is_err());
         assert!(r("2 Hz", Dimension::Tau).is_err());
-        assert!(r("0.4", Dimension::Pga).unwrap_err().to_string().contains("needs a unit"));
+        assert!(
+            r("0.4", Dimension::Pga)
+                .unwrap_err()
+                .to_string()
+                .contains("needs a unit")
+        );
     }
 }

@@ -34,8 +34,28 @@ pub fn set_dotted(table: &mut Table, assignment: &str) -> Result<(), ConfigError
     let Value::Table(sec) = sec else {
         return Err(ConfigError::key(section, "is not a table"));
     };
+    // A later assignment replaces the keys it is an alternative to, so
+    // `--set run.t_end=30s` overrides a preset's `run.tau_end` (a file
+    // that gives both is refused instead: nothing says which it meant).
+    for other in alternatives(section, name) {
+        sec.remove(*other);
+    }
     sec.insert(name.to_string(), value);
     Ok(())
+}
+
+/// The keys that `section.name` replaces when set.
+fn alternatives(section: &str, name: &str) -> &'static [&'static str] {
+    match (section, name) {
+        ("run", "t_end") => &["tau_end", "tail_s"],
+        ("run", "tau_end") => &["t_end", "tail_s"],
+        ("run", "tail_s") => &["t_end", "tau_end"],
+        ("excitation", "pga_h") => &["scale_h"],
+        ("excitation", "scale_h") => &["pga_h"],
+        ("excitation", "pga_v") => &["scale_v"],
+        ("excitation", "scale_v") => &["pga_v"],
+        _ => &[],
+    }
 }
 
 /// The 1-based line of byte offset `pos` in `text`.

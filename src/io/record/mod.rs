@@ -263,7 +263,10 @@ pub struct RecordSpec {
 impl RecordSpec {
     /// A record in `unit`, two-column or AT2.
     pub fn stated(unit: AccelUnit) -> Self {
-        Self { unit: Some(unit), dt: None }
+        Self {
+            unit: Some(unit),
+            dt: None,
+        }
     }
 }
 

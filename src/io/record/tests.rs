@@ -345,7 +345,11 @@ fn the_same_motion_in_g_m_s2_and_cm_s2_reads_as_the_same_g() {
             .map(|(k, v)| format!("{} {}\n", k as f64 * 0.01, v * factor))
             .collect()
     };
-    for (unit, factor) in [(AccelUnit::G, 1.0), (AccelUnit::MetresPerSecond2, g), (AccelUnit::CentimetresPerSecond2, 100.0 * g)] {
+    for (unit, factor) in [
+        (AccelUnit::G, 1.0),
+        (AccelUnit::MetresPerSecond2, g),
+        (AccelUnit::CentimetresPerSecond2, 100.0 * g),
+    ] {
         let r = read_as("u.txt", &text(factor), RecordSpec::stated(unit)).unwrap();
         assert_eq!(r.unit, unit);
         assert_eq!(r.format, RecordFormat::TwoColumn);
@@ -360,30 +364,52 @@ fn a_text_record_without_a_stated_unit_is_refused() {
     let m = read_as("nounit.txt", "0 0.1\n0.01 0.2\n", RecordSpec::default())
         .unwrap_err()
         .to_string();
-    assert!(m.ends_with("nounit.txt: a text record does not say its unit; state it (g, m/s2 or cm/s2)"), "{m}");
+    assert!(
+        m.ends_with("nounit.txt: a text record does not say its unit; state it (g, m/s2 or cm/s2)"),
+        "{m}"
+    );
 }
 
 #[test]
 fn at2_units_come_from_the_header_and_a_contradiction_is_an_error() {
     let g = crate::model::geometry::G;
-    let body = |unit: &str| format!("TITLE\nEVENT\nACCELERATION TIME SERIES IN UNITS OF {unit}\nNPTS=2, DT=0.01 SEC\n98.1 -9.81\n");
+    let body = |unit: &str| {
+        format!("TITLE\nEVENT\nACCELERATION TIME SERIES IN UNITS OF {unit}\nNPTS=2, DT=0.01 SEC\n98.1 -9.81\n")
+    };
     let r = read_as("cm.at2", &body("CM/S/S"), RecordSpec::default()).unwrap();
     assert_eq!(r.unit, AccelUnit::CentimetresPerSecond2);
     assert!((r.series.accel_g()[0] - 0.1).abs() < 1e-15 && (r.series.accel_g()[1] + 0.01).abs() < 1e-15);
     let r = read_as("cmsec.at2", &body("CM/SEC/SEC"), RecordSpec::default()).unwrap();
     assert_eq!(r.unit, AccelUnit::CentimetresPerSecond2);
-    let r = read_as("g.at2", &body("G").replace("98.1 -9.81", "0.5 0.25"), RecordSpec::default()).unwrap();
+    let r = read_as(
+        "g.at2",
+        &body("G").replace("98.1 -9.81", "0.5 0.25"),
+        RecordSpec::default(),
+    )
+    .unwrap();
     assert_eq!((r.unit, r.series.accel_g()[0]), (AccelUnit::G, 0.5));
-    let m = read_as("conflict.at2", &body("G"), RecordSpec::stated(AccelUnit::MetresPerSecond2))
-        .unwrap_err()
-        .to_string();
-    assert!(m.ends_with("conflict.at2:3: the header says the unit is g, but m/s2 was stated"), "{m}");
+    let m = read_as(
+        "conflict.at2",
+        &body("G"),
+        RecordSpec::stated(AccelUnit::MetresPerSecond2),
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(
+        m.ends_with("conflict.at2:3: the header says the unit is g, but m/s2 was stated"),
+        "{m}"
+    );
     // A header naming no unit takes the stated one, and without one is refused.
     let silent = "TITLE\nEVENT\nACCELERATION TIME SERIES\nNPTS=2, DT=0.01 SEC\n9.81 0\n";
     let r = read_as("silent.at2", silent, RecordSpec::stated(AccelUnit::MetresPerSecond2)).unwrap();
     assert!((r.series.accel_g()[0] - 1.0).abs() < 1e-15, "{}", g);
-    let m = read_as("silent.at2", silent, RecordSpec::default()).unwrap_err().to_string();
-    assert!(m.ends_with("silent.at2:3: the AT2 header names no unit (\"UNITS OF ...\"); state it (g, m/s2 or cm/s2)"), "{m}");
+    let m = read_as("silent.at2", silent, RecordSpec::default())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        m.ends_with("silent.at2:3: the AT2 header names no unit (\"UNITS OF ...\"); state it (g, m/s2 or cm/s2)"),
+        "{m}"
+    );
 }
 
 #[test]
@@ -397,14 +423,25 @@ fn one_column_records_need_a_step_and_take_comments_and_semicolons() {
     assert_eq!(r.format, RecordFormat::OneColumn);
     assert_eq!(r.series.times_s(), &[0.0, 0.005, 0.01]);
     assert!((r.series.accel_g()[2] - 3.0 / 981.0).abs() < 1e-15);
-    let m = read_as("one.txt", content, RecordSpec::stated(AccelUnit::G)).unwrap_err().to_string();
-    assert!(m.ends_with("one.txt:5: one value per line: a one-column record needs its time step (s) stated"), "{m}");
+    let m = read_as("one.txt", content, RecordSpec::stated(AccelUnit::G))
+        .unwrap_err()
+        .to_string();
+    assert!(
+        m.ends_with("one.txt:5: one value per line: a one-column record needs its time step (s) stated"),
+        "{m}"
+    );
     let m = read_as("two.txt", "0;0.1\n0.01;0.2\n", spec).unwrap_err().to_string();
-    assert!(m.ends_with("two.txt:1: expected 1 column (a time step is set), found 2"), "{m}");
+    assert!(
+        m.ends_with("two.txt:1: expected 1 column (a time step is set), found 2"),
+        "{m}"
+    );
     let r = read_as("semi.txt", "0;0.1\n0.01 ; 0.2\n", RecordSpec::stated(AccelUnit::G)).unwrap();
     assert_eq!(r.series.accel_g(), &[0.1, 0.2]);
     for dt in [0.0, -0.01, f64::NAN, f64::INFINITY] {
-        let spec = RecordSpec { unit: Some(AccelUnit::G), dt: Some(dt) };
+        let spec = RecordSpec {
+            unit: Some(AccelUnit::G),
+            dt: Some(dt),
+        };
         let m = read_as("dt.txt", "0.1\n0.2\n", spec).unwrap_err().to_string();
         assert!(m.contains("dt.txt: invalid time step"), "{m}");
     }
