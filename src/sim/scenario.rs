@@ -69,8 +69,14 @@ impl Block {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum LawKind {
-    /// Housner's angular-momentum conservation (the default).
+    /// Housner's law as the literature states it: Θ'₊ = (1 − 1.5 sin²ψ) Θ'₋
+    /// and the new pivot sticks, stopping any slip (the default).
     Housner,
+    /// Angular momentum about the striking corner conserved, pre-impact
+    /// slip included (config name `corner-momentum`); equals `housner`
+    /// when the block does not slip before the impact.
+    #[serde(rename = "corner-momentum")]
+    CornerMomentum,
     /// A given angular-velocity ratio r.
     Ratio,
     /// The paper's impulse–momentum law with restitution and friction.
@@ -82,6 +88,7 @@ impl LawKind {
     pub fn name(self) -> &'static str {
         match self {
             LawKind::Housner => "housner",
+            LawKind::CornerMomentum => "corner-momentum",
             LawKind::Ratio => "ratio",
             LawKind::Impulse => "impulse",
         }
@@ -442,6 +449,7 @@ impl Scenario {
                 mu_k: self.impact_mu_k(),
             },
             LawKind::Housner => ImpactLaw::Housner,
+            LawKind::CornerMomentum => ImpactLaw::CornerMomentum,
         }
     }
 
