@@ -149,6 +149,10 @@ pub enum ShapeKind {
     OneCosine,
     /// Type C_n.
     TypeC,
+    /// Constant a_p for π/ω (Housner 1963).
+    Rectangular,
+    /// a_p sin(ωτ) for π/ω.
+    HalfSine,
 }
 
 impl ShapeKind {
@@ -158,6 +162,8 @@ impl ShapeKind {
             ShapeKind::OneSine => "one-sine",
             ShapeKind::OneCosine => "one-cosine",
             ShapeKind::TypeC => "type-c",
+            ShapeKind::Rectangular => "rectangular",
+            ShapeKind::HalfSine => "half-sine",
         }
     }
 }
@@ -474,6 +480,8 @@ impl Scenario {
                     ShapeKind::OneCosine => PulseShape::OneCosine,
                     ShapeKind::TypeC => PulseShape::TypeC { n: x.cycles },
                     ShapeKind::OneSine => PulseShape::OneSine,
+                    ShapeKind::Rectangular => PulseShape::Rectangular,
+                    ShapeKind::HalfSine => PulseShape::HalfSine,
                 };
                 let make = |amp: f64, omega: f64, key: &str| {
                     Pulse::new(shape, amp * geo.psi, omega).map_err(|e| ScenarioError::new(key, e))

@@ -147,8 +147,8 @@ pub const GROUPS: &[(&str, &[Key])] = &[
                 key: "excitation.shape",
                 label: "pulse shape",
                 unit: "",
-                help: "Pulse shape: one-sine (Makris type A), one-cosine (type B) or type-c. Default one-sine.",
-                kind: Kind::Choice(&["one-sine", "one-cosine", "type-c"]),
+                help: "Pulse shape: one-sine (Makris type A), one-cosine (type B), type-c, rectangular (a_p for π/ω) or half-sine (a_p sin ωτ for π/ω). Default one-sine.",
+                kind: Kind::Choice(&["one-sine", "one-cosine", "type-c", "rectangular", "half-sine"]),
             },
             num(
                 "excitation.cycles",
