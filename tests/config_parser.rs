@@ -234,3 +234,44 @@ fn a_missing_file_is_an_error_naming_it() {
     assert!(err.contains("/nonexistent/rocking.toml"), "{err}");
     assert_one_line(&err);
 }
+
+/// Issue 14: every impact-law and pulse-shape name of the config is
+/// accepted with its meaning, and a near miss (the Rust spelling, or a
+/// shortening) is refused in one line naming the key.
+#[test]
+fn impact_law_and_pulse_shape_names() {
+    use rocking::sim::scenario::{LawKind, ShapeKind};
+    let laws = [
+        ("housner", LawKind::Housner),
+        ("corner-momentum", LawKind::CornerMomentum),
+        ("ratio", LawKind::Ratio),
+        ("impulse", LawKind::Impulse),
+    ];
+    for (name, law) in laws {
+        let cfg = parse(&format!("[impact]\nlaw = \"{name}\"\n"), "law.toml").unwrap_or_else(|e| panic!("{name}: {e}"));
+        assert_eq!((cfg.impact.law, law.name()), (law, name));
+    }
+    let shapes = [
+        ("one-sine", ShapeKind::OneSine),
+        ("one-cosine", ShapeKind::OneCosine),
+        ("type-c", ShapeKind::TypeC),
+        ("rectangular", ShapeKind::Rectangular),
+        ("half-sine", ShapeKind::HalfSine),
+    ];
+    for (name, shape) in shapes {
+        let text = format!("[excitation]\nkind = \"pulse\"\na_h = 3\nomega_h = 2\nshape = \"{name}\"\n");
+        let cfg = parse(&text, "shape.toml").unwrap_or_else(|e| panic!("{name}: {e}"));
+        assert_eq!((cfg.excitation.shape, shape.name()), (shape, name));
+        cfg.model().unwrap_or_else(|e| panic!("{name}: {e}"));
+    }
+    for (section, key, bad) in [
+        ("impact", "law", "corner_momentum"),
+        ("impact", "law", "cornermomentum"),
+        ("excitation", "shape", "half_sine"),
+        ("excitation", "shape", "rect"),
+    ] {
+        let msg = parse(&format!("[{section}]\n{key} = \"{bad}\"\n"), "bad.toml").expect_err(bad);
+        assert_one_line(&msg);
+        assert!(msg.contains(&format!("{section}.{key}")), "{bad}: {msg}");
+    }
+}

@@ -130,6 +130,7 @@ fn very_slender_and_square_blocks() {
         for (mu, law) in [
             (NO_SLIDING, ImpactLaw::Housner),
             ((0.3, 0.25), ImpactLaw::Housner),
+            ((0.3, 0.25), ImpactLaw::CornerMomentum),
             (
                 (0.3, 0.25),
                 ImpactLaw::Impulse {

@@ -996,19 +996,19 @@ fn impulse_law_with_friction_sticks_or_slips_consistently() {
 }
 
 #[test]
-fn housner_is_the_plastic_sticking_solve_and_conserves_corner_momentum() {
+fn corner_momentum_is_the_plastic_sticking_solve_and_conserves_corner_momentum() {
     let mut rng = Rng::new(0x5EED_0009);
-    let mut d = Discrepancies::new("housner");
+    let mut d = Discrepancies::new("corner-momentum");
     let mut n_tensile = 0usize;
     for _ in 0..N_STATES {
         let case = ImpactCase::random(&mut rng);
         let (blk, pre) = (&case.blk, &case.pre);
-        let got = impact::housner(&blk.geometry(), pre);
+        let got = impact::corner_momentum(&blk.geometry(), pre);
         let want = solve_impact(blk, pre, ImpactCond::Stick { e: 0.0 });
         n_tensile += usize::from(want.py < 0.0);
         d.post(&got, &want, &case);
-        assert_eq!(got.slip, None, "housner slips at {case:?}");
-        assert!(!got.lifts_off, "housner lifts off at {case:?}");
+        assert_eq!(got.slip, None, "corner-momentum slips at {case:?}");
+        assert!(!got.lifts_off, "corner-momentum lifts off at {case:?}");
         let before = momentum_about_corner(blk, pre.striking, pre.w, pre.x_dot, pre.y_dot);
         let after = momentum_about_corner(blk, pre.striking, got.w, got.x_dot, got.y_dot);
         d.check("H_corner", after, before, &case);
@@ -1019,7 +1019,7 @@ fn housner_is_the_plastic_sticking_solve_and_conserves_corner_momentum() {
         d.check("corner_vx_after", v_c[0] / rp, 0.0, &case);
         d.check("corner_vy_after", v_c[1] / rp, 0.0, &case);
     }
-    println!("housner: {n_tensile} of {N_STATES} impacts stick with a tensile impulse (P_y < 0)");
+    println!("corner-momentum: {n_tensile} of {N_STATES} impacts stick with a tensile impulse (P_y < 0)");
     d.report();
 }
 
@@ -1041,22 +1041,33 @@ fn rocking_impacts_give_the_closed_form_ratios() {
         d.check("housner_r", geo.housner_r(), 1.0 - 1.5 * s2, &case);
         let h = impact::housner(&geo, pre);
         d.check("housner w", h.w, (1.0 - 1.5 * s2) * pre.w, &case);
+        let cm = impact::corner_momentum(&geo, pre);
+        d.check("corner-momentum w", cm.w, (1.0 - 1.5 * s2) * pre.w, &case);
         let got = impact::impulse_law(&geo, pre, case.e, f64::INFINITY, case.mu_k);
         d.check("impulse w", got.w, (1.0 - 1.5 * (1.0 + case.e) * s2) * pre.w, &case);
 
         // With a slip velocity V of the old pivot (slide-rock reaching Θ = 0),
-        // Housner's law gives w₊ = (1 − 1.5 sin²ψ) w₋ + ¾ cos ψ V.
+        // the corner-momentum law gives w₊ = (1 − 1.5 sin²ψ) w₋ + ¾ cos ψ V,
+        // while Housner's law ignores V: w₊ = (1 − 1.5 sin²ψ) w₋, and the
+        // new pivot starts at rest.
         let mut slipping = case;
         let slip = pre.w.abs() * rng.uniform(-3.0, 3.0);
         slipping.pre.x_dot += slip;
         let cos_psi = blk.height / blk.width.hypot(blk.height);
-        let h = impact::housner(&geo, &slipping.pre);
+        let cm = impact::corner_momentum(&geo, &slipping.pre);
         d.check(
-            "housner w (pre-slip)",
-            h.w,
+            "corner-momentum w (pre-slip)",
+            cm.w,
             (1.0 - 1.5 * s2) * pre.w + 0.75 * cos_psi * slip,
             &slipping,
         );
+        let h = impact::housner(&geo, &slipping.pre);
+        d.check("housner w (pre-slip)", h.w, (1.0 - 1.5 * s2) * pre.w, &slipping);
+        let (v, omega) = dimensional(blk, h.w, h.x_dot, h.y_dot);
+        let v_c = point_velocity(v, omega, blk.flat_corner(pre.striking));
+        let rp = blk.half_diag * blk.p;
+        d.check("housner corner_vx_after (pre-slip)", v_c[0] / rp, 0.0, &slipping);
+        d.check("housner corner_vy_after (pre-slip)", v_c[1] / rp, 0.0, &slipping);
     }
     d.report();
 }
@@ -1085,8 +1096,10 @@ fn ratio_law_scales_w_and_starts_the_new_pivot_at_rest() {
     d.report();
 }
 
-/// Kinetic energy across impacts. Housner (plastic, sticking) and the
-/// impulse law with e = 0 or without pre-impact slip never gain energy. With
+/// Kinetic energy across impacts. Corner-momentum (plastic, sticking) and
+/// the impulse law with e = 0 or without pre-impact slip never gain energy;
+/// Housner's law (a ratio law) never gains energy without pre-impact slip,
+/// and its gains with slip (docs/model.md §7.3) are counted and printed. With
 /// e > 0 *and* pre-impact slip the impulse law's kinematic restitution can
 /// gain energy: for a sticking impact ΔT = ½(V₊ᵀK⁻¹V₊ − V₋ᵀK⁻¹V₋) in the
 /// striking-corner velocities (K the corner's inverse mass matrix), which is
@@ -1096,6 +1109,7 @@ fn ratio_law_scales_w_and_starts_the_new_pivot_at_rest() {
 fn impacts_never_create_kinetic_energy() {
     let mut rng = Rng::new(0x5EED_000C);
     let mut worst_housner = f64::NEG_INFINITY;
+    let mut n_gain_housner = 0usize;
     let mut worst_guaranteed = f64::NEG_INFINITY;
     let (mut n_gain_stick, mut n_gain_slip, mut worst_gain) = (0usize, 0usize, 0f64);
     let mut example = None;
@@ -1106,11 +1120,11 @@ fn impacts_never_create_kinetic_energy() {
         let before = kinetic(blk, pre.w, pre.x_dot, pre.y_dot);
         let gain_of = |post: &PostImpact| (kinetic(blk, post.w, post.x_dot, post.y_dot) - before) / before;
 
-        let h = impact::housner(&geo, pre);
+        let h = impact::corner_momentum(&geo, pre);
         let gain = gain_of(&h);
         assert!(
             gain <= TOL,
-            "housner gains kinetic energy (rel {gain:e}) at {case:?}; post {h:?}"
+            "corner-momentum gains kinetic energy (rel {gain:e}) at {case:?}; post {h:?}"
         );
         worst_housner = worst_housner.max(gain);
 
@@ -1119,6 +1133,18 @@ fn impacts_never_create_kinetic_energy() {
         let (v, omega) = dimensional(blk, pre.w, pre.x_dot, pre.y_dot);
         let vcx = point_velocity(v, omega, blk.flat_corner(pre.striking))[0] / (blk.half_diag * blk.p);
         let vscale = 1f64.max(pre.x_dot.abs()).max(pre.y_dot.abs()).max(pre.w.abs());
+        // Housner's law: passive for a block that rocked without slip about
+        // the old pivot (V_cx = 0 and Y' = −s' sin ψ w, docs/model.md §7.3).
+        let lit = gain_of(&impact::housner(&geo, pre));
+        let grounded = (pre.y_dot + pre.striking.value() * geo.sin_psi * pre.w).abs() <= 1e-12 * vscale;
+        if grounded && vcx.abs() <= 1e-12 * vscale {
+            assert!(
+                lit <= TOL,
+                "housner gains kinetic energy (rel {lit:e}) without pre-impact slip at {case:?}"
+            );
+        } else if grounded && lit > TOL {
+            n_gain_housner += 1;
+        }
         if case.e == 0.0 || vcx.abs() <= 1e-12 * vscale {
             assert!(
                 gain <= TOL,
@@ -1144,7 +1170,8 @@ fn impacts_never_create_kinetic_energy() {
             }
         }
     }
-    println!("energy: housner: largest relative change T+/T- - 1 = {worst_housner:.3e}");
+    println!("energy: corner-momentum: largest relative change T+/T- - 1 = {worst_housner:.3e}");
+    println!("energy: housner: {n_gain_housner} of {N_STATES} impacts from slide-rock gain energy");
     println!("energy: impulse law, e = 0 or no pre-slip: largest relative change = {worst_guaranteed:.3e}");
     println!(
         "energy: impulse law, e > 0 with pre-slip: {n_gain_stick} sticking and {n_gain_slip} slipping impacts \
@@ -1172,6 +1199,10 @@ fn impacts_are_exactly_mirror_symmetric() {
         let a = impact::housner(&geo, &pre);
         let b = impact::housner(&geo, &mpre);
         mir.post("housner", &a, &b, &case);
+
+        let a = impact::corner_momentum(&geo, &pre);
+        let b = impact::corner_momentum(&geo, &mpre);
+        mir.post("corner_momentum", &a, &b, &case);
 
         let a = impact::ratio(&geo, &pre, r);
         let b = impact::ratio(&geo, &mpre, r);

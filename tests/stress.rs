@@ -58,6 +58,7 @@ fn scene() -> impl Strategy<Value = Scene> {
     ];
     let law = prop_oneof![
         Just(ImpactLaw::Housner),
+        Just(ImpactLaw::CornerMomentum),
         (0.0f64..=1.0).prop_map(|r| ImpactLaw::Ratio { r }),
         (0.0f64..0.5, 0.0f64..1.0, 0.0f64..=1.0).prop_map(|(e, s, k)| ImpactLaw::Impulse {
             e: if e < 0.25 { 0.0 } else { e },
@@ -232,11 +233,11 @@ fn check(s: &Scene, excited: bool) -> Result<(), TestCaseError> {
     prop_assert!(res.max_abs_theta.is_finite() && res.max_abs_theta <= model.tumble_theta + past);
     if !excited {
         // Passivity: without excitation the energy never rises (the ratio
-        // law only without pre-impact slip, the impulse law only with e = 0:
-        // docs/model.md §7).
+        // and Housner laws only without pre-impact slip, the impulse law
+        // only with e = 0: docs/model.md §7).
         let passive_law = match s.law {
-            ImpactLaw::Housner => true,
-            ImpactLaw::Ratio { .. } => s.mu.0.is_infinite(),
+            ImpactLaw::CornerMomentum => true,
+            ImpactLaw::Housner | ImpactLaw::Ratio { .. } => s.mu.0.is_infinite(),
             ImpactLaw::Impulse { e, .. } => e == 0.0,
         };
         if passive_law && s.method != Method::Ralston {
@@ -485,7 +486,8 @@ fn ralstons_friction_loss_is_exact_only_to_its_step_error() {
     let s = Scene {
         ratio: 0.07267960614694102,
         mu: (0.0766701429695886, 0.07572778956054549),
-        law: ImpactLaw::Housner,
+        // Found with the law then called `housner` (issue 14 renamed it).
+        law: ImpactLaw::CornerMomentum,
         a_h: 0.7910880425419583,
         a_v_frac: 0.9709332260813388,
         omega_h: 35.85946600520208,

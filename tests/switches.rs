@@ -178,17 +178,19 @@ fn passivity_without_excitation() {
             }
         };
         let law = match case % 4 {
-            0 | 1 => ImpactLaw::Housner,
+            0 => ImpactLaw::CornerMomentum,
+            1 => ImpactLaw::Housner,
             2 => ImpactLaw::Impulse {
                 e: 0.0,
                 mu_s: mu.0,
                 mu_k: mu.1,
             },
-            // The ratio law is passive only when the corner cannot slip
-            // before the impact (docs/model.md §7.4).
             _ => ImpactLaw::Ratio { r: rng.range(0.0, 1.0) },
         };
-        let mu = if matches!(law, ImpactLaw::Ratio { .. }) {
+        // The ratio law, and Housner's law (a ratio law), are passive only
+        // when the corner cannot slip before the impact (docs/model.md
+        // §7.3–7.4).
+        let mu = if matches!(law, ImpactLaw::Ratio { .. } | ImpactLaw::Housner) {
             (f64::INFINITY, f64::INFINITY)
         } else {
             mu

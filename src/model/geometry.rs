@@ -60,7 +60,7 @@ impl Geometry {
         1.0 - 1.5 * self.sin_psi * self.sin_psi
     }
 
-    /// The sliding displacement per R (docs/model.md §1.6): where the
+    /// The sliding displacement per R (docs/model.md §1.7): where the
     /// middle of the block's base would be, relative to the base's origin,
     /// if the block were tipped back flat about its pivot,
     /// `U = X + s(sin(ψ(1 − |Θ|)) − sin ψ)` with the pivot side

@@ -18,10 +18,17 @@ use super::mode::Sign;
 /// Which impact law (MODEL-DECISIONS "Impact at Θ = 0").
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum ImpactLaw {
-    /// Angular momentum about the striking corner is conserved and the new
-    /// pivot sticks: Θ'₊ = (1 − 1.5 sin²ψ) Θ'₋ when the block rocked without
-    /// slip (Housner 1963); with pre-impact slip the slip velocity enters.
+    /// Housner's law as the literature states it (Housner 1963): Θ'₊ = r Θ'₋
+    /// with r = 1 − 1.5 sin²ψ from the block's geometry, and the new pivot
+    /// sticks, so any slip before the impact is stopped (docs/model.md §7.3).
+    /// Identical to [`ImpactLaw::CornerMomentum`] when the block rocked
+    /// without slip before the impact.
     Housner,
+    /// Angular momentum about the striking corner is conserved, including
+    /// the momentum of a pre-impact slip, and the new pivot sticks (the
+    /// `impulse` law with e = 0 and no slip):
+    /// w₊ = (1 − 1.5 sin²ψ) w₋ + ¾ cos ψ V_cx₋ (docs/model.md §7.3).
+    CornerMomentum,
     /// Θ'₊ = r Θ'₋ with a given ratio, new pivot stuck. The paper's
     /// e = 0.925 (sec. 4.1) is this `r`.
     Ratio {
@@ -42,10 +49,11 @@ pub enum ImpactLaw {
 }
 
 impl ImpactLaw {
-    /// Config name: `housner`, `ratio`, `impulse`.
+    /// Config name: `housner`, `corner-momentum`, `ratio`, `impulse`.
     pub fn name(&self) -> &'static str {
         match self {
             ImpactLaw::Housner => "housner",
+            ImpactLaw::CornerMomentum => "corner-momentum",
             ImpactLaw::Ratio { .. } => "ratio",
             ImpactLaw::Impulse { .. } => "impulse",
         }
@@ -184,11 +192,22 @@ pub fn impulse_law(geo: &Geometry, pre: &PreImpact, e: f64, mu_s: f64, mu_k: f64
     }
 }
 
-/// Housner's law, generalised to pre-impact slip: a perfectly plastic,
-/// sticking impact at the striking corner (the impulse law with e = 0 and
-/// infinite friction), so angular momentum about that corner is conserved.
-pub fn housner(geo: &Geometry, pre: &PreImpact) -> PostImpact {
+/// The corner-momentum law: a perfectly plastic, sticking impact at the
+/// striking corner (the impulse law with e = 0 and infinite friction), so
+/// angular momentum about that corner is conserved, pre-impact slip
+/// included. Without pre-impact slip it is Housner's law.
+pub fn corner_momentum(geo: &Geometry, pre: &PreImpact) -> PostImpact {
     impulse_law(geo, pre, 0.0, f64::INFINITY, f64::INFINITY)
+}
+
+/// Housner's law as the literature uses it: w₊ = r w₋ with
+/// r = 1 − 1.5 sin²ψ ([`Geometry::housner_r`]) and the new pivot stuck,
+/// i.e. the ratio law with Housner's r. A pre-impact slip is stopped by
+/// whatever horizontal impulse that takes (the law idealises the base as
+/// rough enough). For ψ > 54.7° r < 0 and the law reverses the rotation,
+/// which the caller resolves as a flat landing ([`reverses`]).
+pub fn housner(geo: &Geometry, pre: &PreImpact) -> PostImpact {
+    ratio(geo, pre, geo.housner_r())
 }
 
 /// The ratio law: w₊ = r w₋, new pivot stuck (X'₊ = cos ψ w₊,
@@ -213,8 +232,9 @@ pub fn ratio(geo: &Geometry, pre: &PreImpact, r: f64) -> PostImpact {
 /// the base: with the striking corner stuck, the old pivot's vertical
 /// velocity after is 2 s' sin ψ w₊ (docs/model.md §7.5), so it penetrates
 /// when s' w₊ < 0. This happens when a large slip velocity before the
-/// impact reverses the rotation (Housner's law with slip:
-/// w₊ = (1 − 1.5 sin²ψ) w₋ + ¾ cos ψ V_cx₋).
+/// impact reverses the rotation (the corner-momentum law with slip:
+/// w₊ = (1 − 1.5 sin²ψ) w₋ + ¾ cos ψ V_cx₋), or when Housner's r < 0
+/// (ψ > 54.7°).
 pub fn reverses(pre: &PreImpact, post: &PostImpact) -> bool {
     !post.lifts_off && pre.striking.value() * post.w < 0.0
 }
@@ -247,6 +267,7 @@ pub fn flat_landing(pre: &PreImpact, mu_s: f64, mu_k: f64) -> PostImpact {
 pub fn apply_law(geo: &Geometry, law: &ImpactLaw, pre: &PreImpact) -> PostImpact {
     match *law {
         ImpactLaw::Housner => housner(geo, pre),
+        ImpactLaw::CornerMomentum => corner_momentum(geo, pre),
         ImpactLaw::Ratio { r } => ratio(geo, pre, r),
         ImpactLaw::Impulse { e, mu_s, mu_k } => impulse_law(geo, pre, e, mu_s, mu_k),
     }

@@ -381,7 +381,7 @@ fn impact_outcome(model: &Model, pivot: Sign, theta_dot: f64, x_dot: f64) -> Imp
     if impact::reverses(&pre, &post) {
         let (mu_s, mu_k) = match model.law {
             ImpactLaw::Impulse { mu_s, mu_k, .. } => (mu_s, mu_k),
-            ImpactLaw::Housner | ImpactLaw::Ratio { .. } => (model.mu_s, model.mu_k),
+            ImpactLaw::Housner | ImpactLaw::CornerMomentum | ImpactLaw::Ratio { .. } => (model.mu_s, model.mu_k),
         };
         post = impact::flat_landing(&pre, mu_s, mu_k);
     }
@@ -411,7 +411,7 @@ fn impact_outcome(model: &Model, pivot: Sign, theta_dot: f64, x_dot: f64) -> Imp
 }
 
 /// Jacobian of the impact reset `(Θ, Θ', X') ↦ (0, Θ'₊, X'₊)` of a block
-/// rocking about `pivot`, and the branch taken. The `ratio` law is
+/// rocking about `pivot`, and the branch taken. The `ratio` and `housner` laws are
 /// differentiated analytically; the others by a central difference inside
 /// the branch (they are piecewise linear in `(Θ', X')`, so it is exact up to
 /// round-off).
@@ -423,7 +423,15 @@ fn impact_jacobian(model: &Model, pivot: Sign, theta_dot: f64, x_dot: f64) -> (M
         ImpactKind::Accumulation => return (m, centre.kind),
         ImpactKind::Stuck | ImpactKind::Slipping(_) | ImpactKind::Flat => {}
     }
-    if let ImpactLaw::Ratio { r } = model.law {
+    // Housner's law is the ratio law with r = 1 − 1.5 sin²ψ; a negative r
+    // (ψ > 54.7°) reverses the rotation into a flat landing, left to the
+    // difference quotient below.
+    let ratio = match model.law {
+        ImpactLaw::Ratio { r } => Some(r),
+        ImpactLaw::Housner if geo.housner_r() >= 0.0 => Some(geo.housner_r()),
+        ImpactLaw::Housner | ImpactLaw::CornerMomentum | ImpactLaw::Impulse { .. } => None,
+    };
+    if let Some(r) = ratio {
         // Θ'₊ = r Θ'₋, X'₊ = cos ψ · ψ Θ'₊ (the new pivot sticks; no slip
         // branch and no reversal for r >= 0).
         m[1][1] = r;

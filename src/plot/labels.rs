@@ -114,7 +114,8 @@ pub fn fixed_parameters(cfg: &Scenario, varied: &[Param]) -> String {
     match cfg.impact.law {
         LawKind::Ratio if free(Param::ImpactR) => parts.push(format!("impact ratio r = {}", num(cfg.impact_r()))),
         LawKind::Impulse if free(Param::ImpactE) => parts.push(format!("impulse impact, e = {}", num(cfg.impact.e))),
-        LawKind::Housner => parts.push(format!("Housner impact (r = {:.4})", cfg.impact_r())),
+        LawKind::Housner => parts.push(format!("Housner impact (r = {:.4})", cfg.geometry().housner_r())),
+        LawKind::CornerMomentum => parts.push("corner-momentum impact".to_string()),
         _ => {}
     }
     parts.join(", ")

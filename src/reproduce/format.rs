@@ -51,6 +51,7 @@ pub fn short_params(cfg: &Scenario, with_a_v: bool) -> String {
 pub fn block_and_impact(cfg: &Scenario) -> String {
     let law = match cfg.impact.law {
         LawKind::Housner => format!("Housner impact r = {:.4}", cfg.geometry().housner_r()),
+        LawKind::CornerMomentum => "corner-momentum impact".to_string(),
         LawKind::Impulse => format!("impulse impact e = {}", num(cfg.impact.e)),
         LawKind::Ratio => format!("impact ratio r = {}", short_num(cfg.impact_r())),
     };

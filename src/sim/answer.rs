@@ -83,7 +83,7 @@ pub struct Physical {
     /// angle of a block at rest.
     pub max_rotation_over_alpha: f64,
     /// Largest |sliding displacement| relative to the base, m
-    /// (docs/model.md §1.6).
+    /// (docs/model.md §1.7).
     pub max_sliding_m: f64,
     /// Sliding displacement at the end, m (signed, + to the right).
     pub residual_sliding_m: f64,

@@ -81,8 +81,14 @@ impl Block {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum LawKind {
-    /// Housner's angular-momentum conservation (the default).
+    /// Housner's law as the literature states it: Θ'₊ = (1 − 1.5 sin²ψ) Θ'₋
+    /// and the new pivot sticks, stopping any slip (the default).
     Housner,
+    /// Angular momentum about the striking corner conserved, pre-impact
+    /// slip included (config name `corner-momentum`); equals `housner`
+    /// when the block does not slip before the impact.
+    #[serde(rename = "corner-momentum")]
+    CornerMomentum,
     /// A given angular-velocity ratio r.
     Ratio,
     /// The paper's impulse–momentum law with restitution and friction.
@@ -94,6 +100,7 @@ impl LawKind {
     pub fn name(self) -> &'static str {
         match self {
             LawKind::Housner => "housner",
+            LawKind::CornerMomentum => "corner-momentum",
             LawKind::Ratio => "ratio",
             LawKind::Impulse => "impulse",
         }
@@ -154,6 +161,10 @@ pub enum ShapeKind {
     OneCosine,
     /// Type C_n.
     TypeC,
+    /// Constant a_p for π/ω (Housner 1963).
+    Rectangular,
+    /// a_p sin(ωτ) for π/ω.
+    HalfSine,
 }
 
 impl ShapeKind {
@@ -163,6 +174,8 @@ impl ShapeKind {
             ShapeKind::OneSine => "one-sine",
             ShapeKind::OneCosine => "one-cosine",
             ShapeKind::TypeC => "type-c",
+            ShapeKind::Rectangular => "rectangular",
+            ShapeKind::HalfSine => "half-sine",
         }
     }
 }
@@ -467,6 +480,7 @@ impl Scenario {
                 mu_k: self.impact_mu_k(),
             },
             LawKind::Housner => ImpactLaw::Housner,
+            LawKind::CornerMomentum => ImpactLaw::CornerMomentum,
         }
     }
 
@@ -491,6 +505,8 @@ impl Scenario {
                     ShapeKind::OneCosine => PulseShape::OneCosine,
                     ShapeKind::TypeC => PulseShape::TypeC { n: x.cycles },
                     ShapeKind::OneSine => PulseShape::OneSine,
+                    ShapeKind::Rectangular => PulseShape::Rectangular,
+                    ShapeKind::HalfSine => PulseShape::HalfSine,
                 };
                 let make = |amp: f64, omega: f64, key: &str| {
                     Pulse::new(shape, amp * geo.psi, omega).map_err(|e| ScenarioError::new(key, e))

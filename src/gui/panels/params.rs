@@ -78,8 +78,8 @@ pub const GROUPS: &[(&str, &[Key])] = &[
                 key: "impact.law",
                 label: "law",
                 unit: "",
-                help: "housner: angular momentum about the striking corner; ratio: Θ'(after) = r Θ'(before); impulse: the paper's eqs. 17–27.",
-                kind: Kind::Choice(&["housner", "ratio", "impulse"]),
+                help: "housner: Θ'(after) = (1 − 1.5 sin²ψ) Θ'(before), slip stopped; corner-momentum: angular momentum about the striking corner, pre-impact slip included; ratio: Θ'(after) = r Θ'(before); impulse: the paper's eqs. 17–27.",
+                kind: Kind::Choice(&["housner", "corner-momentum", "ratio", "impulse"]),
             },
             num(
                 "impact.r",
@@ -147,8 +147,8 @@ pub const GROUPS: &[(&str, &[Key])] = &[
                 key: "excitation.shape",
                 label: "pulse shape",
                 unit: "",
-                help: "Pulse shape: one-sine (Makris type A), one-cosine (type B) or type-c. Default one-sine.",
-                kind: Kind::Choice(&["one-sine", "one-cosine", "type-c"]),
+                help: "Pulse shape: one-sine (Makris type A), one-cosine (type B), type-c, rectangular (a_p for π/ω) or half-sine (a_p sin ωτ for π/ω). Default one-sine.",
+                kind: Kind::Choice(&["one-sine", "one-cosine", "type-c", "rectangular", "half-sine"]),
             },
             num(
                 "excitation.cycles",

@@ -1,5 +1,7 @@
 //! Analytic acceleration pulses used in rocking research to idealise
-//! near-fault ground motion (Makris & Roussos 2000; Zhang & Makris 2001).
+//! near-fault ground motion (Makris & Roussos 2000; Zhang & Makris 2001),
+//! and the rectangular and half-sine pulses of the classical overturning
+//! studies (Housner 1963; Shenton 1996).
 //!
 //! Contract:
 //! - Units: time is the model's normalised time τ = p·t (p = sqrt(3 g / (4 R))
@@ -45,6 +47,19 @@ pub enum PulseShape {
         /// Number of main cycles, 1..=[`MAX_TYPE_C_CYCLES`].
         n: u32,
     },
+    /// Rectangular pulse: a constant a_p for 0 <= τ <= t_p with
+    /// t_p = π/ω = T/2, the half-period convention of the half-sine below,
+    /// so that a rectangular and a half-sine pulse of the same ω last
+    /// equally long (ω is the frequency of the half-sine that fits the
+    /// pulse, not a frequency of the rectangle itself). Housner's (1963)
+    /// overturning study uses this shape. The ground ends moving at
+    /// a_p t_p and displaced by a_p t_p²/2. Jumps at both ends.
+    Rectangular,
+    /// Half-sine pulse: a_p·sin(ωτ) for 0 <= τ <= π/ω = T/2, the usual
+    /// idealisation of an impact or a single acceleration lobe. The ground
+    /// ends moving at 2 a_p/ω and displaced by π a_p/ω². Kinks at both
+    /// ends.
+    HalfSine,
 }
 
 /// Why [`Pulse::new`] rejected its parameters.
@@ -107,6 +122,7 @@ impl Pulse {
         let period = 2.0 * PI / omega;
         let (phase, duration) = match shape {
             PulseShape::OneSine | PulseShape::OneCosine => (0.0, period),
+            PulseShape::Rectangular | PulseShape::HalfSine => (0.0, 0.5 * period),
             PulseShape::TypeC { n } => {
                 if !(1..=MAX_TYPE_C_CYCLES).contains(&n) {
                     return Err(PulseError::BadCycles { n });
@@ -148,13 +164,14 @@ impl Pulse {
     }
 
     /// Phase φ in radians: the type-C root described in
-    /// [`PulseShape::TypeC`], 0 for types A and B.
+    /// [`PulseShape::TypeC`], 0 for every other shape.
     pub fn phase(&self) -> f64 {
         self.phase
     }
 
     /// Duration of the pulse in τ: T for types A and B,
-    /// (n + 1/2 − φ/π)·T for type C_n.
+    /// (n + 1/2 − φ/π)·T for type C_n, T/2 = π/ω for the rectangular and
+    /// half-sine pulses.
     pub fn duration(&self) -> f64 {
         self.duration
     }
@@ -174,13 +191,15 @@ impl Pulse {
             PulseShape::OneSine => arg.sin(),
             PulseShape::OneCosine => arg.cos(),
             PulseShape::TypeC { .. } => (arg + self.phase).cos(),
+            PulseShape::Rectangular => 1.0,
+            PulseShape::HalfSine => arg.sin(),
         };
         self.amplitude * shape
     }
 
     /// The non-smooth points of the acceleration, in τ: the start 0 and the
-    /// end [`Pulse::duration`], where it has a kink (type A) or a jump (types
-    /// B and C).
+    /// end [`Pulse::duration`], where it has a kink (type A, half-sine) or a
+    /// jump (types B and C, rectangular).
     pub fn breakpoints(&self) -> [f64; 2] {
         [0.0, self.duration]
     }
@@ -300,7 +319,8 @@ mod tests {
 
     #[test]
     fn zero_outside_the_pulse() {
-        for shape in [PulseShape::OneSine].into_iter().chain(shapes()) {
+        let more = [PulseShape::OneSine, PulseShape::Rectangular, PulseShape::HalfSine];
+        for shape in more.into_iter().chain(shapes()) {
             let pulse = Pulse::new(shape, 0.7, 3.0).unwrap();
             let end = pulse.duration();
             for tau in [
@@ -355,6 +375,53 @@ mod tests {
         }
         assert_eq!(a.amplitude(), 1.0);
         assert_eq!(a.omega(), omega);
+    }
+
+    #[test]
+    fn rectangular_and_half_sine_values_and_breakpoints() {
+        for &(amplitude, omega) in &[(0.5, 1.0), (-0.3, 2.5), (1.2, 7.0)] {
+            let half = PI / omega;
+            let rect = Pulse::new(PulseShape::Rectangular, amplitude, omega).unwrap();
+            let sine = Pulse::new(PulseShape::HalfSine, amplitude, omega).unwrap();
+            for p in [&rect, &sine] {
+                assert_eq!(p.duration(), half, "{:?}", p.shape());
+                assert_eq!(p.period(), 2.0 * half);
+                assert_eq!(p.phase(), 0.0);
+                assert_eq!(p.breakpoints(), [0.0, half]);
+                assert_eq!(p.accel(-1e-12), 0.0);
+                assert_eq!(p.accel(half.next_up()), 0.0);
+            }
+            // The rectangle is a_p on the whole closed interval, ends
+            // included (the integrator stops on both).
+            for tau in [0.0, 0.3 * half, half] {
+                assert_eq!(rect.accel(tau), amplitude);
+            }
+            assert_eq!(sine.accel(0.0), 0.0);
+            assert!((sine.accel(0.5 * half) - amplitude).abs() < 1e-15);
+            assert!((sine.accel(0.25 * half) - amplitude * (PI / 4.0).sin()).abs() < 1e-15);
+            assert!(sine.accel(half).abs() < 1e-15);
+        }
+    }
+
+    #[test]
+    fn rectangular_and_half_sine_final_ground_motion() {
+        for &(amplitude, omega) in &[(0.5, 1.0), (-0.3, 2.5), (1.2, 7.0)] {
+            let t_p = PI / omega;
+            let rect = Pulse::new(PulseShape::Rectangular, amplitude, omega).unwrap();
+            let (v, u) = final_velocity_displacement(&rect);
+            // Simpson is exact for the constant and the linear integrand;
+            // what is left is the round-off of a 200 001-term sum
+            // (~n ε |v| ≈ 1e-11).
+            assert!((v - amplitude * t_p).abs() < 1e-10, "ω={omega}: v = {v}");
+            assert!((u - 0.5 * amplitude * t_p * t_p).abs() < 1e-10, "ω={omega}: u = {u}");
+            let sine = Pulse::new(PulseShape::HalfSine, amplitude, omega).unwrap();
+            let (v, u) = final_velocity_displacement(&sine);
+            assert!((v - 2.0 * amplitude / omega).abs() < 1e-8, "ω={omega}: v = {v}");
+            assert!(
+                (u - PI * amplitude / (omega * omega)).abs() < 1e-8,
+                "ω={omega}: u = {u}"
+            );
+        }
     }
 
     #[test]

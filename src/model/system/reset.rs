@@ -139,14 +139,16 @@ impl BlockSystem {
             // so these coefficients are finite here.
             let e = match self.model.law {
                 ImpactLaw::Impulse { e, .. } => e,
-                ImpactLaw::Housner | ImpactLaw::Ratio { .. } => 0.0,
+                ImpactLaw::Housner | ImpactLaw::CornerMomentum | ImpactLaw::Ratio { .. } => 0.0,
             };
             post = impact::impulse_law(&geo, &pre, e, self.model.mu_s, self.model.mu_k);
         }
         if impact::reverses(&pre, &post) {
             let (mu_s, mu_k) = match self.model.law {
                 ImpactLaw::Impulse { mu_s, mu_k, .. } => (mu_s, mu_k),
-                ImpactLaw::Housner | ImpactLaw::Ratio { .. } => (self.model.mu_s, self.model.mu_k),
+                ImpactLaw::Housner | ImpactLaw::CornerMomentum | ImpactLaw::Ratio { .. } => {
+                    (self.model.mu_s, self.model.mu_k)
+                }
             };
             post = impact::flat_landing(&pre, mu_s, mu_k);
         }

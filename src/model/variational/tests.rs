@@ -199,9 +199,19 @@ fn ratio_impact_jacobian_is_analytic_and_impulse_law_differences_are_exact() {
     assert_eq!(rj.matrix[1][2], 0.0);
     assert_eq!(rj.matrix[2][2], 0.0);
 
-    // Housner's law with pre-impact slip: w₊ = (1 − 1.5 sin²ψ) w₋ + ¾ cos ψ V_cx₋
-    // with V_cx₋ = X'₋ − cos ψ w₋ (docs/model.md §7.3): linear.
+    // Housner's law is the ratio law with r = 1 − 1.5 sin²ψ, whatever the
+    // pre-impact slip (docs/model.md §7.3).
     let m = model(0.4, 0.35, ImpactLaw::Housner);
+    let (jac, kind) = impact_jacobian(&m, Sign::Pos, -0.5, -0.3);
+    assert_eq!(kind, ImpactKind::Stuck);
+    let r = m.geo.housner_r();
+    assert_eq!((jac[1][1], jac[1][2]), (r, 0.0));
+    assert_eq!((jac[2][1], jac[2][2]), (m.geo.cos_psi * m.geo.psi * r, 0.0));
+
+    // The corner-momentum law with pre-impact slip:
+    // w₊ = (1 − 1.5 sin²ψ) w₋ + ¾ cos ψ V_cx₋ with V_cx₋ = X'₋ − cos ψ w₋
+    // (docs/model.md §7.3): linear.
+    let m = model(0.4, 0.35, ImpactLaw::CornerMomentum);
     let geo = m.geo;
     let (jac, kind) = impact_jacobian(&m, Sign::Pos, -0.5, -0.3);
     assert_eq!(kind, ImpactKind::Stuck);

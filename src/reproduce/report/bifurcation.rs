@@ -378,7 +378,7 @@ fn ratio_scan_section(
     }
     let _ = writeln!(
         out,
-        "**Impact-ratio scan.** The impact law is the one printed ingredient that changes the diagram, so the whole diagram was recomputed for r from {} to {} (the `ratio` law; for a block that does not slide Housner's law is the ratio law with r = 0.9118). Map: `{}impact_ratio_map.png`.\n",
+        "**Impact-ratio scan.** The impact law is the one printed ingredient that changes the diagram, so the whole diagram was recomputed for r from {} to {} (the `ratio` law; Housner's law is the ratio law with r = 0.9118, with or without sliding). Map: `{}impact_ratio_map.png`.\n",
         short_num(scan[0].0),
         short_num(scan[scan.len() - 1].0),
         prefix(f.number)
