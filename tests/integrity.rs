@@ -201,3 +201,55 @@ fn threads_are_capped_by_the_cores() {
     assert!(!dir.join("out").exists());
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// Item 3: a record run's summary.json repeats its run from any folder (the
+/// record's path is stored absolute) and notices a record file changed
+/// since (its CRC-32 is stored beside the path).
+#[test]
+fn a_record_summary_reruns_from_anywhere_and_notices_a_changed_file() {
+    let dir = tmpdir("record-rerun");
+    let cfg = dir.join("cfg");
+    std::fs::create_dir_all(&cfg).expect("cfg dir");
+    std::fs::write(cfg.join("good.csv"), "0 0\n0.1 0.3\n0.2 -0.3\n0.3 0\n").expect("record");
+    std::fs::write(
+        cfg.join("run.toml"),
+        "[block]\nwidth = 0.4\nheight = 1.2\n[excitation]\nkind = \"record\"\nfile_h = \"good.csv\"\nunit_h = \"g\"\n",
+    )
+    .expect("config");
+    let out = dir.join("out");
+    let o = rocking()
+        .current_dir(&dir)
+        .args(["--batch", "--quiet", "--config", "cfg/run.toml", "--out", "out"])
+        .output()
+        .expect("runs");
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).expect("summary")).expect("json");
+    let file = summary["config"]["excitation"]["file_h"].as_str().expect("file_h");
+    assert!(Path::new(file).is_absolute(), "{file}");
+    let crc = summary["config"]["excitation"]["crc32_h"].as_str().expect("crc32_h");
+    assert_eq!(crc.len(), 8, "{crc}");
+    // From the summary's own folder (where cfg/good.csv does not exist).
+    let o = rocking()
+        .current_dir(&out)
+        .args(["--batch", "--quiet", "--config", "summary.json", "--out", "../again"])
+        .output()
+        .expect("runs");
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(
+        std::fs::read(out.join("history.csv")).expect("first"),
+        std::fs::read(dir.join("again").join("history.csv")).expect("again")
+    );
+    // The record changes: the rerun is refused, naming the key and file.
+    std::fs::write(cfg.join("good.csv"), "0 0\n0.1 0.5\n0.2 -0.3\n0.3 0\n").expect("record");
+    let o = rocking()
+        .args(["--batch", "--config"])
+        .arg(out.join("summary.json"))
+        .arg("--out")
+        .arg(dir.join("third"))
+        .output()
+        .expect("runs");
+    refused(&o, "excitation.crc32_h: ");
+    assert!(String::from_utf8_lossy(&o.stderr).contains("good.csv has changed since this config was written"));
+    assert!(!dir.join("third").exists());
+}

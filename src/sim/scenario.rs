@@ -195,6 +195,9 @@ pub struct Record {
     /// The time step of a one-column file, s (`excitation.dt_h`); `None`
     /// for files that hold their times.
     pub dt: Option<f64>,
+    /// CRC-32 of the file's bytes (`excitation.crc32_h`, written to
+    /// `summary.json` so that a rerun notices a changed file).
+    pub crc32: u32,
 }
 
 /// The base motion.

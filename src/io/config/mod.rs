@@ -41,7 +41,7 @@ pub const KNOWN_KEYS: &[(&str, &[&str])] = &[
         "excitation",
         &[
             "kind", "a_h", "a_v", "omega_h", "omega_v", "phase_h", "phase_v", "shape", "cycles", "file_h", "file_v",
-            "unit_h", "unit_v", "dt_h", "dt_v", "scale_h", "scale_v", "pga_h", "pga_v",
+            "unit_h", "unit_v", "dt_h", "dt_v", "crc32_h", "crc32_v", "scale_h", "scale_v", "pga_h", "pga_v",
         ],
     ),
     ("initial", &["theta", "theta_dot", "x_dot"]),
@@ -201,6 +201,7 @@ struct RecordKeys<'a> {
     file: Option<&'a str>,
     unit: Option<&'a str>,
     dt: Option<Quantity>,
+    crc32: Option<&'a str>,
 }
 
 impl RecordKeys<'_> {
@@ -226,7 +227,11 @@ fn read_record(keys: &RecordKeys<'_>, source: &Source) -> Result<Option<Record>,
         .map(|q| q.resolve(&keys.key("dt"), Dimension::Seconds, &Geometry::new(1.0, 1.0)))
         .transpose()?;
     let Some(p) = keys.file else {
-        for (name, given) in [("unit", unit.is_some()), ("dt", dt.is_some())] {
+        for (name, given) in [
+            ("unit", unit.is_some()),
+            ("dt", dt.is_some()),
+            ("crc32", keys.crc32.is_some()),
+        ] {
             if given {
                 return Err(ConfigError::key(&keys.key(name), format!("needs {}", keys.key("file"))));
             }
@@ -250,6 +255,21 @@ fn read_record(keys: &RecordKeys<'_>, source: &Source) -> Result<Option<Record>,
             message: e.to_string(),
         }
     })?;
+    // A summary.json names the checksum of the file it ran: a file changed
+    // since is refused rather than silently giving another answer.
+    if let Some(expected) = keys.crc32 {
+        let found = format!("{:08x}", loaded.crc32);
+        if !expected.eq_ignore_ascii_case(&found) {
+            return Err(ConfigError::key(
+                &keys.key("crc32"),
+                format!(
+                    "{} has changed since this config was written (CRC-32 {found}, expected {expected}); remove {} to run the file as it is now",
+                    path.display(),
+                    keys.key("crc32")
+                ),
+            ));
+        }
+    }
     // Absolute, so that summary.json repeats the run from any folder.
     let path = path.canonicalize().unwrap_or(path);
     Ok(Some(Record {
@@ -257,6 +277,7 @@ fn read_record(keys: &RecordKeys<'_>, source: &Source) -> Result<Option<Record>,
         series: loaded.series,
         unit: loaded.unit,
         dt,
+        crc32: loaded.crc32,
     }))
 }
 
@@ -386,12 +407,14 @@ pub fn from_table(table: &Table, source: &Source) -> Result<Scenario, ConfigErro
         file: x.file_h.as_deref(),
         unit: x.unit_h.as_deref(),
         dt: x.dt_h,
+        crc32: x.crc32_h.as_deref(),
     };
     let keys_v = RecordKeys {
         suffix: "_v",
         file: x.file_v.as_deref(),
         unit: x.unit_v.as_deref(),
         dt: x.dt_v,
+        crc32: x.crc32_v.as_deref(),
     };
     let record_h = read_record(&keys_h, source)?;
     let record_v = read_record(&keys_v, source)?;
@@ -512,6 +535,7 @@ pub fn to_json(s: &Scenario) -> Json {
     let path = |r: &Option<Record>| r.as_ref().map(|r| r.path.display().to_string());
     let unit = |r: &Option<Record>| r.as_ref().map(|r| r.unit.name());
     let dt = |r: &Option<Record>| r.as_ref().and_then(|r| r.dt);
+    let crc = |r: &Option<Record>| r.as_ref().map(|r| format!("{:08x}", r.crc32));
     // A record that decides the run's length writes its tail and no end;
     // any other run writes its end (and no tail, which would conflict).
     let (tau_end, tail_s) = match (s.record_end_tau(), s.run.record_tail_s) {
@@ -535,6 +559,7 @@ pub fn to_json(s: &Scenario) -> Json {
             "file_h": path(&x.record_h), "file_v": path(&x.record_v),
             "unit_h": unit(&x.record_h), "unit_v": unit(&x.record_v),
             "dt_h": dt(&x.record_h), "dt_v": dt(&x.record_v),
+            "crc32_h": crc(&x.record_h), "crc32_v": crc(&x.record_v),
             "scale_h": x.scale_h, "scale_v": x.scale_v,
         },
         "initial": { "theta": s.initial.theta, "theta_dot": s.initial.theta_dot, "x_dot": s.initial.x_dot },

@@ -87,6 +87,8 @@ pub struct RawExcitation {
     pub unit_v: Option<String>,
     pub dt_h: Option<Quantity>,
     pub dt_v: Option<Quantity>,
+    pub crc32_h: Option<String>,
+    pub crc32_v: Option<String>,
     pub scale_h: Option<Finite>,
     pub scale_v: Option<Finite>,
     pub pga_h: Option<Quantity>,

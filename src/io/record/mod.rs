@@ -301,6 +301,8 @@ pub struct LoadedRecord {
     pub unit: AccelUnit,
     /// The format.
     pub format: RecordFormat,
+    /// CRC-32 (IEEE) of the file's bytes, to notice a changed file.
+    pub crc32: u32,
 }
 
 /// Reads a ground-acceleration record from `path`, converting its
@@ -360,6 +362,7 @@ pub fn read_record_as(path: &Path, spec: &RecordSpec) -> Result<LoadedRecord, Re
         });
     }
     let bytes = std::fs::read(path).map_err(io_error)?;
+    let crc32 = crc32fast::hash(&bytes);
     // Lossy: station names in old headers or comments may be Latin-1; a
     // replacement character in a data field fails as "not a number".
     let text = String::from_utf8_lossy(&bytes);
@@ -383,13 +386,19 @@ pub fn read_record_as(path: &Path, spec: &RecordSpec) -> Result<LoadedRecord, Re
             series,
             unit,
             format: RecordFormat::At2,
+            crc32,
         });
     }
     let Some(unit) = spec.unit else {
         return Err(RecordError::NoUnit { file });
     };
     let (series, format) = parse_columns(&file, &lines, unit, spec.dt)?;
-    Ok(LoadedRecord { series, unit, format })
+    Ok(LoadedRecord {
+        series,
+        unit,
+        format,
+        crc32,
+    })
 }
 
 /// Whether a trimmed text line is a comment.
