@@ -253,3 +253,58 @@ fn a_record_summary_reruns_from_anywhere_and_notices_a_changed_file() {
     assert!(String::from_utf8_lossy(&o.stderr).contains("good.csv has changed since this config was written"));
     assert!(!dir.join("third").exists());
 }
+
+/// Items 8–10: values that passed the checks and failed later with exit 1
+/// are refused up front with exit 2 and one readable line naming the key.
+#[test]
+fn derived_quantities_are_checked_with_the_inputs() {
+    let dir = tmpdir("derived");
+    let cases: [(&[&str], &str); 9] = [
+        (
+            &["block.width=1e-308"],
+            "block.width: 1e-308 is out of range: must be in [1e-4, 1e4] metres",
+        ),
+        (
+            &["block.width=1e308", "block.height=1e308"],
+            "block.width: 1e308 is out of range",
+        ),
+        (
+            &["block.width=1e-4", "block.height=1e4"],
+            "block.width: 0.0001 is out of range: must be at least 1e-6 of block.height",
+        ),
+        (
+            &["excitation.omega_h=1e-308"],
+            "excitation.omega_h: 1e-308 is out of range: must be in [1e-6, 1e6]",
+        ),
+        (
+            &["run.atol=1e-308"],
+            "run.atol: 1e-308 is out of range: must be in [1e-20, 1)",
+        ),
+        (
+            &["run.rtol=1e-300"],
+            "run.rtol: 1e-300 is out of range: must be in [1e-16, 1)",
+        ),
+        (
+            &["run.method=ralston", "run.step=1e-9"],
+            "run.step: 1e-9 needs 8.000e11 steps of run.method = \"ralston\"",
+        ),
+        (
+            &["analysis.spectrum=true", "run.tau_end=0.05"],
+            "analysis.spectrum: needs at least 8 history samples; run.tau_end = 0.05 with run.output_dt = 0.02 gives 3",
+        ),
+        (&["run.max_events=0"], "run.max_events: must be >= 1"),
+    ];
+    for (sets, expected) in cases {
+        let out = dir.join("out");
+        let mut cmd = rocking();
+        cmd.args(["--batch", "--preset", "default"]);
+        for s in sets {
+            cmd.args(["--set", s]);
+        }
+        let o = cmd.arg("--out").arg(&out).output().expect("runs");
+        refused(&o, expected);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(err.len() < 300, "readable: {err}");
+        assert!(!out.exists(), "{sets:?} wrote {}", out.display());
+    }
+}

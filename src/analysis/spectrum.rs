@@ -38,7 +38,7 @@ pub const PAPER_FIRST: usize = 3000;
 pub const PAPER_COUNT: usize = 4096;
 
 /// Fewest samples a spectrum is computed from.
-pub const MIN_SAMPLES: usize = 8;
+pub const MIN_SAMPLES: usize = crate::sim::scenario::MIN_SPECTRUM_SAMPLES;
 
 /// Taper applied before the transform.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default, serde::Serialize)]

@@ -37,6 +37,19 @@ pub const MU_K_LIMIT: f64 = 4.0 / 3.0;
 /// beyond any physical shaking (the block is in flight long before).
 pub const AMPLITUDE_LIMIT: f64 = 1e6;
 
+/// Smallest block size accepted, m (`block.width`, `block.height`).
+pub const MIN_SIZE_M: f64 = 1e-4;
+
+/// Largest block size accepted, m.
+pub const MAX_SIZE_M: f64 = 1e4;
+
+/// Smallest slenderness ψ accepted, rad: amplitudes are in units of ψg, so
+/// a block thinner than this makes every amplitude vanish.
+pub const MIN_PSI: f64 = 1e-6;
+
+/// Fewest history samples a power spectrum is taken of.
+pub const MIN_SPECTRUM_SAMPLES: usize = 8;
+
 /// Most rows of the time history one run may keep (`run.output_dt`).
 pub const MAX_HISTORY_ROWS: f64 = 5e7;
 

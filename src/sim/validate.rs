@@ -2,9 +2,10 @@
 //! file's sections so that the first broken rule is the one reported. Every
 //! message names the key as the user writes it and says what is allowed.
 
+use super::run::Method;
 use super::scenario::{
-    AMPLITUDE_LIMIT, ExcitationKind, MAX_HISTORY_ROWS, MU_K_LIMIT, PAPER_SPECTRUM_END, Scenario, ScenarioError,
-    SpectrumRange,
+    AMPLITUDE_LIMIT, ExcitationKind, MAX_HISTORY_ROWS, MAX_SIZE_M, MIN_PSI, MIN_SIZE_M, MIN_SPECTRUM_SAMPLES,
+    MU_K_LIMIT, PAPER_SPECTRUM_END, Scenario, ScenarioError, SpectrumRange,
 };
 use crate::model::excitation::pulse;
 
@@ -15,7 +16,8 @@ fn check(key: &str, ok: bool, allowed: &str, value: f64) -> Result<(), ScenarioE
     } else {
         Err(ScenarioError::new(
             key,
-            format!("{value} is out of range: must be {allowed}"),
+            // Debug formatting: 1e-308 as "1e-308", not 309 digits.
+            format!("{value:?} is out of range: must be {allowed}"),
         ))
     }
 }
@@ -33,17 +35,18 @@ impl Scenario {
 
     fn validate_block(&self) -> Result<(), ScenarioError> {
         let b = &self.block;
+        // Sizes from 0.1 mm to 10 km: beyond them ψ, p or 1/p leave the
+        // range where the run's numbers (τ = p t, amplitudes in ψg) mean
+        // anything, or overflow (docs/model.md §1.1).
+        let size = |x: f64| (MIN_SIZE_M..=MAX_SIZE_M).contains(&x);
+        check("block.width", size(b.width), "in [1e-4, 1e4] metres", b.width)?;
+        check("block.height", size(b.height), "in [1e-4, 1e4] metres", b.height)?;
+        let psi = self.geometry().psi;
         check(
             "block.width",
-            b.width > 0.0 && b.width.is_finite(),
-            "> 0 (metres)",
+            psi >= MIN_PSI,
+            "at least 1e-6 of block.height (a slenderness ψ = atan(B/H) below 1e-6 rad makes every amplitude in ψg vanish)",
             b.width,
-        )?;
-        check(
-            "block.height",
-            b.height > 0.0 && b.height.is_finite(),
-            "> 0 (metres)",
-            b.height,
         )?;
         check("friction.static", b.mu_s >= 0.0, ">= 0 or inf", b.mu_s)?;
         let mu_k = b.kinetic();
@@ -58,7 +61,7 @@ impl Scenario {
         check(
             kinetic_key,
             mu_k <= b.mu_s,
-            &format!("<= friction.static ({})", b.mu_s),
+            &format!("<= friction.static ({:?})", b.mu_s),
             mu_k,
         )?;
         check(
@@ -92,7 +95,7 @@ impl Scenario {
         check(
             "impact.kinetic",
             mu_k <= mu_s,
-            &format!("<= impact.static ({mu_s})"),
+            &format!("<= impact.static ({mu_s:?})"),
             mu_k,
         )
     }
@@ -113,15 +116,15 @@ impl Scenario {
         )?;
         check(
             "excitation.omega_h",
-            x.omega_h > 0.0 && x.omega_h <= 1e6,
-            "in (0, 1e6] (units of p)",
+            (1e-6..=1e6).contains(&x.omega_h),
+            "in [1e-6, 1e6] (units of p; the forcing period 2π/Ω is then at most 6.3e6 τ)",
             x.omega_h,
         )?;
         let omega_v = x.omega_v();
         check(
             "excitation.omega_v",
-            omega_v > 0.0 && omega_v <= 1e6,
-            "in (0, 1e6] (units of p)",
+            (1e-6..=1e6).contains(&omega_v),
+            "in [1e-6, 1e6] (units of p; the forcing period 2π/Ω is then at most 6.3e6 τ)",
             omega_v,
         )?;
         check(
@@ -169,8 +172,20 @@ impl Scenario {
 
     fn validate_run(&self) -> Result<(), ScenarioError> {
         let r = &self.run;
-        check("run.rtol", r.rtol > 0.0 && r.rtol < 1.0, "in (0, 1)", r.rtol)?;
-        check("run.atol", r.atol > 0.0 && r.atol < 1.0, "in (0, 1)", r.atol)?;
+        // Below these the error control asks for more than double
+        // precision can give and the step size underflows.
+        check(
+            "run.rtol",
+            r.rtol >= 1e-16 && r.rtol < 1.0,
+            "in [1e-16, 1) (below 1e-16, less than double precision's rounding)",
+            r.rtol,
+        )?;
+        check(
+            "run.atol",
+            r.atol >= 1e-20 && r.atol < 1.0,
+            "in [1e-20, 1) (below 1e-20 the step size underflows near rest)",
+            r.atol,
+        )?;
         check("run.step", r.step > 0.0 && r.step < 1.0, "in (0, 1)", r.step)?;
         if let Some(tail) = r.record_tail_s {
             check("run.tail_s", tail >= 0.0 && tail <= 1e6, "in [0, 1e6] (seconds)", tail)?;
@@ -213,6 +228,23 @@ impl Scenario {
         if r.max_steps == 0 {
             return Err(ScenarioError::new("run.max_steps", "must be >= 1"));
         }
+        if r.max_events == 0 {
+            return Err(ScenarioError::new("run.max_events", "must be >= 1"));
+        }
+        // A fixed-step method's step count is known before it starts: a run
+        // that would stop at max_steps is refused now, not hours later.
+        if r.method() == Method::Ralston {
+            let steps = tau_end / r.step;
+            if steps > r.max_steps as f64 {
+                return Err(ScenarioError::new(
+                    "run.step",
+                    format!(
+                        "{:?} needs {steps:.3e} steps of run.method = \"ralston\" over τ = {tau_end:?}, more than run.max_steps = {}; use a larger step or another method",
+                        r.step, r.max_steps
+                    ),
+                ));
+            }
+        }
         Ok(())
     }
 
@@ -249,6 +281,17 @@ impl Scenario {
             return Err(ScenarioError::new(
                 "analysis.spectrum",
                 "needs run.output_dt > 0 (the spectrum is computed from the history)",
+            ));
+        }
+        let samples = (self.tau_end() / self.run.output_dt).floor() + 1.0;
+        if a.spectrum && a.spectrum_window == SpectrumRange::All && samples < MIN_SPECTRUM_SAMPLES as f64 {
+            return Err(ScenarioError::new(
+                "analysis.spectrum",
+                format!(
+                    "needs at least {MIN_SPECTRUM_SAMPLES} history samples; run.tau_end = {:?} with run.output_dt = {:?} gives {samples}",
+                    self.tau_end(),
+                    self.run.output_dt
+                ),
             ));
         }
         if a.spectrum && a.spectrum_window == SpectrumRange::Paper && self.run.tau_end < PAPER_SPECTRUM_END {
