@@ -308,3 +308,34 @@ fn derived_quantities_are_checked_with_the_inputs() {
         assert!(!out.exists(), "{sets:?} wrote {}", out.display());
     }
 }
+
+/// Item 11: a sweep whose step is below the resolution of its values, so
+/// that some values round to the same f64, is refused naming the pair.
+#[test]
+fn a_sweep_with_values_that_round_together_is_refused() {
+    let dir = tmpdir("duplicates");
+    let out = dir.join("out");
+    let o = rocking()
+        .args([
+            "sweep",
+            "--preset",
+            "fig4",
+            "--param",
+            "excitation.a_v",
+            "--from",
+            "0.9999999999999944",
+            "--to",
+            "1.0000000000000095",
+            "--step",
+            "1.5e-16",
+            "--out",
+        ])
+        .arg(&out)
+        .output()
+        .expect("runs");
+    refused(
+        &o,
+        "--step 1.5e-16: is below the resolution of the values near 1.0000000000000002: values 38 and 39 are both 1.0000000000000002",
+    );
+    assert!(!out.exists());
+}

@@ -138,7 +138,8 @@ impl PlanError {
 impl Grid {
     /// Validates and counts the values.
     pub fn new(from: f64, to: f64, step: f64) -> Result<Self, PlanError> {
-        let bad = |flag: &str, v: f64, what: &str| Err(PlanError::flag(flag, v, what));
+        // Debug formatting: 1.5e-16 as written, not as 0.00000000000000015.
+        let bad = |flag: &str, v: f64, what: &str| Err(PlanError::flag(flag, format!("{v:?}"), what));
         if !from.is_finite() {
             return bad("--from", from, "must be finite");
         }
@@ -164,12 +165,20 @@ impl Grid {
             count,
             decimal: Decimal::of(from, step),
         };
-        // Distinct values are needed to tell them apart in the outputs.
-        if count > 1 && grid.value(1) == grid.value(0) {
+        // Distinct values are needed to tell them apart in the outputs: every
+        // value must exceed the one before it once rounded to an f64 (a step
+        // near the values' resolution rounds some pairs together).
+        if let Some(i) = (1..count).find(|&i| grid.value(i) <= grid.value(i - 1)) {
             return bad(
                 "--step",
                 step,
-                &format!("is below the resolution of the values near {from}"),
+                &format!(
+                    "is below the resolution of the values near {:?}: values {} and {} are both {:?}",
+                    grid.value(i),
+                    i - 1,
+                    i,
+                    grid.value(i)
+                ),
             );
         }
         Ok(grid)
