@@ -339,3 +339,36 @@ fn a_sweep_with_values_that_round_together_is_refused() {
     );
     assert!(!out.exists());
 }
+
+/// Item 10: a problem with the output location found while writing (here a
+/// file name over 255 bytes) exits 2 like every other input problem, with
+/// one line that says its cause once.
+#[test]
+fn an_output_location_that_fails_while_writing_exits_2_saying_its_cause_once() {
+    let dir = tmpdir("long-name");
+    let out = dir.join("x".repeat(300));
+    for args in [
+        vec!["--batch", "--set", "run.tau_end=1", "--out"],
+        vec![
+            "sweep",
+            "--preset",
+            "fig4",
+            "--param",
+            "excitation.a_v",
+            "--from",
+            "2",
+            "--to",
+            "2",
+            "--step",
+            "0.1",
+            "--tau-end",
+            "700",
+            "--out",
+        ],
+    ] {
+        let o = rocking().args(&args).arg(&out).output().expect("runs");
+        refused(&o, "File name too long");
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(err.matches("File name too long").count(), 1, "{err}");
+    }
+}

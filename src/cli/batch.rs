@@ -63,7 +63,7 @@ pub fn run(cli: &Cli) -> Result<(), BatchError> {
     }
     output::write_all(&cli.out, &files)
         .with_context(|| format!("writing {}", cli.out.display()))
-        .map_err(BatchError::Run)?;
+        .map_err(super::write::output_error)?;
     if !cli.quiet {
         crate::say!("{}", sim::Physical::of(&cfg, &res).line());
         let outcome = serde_json::to_value(res.outcome).unwrap_or_default();

@@ -12,11 +12,26 @@ use crate::plot::Figure;
 /// Writes the output folder `out` with `write`, which puts the files into
 /// the staging directory; nothing appears at `out` unless all succeed.
 pub fn staged(out: &Path, write: impl FnOnce(&mut Staging) -> anyhow::Result<()>) -> Result<(), BatchError> {
-    let mut staging = Staging::new(out).context("--out").map_err(BatchError::Run)?;
+    let mut staging = Staging::new(out).context("--out").map_err(output_error)?;
     write(&mut staging)
         .and_then(|()| Ok(staging.commit()?))
         .with_context(|| format!("writing {}", out.display()))
-        .map_err(BatchError::Run)
+        .map_err(output_error)
+}
+
+/// A failure while writing outputs: a problem of the output location (a
+/// full disk, a name too long, no permission: any I/O error, exit 2), or
+/// else of the computation that renders them (exit 1).
+pub fn output_error(e: anyhow::Error) -> BatchError {
+    use crate::io::output::OutputError;
+    let io = e.chain().any(|c| {
+        c.downcast_ref::<std::io::Error>().is_some()
+            || matches!(
+                c.downcast_ref::<OutputError>(),
+                Some(OutputError::Io { .. } | OutputError::NotADirectory(_))
+            )
+    });
+    if io { BatchError::Input(e) } else { BatchError::Run(e) }
 }
 
 /// `fig` as `STEM.png` and `STEM.svg`.

@@ -237,13 +237,15 @@ pub fn resolved_json(cfg: &Scenario) -> serde_json::Value {
 /// Errors writing outputs.
 #[derive(Debug, thiserror::Error)]
 pub enum OutputError {
-    /// A file system operation failed.
-    #[error("{path}: {source}")]
+    /// A file system operation failed. The cause is in the message and
+    /// deliberately not a `source`, so that a chain printed on one line
+    /// says it once.
+    #[error("{path}: {error}")]
     Io {
         /// The path involved.
         path: String,
         /// The error.
-        source: std::io::Error,
+        error: std::io::Error,
     },
     /// The output path exists and is not a directory.
     #[error("{0}: exists and is not a directory")]
@@ -254,9 +256,9 @@ pub enum OutputError {
 }
 
 fn io_err(path: &Path) -> impl FnOnce(std::io::Error) -> OutputError + '_ {
-    move |source| OutputError::Io {
+    move |error| OutputError::Io {
         path: path.display().to_string(),
-        source,
+        error,
     }
 }
 

@@ -60,9 +60,9 @@ pub struct Staging {
 }
 
 fn io_err(path: &Path) -> impl FnOnce(std::io::Error) -> OutputError + '_ {
-    move |source| OutputError::Io {
+    move |error| OutputError::Io {
         path: path.display().to_string(),
-        source,
+        error,
     }
 }
 
@@ -118,7 +118,7 @@ impl Staging {
             if !p.is_file() {
                 return Err(OutputError::Io {
                     path: p.display().to_string(),
-                    source: std::io::Error::new(std::io::ErrorKind::NotFound, "was never written"),
+                    error: std::io::Error::new(std::io::ErrorKind::NotFound, "was never written"),
                 });
             }
         }
