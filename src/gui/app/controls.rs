@@ -4,6 +4,7 @@
 use super::{Message, RockingApp};
 use crate::gui::export;
 use crate::gui::settings::Settings;
+use crate::gui::units::Units;
 use crate::sim::protocol::{MAX_GHOSTS, Speed};
 
 impl RockingApp {
@@ -55,6 +56,22 @@ impl RockingApp {
                 ui.separator();
                 ui.checkbox(&mut self.forces, "Contact force and friction cone");
             });
+            ui.separator();
+            let shown = self.units();
+            ui.label("Units");
+            for units in [Units::Physical, Units::Normalised] {
+                let hover = match units {
+                    Units::Physical => "t in s, θ in degrees, sliding in cm",
+                    Units::Normalised => "the paper's τ = p t, Θ = θ/ψ, X per R",
+                };
+                if ui
+                    .selectable_label(shown == units, units.name())
+                    .on_hover_text(hover)
+                    .clicked()
+                {
+                    self.set_units(units);
+                }
+            }
             ui.separator();
             let label = if self.paused { "Play" } else { "Pause" };
             if ui.button(label).on_hover_text("Space").clicked() {
@@ -136,6 +153,16 @@ impl RockingApp {
                     Ok((s, c)) => self.apply(s, c),
                     Err(e) => self.message = Some(Message { text: e, error: true }),
                 }
+            }
+        }
+        if ui.button("Open record…").clicked() {
+            ui.close();
+            // No filter: records come as .AT2, .dat, .txt, .acc, .csv, …
+            if let Some(path) = rfd::FileDialog::new()
+                .set_title("Open a ground-motion record")
+                .pick_file()
+            {
+                self.open_record(&path);
             }
         }
         if ui.button("Save scene…").clicked() {
