@@ -58,7 +58,6 @@ impl RockingApp {
             });
             ui.separator();
             let shown = self.units();
-            ui.label("Units");
             for units in [Units::Physical, Units::Normalised] {
                 let hover = match units {
                     Units::Physical => "t in s, θ in degrees, sliding in cm",
@@ -105,6 +104,9 @@ impl RockingApp {
             .on_hover_text("Perturbation of Θ for Reset perturbed, units of ψ");
             ui.separator();
             let speed_label = ui.label("Speed");
+            // Narrower than egui's 100 pt: the whole bar fits one line of a
+            // 1280-pixel window.
+            ui.spacing_mut().slider_width = 72.0;
             let r = ui
                 .add_enabled(
                     !self.max_speed,

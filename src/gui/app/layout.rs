@@ -58,10 +58,24 @@ impl RockingApp {
     }
 
     fn scene_panel(&mut self, ui: &mut egui::Ui) {
-        let rect = ui.available_rect_before_wrap();
+        let full = ui.available_rect_before_wrap();
         let (Some(info), Some(sample)) = (self.info.as_ref(), self.hist.samples.last()) else {
             ui.centered_and_justified(|ui| ui.label("waiting for the simulation…"));
             return;
+        };
+        let verdict = self.end.as_ref().and_then(|e| Verdict::of(e, info.geometry));
+        // A record scene: the banner in its own strip above the block.
+        let rect = match &self.record_label {
+            Some(label) => {
+                let strip = egui::Rect::from_min_size(full.min, egui::vec2(full.width(), banner::STRIP_HEIGHT));
+                let lines = match &verdict {
+                    Some(v) => banner::Lines::verdict(v, Some(label.title())),
+                    None => banner::Lines::playing(sample, info.geometry, Some(label.title())),
+                };
+                banner::show(ui, strip.shrink2(egui::vec2(10.0, 4.0)), &lines);
+                egui::Rect::from_min_max(egui::pos2(full.min.x, strip.max.y), full.max)
+            }
+            None => full,
         };
         self.last_shown = Some(*sample);
         let now = ui.input(|i| i.time);
@@ -86,10 +100,19 @@ impl RockingApp {
         let (shapes, scale, y_mid) = scene::build(&input, rect, &mut self.camera);
         let view = scene::view(rect, scale, &self.camera, y_mid, ui.ctx().pixels_per_point());
         scene::paint(ui, rect, shapes, view, self.gpu);
-        let verdict = self.end.as_ref().and_then(|e| Verdict::of(e, info.geometry));
-        let subtitle = self.record_label.as_ref().map(|l| l.title());
-        banner::show(ui, rect, verdict.as_ref(), subtitle.as_deref());
-        ui.allocate_rect(rect, egui::Sense::hover());
+        if self.record_label.is_none()
+            && let Some(v) = &verdict
+        {
+            // Any other scene that tumbles: the verdict over the block.
+            let lines = banner::Lines::verdict(v, None);
+            let below = usize::from(lines.detail.is_some());
+            let plate = egui::Rect::from_min_size(
+                rect.min + egui::vec2(10.0, 10.0),
+                egui::vec2(rect.width() - 20.0, banner::plate_height(below)),
+            );
+            banner::show(ui, plate, &lines);
+        }
+        ui.allocate_rect(full, egui::Sense::hover());
     }
 
     /// Whether the run takes stroboscopic section points (harmonic
@@ -196,9 +219,17 @@ impl eframe::App for RockingApp {
                 .show(ui, |ui| self.params_panel(ui));
         }
         if self.show.history || self.show.spectrum || self.record_label.is_some() {
-            egui::Panel::bottom("history")
+            // A record scene's bottom panel carries the ground trace, the
+            // earthquake itself: taller, with its own id so that each kind
+            // keeps the height the user gave it.
+            let (id, height) = if self.record_label.is_some() {
+                ("history with ground", 250.0)
+            } else {
+                ("history", 190.0)
+            };
+            egui::Panel::bottom(id)
                 .resizable(true)
-                .default_size(190.0)
+                .default_size(height)
                 .show(ui, |ui| self.history_panel(ui));
         }
         if self.show.bifurcation || self.show.lyapunov {

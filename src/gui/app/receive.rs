@@ -18,6 +18,8 @@ impl RockingApp {
             SimUpdate::Started { info, .. } => {
                 self.tau = info.tau0;
                 self.record_label = RecordLabel::of(&info.scenario);
+                self.history_view.fit_run(info.scenario.record_end_tau());
+                self.phase.fit_run(info.scenario.record_end_tau());
                 self.info = Some(*info);
             }
             SimUpdate::Paused { paused, tau, .. } => {

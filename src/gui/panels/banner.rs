@@ -1,18 +1,22 @@
 //! The verdict over the block scene, large enough to read on a projector:
 //! `OVERTURNED at t = 4.78 s` when the block tumbles, `SURVIVED` with the
 //! peak rotation and sliding when a record run comes to rest after the
-//! record.
+//! record. A record scene has the banner from the start, in a strip of its
+//! own above the block (so the block never hides behind it, and the scene
+//! does not jump when the verdict comes): the clock and the block's
+//! rotation and sliding while the record plays, and the record's name and
+//! PGA under them.
 //!
-//! It only words how the simulation thread said the run ended
-//! ([`RunEnd`]), in seconds, degrees and centimetres whatever units the
-//! plots show: the verdict is an engineer's answer.
+//! It only words what the simulation thread sent (how the run ended,
+//! [`RunEnd`], and the latest sample), in seconds, degrees and centimetres
+//! whatever units the plots show: the verdict is an engineer's answer.
 
 use egui::{Color32, RichText};
 
 use crate::gui::units::{Scales, Units};
 use crate::model::Mode;
 use crate::model::geometry::Geometry;
-use crate::sim::protocol::RunEnd;
+use crate::sim::protocol::{RunEnd, Sample};
 
 /// How a run ended, as the banner says it.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -87,7 +91,8 @@ impl Verdict {
         }
     }
 
-    fn color(&self) -> Color32 {
+    /// The headline's colour: red for a block lost, green for one that stood.
+    pub fn color(&self) -> Color32 {
         match self {
             Verdict::Overturned { .. } | Verdict::Flight { .. } => Color32::from_rgb(255, 95, 85),
             Verdict::Survived { .. } => Color32::from_rgb(110, 225, 120),
@@ -102,34 +107,76 @@ const HEADLINE_PT: f32 = 40.0;
 /// Size of the lines under it, points.
 const DETAIL_PT: f32 = 22.0;
 
-/// Draws the banner at the top of `rect` (over the scene): the verdict if
-/// the run has one, and `subtitle` (the record's name and PGA) under it.
-pub fn show(ui: &mut egui::Ui, rect: egui::Rect, verdict: Option<&Verdict>, subtitle: Option<&str>) {
-    if verdict.is_none() && subtitle.is_none() {
-        return;
+/// The lines of a banner.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Lines {
+    /// The large line.
+    pub headline: String,
+    /// Its colour.
+    pub color: Color32,
+    /// The line under it.
+    pub detail: Option<String>,
+    /// The last line (the record's name and PGA).
+    pub subtitle: Option<String>,
+}
+
+impl Lines {
+    /// The verdict's lines, with `subtitle` under them.
+    pub fn verdict(v: &Verdict, subtitle: Option<String>) -> Self {
+        Self {
+            headline: v.headline(),
+            color: v.color(),
+            detail: v.detail(),
+            subtitle,
+        }
     }
+
+    /// While a record plays: the clock, and the block's rotation and
+    /// sliding at the latest sample (block geometry `geo`).
+    pub fn playing(sample: &Sample, geo: Geometry, subtitle: Option<String>) -> Self {
+        let si = Scales::new(Units::Physical, geo);
+        Self {
+            headline: format!("t = {:.2} s", si.seconds(sample.tau)),
+            color: Color32::WHITE,
+            detail: Some(format!(
+                "θ = {:.1}° · sliding {:.1} cm",
+                si.theta(sample.theta),
+                si.horizontal(sample.mode, sample.theta, sample.x)
+            )),
+            subtitle,
+        }
+    }
+}
+
+/// Height of a plate holding a headline and `below` lines under it, points.
+pub fn plate_height(below: usize) -> f32 {
+    1.3 * HEADLINE_PT + below as f32 * 1.35 * DETAIL_PT + 2.0 * PAD
+}
+
+/// Space above and below the lines on the plate, points.
+const PAD: f32 = 8.0;
+
+/// Height of the strip a record scene's banner takes above the block,
+/// points: always room for the headline and two lines, so the scene keeps
+/// its size when the verdict replaces the clock.
+pub const STRIP_HEIGHT: f32 = 1.3 * HEADLINE_PT + 2.0 * 1.35 * DETAIL_PT + 2.0 * PAD;
+
+/// Draws `lines` centred on a dark plate filling `rect` (a fixed size, so
+/// the plate does not change width with the text it holds).
+pub fn show(ui: &mut egui::Ui, rect: egui::Rect, lines: &Lines) {
+    ui.painter().rect_filled(rect, 8.0, Color32::from_black_alpha(170));
     let builder = egui::UiBuilder::new()
-        .max_rect(rect.shrink(10.0))
+        .max_rect(rect.shrink2(egui::vec2(12.0, PAD)))
         .layout(egui::Layout::top_down(egui::Align::Center));
     ui.scope_builder(builder, |ui| {
-        egui::Frame::new()
-            .fill(Color32::from_black_alpha(170))
-            .corner_radius(8.0)
-            .inner_margin(egui::Margin::symmetric(18, 8))
-            .show(ui, |ui| {
-                ui.vertical_centered(|ui| {
-                    if let Some(v) = verdict {
-                        ui.label(RichText::new(v.headline()).size(HEADLINE_PT).strong().color(v.color()));
-                        if let Some(d) = v.detail() {
-                            ui.label(RichText::new(d).size(DETAIL_PT).color(Color32::WHITE));
-                        }
-                    }
-                    if let Some(s) = subtitle {
-                        let size = if verdict.is_some() { DETAIL_PT } else { 0.8 * DETAIL_PT };
-                        ui.label(RichText::new(s).size(size).color(Color32::from_gray(220)));
-                    }
-                });
-            });
+        ui.spacing_mut().item_spacing.y = 2.0;
+        ui.label(RichText::new(&lines.headline).size(HEADLINE_PT).strong().color(lines.color));
+        if let Some(d) = &lines.detail {
+            ui.label(RichText::new(d).size(DETAIL_PT).color(Color32::WHITE));
+        }
+        if let Some(s) = &lines.subtitle {
+            ui.label(RichText::new(s).size(DETAIL_PT).color(Color32::from_gray(215)));
+        }
     });
 }
 

@@ -79,7 +79,9 @@ pub fn ground_plot(
     ui.label(egui::RichText::new(format!("Ground acceleration: {}", label.title())).strong());
     let t_record = scales.time(scales.tau_of_seconds(label.duration_s));
     let t_now = scales.time(now);
-    let t1 = t_record.max(t_now);
+    // 2 % past the record's end, as the time history's window for a record
+    // ([`crate::gui::panels::plots::HistoryView::fit_run`]): the two line up.
+    let t1 = (1.02 * t_record).max(t_now);
     let columns = (ui.available_width() * ui.ctx().pixels_per_point()).max(16.0) as usize;
     decimate_min_max(
         hist.samples.iter().map(|s| (scales.time(s.tau), s.a_h)),
@@ -98,6 +100,12 @@ pub fn ground_plot(
         .include_x(t1)
         .include_y(-pga)
         .include_y(pga)
+        // Steps of 1, 5, 25, … × 10ⁿ: labels at ±0.2 g or ±0.5 g where
+        // decimal steps would label only 0 in a panel this short.
+        .y_grid_spacer(egui_plot::log_grid_spacer(5))
+        // Likewise in time: 5 s or 25 s steps label a minute-long record in
+        // this narrow panel where 10 s steps go unlabelled.
+        .x_grid_spacer(egui_plot::log_grid_spacer(5))
         .allow_drag(false)
         .allow_zoom(false)
         .allow_scroll(false)

@@ -32,6 +32,14 @@ impl Default for PhaseView {
     }
 }
 
+impl PhaseView {
+    /// The trail for a new run: a record's whole length (`record_tau`, τ),
+    /// so the portrait of an earthquake shows all of it, else the default.
+    pub fn fit_run(&mut self, record_tau: Option<f64>) {
+        self.trail_tau = record_tau.map_or(Self::default().trail_tau, |tau| tau.max(1.0));
+    }
+}
+
 /// Trail segments of decreasing age, drawn with increasing opacity.
 const TRAIL_SEGMENTS: usize = 10;
 
@@ -220,6 +228,8 @@ pub struct HistoryView {
     pub show_a_h: bool,
     /// Also draw a_v/g.
     pub show_a_v: bool,
+    /// Whether the user set the window (then a new scene keeps it).
+    pub user_window: bool,
     scratch: Vec<PlotPoint>,
     /// Points passed to the plot over the app's life (work counter).
     pub work: u64,
@@ -234,9 +244,25 @@ impl Default for HistoryView {
             show_x: false,
             show_a_h: false,
             show_a_v: false,
+            user_window: false,
             scratch: Vec::new(),
             work: 0,
         }
+    }
+}
+
+impl HistoryView {
+    /// The window for a new run, unless the user chose one: the whole
+    /// record (`record_tau`, τ, and 2 % more) so the response lines up with
+    /// the ground trace beside it, else the default.
+    pub fn fit_run(&mut self, record_tau: Option<f64>) {
+        if self.user_window {
+            return;
+        }
+        self.window = match record_tau {
+            Some(tau) => (1.02 * tau).clamp(1.0, 500.0),
+            None => Self::default().window,
+        };
     }
 }
 
@@ -267,12 +293,16 @@ pub fn history_plot(ui: &mut egui::Ui, hist: &RunHistory, view: &mut HistoryView
             .on_hover_text("Length of the moving window");
         if r.changed() {
             view.window = scales.tau_of(shown).clamp(1.0, 500.0);
+            view.user_window = true;
         }
         ui.checkbox(&mut view.show_x, scales.horizontal_label());
         ui.checkbox(&mut view.show_a_h, "a_h [g]");
         ui.checkbox(&mut view.show_a_v, "a_v [g]");
     });
-    let (t0, t1) = (now - view.window, now.max(now - view.window + 1e-9));
+    // The window starts at τ = 0 until the run is longer than it, so a
+    // young run fills it from the left instead of hiding behind empty time.
+    let t0 = (now - view.window).max(0.0);
+    let t1 = t0 + view.window;
     let columns = (ui.available_width() * ui.ctx().pixels_per_point()).max(16.0) as usize;
     let series: [Series; 4] = [
         (scales.theta_label(), true, Color32::from_rgb(110, 170, 255), |c, s| c.theta(s.theta)),
