@@ -760,7 +760,11 @@ fn issue_14_the_units_switch_is_remembered_across_scenes() {
     h.run();
     assert_eq!(h.state().units(), Units::Physical, "the user's choice holds");
     let fresh = fixed_lazy("default", &[], 1.0);
-    assert_eq!(fresh.state().units(), Units::Normalised, "the paper's scenes open normalised");
+    assert_eq!(
+        fresh.state().units(),
+        Units::Normalised,
+        "the paper's scenes open normalised"
+    );
 }
 
 #[test]
@@ -831,7 +835,14 @@ fn issue_14_a_one_column_record_is_asked_for_its_unit_and_time_step() {
     h.get_by_label("Open record").click();
     h.run();
     assert!(h.state().record_question().is_none(), "answered");
-    let rec = h.state().config().excitation.record_h.as_ref().expect("the record").clone();
+    let rec = h
+        .state()
+        .config()
+        .excitation
+        .record_h
+        .as_ref()
+        .expect("the record")
+        .clone();
     assert_eq!(rec.dt, Some(0.02));
     assert!((rec.series.duration_s() - 0.08).abs() < 1e-12, "5 samples 0.02 s apart");
 }
@@ -854,4 +865,16 @@ fn issue_14_the_record_presets_are_listed_and_run() {
         }));
         assert!(h.state().record_label().is_some(), "{name}: the record is named");
     }
+}
+
+#[test]
+fn snapshot_of_the_record_unit_question() {
+    let path = temp_record("question.txt", "0 0\n0.01 0.8\n0.02 -0.5\n0.03 0\n");
+    let mut h = fixed("default", &[], 5.0);
+    h.run();
+    h.state_mut().open_record(&path);
+    h.run();
+    let _ = h.get_by_label("Reading the record");
+    let _ = h.get_by_label("cm/s² (gal)");
+    h.snapshot("record_unit_question");
 }

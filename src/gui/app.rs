@@ -311,7 +311,10 @@ impl RockingApp {
     /// Conversions to the units shown, for the block being run (the
     /// panel's block before the run has started).
     pub fn scales(&self) -> Scales {
-        let geo = self.info.as_ref().map_or_else(|| self.config.geometry(), |i| i.geometry);
+        let geo = self
+            .info
+            .as_ref()
+            .map_or_else(|| self.config.geometry(), |i| i.geometry);
         Scales::new(self.units(), geo)
     }
     /// The current run's record (name and PGA after scale), for a record run.

@@ -118,9 +118,10 @@ impl RockingApp {
     /// Whether the run takes stroboscopic section points (harmonic
     /// excitation): without them the Poincaré plot has nothing to show.
     fn has_section(&self) -> bool {
-        self.info
-            .as_ref()
-            .map_or_else(|| self.config.excitation.forcing_period().is_some(), |i| i.section_period.is_some())
+        self.info.as_ref().map_or_else(
+            || self.config.excitation.forcing_period().is_some(),
+            |i| i.section_period.is_some(),
+        )
     }
 
     /// The bottom panel: the time history, and beside it the ground

@@ -108,7 +108,9 @@ impl RockingApp {
             Ok(cfg) => {
                 self.record_question = None;
                 self.apply(next, cfg);
-                let name = path.file_name().map_or(file.clone(), |n| n.to_string_lossy().into_owned());
+                let name = path
+                    .file_name()
+                    .map_or(file.clone(), |n| n.to_string_lossy().into_owned());
                 self.message = Some(Message {
                     text: format!("record {name}"),
                     error: false,
@@ -183,7 +185,10 @@ impl RockingApp {
                             .labelled_by(label.id);
                     });
                     if ui
-                        .add_enabled(q.unit.is_some() && !q.step.trim().is_empty(), egui::Button::new("Open record"))
+                        .add_enabled(
+                            q.unit.is_some() && !q.step.trim().is_empty(),
+                            egui::Button::new("Open record"),
+                        )
                         .clicked()
                     {
                         answer = q.unit;

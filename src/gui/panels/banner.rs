@@ -139,13 +139,19 @@ impl Lines {
             headline: format!("t = {:.2} s", si.seconds(sample.tau)),
             color: Color32::WHITE,
             detail: Some(format!(
-                "θ = {:.1}° · sliding {:.1} cm",
-                si.theta(sample.theta),
-                si.horizontal(sample.mode, sample.theta, sample.x)
+                "θ = {}° · sliding {} cm",
+                one_decimal(si.theta(sample.theta)),
+                one_decimal(si.horizontal(sample.mode, sample.theta, sample.x))
             )),
             subtitle,
         }
     }
+}
+
+/// `x` with one decimal, without the `-0.0` a tiny negative value prints as.
+fn one_decimal(x: f64) -> String {
+    let s = format!("{x:.1}");
+    if s == "-0.0" { "0.0".to_string() } else { s }
 }
 
 /// Height of a plate holding a headline and `below` lines under it, points.
@@ -170,7 +176,12 @@ pub fn show(ui: &mut egui::Ui, rect: egui::Rect, lines: &Lines) {
         .layout(egui::Layout::top_down(egui::Align::Center));
     ui.scope_builder(builder, |ui| {
         ui.spacing_mut().item_spacing.y = 2.0;
-        ui.label(RichText::new(&lines.headline).size(HEADLINE_PT).strong().color(lines.color));
+        ui.label(
+            RichText::new(&lines.headline)
+                .size(HEADLINE_PT)
+                .strong()
+                .color(lines.color),
+        );
         if let Some(d) = &lines.detail {
             ui.label(RichText::new(d).size(DETAIL_PT).color(Color32::WHITE));
         }
@@ -212,6 +223,25 @@ mod tests {
             geo.r
         );
         assert_eq!(v.detail().as_deref(), Some(want.as_str()));
+    }
+
+    #[test]
+    fn a_playing_record_shows_no_negative_zero() {
+        let geo = Geometry::new(0.6, 2.0);
+        let mut y = [0.0; crate::model::system::N];
+        y[crate::model::system::X] = -1e-9;
+        let state = crate::sim::HistoryRow::of_state(geo.p, Mode::Rest, &y);
+        let sample = Sample {
+            state,
+            a_h: 0.0,
+            a_v: 0.0,
+            base_x: 0.0,
+            normal: 1.0,
+            friction: 0.0,
+        };
+        let lines = Lines::playing(&sample, geo, None);
+        assert_eq!(lines.headline, "t = 1.00 s");
+        assert_eq!(lines.detail.as_deref(), Some("θ = 0.0° · sliding 0.0 cm"));
     }
 
     #[test]

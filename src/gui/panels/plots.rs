@@ -174,10 +174,7 @@ pub fn poincare_plot(ui: &mut egui::Ui, hist: &RunHistory, view: &mut PoincareVi
                 (frame.height() * ppp * 0.5).round().max(1.0) as usize,
             ];
             let shown = [bounds.min()[0], bounds.max()[0], bounds.min()[1], bounds.max()[1]];
-            let (lo, hi) = (
-                scales.state_of(shown[0], shown[2]),
-                scales.state_of(shown[1], shown[3]),
-            );
+            let (lo, hi) = (scales.state_of(shown[0], shown[2]), scales.state_of(shown[1], shown[3]));
             let v = [lo.0, hi.0, lo.1, hi.1];
             let changed = grid.update(&hist.section, v, size);
             if changed || texture.is_none() {
@@ -268,7 +265,12 @@ impl HistoryView {
 
 /// One curve of the time history: legend name, shown, colour, and its
 /// value in the units of the scales.
-type Series = (&'static str, bool, Color32, fn(&Scales, &crate::sim::protocol::Sample) -> f64);
+type Series = (
+    &'static str,
+    bool,
+    Color32,
+    fn(&Scales, &crate::sim::protocol::Sample) -> f64,
+);
 
 /// Draws the time history in the window ending at `now` (τ), in the units
 /// of `scales`: the time axis in s or τ, θ in degrees or Θ, the sliding
@@ -305,10 +307,15 @@ pub fn history_plot(ui: &mut egui::Ui, hist: &RunHistory, view: &mut HistoryView
     let t1 = t0 + view.window;
     let columns = (ui.available_width() * ui.ctx().pixels_per_point()).max(16.0) as usize;
     let series: [Series; 4] = [
-        (scales.theta_label(), true, Color32::from_rgb(110, 170, 255), |c, s| c.theta(s.theta)),
-        (scales.horizontal_label(), view.show_x, Color32::from_rgb(90, 200, 120), |c, s| {
-            c.horizontal(s.mode, s.theta, s.x)
+        (scales.theta_label(), true, Color32::from_rgb(110, 170, 255), |c, s| {
+            c.theta(s.theta)
         }),
+        (
+            scales.horizontal_label(),
+            view.show_x,
+            Color32::from_rgb(90, 200, 120),
+            |c, s| c.horizontal(s.mode, s.theta, s.x),
+        ),
         ("a_h [g]", view.show_a_h, Color32::from_rgb(240, 150, 50), |_, s| s.a_h),
         ("a_v [g]", view.show_a_v, Color32::from_rgb(200, 100, 220), |_, s| s.a_v),
     ];

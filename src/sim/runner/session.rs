@@ -641,7 +641,13 @@ mod tests {
         let sc = preset("kobe-rack");
         let end = live_end(&sc, sc.record_end_tau().expect("a record"));
         assert!(
-            matches!(end, RunEnd::Terminal { mode: Mode::Tumbled, .. }),
+            matches!(
+                end,
+                RunEnd::Terminal {
+                    mode: Mode::Tumbled,
+                    ..
+                }
+            ),
             "{end:?}"
         );
     }
