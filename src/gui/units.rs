@@ -9,7 +9,6 @@
 //! ([`Geometry::sliding`]). Axis titles come from here too, so an axis and
 //! its numbers cannot disagree about the unit.
 
-use crate::model::Mode;
 use crate::model::geometry::Geometry;
 use crate::sim::scenario::ExcitationKind;
 
@@ -148,9 +147,9 @@ impl Scales {
     /// The horizontal coordinate the history draws: the sliding
     /// displacement in cm ([`Geometry::sliding`] × R), or X (the centre of
     /// mass relative to the base, per R) as the paper plots it.
-    pub fn horizontal(&self, mode: Mode, theta: f64, x: f64) -> f64 {
+    pub fn horizontal(&self, theta: f64, x: f64) -> f64 {
         match self.units {
-            Units::Physical => self.geo.sliding(mode, theta, x) * self.geo.r * CM_PER_M,
+            Units::Physical => self.geo.sliding(theta, x) * self.geo.r * CM_PER_M,
             Units::Normalised => x,
         }
     }
@@ -207,7 +206,7 @@ mod tests {
         assert!((s.tip_angle() - 16.699).abs() < 1e-3, "atan(0.3) = 16.70°");
         assert!((s.sliding_cm(1.0) - 100.0 * geo.r).abs() < 1e-12);
         // Flat and sliding: the sliding displacement is X.
-        assert!((s.horizontal(Mode::Rest, 0.0, 0.01) - geo.r).abs() < 1e-12);
+        assert!((s.horizontal(0.0, 0.01) - geo.r).abs() < 1e-12);
         assert_eq!(s.time_label(), "t [s]");
         assert_eq!(s.theta_label(), "θ [deg]");
     }
@@ -224,7 +223,7 @@ mod tests {
     fn normalised_units_show_the_models_numbers() {
         let s = Scales::new(Units::Normalised, rack());
         assert_eq!((s.time(3.0), s.theta(0.5), s.theta_dot(2.0)), (3.0, 0.5, 2.0));
-        assert_eq!(s.horizontal(Mode::Rest, 0.2, 0.3), 0.3);
+        assert_eq!(s.horizontal(0.2, 0.3), 0.3);
         assert_eq!(s.time_label(), "τ = p t");
     }
 

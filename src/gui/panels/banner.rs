@@ -141,7 +141,7 @@ impl Lines {
             detail: Some(format!(
                 "θ = {}° · sliding {} cm",
                 one_decimal(si.theta(sample.theta)),
-                one_decimal(si.horizontal(sample.mode, sample.theta, sample.x))
+                one_decimal(si.horizontal(sample.theta, sample.x))
             )),
             subtitle,
         }

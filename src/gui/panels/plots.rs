@@ -314,7 +314,7 @@ pub fn history_plot(ui: &mut egui::Ui, hist: &RunHistory, view: &mut HistoryView
             scales.horizontal_label(),
             view.show_x,
             Color32::from_rgb(90, 200, 120),
-            |c, s| c.horizontal(s.mode, s.theta, s.x),
+            |c, s| c.horizontal(s.theta, s.x),
         ),
         ("a_h [g]", view.show_a_h, Color32::from_rgb(240, 150, 50), |_, s| s.a_h),
         ("a_v [g]", view.show_a_v, Color32::from_rgb(200, 100, 220), |_, s| s.a_v),

@@ -149,9 +149,9 @@ struct Peaks {
 }
 
 impl Peaks {
-    fn see(&mut self, geo: &crate::model::geometry::Geometry, mode: Mode, y: &[f64; N]) {
+    fn see(&mut self, geo: &crate::model::geometry::Geometry, y: &[f64; N]) {
         self.theta = self.theta.max(y[THETA].abs());
-        self.sliding = self.sliding.max(geo.sliding(mode, y[THETA], y[X]).abs());
+        self.sliding = self.sliding.max(geo.sliding(y[THETA], y[X]).abs());
     }
 }
 
@@ -165,7 +165,7 @@ struct MainSink<'a> {
 
 impl Observer<Mode, EventRecord, N> for MainSink<'_> {
     fn sample(&mut self, t: f64, mode: Mode, y: &[f64; N]) {
-        self.peaks.see(&self.probe.model.geo, mode, y);
+        self.peaks.see(&self.probe.model.geo, y);
         let fo = self.probe.model.excitation.forcing(t);
         let base_x = self.base.advance(t, fo.a);
         let (normal, friction) = if mode.is_terminal() {
@@ -188,8 +188,8 @@ impl Observer<Mode, EventRecord, N> for MainSink<'_> {
         self.queue.section.push_back(SectionRow::of_state(k, t, mode, y));
     }
 
-    fn event(&mut self, _t: f64, before: Mode, y_before: &[f64; N], record: EventRecord) {
-        self.peaks.see(&self.probe.model.geo, before, y_before);
+    fn event(&mut self, _t: f64, _before: Mode, y_before: &[f64; N], record: EventRecord) {
+        self.peaks.see(&self.probe.model.geo, y_before);
         self.queue.events.push_back(record);
     }
 }
@@ -357,7 +357,7 @@ impl Session {
         };
         let geometry = system.model.geo;
         let mut peaks = Peaks::default();
-        peaks.see(&geometry, mode0, &y0);
+        peaks.see(&geometry, &y0);
         let driver = live_driver(scenario, system, mode0, tau0, y0, outputs);
         Ok(Self {
             run,
