@@ -474,14 +474,11 @@ mod tests {
             mode: Mode::Slide { slip: Sign::Neg },
         }];
         let t_s = 0.30000000000000004 / geo.p;
-        assert_eq!(
-            history_csv(&rows, &geo),
-            format!(
-                "tau,theta,theta_dot,x,x_dot,mode,t_s,theta_rad,sliding_m\n0.30000000000000004,1e-5,-1.0,1e16,0.0001,slide,{},{},5000000000000000.0\n",
-                format!("{:?}", t_s),
-                format!("{:?}", 1e-5 * geo.psi)
-            )
+        let theta_rad = 1e-5 * geo.psi;
+        let expected = format!(
+            "tau,theta,theta_dot,x,x_dot,mode,t_s,theta_rad,sliding_m\n0.30000000000000004,1e-5,-1.0,1e16,0.0001,slide,{t_s:?},{theta_rad:?},5000000000000000.0\n"
         );
+        assert_eq!(history_csv(&rows, &geo), expected);
         // Rocking on the left corner (s = −1) at Θ = −0.5 with X = −0.1:
         // U = X − (sin(ψ/2) − sin ψ), and sliding_m = R·U.
         let e = EventRecord {
@@ -496,14 +493,8 @@ mod tests {
             x: -0.1,
         };
         let u = -0.1 - ((0.5 * geo.psi).sin() - geo.psi.sin());
-        assert_eq!(
-            events_csv(&[e], &geo).lines().nth(1).unwrap_or_default(),
-            format!(
-                "2.5,impact,rock,rest,-0.5,0.25,0.0,0.0,{},{},{}",
-                format!("{:?}", 2.5 / geo.p),
-                format!("{:?}", -0.5 * geo.psi),
-                format!("{:?}", 0.5 * u)
-            )
-        );
+        let (t_s, theta_rad, sliding_m) = (2.5 / geo.p, -0.5 * geo.psi, 0.5 * u);
+        let expected = format!("2.5,impact,rock,rest,-0.5,0.25,0.0,0.0,{t_s:?},{theta_rad:?},{sliding_m:?}");
+        assert_eq!(events_csv(&[e], &geo).lines().nth(1).unwrap_or_default(), expected);
     }
 }
