@@ -34,7 +34,16 @@ pub const EXIT_RUN_FAILED: i32 = 1;
 /// rocking — exact simulator of a rigid block that rocks, slides,
 /// slide-rocks, lifts off and tumbles on a shaken base.
 #[derive(Debug, Parser)]
-#[command(name = "rocking", version, about, long_about = None, args_conflicts_with_subcommands = true)]
+#[command(
+    name = "rocking",
+    version,
+    about,
+    long_about = None,
+    args_conflicts_with_subcommands = true,
+    after_help = "With no --batch and no subcommand, rocking opens the desktop app on the scene \
+                  (the `default` preset unless --preset, --config or --set say otherwise). Without a \
+                  display, run the same scene headless: rocking --batch --preset default --out out"
+)]
 pub struct Cli {
     /// Run one simulation without a window and write summary.json,
     /// events.csv, poincare.csv and history.csv into --out.
