@@ -43,6 +43,7 @@ fn periodic_sweep_point() {
         tol: tolerances(),
         output_dt: None,
         section: true,
+        rest_after: None,
         limits: Limits::default(),
     };
     black_box(simulate(s.model.clone(), &s.initial, &opts).expect("runs"));
@@ -59,6 +60,7 @@ fn chaotic_with_history() {
         tol: tolerances(),
         output_dt: Some(0.02),
         section: true,
+        rest_after: None,
         limits: Limits::default(),
     };
     black_box(simulate(s.model.clone(), &s.initial, &opts).expect("runs"));

@@ -50,6 +50,7 @@ fn main() {
         },
         output_dt: None,
         section: true,
+        rest_after: None,
         limits: Limits::default(),
     };
     let mut walls = Vec::new();

@@ -18,6 +18,7 @@ fn options(tau_end: f64, section: bool) -> RunOptions {
         tol: Tolerances::default(),
         output_dt: None,
         section,
+        rest_after: None,
         limits: Limits::default(),
     }
 }

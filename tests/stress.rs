@@ -140,6 +140,7 @@ fn options(method: Method) -> RunOptions {
         },
         output_dt: Some(0.05),
         section: true,
+        rest_after: None,
         limits: Limits {
             max_steps: 5_000_000,
             max_events: 1_000_000,

@@ -188,6 +188,7 @@ fn options(method: Method, rtol: f64, step: f64, tau_end: f64) -> RunOptions {
         },
         output_dt: None,
         section: false,
+        rest_after: None,
         limits: Limits::default(),
     }
 }

@@ -23,6 +23,9 @@ pub enum BatchError {
 pub fn run(cli: &Cli) -> Result<(), BatchError> {
     let cfg: Scenario = cli.scene.load().map_err(|e| BatchError::Input(e.into()))?;
     let model = cfg.model().map_err(|e| BatchError::Input(e.into()))?;
+    for warning in cfg.warnings() {
+        eprintln!("{warning}");
+    }
     output::check_writable(&cli.out)
         .with_context(|| "--out: cannot write the output directory".to_string())
         .map_err(BatchError::Input)?;
@@ -51,9 +54,9 @@ pub fn run(cli: &Cli) -> Result<(), BatchError> {
         .map_err(BatchError::Run)?;
     let mut files = vec![
         ("summary.json", summary_text + "\n"),
-        ("events.csv", output::events_csv(&res.events)),
+        ("events.csv", output::events_csv(&res.events, &cfg.geometry())),
         ("poincare.csv", output::poincare_csv(&res.section)),
-        ("history.csv", output::history_csv(&res.history)),
+        ("history.csv", output::history_csv(&res.history, &cfg.geometry())),
     ];
     if let Some((csv, _)) = spectrum {
         files.push(("spectrum.csv", csv));
@@ -62,6 +65,7 @@ pub fn run(cli: &Cli) -> Result<(), BatchError> {
         .with_context(|| format!("writing {}", cli.out.display()))
         .map_err(BatchError::Run)?;
     if !cli.quiet {
+        crate::say!("{}", sim::Physical::of(&cfg, &res).line());
         let outcome = serde_json::to_value(res.outcome).unwrap_or_default();
         crate::say!(
             "outcome {} at tau {:.6} | impacts {} | max |theta| {:.6} | energy residual {:.2e} (relative {:.1e}) | {} steps, {} rhs evals, solver {:.3} s",
@@ -105,6 +109,9 @@ pub fn run(cli: &Cli) -> Result<(), BatchError> {
 /// short for them is bad input.
 fn lyapunov_summary(cfg: &Scenario) -> Result<Lyapunov, BatchError> {
     let model = cfg.model().map_err(|e| BatchError::Input(e.into()))?;
+    for warning in cfg.warnings() {
+        eprintln!("{warning}");
+    }
     let method = match cfg.analyses.lyapunov_method {
         LyapunovChoice::Tangent => Method::Tangent,
         LyapunovChoice::Benettin => Method::Benettin,

@@ -33,7 +33,7 @@ fn temp_beside(path: &Path) -> std::path::PathBuf {
 
 /// Writes `history.csv` (the samples kept), `poincare.csv` and `events.csv`
 /// into `dir`, in the batch run's formats.
-pub fn data_csv(dir: &Path, hist: &RunHistory) -> Result<(), String> {
+pub fn data_csv(dir: &Path, hist: &RunHistory, geo: &crate::model::Geometry) -> Result<(), String> {
     let history: Vec<HistoryRow> = hist
         .samples
         .iter()
@@ -63,9 +63,9 @@ pub fn data_csv(dir: &Path, hist: &RunHistory) -> Result<(), String> {
     write_all(
         dir,
         &[
-            ("history.csv", history_csv(&history)),
+            ("history.csv", history_csv(&history, geo)),
             ("poincare.csv", poincare_csv(&section)),
-            ("events.csv", events_csv(&events)),
+            ("events.csv", events_csv(&events, geo)),
         ],
     )
     .map_err(|e| e.to_string())

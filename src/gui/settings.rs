@@ -31,7 +31,7 @@ impl Settings {
         let table = parse_toml(text, &format!("preset {name}")).map_err(|e| e.to_string())?;
         Ok(Self {
             table,
-            source: Source::default(),
+            source: Source::preset(),
             origin: format!("preset {name}"),
         })
     }

@@ -14,11 +14,14 @@ use serde_json::json;
 use super::config::to_json;
 use super::csv::{self, Num, Row};
 use super::staging::{self, Staging};
-use crate::model::Mode;
+use crate::model::{Geometry, Mode};
 use crate::model::system::EventRecord;
-use crate::sim::{HistoryRow, RunResult, Scenario, SectionRow};
+use crate::model::geometry::G;
+use crate::sim::scenario::ExcitationKind;
+use crate::sim::{HistoryRow, Physical, RunResult, Scenario, SectionRow};
 
-/// A row of `events.csv`.
+/// A row of `events.csv`: the normalised state (`tau`, `theta`, …) and the
+/// same event in physical units (`t_s`, `theta_rad`, `sliding_m`).
 #[derive(Serialize)]
 struct EventRow {
     tau: Num,
@@ -29,6 +32,9 @@ struct EventRow {
     theta_dot_before: Num,
     theta_dot_after: Num,
     x_dot: Num,
+    t_s: Num,
+    theta_rad: Num,
+    sliding_m: Num,
 }
 
 impl Row for EventRow {
@@ -41,11 +47,14 @@ impl Row for EventRow {
         "theta_dot_before",
         "theta_dot_after",
         "x_dot",
+        "t_s",
+        "theta_rad",
+        "sliding_m",
     ];
 }
 
-/// `events.csv`.
-pub fn events_csv(events: &[EventRecord]) -> String {
+/// `events.csv` of a run of block `geo`.
+pub fn events_csv(events: &[EventRecord], geo: &Geometry) -> String {
     csv::to_string(events.iter().map(|e| EventRow {
         tau: Num(e.tau),
         kind: e.kind.name(),
@@ -55,6 +64,9 @@ pub fn events_csv(events: &[EventRecord]) -> String {
         theta_dot_before: Num(e.theta_dot_before),
         theta_dot_after: Num(e.theta_dot_after),
         x_dot: Num(e.x_dot),
+        t_s: Num(e.tau / geo.p),
+        theta_rad: Num(e.theta * geo.psi),
+        sliding_m: Num(geo.sliding(e.before, e.theta, e.x) * geo.r),
     }))
 }
 
@@ -87,7 +99,8 @@ pub fn poincare_csv(points: &[SectionRow]) -> String {
     }))
 }
 
-/// A row of `history.csv`.
+/// A row of `history.csv`: the normalised state and, after `mode`, the
+/// same instant in physical units.
 #[derive(Serialize)]
 struct HistoryCsvRow {
     tau: Num,
@@ -96,14 +109,27 @@ struct HistoryCsvRow {
     x: Num,
     x_dot: Num,
     mode: &'static str,
+    t_s: Num,
+    theta_rad: Num,
+    sliding_m: Num,
 }
 
 impl Row for HistoryCsvRow {
-    const HEADER: &'static [&'static str] = &["tau", "theta", "theta_dot", "x", "x_dot", "mode"];
+    const HEADER: &'static [&'static str] = &[
+        "tau",
+        "theta",
+        "theta_dot",
+        "x",
+        "x_dot",
+        "mode",
+        "t_s",
+        "theta_rad",
+        "sliding_m",
+    ];
 }
 
-/// `history.csv`.
-pub fn history_csv(rows: &[HistoryRow]) -> String {
+/// `history.csv` of a run of block `geo`.
+pub fn history_csv(rows: &[HistoryRow], geo: &Geometry) -> String {
     csv::to_string(rows.iter().map(|r| HistoryCsvRow {
         tau: Num(r.tau),
         theta: Num(r.theta),
@@ -111,6 +137,9 @@ pub fn history_csv(rows: &[HistoryRow]) -> String {
         x: Num(r.x),
         x_dot: Num(r.x_dot),
         mode: r.mode.name(),
+        t_s: Num(r.tau / geo.p),
+        theta_rad: Num(r.theta * geo.psi),
+        sliding_m: Num(geo.sliding(r.mode, r.theta, r.x) * geo.r),
     }))
 }
 
@@ -150,9 +179,58 @@ pub fn summary_json(cfg: &Scenario, res: &RunResult) -> serde_json::Value {
             "housner_r": geo.housner_r(),
             "seconds_per_tau": 1.0 / geo.p,
         },
-        "units": "normalised: tau = p t, theta = θ/ψ, x = x_G/R, energies per m g R (MODEL-DECISIONS)",
+        "physical": Physical::of(cfg, res),
+        "resolved": resolved_json(cfg),
+        "g_m_s2": G,
+        "units": "normalised: tau = p t, theta = θ/ψ, x = x_G/R, energies per m g R (MODEL-DECISIONS); `physical` and `resolved` give seconds, radians, degrees, metres and g",
         "version": env!("CARGO_PKG_VERSION"),
         "config": to_json(cfg),
+    })
+}
+
+/// Every resolved input both ways, normalised (as the scenario stores it)
+/// and physical (seconds, radians and degrees, metres, g, Hz), so that a
+/// run is understood without arithmetic.
+pub fn resolved_json(cfg: &Scenario) -> serde_json::Value {
+    let geo = cfg.geometry();
+    let (psi, p, r) = (geo.psi, geo.p, geo.r);
+    let x = &cfg.excitation;
+    let amplitude = |a: f64| json!({ "normalised": a, "g": a * psi, "m_s2": a * psi * G, "over_g_tan_alpha": a * psi / geo.tan_psi });
+    let frequency = |w: f64| json!({ "normalised": w, "rad_s": w * p, "hz": w * p / std::f64::consts::TAU, "period_s": std::f64::consts::TAU / (w * p) });
+    let rotation = |t: f64| json!({ "normalised": t, "rad": t * psi, "deg": (t * psi).to_degrees() });
+    let time = |t: f64| json!({ "tau": t, "s": t / p });
+    let harmonic_or_pulse = matches!(x.kind, ExcitationKind::Harmonic | ExcitationKind::Pulse);
+    json!({
+        "block": {
+            "width_m": cfg.block.width,
+            "height_m": cfg.block.height,
+            "half_diagonal_m": r,
+            "alpha_rad": psi,
+            "alpha_deg": psi.to_degrees(),
+            "p_rad_s": p,
+            "seconds_per_tau": 1.0 / p,
+            "uplift_acceleration_g": geo.tan_psi,
+        },
+        "excitation": {
+            "kind": x.kind.name(),
+            "a_h": harmonic_or_pulse.then(|| amplitude(x.a_h)),
+            "a_v": harmonic_or_pulse.then(|| amplitude(x.a_v)),
+            "omega_h": harmonic_or_pulse.then(|| frequency(x.omega_h)),
+            "omega_v": harmonic_or_pulse.then(|| frequency(x.omega_v())),
+            "phase_h_deg": x.phase_h.to_degrees(),
+            "phase_v_deg": x.phase_v.to_degrees(),
+        },
+        "initial": {
+            "theta": rotation(cfg.initial.theta),
+            "theta_dot": { "normalised": cfg.initial.theta_dot, "rad_s": cfg.initial.theta_dot * psi * p },
+            "x_dot": cfg.initial.x_dot.map(|v| json!({ "normalised": v, "m_s": v * r * p })),
+        },
+        "run": {
+            "end": time(cfg.tau_end()),
+            "record_tail_s": cfg.record_end_tau().and(cfg.run.record_tail_s),
+            "output_dt": time(cfg.run.output_dt),
+            "tumble_theta": rotation(cfg.run.tumble_theta),
+        },
     })
 }
 
@@ -221,66 +299,67 @@ mod tests {
 
     #[test]
     fn headers_are_the_row_fields() {
-        let e = EventRow {
-            tau: Num(0.0),
-            kind: "impact",
-            mode_before: "rock",
-            mode_after: "rock",
-            theta: Num(0.0),
-            theta_dot_before: Num(0.0),
-            theta_dot_after: Num(0.0),
-            x_dot: Num(0.0),
+        let geo = Geometry::new(1.0, 4.0);
+        let e = EventRecord {
+            tau: 0.0,
+            kind: EventKind::Impact,
+            before: Mode::Rest,
+            after: Mode::Rest,
+            theta: 0.0,
+            theta_dot_before: 0.0,
+            theta_dot_after: 0.0,
+            x_dot: 0.0,
+            x: 0.0,
         };
-        assert_eq!(csv::header_of(&e), csv::header::<EventRow>());
-        let p = PoincareRow {
-            k: 0,
-            tau: Num(0.0),
-            theta: Num(0.0),
-            theta_dot: Num(0.0),
-            x: Num(0.0),
-            x_dot: Num(0.0),
-            mode: "rest",
-        };
-        assert_eq!(csv::header_of(&p), csv::header::<PoincareRow>());
-        let h = HistoryCsvRow {
-            tau: Num(0.0),
-            theta: Num(0.0),
-            theta_dot: Num(0.0),
-            x: Num(0.0),
-            x_dot: Num(0.0),
-            mode: "rest",
-        };
-        assert_eq!(csv::header_of(&h), csv::header::<HistoryCsvRow>());
+        let header = |text: String| text.lines().next().unwrap_or_default().to_string();
+        assert_eq!(header(events_csv(&[e], &geo)), csv::header::<EventRow>());
+        assert_eq!(header(poincare_csv(&[])), csv::header::<PoincareRow>());
+        assert_eq!(header(history_csv(&[], &geo)), csv::header::<HistoryCsvRow>());
     }
 
     #[test]
-    fn numbers_are_written_shortest_round_trip() {
+    fn numbers_are_written_shortest_round_trip_with_their_physical_twins() {
+        // B = 0.6, H = 0.8: R = 0.5 m, ψ = atan(0.75), p = √(3g/2).
+        let geo = Geometry::new(0.6, 0.8);
         let rows = [HistoryRow {
             tau: 0.1 + 0.2,
             theta: 1e-5,
             theta_dot: -1.0,
             x: 1e16,
             x_dot: 0.0001,
-            mode: Mode::Rock { pivot: Sign::Neg },
+            mode: Mode::Slide { slip: Sign::Neg },
         }];
+        let t_s = 0.30000000000000004 / geo.p;
         assert_eq!(
-            history_csv(&rows),
-            "tau,theta,theta_dot,x,x_dot,mode\n0.30000000000000004,1e-5,-1.0,1e16,0.0001,rock\n"
+            history_csv(&rows, &geo),
+            format!(
+                "tau,theta,theta_dot,x,x_dot,mode,t_s,theta_rad,sliding_m\n0.30000000000000004,1e-5,-1.0,1e16,0.0001,slide,{},{},5000000000000000.0\n",
+                format!("{:?}", t_s),
+                format!("{:?}", 1e-5 * geo.psi)
+            )
         );
-        assert_eq!(history_csv(&[]), "tau,theta,theta_dot,x,x_dot,mode\n");
+        // Rocking on the left corner (s = −1) at Θ = −0.5 with X = −0.1:
+        // U = X − (sin(ψ/2) − sin ψ), and sliding_m = R·U.
         let e = EventRecord {
             tau: 2.5,
             kind: EventKind::Impact,
-            before: Mode::Rock { pivot: Sign::Pos },
+            before: Mode::Rock { pivot: Sign::Neg },
             after: Mode::Rest,
-            theta: 0.0,
+            theta: -0.5,
             theta_dot_before: 0.25,
             theta_dot_after: 0.0,
             x_dot: 0.0,
+            x: -0.1,
         };
+        let u = -0.1 - ((0.5 * geo.psi).sin() - geo.psi.sin());
         assert_eq!(
-            events_csv(&[e]).lines().nth(1),
-            Some("2.5,impact,rock,rest,0.0,0.25,0.0,0.0")
+            events_csv(&[e], &geo).lines().nth(1).unwrap_or_default(),
+            format!(
+                "2.5,impact,rock,rest,-0.5,0.25,0.0,0.0,{},{},{}",
+                format!("{:?}", 2.5 / geo.p),
+                format!("{:?}", -0.5 * geo.psi),
+                format!("{:?}", 0.5 * u)
+            )
         );
     }
 }

@@ -21,6 +21,8 @@ pub const PRESETS: &[(&str, &str)] = &[
     ("fig17", include_str!("../../assets/presets/fig17.toml")),
     ("fig18", include_str!("../../assets/presets/fig18.toml")),
     ("fig19", include_str!("../../assets/presets/fig19.toml")),
+    ("kobe-rack", include_str!("../../assets/presets/kobe-rack.toml")),
+    ("elcentro-statue", include_str!("../../assets/presets/elcentro-statue.toml")),
 ];
 
 /// The TOML text of preset `name`.

@@ -60,6 +60,28 @@ impl Geometry {
         1.0 - 1.5 * self.sin_psi * self.sin_psi
     }
 
+    /// The sliding displacement per R (docs/model.md §1.6): where the
+    /// middle of the block's base would be, relative to the base's origin,
+    /// if the block were tipped back flat about its current pivot,
+    /// `U = X + s(sin(ψ(1 − |Θ|)) − sin ψ)` for pivot side `s`, and `U = X`
+    /// when flat. Rocking about a sticking pivot leaves it unchanged; only
+    /// slip moves it, and it is continuous across impacts (Θ = 0).
+    pub fn sliding(&self, mode: super::Mode, theta: f64, x: f64) -> f64 {
+        match mode {
+            super::Mode::Rock { pivot } | super::Mode::SlideRock { pivot, .. } => {
+                let s = pivot.value();
+                x + s * ((self.psi * (1.0 - theta.abs())).sin() - self.sin_psi)
+            }
+            _ => x,
+        }
+    }
+
+    /// Height the lifted corner reaches at rotation |Θ|, m: B·sin(ψ|Θ|)
+    /// (to the block lying on its side, |θ| = π/2).
+    pub fn uplift_m(&self, abs_theta: f64) -> f64 {
+        self.width * (self.psi * abs_theta).min(std::f64::consts::FRAC_PI_2).sin()
+    }
+
     /// |Θ| at which the block lies on its side (|θ| = π/2).
     pub fn side_theta(&self) -> f64 {
         std::f64::consts::FRAC_PI_2 / self.psi

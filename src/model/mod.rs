@@ -14,6 +14,7 @@ pub mod params;
 pub mod series;
 pub mod state;
 pub mod system;
+pub mod units;
 pub mod variational;
 
 pub use excitation::{Excitation, Harmonic};

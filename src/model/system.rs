@@ -84,6 +84,8 @@ pub struct EventRecord {
     pub theta_dot_after: f64,
     /// X' just after.
     pub x_dot: f64,
+    /// X at the event (positions do not jump, so before = after).
+    pub x: f64,
 }
 /// Things the system tallies as it runs, beyond the state.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]

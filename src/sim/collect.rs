@@ -1,7 +1,7 @@
 //! The observer that gathers a run's outputs.
 
 use crate::integrate::hybrid::Observer;
-use crate::model::Mode;
+use crate::model::{Geometry, Mode};
 use crate::model::system::{EventRecord, N, THETA, THETA_DOT, X, X_DOT};
 
 /// One row of the regular time history.
@@ -78,6 +78,13 @@ pub(crate) struct Collector {
     pub events: Vec<EventRecord>,
     pub keep_history: bool,
     pub max_abs_theta: f64,
+    /// The block, for the sliding displacement.
+    pub geometry: Option<Geometry>,
+    /// Largest |sliding displacement| at an event, per R. Slip keeps one
+    /// direction between events (a reversal is an event), so the sliding
+    /// displacement is monotone between them and its extremes are at
+    /// events or at the end: this, with the final value, is exact.
+    pub max_abs_sliding: f64,
 }
 
 impl Observer<Mode, EventRecord, N> for Collector {
@@ -93,8 +100,12 @@ impl Observer<Mode, EventRecord, N> for Collector {
         self.section.push(SectionRow::of_state(k, t, mode, y));
     }
 
-    fn event(&mut self, _t: f64, _before: Mode, y_before: &[f64; N], record: EventRecord) {
+    fn event(&mut self, _t: f64, before: Mode, y_before: &[f64; N], record: EventRecord) {
         self.max_abs_theta = self.max_abs_theta.max(y_before[THETA].abs());
+        if let Some(geo) = &self.geometry {
+            let u = geo.sliding(before, y_before[THETA], y_before[X]);
+            self.max_abs_sliding = self.max_abs_sliding.max(u.abs());
+        }
         self.events.push(record);
     }
 }

@@ -6,6 +6,7 @@
 //! [`Stepper`](crate::integrate::Stepper) through the hybrid driver. It
 //! knows nothing of files, config keys read from text, or windows.
 
+pub mod answer;
 mod collect;
 pub mod job;
 pub mod method;
@@ -16,6 +17,7 @@ pub mod runner;
 pub mod scenario;
 mod validate;
 
+pub use answer::{EndState, Physical};
 pub use collect::{HistoryRow, SectionRow};
 pub use param::Param;
 pub use run::{

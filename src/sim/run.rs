@@ -9,7 +9,7 @@ use super::method::{StepperVisitor, with_stepper};
 use crate::integrate::hybrid::{Driver, Limits, Outputs};
 use crate::integrate::{StepStats, Stepper, Tolerances};
 use crate::model::dynamics::Tilt;
-use crate::model::system::{EventRecord, FRICTION_LOSS, ModelError, N, Tally, WORK};
+use crate::model::system::{EventRecord, FRICTION_LOSS, ModelError, N, Tally, WORK, X};
 use crate::model::{BlockSystem, Mode, Model, Sign};
 
 /// Integration method (config `run.method`).
@@ -75,6 +75,12 @@ pub struct InitialState {
     pub x_dot: Option<f64>,
 }
 
+/// Length of the legs, τ, in which a run with [`RunOptions::rest_after`]
+/// advances past that time, checking for rest after each: short enough to
+/// stop within a fraction of a second of coming to rest (τ = 1 is 1/p s,
+/// 0.1–0.5 s for blocks of 0.1–5 m), long enough to cost nothing.
+const REST_CHECK_TAU: f64 = 1.0;
+
 /// How to run (config `run.*`).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RunOptions {
@@ -88,6 +94,10 @@ pub struct RunOptions {
     pub output_dt: Option<f64>,
     /// Whether to take the stroboscopic section (harmonic excitation only).
     pub section: bool,
+    /// Stop as soon as the block is at rest at or after this τ (a record's
+    /// end: with the ground still, rest lasts for ever). `None`: run to
+    /// `tau_end`.
+    pub rest_after: Option<f64>,
     /// Loop bounds.
     pub limits: Limits,
 }
@@ -161,6 +171,11 @@ pub struct RunResult {
     pub final_mode: Mode,
     /// Final state.
     pub final_state: [f64; N],
+    /// Largest |sliding displacement| over the run, per R
+    /// ([`Geometry::sliding`](crate::model::Geometry::sliding)).
+    pub max_abs_sliding: f64,
+    /// Sliding displacement at the end, per R (signed, +x to the right).
+    pub final_sliding: f64,
 }
 
 /// Errors of a run.
@@ -262,12 +277,27 @@ fn run_with<S: Stepper<N>>(
         section_period,
     };
     let mut driver = Driver::new(stepper, system, mode0, 0.0, y0, opts.limits, outputs);
+    let geometry = driver.system().model.geo;
     let mut obs = Collector {
         keep_history: opts.output_dt.is_some(),
         max_abs_theta: y0[0].abs(),
+        geometry: Some(geometry),
+        max_abs_sliding: geometry.sliding(mode0, y0[0], y0[X]).abs(),
         ..Collector::default()
     };
-    driver.advance(opts.tau_end, &mut obs)?;
+    match opts.rest_after {
+        None => {
+            driver.advance(opts.tau_end, &mut obs)?;
+        }
+        Some(rest_after) => {
+            driver.advance(rest_after.min(opts.tau_end), &mut obs)?;
+            // After the record the ground is still, so rest is for ever:
+            // go on in short legs and stop at the first that ends at rest.
+            while driver.t() < opts.tau_end && matches!(driver.mode(), Mode::Slide { .. } | Mode::Rock { .. } | Mode::SlideRock { .. }) {
+                driver.advance((driver.t() + REST_CHECK_TAU).min(opts.tau_end), &mut obs)?;
+            }
+        }
+    }
     let wall_s = start.elapsed().as_secs_f64();
 
     let final_mode = driver.mode();
@@ -329,6 +359,8 @@ fn run_with<S: Stepper<N>>(
         relative_residual: if scale > 0.0 { residual.abs() / scale } else { 0.0 },
     };
     let max_abs_theta = obs.max_abs_theta.max(tally.max_abs_theta).max(y[0].abs());
+    let final_sliding = geometry.sliding(final_mode, y[0], y[X]);
+    let max_abs_sliding = obs.max_abs_sliding.max(final_sliding.abs());
     let mut stats = driver.stepper().stats();
     stats.accepted = stats.accepted.max(driver.steps());
     Ok(RunResult {
@@ -348,5 +380,7 @@ fn run_with<S: Stepper<N>>(
         tally,
         final_mode,
         final_state: y,
+        max_abs_sliding,
+        final_sliding,
     })
 }

@@ -23,6 +23,7 @@ use crate::integrate::Tolerances;
 use crate::integrate::hybrid::Limits;
 use crate::model::excitation::record::Series;
 use crate::model::excitation::{Excitation, Harmonic, Pulse, PulsePair, PulseShape, RecordExcitation};
+use crate::model::units::AccelUnit;
 use crate::model::{FlightPolicy, Geometry, ImpactLaw, Model};
 
 /// Largest kinetic friction coefficient accepted (exclusive): the
@@ -38,6 +39,17 @@ pub const AMPLITUDE_LIMIT: f64 = 1e6;
 
 /// Most rows of the time history one run may keep (`run.output_dt`).
 pub const MAX_HISTORY_ROWS: f64 = 5e7;
+
+/// Default free-vibration tail after a record, s (`run.tail_s`): a record
+/// run goes on this long after the last sample unless the block comes to
+/// rest or overturns first. 30 s is several free-rocking periods of any
+/// block up to tens of metres (the period of free rocking grows only as
+/// √R), so a block still moving after it is reported as moving, not missed.
+pub const RECORD_TAIL_S: f64 = 30.0;
+
+/// PGA above which a record's unit is probably wrong, g: the largest peak
+/// ground accelerations ever recorded are about 3–4 g.
+pub const IMPLAUSIBLE_PGA_G: f64 = 5.0;
 
 /// The block and its contact with the base.
 #[derive(Clone, Debug, PartialEq)]
@@ -162,8 +174,14 @@ pub struct Record {
     /// The file, as the config named it (resolved against the config's
     /// folder).
     pub path: PathBuf,
-    /// Its samples.
+    /// Its samples, accelerations converted to g.
     pub series: Series,
+    /// The unit the file's accelerations were in (`excitation.unit_h`, or
+    /// read from an AT2 header).
+    pub unit: AccelUnit,
+    /// The time step of a one-column file, s (`excitation.dt_h`); `None`
+    /// for files that hold their times.
+    pub dt: Option<f64>,
 }
 
 /// The base motion.
@@ -236,6 +254,12 @@ pub struct RunSpec {
     pub max_steps: u64,
     /// Most events. Default 10⁸.
     pub max_events: u64,
+    /// For a record: `Some(tail)` lets the record decide the length (the
+    /// whole record, then at most `tail` seconds more until the block is at
+    /// rest or overturned; `tau_end` is then unused), `None` runs to
+    /// `tau_end` exactly. Default [`RECORD_TAIL_S`]; a config that gives
+    /// `run.tau_end` or `run.t_end` sets `None`. Unused by other kinds.
+    pub record_tail_s: Option<f64>,
 }
 
 impl RunSpec {
@@ -376,6 +400,7 @@ impl Default for Scenario {
                 zeno_eps: 1e-5,
                 max_steps: limits.max_steps,
                 max_events: limits.max_events,
+                record_tail_s: Some(RECORD_TAIL_S),
             },
             analyses: Analyses {
                 lyapunov: false,
@@ -511,10 +536,70 @@ impl Scenario {
         })
     }
 
+    /// The end of the record in τ (the later of its two components' last
+    /// samples, times p), for a record scenario.
+    pub fn record_end_tau(&self) -> Option<f64> {
+        let x = &self.excitation;
+        if x.kind != ExcitationKind::Record {
+            return None;
+        }
+        let h = x.record_h.as_ref()?.series.duration_s();
+        let v = x.record_v.as_ref().map_or(0.0, |r| r.series.duration_s());
+        Some(h.max(v) * self.geometry().p)
+    }
+
+    /// Where the run ends, τ: `run.tau_end`, or for a record whose length
+    /// decides ([`RunSpec::record_tail_s`]) the record's end plus the tail.
+    pub fn tau_end(&self) -> f64 {
+        match (self.record_end_tau(), self.run.record_tail_s) {
+            (Some(end), Some(tail_s)) => end + tail_s * self.geometry().p,
+            _ => self.run.tau_end,
+        }
+    }
+
+    /// Whether the run covers the whole record (its end is at or after the
+    /// record's last sample); `None` for other kinds. A run that overturns
+    /// earlier still covered it in this sense: nothing was cut short by the
+    /// user.
+    pub fn record_complete(&self) -> Option<bool> {
+        self.record_end_tau().map(|end| self.tau_end() >= end)
+    }
+
+    /// One line per record whose peak suggests a wrong unit (PGA above
+    /// [`IMPLAUSIBLE_PGA_G`] after unit and scale), naming the file and its
+    /// PGA: the run goes on, but the user is told.
+    pub fn warnings(&self) -> Vec<String> {
+        let x = &self.excitation;
+        if x.kind != ExcitationKind::Record {
+            return Vec::new();
+        }
+        [("excitation.unit_h", &x.record_h, x.scale_h), ("excitation.unit_v", &x.record_v, x.scale_v)]
+            .into_iter()
+            .filter_map(|(key, r, scale)| {
+                let r = r.as_ref()?;
+                let pga = r.series.peak_abs_g() * scale.abs();
+                (pga > IMPLAUSIBLE_PGA_G).then(|| {
+                    format!(
+                        "warning: {}: PGA {:.3} g (read in {}, scaled by {}) is implausible for ground motion (above {} g); check {key}",
+                        r.path.display(),
+                        pga,
+                        r.unit,
+                        scale,
+                        IMPLAUSIBLE_PGA_G
+                    )
+                })
+            })
+            .collect()
+    }
+
     /// The run options. The section is taken for harmonic excitation.
     pub fn run_options(&self) -> RunOptions {
         RunOptions {
-            tau_end: self.run.tau_end,
+            tau_end: self.tau_end(),
+            rest_after: match self.run.record_tail_s {
+                Some(_) => self.record_end_tau(),
+                None => None,
+            },
             method: self.run.method(),
             tol: Tolerances {
                 rtol: self.run.rtol,

@@ -172,24 +172,33 @@ impl Scenario {
         check("run.rtol", r.rtol > 0.0 && r.rtol < 1.0, "in (0, 1)", r.rtol)?;
         check("run.atol", r.atol > 0.0 && r.atol < 1.0, "in (0, 1)", r.atol)?;
         check("run.step", r.step > 0.0 && r.step < 1.0, "in (0, 1)", r.step)?;
-        check(
-            "run.tau_end",
-            r.tau_end > 0.0 && r.tau_end <= 1e9,
-            "in (0, 1e9]",
-            r.tau_end,
-        )?;
+        if let Some(tail) = r.record_tail_s {
+            check(
+                "run.tail_s",
+                tail >= 0.0 && tail <= 1e6,
+                "in [0, 1e6] (seconds)",
+                tail,
+            )?;
+        }
+        let tau_end = self.tau_end();
+        let end_key = if self.record_end_tau().is_some() && r.record_tail_s.is_some() {
+            "run.tail_s (the record's length plus the tail, in τ)"
+        } else {
+            "run.tau_end"
+        };
+        check(end_key, tau_end > 0.0 && tau_end <= 1e9, "in (0, 1e9]", tau_end)?;
         check(
             "run.output_dt",
             r.output_dt >= 0.0 && r.output_dt.is_finite(),
             ">= 0 (0 writes no history)",
             r.output_dt,
         )?;
-        if r.output_dt > 0.0 && r.tau_end / r.output_dt > MAX_HISTORY_ROWS {
+        if r.output_dt > 0.0 && tau_end / r.output_dt > MAX_HISTORY_ROWS {
             return Err(ScenarioError::new(
                 "run.output_dt",
                 format!(
                     "{} gives more than 5e7 history rows over run.tau_end = {}; use a larger step or 0",
-                    r.output_dt, r.tau_end
+                    r.output_dt, tau_end
                 ),
             ));
         }

@@ -46,6 +46,7 @@ pub fn opts(tau_end: f64, rtol: f64, output_dt: Option<f64>) -> RunOptions {
         },
         output_dt,
         section: true,
+        rest_after: None,
         limits: Limits::default(),
     }
 }

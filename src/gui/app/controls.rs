@@ -163,8 +163,10 @@ impl RockingApp {
         }
         if ui.button("Export data (CSV)…").clicked() {
             ui.close();
-            if let Some(dir) = rfd::FileDialog::new().pick_folder() {
-                let r = export::data_csv(&dir, &self.hist);
+            if let Some(info) = &self.info
+                && let Some(dir) = rfd::FileDialog::new().pick_folder()
+            {
+                let r = export::data_csv(&dir, &self.hist, &info.geometry);
                 self.message = Some(written(r, || {
                     format!("wrote history.csv, poincare.csv, events.csv in {}", dir.display())
                 }));

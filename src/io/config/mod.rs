@@ -17,16 +17,19 @@ use serde_json::{Value as Json, json};
 use toml::Table;
 
 mod error;
+mod quantity;
 mod raw;
 mod set;
 
 pub use error::ConfigError;
 pub use set::{line_of, set_dotted};
 
-use crate::io::record;
-use crate::model::FlightPolicy;
+use crate::io::record::{self, RecordError, RecordSpec};
+use crate::model::units::AccelUnit;
+use crate::model::{FlightPolicy, Geometry};
 use crate::sim::scenario::{Analyses, Block, ExcitationSpec, Impact, Record, RunSpec};
 use crate::sim::{InitialState, Param, Scenario};
+use quantity::{Dimension, Quantity};
 use raw::{Coefficient, Count, Finite, RawConfig};
 
 /// Every section and key the config accepts.
@@ -38,7 +41,7 @@ pub const KNOWN_KEYS: &[(&str, &[&str])] = &[
         "excitation",
         &[
             "kind", "a_h", "a_v", "omega_h", "omega_v", "phase_h", "phase_v", "shape", "cycles", "file_h", "file_v",
-            "scale_h", "scale_v",
+            "unit_h", "unit_v", "dt_h", "dt_v", "scale_h", "scale_v", "pga_h", "pga_v",
         ],
     ),
     ("initial", &["theta", "theta_dot", "x_dot"]),
@@ -46,6 +49,8 @@ pub const KNOWN_KEYS: &[(&str, &[&str])] = &[
         "run",
         &[
             "tau_end",
+            "t_end",
+            "tail_s",
             "method",
             "rtol",
             "atol",
@@ -69,6 +74,20 @@ pub const KNOWN_KEYS: &[(&str, &[&str])] = &[
 pub struct Source {
     /// Directory that relative paths are relative to.
     pub base_dir: PathBuf,
+}
+
+/// The folder of the shipped presets, in the source tree the binary was
+/// built from: a preset's record path (`../records/kobe-1995.dat`) is
+/// relative to it, so `--preset kobe-rack` runs from any working directory.
+pub const PRESETS_DIR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/assets/presets");
+
+impl Source {
+    /// The source of a shipped preset ([`PRESETS_DIR`]).
+    pub fn preset() -> Self {
+        Self {
+            base_dir: PathBuf::from(PRESETS_DIR),
+        }
+    }
 }
 
 /// Reads a preset shipped in `assets/presets/NAME.toml`.
@@ -175,18 +194,102 @@ fn file_error(file: &str, message: impl std::fmt::Display) -> ConfigError {
     }
 }
 
-/// Reads the record file `path` names, naming `key` in errors.
-fn read_record(key: &'static str, path: Option<&str>, source: &Source) -> Result<Option<Record>, ConfigError> {
-    let Some(p) = path else {
+/// One component's record keys: `file`, `unit`, `dt` and `pga`, named
+/// with their suffix (`_h` or `_v`).
+struct RecordKeys<'a> {
+    suffix: &'static str,
+    file: Option<&'a str>,
+    unit: Option<&'a str>,
+    dt: Option<Quantity>,
+}
+
+impl RecordKeys<'_> {
+    fn key(&self, name: &str) -> String {
+        format!("excitation.{name}{}", self.suffix)
+    }
+}
+
+/// Reads the record file `keys.file` names in its stated unit (and time
+/// step), naming the key at fault in errors; `None` when no file is named.
+fn read_record(keys: &RecordKeys<'_>, source: &Source) -> Result<Option<Record>, ConfigError> {
+    let unit = match keys.unit {
+        None => None,
+        Some(text) => Some(AccelUnit::parse(text).ok_or_else(|| {
+            ConfigError::key(
+                &keys.key("unit"),
+                format!("unknown unit \"{text}\" (known: g, m/s2, cm/s2)"),
+            )
+        })?),
+    };
+    let dt = keys.dt.map(|q| q.resolve(&keys.key("dt"), Dimension::Seconds, &Geometry::new(1.0, 1.0))).transpose()?;
+    let Some(p) = keys.file else {
+        for (name, given) in [("unit", unit.is_some()), ("dt", dt.is_some())] {
+            if given {
+                return Err(ConfigError::key(&keys.key(name), format!("needs {}", keys.key("file"))));
+            }
+        }
         return Ok(None);
     };
     let p = PathBuf::from(p);
     let path = if p.is_absolute() { p } else { source.base_dir.join(p) };
-    let series = record::read_record(&path).map_err(|e| ConfigError::Record {
-        key,
-        message: e.to_string(),
+    let loaded = record::read_record_as(&path, &RecordSpec { unit, dt }).map_err(|e| {
+        let key = match e {
+            RecordError::NoUnit { .. } | RecordError::HeaderNoUnit { .. } | RecordError::UnitConflict { .. } => {
+                keys.key("unit")
+            }
+            RecordError::NoStep { .. } | RecordError::StatedStep { .. } => keys.key("dt"),
+            _ => keys.key("file"),
+        };
+        ConfigError::Key {
+            key,
+            message: e.to_string(),
+        }
     })?;
-    Ok(Some(Record { path, series }))
+    // Absolute, so that summary.json repeats the run from any folder.
+    let path = path.canonicalize().unwrap_or(path);
+    Ok(Some(Record {
+        path,
+        series: loaded.series,
+        unit: loaded.unit,
+        dt,
+    }))
+}
+
+/// The scale factor on a record: `excitation.scale_*`, or the one that
+/// makes its PGA `excitation.pga_*`; both at once is an error.
+fn record_scale(
+    keys: &RecordKeys<'_>,
+    record: Option<&Record>,
+    scale: Option<Finite>,
+    pga: Option<Quantity>,
+    geo: &Geometry,
+    default: f64,
+) -> Result<f64, ConfigError> {
+    let Some(pga) = pga else {
+        return Ok(scale.map_or(default, |s| s.0));
+    };
+    let key = keys.key("pga");
+    if scale.is_some() {
+        return Err(ConfigError::key(
+            &key,
+            format!("give either {} or {key}, not both", keys.key("scale")),
+        ));
+    }
+    let Some(record) = record else {
+        return Err(ConfigError::key(&key, format!("needs {}", keys.key("file"))));
+    };
+    let target = pga.resolve(&key, Dimension::Pga, geo)?;
+    if !(target > 0.0) {
+        return Err(ConfigError::key(&key, format!("must be > 0, got {target} g")));
+    }
+    let peak = record.series.peak_abs_g();
+    if peak == 0.0 {
+        return Err(ConfigError::key(
+            &key,
+            format!("{} has no motion (PGA 0), it cannot be scaled to a PGA", record.path.display()),
+        ));
+    }
+    Ok(target / peak)
 }
 
 /// The first key or section of `table` that the config does not know, as
@@ -236,12 +339,25 @@ pub fn from_table(table: &Table, source: &Source) -> Result<Scenario, ConfigErro
     let d = Scenario::default();
     let num = |x: Option<Finite>| x.map(|v| v.0);
     let coef = |x: Option<Coefficient>| x.map(|v| v.0);
+    // Sizes first: every other quantity with a unit converts with the
+    // block's ψ, p and R.
+    let metres = |key: &str, q: Option<Quantity>, default: f64| -> Result<f64, ConfigError> {
+        q.map_or(Ok(default), |q| q.resolve(key, Dimension::Length, &Geometry::new(1.0, 1.0)))
+    };
     let block = Block {
-        width: num(raw.block.width).unwrap_or(d.block.width),
-        height: num(raw.block.height).unwrap_or(d.block.height),
+        width: metres("block.width", raw.block.width, d.block.width)?,
+        height: metres("block.height", raw.block.height, d.block.height)?,
         mu_s: coef(raw.friction.mu_s).unwrap_or(d.block.mu_s),
         mu_k: coef(raw.friction.mu_k),
     };
+    // The block is checked before any conversion uses its geometry.
+    Scenario {
+        block: block.clone(),
+        ..Scenario::default()
+    }
+    .validate()?;
+    let geo = block.geometry();
+    let q = |key: &str, x: Option<Quantity>, dim: Dimension| x.map(|x| x.resolve(key, dim, &geo)).transpose();
     let impact = Impact {
         law: raw.impact.law.unwrap_or(d.impact.law),
         r: num(raw.impact.r),
@@ -255,40 +371,79 @@ pub fn from_table(table: &Table, source: &Source) -> Result<Scenario, ConfigErro
         // Past u32, the scenario's range check could not see the value.
         Some(Count(n)) => u32::try_from(n).unwrap_or(u32::MAX),
     };
+    let keys_h = RecordKeys {
+        suffix: "_h",
+        file: x.file_h.as_deref(),
+        unit: x.unit_h.as_deref(),
+        dt: x.dt_h,
+    };
+    let keys_v = RecordKeys {
+        suffix: "_v",
+        file: x.file_v.as_deref(),
+        unit: x.unit_v.as_deref(),
+        dt: x.dt_v,
+    };
+    let record_h = read_record(&keys_h, source)?;
+    let record_v = read_record(&keys_v, source)?;
+    let scale_h = record_scale(&keys_h, record_h.as_ref(), x.scale_h, x.pga_h, &geo, dx.scale_h)?;
+    let scale_v = record_scale(&keys_v, record_v.as_ref(), x.scale_v, x.pga_v, &geo, dx.scale_v)?;
     let excitation = ExcitationSpec {
         kind: x.kind.unwrap_or(dx.kind),
-        a_h: num(x.a_h).unwrap_or(dx.a_h),
-        a_v: num(x.a_v).unwrap_or(dx.a_v),
-        omega_h: num(x.omega_h).unwrap_or(dx.omega_h),
-        omega_v: num(x.omega_v),
-        phase_h: num(x.phase_h).unwrap_or(dx.phase_h),
-        phase_v: num(x.phase_v).unwrap_or(dx.phase_v),
+        a_h: q("excitation.a_h", x.a_h, Dimension::Amplitude)?.unwrap_or(dx.a_h),
+        a_v: q("excitation.a_v", x.a_v, Dimension::Amplitude)?.unwrap_or(dx.a_v),
+        omega_h: q("excitation.omega_h", x.omega_h, Dimension::Frequency)?.unwrap_or(dx.omega_h),
+        omega_v: q("excitation.omega_v", x.omega_v, Dimension::Frequency)?,
+        phase_h: q("excitation.phase_h", x.phase_h, Dimension::Phase)?.unwrap_or(dx.phase_h),
+        phase_v: q("excitation.phase_v", x.phase_v, Dimension::Phase)?.unwrap_or(dx.phase_v),
         shape: x.shape.unwrap_or(dx.shape),
         cycles,
-        record_h: read_record("excitation.file_h", x.file_h.as_deref(), source)?,
-        record_v: read_record("excitation.file_v", x.file_v.as_deref(), source)?,
-        scale_h: num(x.scale_h).unwrap_or(dx.scale_h),
-        scale_v: num(x.scale_v).unwrap_or(dx.scale_v),
+        record_h,
+        record_v,
+        scale_h,
+        scale_v,
     };
     let (r, dr) = (&raw.run, &d.run);
     let count = |c: Option<Count>| c.map(|c| c.0);
+    let tau_end = match (r.tau_end, r.t_end) {
+        (Some(_), Some(_)) => {
+            return Err(ConfigError::key(
+                "run.t_end",
+                "give either run.tau_end or run.t_end, not both",
+            ));
+        }
+        (Some(t), None) => Some(t.resolve("run.tau_end", Dimension::Tau, &geo)?),
+        (None, Some(t)) => Some(t.resolve("run.t_end", Dimension::Seconds, &geo)? * geo.p),
+        (None, None) => None,
+    };
+    let tail_s = q("run.tail_s", r.tail_s, Dimension::Seconds)?;
+    if tail_s.is_some() && tau_end.is_some() {
+        return Err(ConfigError::key(
+            "run.tail_s",
+            "a run with run.tau_end or run.t_end ends there; run.tail_s is for runs whose record decides the length",
+        ));
+    }
     let run = RunSpec {
-        tau_end: num(r.tau_end).unwrap_or(dr.tau_end),
+        tau_end: tau_end.unwrap_or(dr.tau_end),
         method: r.method,
         rtol: num(r.rtol).unwrap_or(dr.rtol),
         atol: num(r.atol).unwrap_or(dr.atol),
-        step: num(r.step).unwrap_or(dr.step),
-        output_dt: num(r.output_dt).unwrap_or(dr.output_dt),
-        tumble_theta: num(r.tumble_theta).unwrap_or(dr.tumble_theta),
+        step: q("run.step", r.step, Dimension::Tau)?.unwrap_or(dr.step),
+        output_dt: q("run.output_dt", r.output_dt, Dimension::Tau)?.unwrap_or(dr.output_dt),
+        tumble_theta: q("run.tumble_theta", r.tumble_theta, Dimension::Rotation)?.unwrap_or(dr.tumble_theta),
         flight: r.flight.map_or(dr.flight, FlightPolicy::from),
         zeno_eps: num(r.zeno_eps).unwrap_or(dr.zeno_eps),
         max_steps: count(r.max_steps).unwrap_or(dr.max_steps),
         max_events: count(r.max_events).unwrap_or(dr.max_events),
+        record_tail_s: match tau_end {
+            Some(_) => None,
+            None => Some(tail_s.unwrap_or(crate::sim::scenario::RECORD_TAIL_S)),
+        },
     };
     let initial = InitialState {
-        theta: num(raw.initial.theta).unwrap_or(d.initial.theta),
-        theta_dot: num(raw.initial.theta_dot).unwrap_or(d.initial.theta_dot),
-        x_dot: num(raw.initial.x_dot),
+        theta: q("initial.theta", raw.initial.theta, Dimension::Rotation)?.unwrap_or(d.initial.theta),
+        theta_dot: q("initial.theta_dot", raw.initial.theta_dot, Dimension::AngularVelocity)?
+            .unwrap_or(d.initial.theta_dot),
+        x_dot: q("initial.x_dot", raw.initial.x_dot, Dimension::Velocity)?,
     };
     let (a, da) = (&raw.analysis, &d.analyses);
     let analyses = Analyses {
@@ -345,6 +500,14 @@ pub fn param(key: &str) -> Result<Param, ConfigError> {
 pub fn to_json(s: &Scenario) -> Json {
     let num = |x: f64| if x.is_finite() { json!(x) } else { json!("inf") };
     let path = |r: &Option<Record>| r.as_ref().map(|r| r.path.display().to_string());
+    let unit = |r: &Option<Record>| r.as_ref().map(|r| r.unit.name());
+    let dt = |r: &Option<Record>| r.as_ref().and_then(|r| r.dt);
+    // A record that decides the run's length writes its tail and no end;
+    // any other run writes its end (and no tail, which would conflict).
+    let (tau_end, tail_s) = match (s.record_end_tau(), s.run.record_tail_s) {
+        (Some(_), Some(tail)) => (None, Some(tail)),
+        _ => (Some(s.run.tau_end), None),
+    };
     let x = &s.excitation;
     json!({
         "block": { "width": s.block.width, "height": s.block.height },
@@ -360,11 +523,13 @@ pub fn to_json(s: &Scenario) -> Json {
             "phase_h": x.phase_h, "phase_v": x.phase_v,
             "shape": x.shape.name(), "cycles": x.cycles,
             "file_h": path(&x.record_h), "file_v": path(&x.record_v),
+            "unit_h": unit(&x.record_h), "unit_v": unit(&x.record_v),
+            "dt_h": dt(&x.record_h), "dt_v": dt(&x.record_v),
             "scale_h": x.scale_h, "scale_v": x.scale_v,
         },
         "initial": { "theta": s.initial.theta, "theta_dot": s.initial.theta_dot, "x_dot": s.initial.x_dot },
         "run": {
-            "tau_end": s.run.tau_end, "method": s.run.method().name(),
+            "tau_end": tau_end, "tail_s": tail_s, "method": s.run.method().name(),
             "rtol": s.run.rtol, "atol": s.run.atol, "step": s.run.step,
             "output_dt": s.run.output_dt, "tumble_theta": s.run.tumble_theta,
             "flight": match s.run.flight { FlightPolicy::Stop => "stop", FlightPolicy::Ignore => "ignore" },
@@ -388,7 +553,7 @@ pub fn load_table(preset: Option<&str>, file: Option<&Path>, sets: &[String]) ->
         (name, None) => {
             let name = name.unwrap_or("default");
             let text = preset_text(name)?;
-            (parse_toml(text, &format!("preset {name}"))?, Source::default())
+            (parse_toml(text, &format!("preset {name}"))?, Source::preset())
         }
     };
     apply_sets(&mut table, sets)?;

@@ -12,6 +12,7 @@ use std::fmt;
 use serde::Deserialize;
 use serde::de::{self, Deserializer, Visitor};
 
+use super::quantity::Quantity;
 use crate::model::FlightPolicy;
 use crate::sim::Method;
 use crate::sim::scenario::{ExcitationKind, LawKind, LyapunovChoice, ShapeKind, SpectrumRange};
@@ -36,12 +37,12 @@ pub struct RawConfig {
     pub analysis: RawAnalysis,
 }
 
-/// `[block]`: width and height in metres.
+/// `[block]`: width and height (bare: metres).
 #[derive(Debug, Default, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct RawBlock {
-    pub width: Option<Finite>,
-    pub height: Option<Finite>,
+    pub width: Option<Quantity>,
+    pub height: Option<Quantity>,
 }
 
 /// `[friction]`: μ_s and μ_k, either may be `inf`.
@@ -72,40 +73,48 @@ pub struct RawImpact {
 #[serde(default, deny_unknown_fields)]
 pub struct RawExcitation {
     pub kind: Option<ExcitationKind>,
-    pub a_h: Option<Finite>,
-    pub a_v: Option<Finite>,
-    pub omega_h: Option<Finite>,
-    pub omega_v: Option<Finite>,
-    pub phase_h: Option<Finite>,
-    pub phase_v: Option<Finite>,
+    pub a_h: Option<Quantity>,
+    pub a_v: Option<Quantity>,
+    pub omega_h: Option<Quantity>,
+    pub omega_v: Option<Quantity>,
+    pub phase_h: Option<Quantity>,
+    pub phase_v: Option<Quantity>,
     pub shape: Option<ShapeKind>,
     pub cycles: Option<Count>,
     pub file_h: Option<String>,
     pub file_v: Option<String>,
+    pub unit_h: Option<String>,
+    pub unit_v: Option<String>,
+    pub dt_h: Option<Quantity>,
+    pub dt_v: Option<Quantity>,
     pub scale_h: Option<Finite>,
     pub scale_v: Option<Finite>,
+    pub pga_h: Option<Quantity>,
+    pub pga_v: Option<Quantity>,
 }
 
 /// `[initial]`.
 #[derive(Debug, Default, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct RawInitial {
-    pub theta: Option<Finite>,
-    pub theta_dot: Option<Finite>,
-    pub x_dot: Option<Finite>,
+    pub theta: Option<Quantity>,
+    pub theta_dot: Option<Quantity>,
+    pub x_dot: Option<Quantity>,
 }
 
 /// `[run]`.
 #[derive(Debug, Default, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct RawRun {
-    pub tau_end: Option<Finite>,
+    pub tau_end: Option<Quantity>,
+    pub t_end: Option<Quantity>,
+    pub tail_s: Option<Quantity>,
     pub method: Option<Method>,
     pub rtol: Option<Finite>,
     pub atol: Option<Finite>,
-    pub step: Option<Finite>,
-    pub output_dt: Option<Finite>,
-    pub tumble_theta: Option<Finite>,
+    pub step: Option<Quantity>,
+    pub output_dt: Option<Quantity>,
+    pub tumble_theta: Option<Quantity>,
     pub flight: Option<Flight>,
     pub zeno_eps: Option<Finite>,
     pub max_steps: Option<Count>,

@@ -3,25 +3,55 @@
 
 use super::{RecordError, check_accel, excerpt, fields, parse_float, parse_number};
 use crate::model::excitation::record::Series;
+use crate::model::units::AccelUnit;
 
 /// 1-based number of the AT2 header line holding NPTS and DT.
 const AT2_COUNT_LINE: usize = 4;
 
-/// Parses an AT2 file split into lines (see [`read_record`]).
-pub(super) fn parse_at2(file: &str, lines: &[&str]) -> Result<Series, RecordError> {
-    let (Some(description), Some(count_line)) = (lines.get(2), lines.get(AT2_COUNT_LINE - 1)) else {
+/// 1-based number of the AT2 header line describing the series.
+const AT2_DESCRIPTION_LINE: usize = 3;
+
+/// Parses an AT2 file split into lines (see [`read_record_as`]), in the
+/// header's unit or, when the header names none, the `stated` one; returns
+/// the samples in g and the unit they were in.
+///
+/// [`read_record_as`]: super::read_record_as
+pub(super) fn parse_at2(
+    file: &str,
+    lines: &[&str],
+    stated: Option<AccelUnit>,
+) -> Result<(Series, AccelUnit), RecordError> {
+    let (Some(description), Some(count_line)) = (lines.get(AT2_DESCRIPTION_LINE - 1), lines.get(AT2_COUNT_LINE - 1))
+    else {
         return Err(RecordError::TruncatedHeader {
             file: file.to_owned(),
             found: lines.len(),
         });
     };
-    if !describes_acceleration_in_g(description) {
+    let Ok(header_unit) = header_unit(description) else {
         return Err(RecordError::Units {
             file: file.to_owned(),
-            line: 3,
+            line: AT2_DESCRIPTION_LINE,
             text: excerpt(description),
         });
-    }
+    };
+    let unit = match (header_unit, stated) {
+        (Some(header), Some(stated)) if header != stated => {
+            return Err(RecordError::UnitConflict {
+                file: file.to_owned(),
+                line: AT2_DESCRIPTION_LINE,
+                header,
+                stated,
+            });
+        }
+        (Some(unit), _) | (None, Some(unit)) => unit,
+        (None, None) => {
+            return Err(RecordError::HeaderNoUnit {
+                file: file.to_owned(),
+                line: AT2_DESCRIPTION_LINE,
+            });
+        }
+    };
     let Some((npts, dt)) = parse_npts_dt(count_line) else {
         return Err(RecordError::Header {
             file: file.to_owned(),
@@ -49,7 +79,7 @@ pub(super) fn parse_at2(file: &str, lines: &[&str]) -> Result<Series, RecordErro
     for (index, line) in lines.iter().enumerate().skip(AT2_COUNT_LINE) {
         let line_no = index + 1;
         for field in fields(line) {
-            let value = parse_number(file, line_no, field)?;
+            let value = unit.to_g(parse_number(file, line_no, field)?);
             check_accel(file, line_no, value)?;
             found += 1;
             if found <= npts {
@@ -75,29 +105,33 @@ pub(super) fn parse_at2(file: &str, lines: &[&str]) -> Result<Series, RecordErro
     if !times_s.last().is_some_and(|t| t.is_finite()) {
         return Err(bad_step());
     }
-    Ok(Series::from_checked(times_s, accel_g))
+    Ok((Series::from_checked(times_s, accel_g), unit))
 }
 
-/// Whether an AT2 description line (line 3) allows an acceleration in g:
-/// it must not describe a velocity or displacement, and if it names
-/// `UNITS OF x`, x must be `G`. Lenient otherwise, since the wording varies
-/// between database releases.
-fn describes_acceleration_in_g(line: &str) -> bool {
+/// The unit an AT2 description line (line 3) names: `Ok(Some(unit))` for
+/// `UNITS OF x` with x one of g, m/s², cm/s² (any spelling
+/// [`AccelUnit::parse`] reads), `Ok(None)` when it names no unit, and
+/// `Err(())` when it describes a velocity or displacement or names another
+/// unit. Lenient about the rest of the wording, which varies between
+/// database releases.
+fn header_unit(line: &str) -> Result<Option<AccelUnit>, ()> {
     let upper = line.to_ascii_uppercase();
     if upper.contains("VELOCITY") || upper.contains("DISPLACEMENT") {
-        return false;
+        return Err(());
     }
     const UNITS_OF: &str = "UNITS OF";
-    match upper.find(UNITS_OF) {
-        Some(position) => upper
-            .get(position + UNITS_OF.len()..)
-            .and_then(|rest| {
-                rest.split(|c: char| !c.is_ascii_alphanumeric() && c != '/')
-                    .find(|word| !word.is_empty())
-            })
-            .is_some_and(|unit| unit == "G"),
-        None => true,
-    }
+    let Some(position) = upper.find(UNITS_OF) else {
+        return Ok(None);
+    };
+    upper
+        .get(position + UNITS_OF.len()..)
+        .and_then(|rest| {
+            rest.split(|c: char| !c.is_ascii_alphanumeric() && c != '/' && c != '^')
+                .find(|word| !word.is_empty())
+        })
+        .and_then(AccelUnit::parse)
+        .map(Some)
+        .ok_or(())
 }
 
 /// Reads `(NPTS, DT)` from an AT2 count line in any accepted form; `None` if

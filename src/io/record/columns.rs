@@ -1,36 +1,53 @@
-//! Two-column `time_s accel_g` text (grammar:
-//! [`read_record`](super::read_record)).
+//! Text records: two columns `time_s accel`, or one column of accelerations
+//! at a stated time step (grammar: [`read_record_as`](super::read_record_as)).
 
-use super::{RecordError, check_accel, fields, parse_float, parse_number};
+use super::{RecordError, RecordFormat, check_accel, fields, is_comment, parse_float, parse_number};
 use crate::model::excitation::record::Series;
+use crate::model::units::AccelUnit;
 
-/// Parses a two-column file split into lines (see [`read_record`]).
-pub(super) fn parse_columns(file: &str, lines: &[&str]) -> Result<Series, RecordError> {
+/// Parses a text record split into lines: one column at step `dt` (s) when
+/// it is given, two columns otherwise; accelerations in `unit`, returned in
+/// g.
+pub(super) fn parse_columns(
+    file: &str,
+    lines: &[&str],
+    unit: AccelUnit,
+    dt: Option<f64>,
+) -> Result<(Series, RecordFormat), RecordError> {
+    let expected = if dt.is_some() { 1 } else { 2 };
     let mut times_s: Vec<f64> = Vec::new();
     let mut accel_g: Vec<f64> = Vec::new();
     let mut first_content_line = true;
     for (index, raw) in lines.iter().enumerate() {
         let line_no = index + 1;
         let line = raw.trim();
-        if line.is_empty() || line.starts_with('#') {
+        if line.is_empty() || is_comment(line) {
             continue;
         }
         let is_first = std::mem::replace(&mut first_content_line, false);
-        let mut parts = fields(line);
-        let (first, second, rest) = (parts.next(), parts.next(), parts.count());
-        if is_first && first.is_some_and(|field| parse_float(field).is_none()) {
+        let parts: Vec<&str> = fields(line).take(expected + 8).collect();
+        if is_first && parts.first().is_some_and(|field| parse_float(field).is_none()) {
             continue; // the optional header line
         }
-        let (Some(time_field), Some(accel_field), 0) = (first, second, rest) else {
-            let found = usize::from(first.is_some()) + usize::from(second.is_some()) + rest;
-            return Err(RecordError::Columns {
-                file: file.to_owned(),
-                line: line_no,
-                found,
-            });
+        let (time, accel_field) = match (dt, parts.as_slice()) {
+            (Some(dt), [accel]) => (times_s.len() as f64 * dt, *accel),
+            (None, [time, accel]) => (parse_number(file, line_no, time)?, *accel),
+            (None, [_]) if times_s.is_empty() => {
+                return Err(RecordError::NoStep {
+                    file: file.to_owned(),
+                    line: line_no,
+                });
+            }
+            _ => {
+                return Err(RecordError::Columns {
+                    file: file.to_owned(),
+                    line: line_no,
+                    expected,
+                    found: fields(line).count(),
+                });
+            }
         };
-        let time = parse_number(file, line_no, time_field)?;
-        let value = parse_number(file, line_no, accel_field)?;
+        let value = unit.to_g(parse_number(file, line_no, accel_field)?);
         match times_s.last() {
             None if time < 0.0 => {
                 return Err(RecordError::NegativeTime {
@@ -59,5 +76,16 @@ pub(super) fn parse_columns(file: &str, lines: &[&str]) -> Result<Series, Record
             found: times_s.len(),
         });
     }
-    Ok(Series::from_checked(times_s, accel_g))
+    if !times_s.last().is_some_and(|t| t.is_finite()) {
+        return Err(RecordError::StatedStep {
+            file: file.to_owned(),
+            dt: dt.unwrap_or(f64::NAN),
+        });
+    }
+    let format = if dt.is_some() {
+        RecordFormat::OneColumn
+    } else {
+        RecordFormat::TwoColumn
+    };
+    Ok((Series::from_checked(times_s, accel_g), format))
 }

@@ -1,9 +1,14 @@
-//! Reading ground-acceleration records from files: PEER NGA `.AT2` and
-//! two-column `time_s accel_g` text, parsed into the model's [`Series`].
+//! Reading ground-acceleration records from files: PEER NGA `.AT2`,
+//! two-column `time accel` text and one-column text with a stated time step,
+//! parsed into the model's [`Series`] (accelerations in g).
 //!
 //! Contract:
-//! - Units: times in seconds (s), accelerations as fractions of g (a/g,
-//!   g = 9.81 m/s²), as the files hold them; no conversion.
+//! - Units: times in seconds (s). Accelerations are converted to g here,
+//!   once, from the unit an AT2 header states or the caller states
+//!   ([`RecordSpec::unit`]); a text record whose unit nobody states is
+//!   refused ([`RecordError::NoUnit`]), and a stated unit that contradicts
+//!   an AT2 header is an error ([`RecordError::UnitConflict`]): guessing
+//!   units is how objects get mis-designed.
 //! - Formats: see [`read_record`] for the exact grammar of each (`at2` and
 //!   `columns` parse them; the helpers here are shared by both).
 //! - Errors: malformed input is never repaired silently. Every problem is a
@@ -22,6 +27,7 @@ mod tests;
 use std::path::Path;
 
 use crate::model::excitation::record::{MAX_ABS_ACCEL_G, Series};
+use crate::model::units::AccelUnit;
 use at2::parse_at2;
 use columns::parse_columns;
 
@@ -71,9 +77,9 @@ pub enum RecordError {
         /// Number of lines present.
         found: usize,
     },
-    /// An AT2 header says the series is not an acceleration in g (a
-    /// velocity or displacement file, or other units).
-    #[error("{file}:{line}: not an acceleration record in units of g: {text:?}")]
+    /// An AT2 header says the series is not an acceleration, or names a
+    /// unit that is not one of g, m/s², cm/s².
+    #[error("{file}:{line}: not an acceleration record in g, m/s2 or cm/s2: {text:?}")]
     Units {
         /// The path as given.
         file: String,
@@ -111,15 +117,59 @@ pub enum RecordError {
         /// The time step read, s.
         dt: f64,
     },
-    /// A two-column line has another number of fields.
-    #[error("{file}:{line}: expected 2 columns, found {found}")]
+    /// A data line has another number of fields than the format's.
+    #[error("{file}:{line}: expected {expected} {}, found {found}", if *expected == 1 { "column (a time step is set)" } else { "columns" })]
     Columns {
         /// The path as given.
         file: String,
         /// 1-based line number.
         line: usize,
+        /// Number of fields the format has (1 or 2).
+        expected: usize,
         /// Number of fields found.
         found: usize,
+    },
+    /// A text record, whose unit nobody stated.
+    #[error("{file}: a text record does not say its unit; state it (g, m/s2 or cm/s2)")]
+    NoUnit {
+        /// The path as given.
+        file: String,
+    },
+    /// An AT2 file whose header names no unit, with none stated.
+    #[error("{file}:{line}: the AT2 header names no unit (\"UNITS OF ...\"); state it (g, m/s2 or cm/s2)")]
+    HeaderNoUnit {
+        /// The path as given.
+        file: String,
+        /// 1-based line of the description.
+        line: usize,
+    },
+    /// A stated unit contradicts the AT2 header's.
+    #[error("{file}:{line}: the header says the unit is {header}, but {stated} was stated")]
+    UnitConflict {
+        /// The path as given.
+        file: String,
+        /// 1-based line of the header's unit.
+        line: usize,
+        /// The header's unit.
+        header: AccelUnit,
+        /// The stated unit.
+        stated: AccelUnit,
+    },
+    /// One value per line and no time step stated.
+    #[error("{file}:{line}: one value per line: a one-column record needs its time step (s) stated")]
+    NoStep {
+        /// The path as given.
+        file: String,
+        /// 1-based line of the first value.
+        line: usize,
+    },
+    /// A stated time step that is not a finite positive number.
+    #[error("{file}: invalid time step {dt} s (need a finite dt > 0)")]
+    StatedStep {
+        /// The path as given.
+        file: String,
+        /// The step stated, s.
+        dt: f64,
     },
     /// A field is not a number.
     #[error("{file}:{line}: cannot parse {text:?} as a number")]
@@ -163,7 +213,7 @@ pub enum RecordError {
         /// The previous time, s.
         previous: f64,
     },
-    /// |acceleration| exceeds [`MAX_ABS_ACCEL_G`].
+    /// |acceleration| exceeds [`MAX_ABS_ACCEL_G`] (after conversion to g).
     #[error("{file}:{line}: |acceleration| of {value} g exceeds the {max} g sanity limit", max = MAX_ABS_ACCEL_G)]
     TooLarge {
         /// The path as given.
@@ -197,35 +247,98 @@ pub enum RecordError {
 /// about 50 MB; beyond 200 MB a file is not a ground-motion record.
 pub const MAX_RECORD_BYTES: u64 = 200 << 20;
 
-/// Reads a ground-acceleration record from `path`.
+/// What the caller states about a record file: its unit and, for a
+/// one-column file, its time step.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct RecordSpec {
+    /// The unit of the accelerations. Required for text records; for an
+    /// AT2 file it must agree with the header (or supply the unit a header
+    /// leaves out).
+    pub unit: Option<AccelUnit>,
+    /// Time step, s, of a one-column file (sample k at k·dt). When set the
+    /// file must have one value per line; when not, two (time, accel).
+    pub dt: Option<f64>,
+}
+
+impl RecordSpec {
+    /// A record in `unit`, two-column or AT2.
+    pub fn stated(unit: AccelUnit) -> Self {
+        Self { unit: Some(unit), dt: None }
+    }
+}
+
+/// The format a record was read in.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RecordFormat {
+    /// PEER NGA `.AT2`.
+    At2,
+    /// Two columns: time (s) and acceleration.
+    TwoColumn,
+    /// One column of accelerations at a stated time step.
+    OneColumn,
+}
+
+impl RecordFormat {
+    /// The format's name in outputs: `at2`, `two-column`, `one-column`.
+    pub fn name(self) -> &'static str {
+        match self {
+            RecordFormat::At2 => "at2",
+            RecordFormat::TwoColumn => "two-column",
+            RecordFormat::OneColumn => "one-column",
+        }
+    }
+}
+
+/// A record as read: its samples in g, and how they were read.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LoadedRecord {
+    /// Times in s, accelerations converted to g.
+    pub series: Series,
+    /// The unit the file's accelerations were in.
+    pub unit: AccelUnit,
+    /// The format.
+    pub format: RecordFormat,
+}
+
+/// Reads a ground-acceleration record from `path`, converting its
+/// accelerations from their unit to g.
 ///
-/// Two formats are recognised:
+/// Three formats are recognised:
 /// - **PEER NGA `.AT2`**, chosen when the extension is `.at2` (any case) or
-///   the 4th line is not a `#` comment and contains `NPTS`. Four header
-///   lines: a title, the event/station, the series description (it must be
-///   an acceleration; if it names `UNITS OF x`, x must be `G`), then NPTS and
-///   DT in any of the forms `NPTS=  5590, DT=   .0050 SEC`,
-///   `NPTS=5590 DT=0.005` (commas and a trailing `SEC` optional) or
-///   `  5590   0.00500   NPTS, DT`. Then exactly NPTS values in free format
-///   (whitespace or commas; E or Fortran D exponents, e.g. `-.1234567E-02`).
-///   Sample k is at time k·DT s, k = 0..NPTS-1.
-/// - **Two-column text** otherwise: `time_s accel_g` per line, separated by
-///   whitespace and/or a comma. Blank lines and lines starting with `#`
-///   (after trimming) are ignored; the first other line may be a header,
-///   recognised by a first field that is not a number.
+///   the 4th line is not a comment and contains `NPTS`. Four header lines: a
+///   title, the event/station, the series description (it must be an
+///   acceleration; its `UNITS OF x` gives the unit: `G`, `CM/S/S`,
+///   `CM/SEC/SEC`, `M/S/S`, ...), then NPTS and DT in any of the forms
+///   `NPTS=  5590, DT=   .0050 SEC`, `NPTS=5590 DT=0.005` (commas and a
+///   trailing `SEC` optional) or `  5590   0.00500   NPTS, DT`. Then
+///   exactly NPTS values in free format (whitespace, commas or semicolons;
+///   E or Fortran D exponents, e.g. `-.1234567E-02`). Sample k is at k·DT s.
+/// - **Two-column text** (no `spec.dt`): `time_s accel` per line.
+/// - **One-column text** (`spec.dt` set): one acceleration per line, sample
+///   k at k·dt s.
 ///
-/// Accelerations are in g; times in s, the first >= 0, strictly increasing.
+/// In text files fields are separated by whitespace, commas and/or
+/// semicolons; blank lines and comment lines (starting with `#`, `%`, `!`
+/// or `//` after trimming) are ignored; the first other line may be a
+/// header, recognised by a first field that is not a number. Times are in
+/// s, the first >= 0, strictly increasing.
 ///
 /// # Errors
 /// A [`RecordError`] naming the file (as given) and the 1-based line for: an
 /// I/O failure, a directory, a device or FIFO, a file over
 /// [`MAX_RECORD_BYTES`], an empty file, a bad AT2 header (unparseable
-/// NPTS/DT, NPTS = 0, DT <= 0, not in g), a count of values other than NPTS,
-/// a wrong number of columns, a field that is not a finite number, a negative
-/// or non-increasing time, |a| > [`MAX_ABS_ACCEL_G`], or fewer than 2
-/// samples. Never panics.
-pub fn read_record(path: &Path) -> Result<Series, RecordError> {
+/// NPTS/DT, NPTS = 0, DT <= 0, not an acceleration), a unit nobody states or
+/// that contradicts the header, a one-column file without a time step, a
+/// count of values other than NPTS, a wrong number of columns, a field that
+/// is not a finite number, a negative or non-increasing time,
+/// |a| > [`MAX_ABS_ACCEL_G`] g, or fewer than 2 samples. Never panics.
+pub fn read_record_as(path: &Path, spec: &RecordSpec) -> Result<LoadedRecord, RecordError> {
     let file = path.display().to_string();
+    if let Some(dt) = spec.dt
+        && !(dt.is_finite() && dt > 0.0)
+    {
+        return Err(RecordError::StatedStep { file, dt });
+    }
     let io_error = |error| RecordError::Io {
         file: file.clone(),
         error,
@@ -260,12 +373,25 @@ pub fn read_record(path: &Path) -> Result<Series, RecordError> {
         .is_some_and(|ext| ext.eq_ignore_ascii_case("at2"));
     let at2_header = lines
         .get(3)
-        .is_some_and(|line| !line.trim_start().starts_with('#') && line.to_ascii_uppercase().contains("NPTS"));
+        .is_some_and(|line| !is_comment(line.trim()) && line.to_ascii_uppercase().contains("NPTS"));
     if at2_extension || at2_header {
-        parse_at2(&file, &lines)
-    } else {
-        parse_columns(&file, &lines)
+        let (series, unit) = parse_at2(&file, &lines, spec.unit)?;
+        return Ok(LoadedRecord {
+            series,
+            unit,
+            format: RecordFormat::At2,
+        });
     }
+    let Some(unit) = spec.unit else {
+        return Err(RecordError::NoUnit { file });
+    };
+    let (series, format) = parse_columns(&file, &lines, unit, spec.dt)?;
+    Ok(LoadedRecord { series, unit, format })
+}
+
+/// Whether a trimmed text line is a comment.
+fn is_comment(line: &str) -> bool {
+    line.starts_with('#') || line.starts_with('%') || line.starts_with('!') || line.starts_with("//")
 }
 
 /// Parses a float, also with a Fortran `D` exponent (`1.0D-02`).
@@ -307,9 +433,10 @@ fn check_accel(file: &str, line: usize, value: f64) -> Result<(), RecordError> {
     }
 }
 
-/// The fields of a data line: separated by whitespace and/or commas.
+/// The fields of a data line: separated by whitespace, commas and/or
+/// semicolons.
 fn fields(line: &str) -> impl Iterator<Item = &str> {
-    line.split(|c: char| c.is_whitespace() || c == ',')
+    line.split(|c: char| c.is_whitespace() || c == ',' || c == ';')
         .filter(|field| !field.is_empty())
 }
 /// A trimmed, shortened copy of `text` for an error message, so that the

@@ -10,6 +10,12 @@ const SAMPLE_AT2: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/sample
 const SAMPLE_V: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/sample_v.txt");
 const BAD_LINE: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/bad_line.txt");
 
+/// Reads `path` as a record in g (the unit of every test file here unless a
+/// test states another).
+fn read_record(path: &Path) -> Result<Series, RecordError> {
+    read_record_as(path, &RecordSpec::stated(AccelUnit::G)).map(|r| r.series)
+}
+
 /// A uniquely named temporary file, removed on drop.
 struct TempFile(PathBuf);
 
@@ -154,7 +160,7 @@ fn at2_rejects_other_units_and_quantities() {
     for line3 in [
         "VELOCITY TIME SERIES IN UNITS OF CM/SEC",
         "DISPLACEMENT TIME SERIES IN UNITS OF CM",
-        "ACCELERATION TIME SERIES IN UNITS OF CM/S/S",
+        "ACCELERATION TIME SERIES IN UNITS OF FT/S/S",
     ] {
         let content = format!("TITLE\nEVENT\n{line3}\nNPTS=2, DT=0.01 SEC\n0.1 0.2\n");
         let m = err_str("units.at2", &content);
@@ -319,4 +325,100 @@ proptest! {
             prop_assert!(Series::new(s.times_s().to_vec(), s.accel_g().to_vec()).is_ok());
         }
     }
+}
+
+// ---- Units and formats ----
+
+fn read_as(name: &str, content: &str, spec: RecordSpec) -> Result<LoadedRecord, RecordError> {
+    let f = TempFile::new(name, content.as_bytes());
+    read_record_as(&f.0, &spec)
+}
+
+#[test]
+fn the_same_motion_in_g_m_s2_and_cm_s2_reads_as_the_same_g() {
+    let g = crate::model::geometry::G;
+    let values = [0.0, 0.125, -0.3, 0.02];
+    let text = |factor: f64| -> String {
+        values
+            .iter()
+            .enumerate()
+            .map(|(k, v)| format!("{} {}\n", k as f64 * 0.01, v * factor))
+            .collect()
+    };
+    for (unit, factor) in [(AccelUnit::G, 1.0), (AccelUnit::MetresPerSecond2, g), (AccelUnit::CentimetresPerSecond2, 100.0 * g)] {
+        let r = read_as("u.txt", &text(factor), RecordSpec::stated(unit)).unwrap();
+        assert_eq!(r.unit, unit);
+        assert_eq!(r.format, RecordFormat::TwoColumn);
+        for (a, v) in r.series.accel_g().iter().zip(values) {
+            assert!((a - v).abs() <= 1e-15, "{unit}: {a} vs {v}");
+        }
+    }
+}
+
+#[test]
+fn a_text_record_without_a_stated_unit_is_refused() {
+    let m = read_as("nounit.txt", "0 0.1\n0.01 0.2\n", RecordSpec::default())
+        .unwrap_err()
+        .to_string();
+    assert!(m.ends_with("nounit.txt: a text record does not say its unit; state it (g, m/s2 or cm/s2)"), "{m}");
+}
+
+#[test]
+fn at2_units_come_from_the_header_and_a_contradiction_is_an_error() {
+    let g = crate::model::geometry::G;
+    let body = |unit: &str| format!("TITLE\nEVENT\nACCELERATION TIME SERIES IN UNITS OF {unit}\nNPTS=2, DT=0.01 SEC\n98.1 -9.81\n");
+    let r = read_as("cm.at2", &body("CM/S/S"), RecordSpec::default()).unwrap();
+    assert_eq!(r.unit, AccelUnit::CentimetresPerSecond2);
+    assert!((r.series.accel_g()[0] - 0.1).abs() < 1e-15 && (r.series.accel_g()[1] + 0.01).abs() < 1e-15);
+    let r = read_as("cmsec.at2", &body("CM/SEC/SEC"), RecordSpec::default()).unwrap();
+    assert_eq!(r.unit, AccelUnit::CentimetresPerSecond2);
+    let r = read_as("g.at2", &body("G").replace("98.1 -9.81", "0.5 0.25"), RecordSpec::default()).unwrap();
+    assert_eq!((r.unit, r.series.accel_g()[0]), (AccelUnit::G, 0.5));
+    let m = read_as("conflict.at2", &body("G"), RecordSpec::stated(AccelUnit::MetresPerSecond2))
+        .unwrap_err()
+        .to_string();
+    assert!(m.ends_with("conflict.at2:3: the header says the unit is g, but m/s2 was stated"), "{m}");
+    // A header naming no unit takes the stated one, and without one is refused.
+    let silent = "TITLE\nEVENT\nACCELERATION TIME SERIES\nNPTS=2, DT=0.01 SEC\n9.81 0\n";
+    let r = read_as("silent.at2", silent, RecordSpec::stated(AccelUnit::MetresPerSecond2)).unwrap();
+    assert!((r.series.accel_g()[0] - 1.0).abs() < 1e-15, "{}", g);
+    let m = read_as("silent.at2", silent, RecordSpec::default()).unwrap_err().to_string();
+    assert!(m.ends_with("silent.at2:3: the AT2 header names no unit (\"UNITS OF ...\"); state it (g, m/s2 or cm/s2)"), "{m}");
+}
+
+#[test]
+fn one_column_records_need_a_step_and_take_comments_and_semicolons() {
+    let content = "% exported by a strong-motion network\n! unit: cm/s2\n// dt 0.005 s\naccel\n1.0\n-2.0\n\n3.0\n";
+    let spec = RecordSpec {
+        unit: Some(AccelUnit::CentimetresPerSecond2),
+        dt: Some(0.005),
+    };
+    let r = read_as("one.txt", content, spec).unwrap();
+    assert_eq!(r.format, RecordFormat::OneColumn);
+    assert_eq!(r.series.times_s(), &[0.0, 0.005, 0.01]);
+    assert!((r.series.accel_g()[2] - 3.0 / 981.0).abs() < 1e-15);
+    let m = read_as("one.txt", content, RecordSpec::stated(AccelUnit::G)).unwrap_err().to_string();
+    assert!(m.ends_with("one.txt:5: one value per line: a one-column record needs its time step (s) stated"), "{m}");
+    let m = read_as("two.txt", "0;0.1\n0.01;0.2\n", spec).unwrap_err().to_string();
+    assert!(m.ends_with("two.txt:1: expected 1 column (a time step is set), found 2"), "{m}");
+    let r = read_as("semi.txt", "0;0.1\n0.01 ; 0.2\n", RecordSpec::stated(AccelUnit::G)).unwrap();
+    assert_eq!(r.series.accel_g(), &[0.1, 0.2]);
+    for dt in [0.0, -0.01, f64::NAN, f64::INFINITY] {
+        let spec = RecordSpec { unit: Some(AccelUnit::G), dt: Some(dt) };
+        let m = read_as("dt.txt", "0.1\n0.2\n", spec).unwrap_err().to_string();
+        assert!(m.contains("dt.txt: invalid time step"), "{m}");
+    }
+    let m = read_as("single.txt", "0.1\n", spec).unwrap_err().to_string();
+    assert!(m.ends_with("single.txt: need at least 2 samples, found 1"), "{m}");
+}
+
+#[test]
+fn the_sanity_limit_applies_after_conversion() {
+    // 2000 m/s² is 204 g: refused; 2000 cm/s² is 2 g: read.
+    let content = "0 0\n0.01 2000\n";
+    let m = read_as("big.txt", content, RecordSpec::stated(AccelUnit::MetresPerSecond2))
+        .unwrap_err()
+        .to_string();
+    assert!(m.contains("big.txt:2: |acceleration| of 203."), "{m}");
+    assert!(read_as("big.txt", content, RecordSpec::stated(AccelUnit::CentimetresPerSecond2)).is_ok());
 }

@@ -219,6 +219,85 @@ impl Series {
     }
 }
 
+/// Peak values of the ground motion a series describes, after a scale
+/// factor: what an engineer quotes for a record.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct GroundPeaks {
+    /// Peak ground acceleration, g.
+    pub pga_g: f64,
+    /// Peak ground velocity, m/s.
+    pub pgv_m_s: f64,
+    /// Peak ground displacement, m.
+    pub pgd_m: f64,
+}
+
+impl Series {
+    /// The peaks of `scale` times this record, with velocity and
+    /// displacement integrated exactly from the piecewise-linear
+    /// acceleration the model sees, the ground at rest at t = 0 (before the
+    /// first sample it does not move).
+    ///
+    /// No baseline correction is applied: these are the peaks of the base
+    /// motion as simulated. Taken up to the last sample; an uncorrected
+    /// record that ends with a residual velocity drifts on after it, which
+    /// the block (whose frame is the base's) never feels.
+    pub fn peaks(&self, scale: f64) -> GroundPeaks {
+        let g = crate::model::geometry::G;
+        let (mut v, mut d) = (0.0_f64, 0.0_f64);
+        let (mut pgv, mut pgd) = (0.0_f64, 0.0_f64);
+        for (t, a) in self.times_s.windows(2).zip(self.accel_g.windows(2)) {
+            let h = t[1] - t[0];
+            // Over one interval a is linear, v quadratic and d cubic; the
+            // peak of |v| inside an interval is at a zero of a, checked too.
+            let (a0, a1) = (scale * g * a[0], scale * g * a[1]);
+            if a0 * a1 < 0.0 {
+                let s = a0 / (a0 - a1) * h;
+                let v_mid = v + a0 * s + 0.5 * (a1 - a0) / h * s * s;
+                pgv = pgv.max(v_mid.abs());
+            }
+            // |d| peaks inside the interval where v = v + a0 s + k s²/2
+            // crosses zero.
+            let k = (a1 - a0) / h;
+            for s in velocity_zeros(v, a0, k, h) {
+                pgd = pgd.max((d + v * s + 0.5 * a0 * s * s + k * s * s * s / 6.0).abs());
+            }
+            let v_next = v + 0.5 * (a0 + a1) * h;
+            d += v * h + (2.0 * a0 + a1) * h * h / 6.0;
+            v = v_next;
+            pgv = pgv.max(v.abs());
+            pgd = pgd.max(d.abs());
+        }
+        GroundPeaks {
+            pga_g: scale.abs() * self.peak_abs_g(),
+            pgv_m_s: pgv,
+            pgd_m: pgd,
+        }
+    }
+
+    /// This series with every acceleration multiplied by `factor` (a unit
+    /// conversion), or the error naming the first sample that then breaks
+    /// the |a| limit.
+    pub fn scaled(&self, factor: f64) -> Result<Series, SeriesError> {
+        Series::new(self.times_s.clone(), self.accel_g.iter().map(|a| a * factor).collect())
+    }
+}
+
+/// The times s in (0, h) at which v + a0·s + k·s²/2 = 0.
+fn velocity_zeros(v: f64, a0: f64, k: f64, h: f64) -> impl Iterator<Item = f64> {
+    let roots: [Option<f64>; 2] = if k == 0.0 {
+        [(a0 != 0.0).then(|| -v / a0), None]
+    } else {
+        let disc = a0 * a0 - 2.0 * k * v;
+        if disc < 0.0 {
+            [None, None]
+        } else {
+            let r = disc.sqrt();
+            [Some((-a0 + r) / k), Some((-a0 - r) / k)]
+        }
+    };
+    roots.into_iter().flatten().filter(move |s| *s > 0.0 && *s < h)
+}
+
 /// A recorded base excitation in the model's normalised time.
 ///
 /// Conversion: the model's time is τ = p·t with p in 1/s and t in s, so the
@@ -487,5 +566,25 @@ mod tests {
         }
         assert_eq!(count, times.len());
         assert_eq!(tau, ex.end_tau());
+    }
+
+    #[test]
+    fn peaks_of_a_constant_and_of_a_reversing_acceleration_are_the_closed_forms() {
+        let g = crate::model::geometry::G;
+        // 1 g for 1 s: v = g t, d = g t²/2.
+        let step = Series::new(vec![0.0, 1.0], vec![1.0, 1.0]).unwrap();
+        let p = step.peaks(1.0);
+        assert_eq!(p.pga_g, 1.0);
+        assert!((p.pgv_m_s - g).abs() < 1e-12 && (p.pgd_m - 0.5 * g).abs() < 1e-12);
+        assert_eq!(step.peaks(-2.0).pga_g, 2.0);
+        // a = g(1 − t) on [0, 3]: v = g(t − t²/2) peaks at t = 1 (g/2) inside
+        // the interval and ends at −1.5 g; d = g(t²/2 − t³/6) peaks at t = 2
+        // (2g/3) where v = 0, and is 0 again at t = 3.
+        let ramp = Series::new(vec![0.0, 3.0], vec![1.0, -2.0]).unwrap();
+        let p = ramp.peaks(1.0);
+        assert!((p.pgv_m_s - 1.5 * g).abs() < 1e-12, "{p:?}");
+        assert!((p.pgd_m - 2.0 * g / 3.0).abs() < 1e-12, "{p:?}");
+        let half = Series::new(vec![0.0, 1.5], vec![1.0, -0.5]).unwrap();
+        assert!((half.peaks(1.0).pgv_m_s - 0.5 * g).abs() < 1e-12);
     }
 }

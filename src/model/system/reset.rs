@@ -8,7 +8,7 @@ use crate::model::dynamics::{self, Tilt};
 use crate::model::energy;
 use crate::model::impact::{self, ImpactLaw, PreImpact};
 use crate::model::mode::{Mode, Sign};
-use crate::model::state::{N, THETA, THETA_DOT, X_DOT};
+use crate::model::state::{N, THETA, THETA_DOT, X, X_DOT};
 
 impl BlockSystem {
     /// Brings a freshly entered mode to a consistent one at the same
@@ -192,6 +192,7 @@ impl BlockSystem {
             theta_dot_before: y[THETA_DOT],
             theta_dot_after: yn[THETA_DOT],
             x_dot: yn[X_DOT],
+            x: yn[X],
         };
         if mode == Mode::Flight {
             // Kinetic energy after, with the lifted-off vertical velocity,
@@ -309,6 +310,7 @@ impl BlockSystem {
                 theta_dot_before: record.theta_dot_after,
                 theta_dot_after: 0.0,
                 x_dot: yn[X_DOT],
+                x: yn[X],
             };
             Jump {
                 mode,
@@ -366,6 +368,7 @@ impl BlockSystem {
                     theta_dot_before: y[THETA_DOT],
                     theta_dot_after: yn[THETA_DOT],
                     x_dot: yn[X_DOT],
+                    x: yn[X],
                 }),
                 None,
             ],

@@ -1,0 +1,220 @@
+//! The engineer's answer to a run, in physical units: did it overturn, when,
+//! how far did it rotate, slide and lift, how did the run end.
+//!
+//! Everything here is a conversion of a [`RunResult`] with the scenario's
+//! geometry (t = τ/p, θ = ψΘ, x = R·X); nothing is recomputed.
+
+use serde::Serialize;
+
+use super::run::{Outcome, RunResult};
+use super::scenario::{ExcitationKind, Scenario};
+use crate::model::Mode;
+use crate::model::excitation::record::GroundPeaks;
+
+/// How a run ended, in the words an engineer uses.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum EndState {
+    /// Flat and stuck at the end.
+    Rest,
+    /// Still rocking or sliding at the end: the run ended before the block
+    /// settled, so it is not known to have survived.
+    Moving,
+    /// Overturned (|Θ| reached `run.tumble_theta`).
+    Overturned,
+    /// Left the ground (the normal force vanished).
+    Flight,
+}
+
+impl EndState {
+    /// The name in outputs.
+    pub fn name(self) -> &'static str {
+        match self {
+            EndState::Rest => "rest",
+            EndState::Moving => "moving",
+            EndState::Overturned => "overturned",
+            EndState::Flight => "flight",
+        }
+    }
+}
+
+/// Seconds spent in each grounded mode.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct ModeSeconds {
+    /// Flat and stuck.
+    pub rest: f64,
+    /// Flat and sliding.
+    pub slide: f64,
+    /// Rocking on a sticking corner.
+    pub rock: f64,
+    /// Rocking on a slipping corner.
+    #[serde(rename = "slide-rock")]
+    pub slide_rock: f64,
+}
+
+/// One record's name and peaks after its unit and scale.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct RecordPeaks {
+    /// The file.
+    pub file: String,
+    /// The unit it was read in.
+    pub unit: &'static str,
+    /// The scale factor applied.
+    pub scale: f64,
+    /// Its peaks, scaled.
+    #[serde(flatten)]
+    pub peaks: GroundPeaks,
+    /// Duration, s (time of its last sample).
+    pub duration_s: f64,
+}
+
+/// The run in physical units (`summary.json`'s `physical`).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Physical {
+    /// Whether the block overturned.
+    pub overturned: bool,
+    /// When it overturned, s.
+    pub t_overturn_s: Option<f64>,
+    /// Largest |θ|, rad.
+    pub max_rotation_rad: f64,
+    /// Largest |θ|, degrees.
+    pub max_rotation_deg: f64,
+    /// Largest |θ| / α (α = ψ, the slenderness angle): 1 is the overturning
+    /// angle of a block at rest.
+    pub max_rotation_over_alpha: f64,
+    /// Largest |sliding displacement| relative to the base, m
+    /// (docs/model.md §1.6).
+    pub max_sliding_m: f64,
+    /// Sliding displacement at the end, m (signed, + to the right).
+    pub residual_sliding_m: f64,
+    /// Largest height of the lifted corner, m.
+    pub max_uplift_m: f64,
+    /// Impacts.
+    pub impacts: u64,
+    /// Time in each mode, s.
+    pub mode_time_s: ModeSeconds,
+    /// When the run ended, s.
+    pub t_end_s: f64,
+    /// For a block at rest at the end: when it last came to rest, s (0 if
+    /// it never moved).
+    pub t_rest_s: Option<f64>,
+    /// How it ended.
+    pub end_state: EndState,
+    /// For a record: whether the run's end was at or after the record's
+    /// end (`false`: the user cut it short, so "rest" or "moving" says
+    /// nothing about the rest of the record). `None` for other kinds.
+    pub record_complete: Option<bool>,
+    /// The horizontal record, for record runs.
+    pub record_h: Option<RecordPeaks>,
+    /// The vertical record, if any.
+    pub record_v: Option<RecordPeaks>,
+}
+
+impl Physical {
+    /// The answer of run `res` of scenario `s`.
+    pub fn of(s: &Scenario, res: &RunResult) -> Self {
+        let geo = s.geometry();
+        let sec = |tau: f64| tau / geo.p;
+        let end_state = match res.outcome {
+            Outcome::Tumbled => EndState::Overturned,
+            Outcome::Flight => EndState::Flight,
+            Outcome::Rest => EndState::Rest,
+            Outcome::Running => EndState::Moving,
+        };
+        let theta = geo.psi * res.max_abs_theta;
+        let [rest, slide, rock, slide_rock] = res.mode_time.map(sec);
+        let peaks = |r: &Option<super::scenario::Record>, scale: f64| {
+            r.as_ref().filter(|_| s.excitation.kind == ExcitationKind::Record).map(|r| RecordPeaks {
+                file: r.path.display().to_string(),
+                unit: r.unit.name(),
+                scale,
+                peaks: r.series.peaks(scale),
+                duration_s: r.series.duration_s(),
+            })
+        };
+        Physical {
+            overturned: end_state == EndState::Overturned,
+            t_overturn_s: res.tumble_tau.map(sec),
+            max_rotation_rad: theta,
+            max_rotation_deg: theta.to_degrees(),
+            max_rotation_over_alpha: res.max_abs_theta,
+            max_sliding_m: res.max_abs_sliding * geo.r,
+            residual_sliding_m: res.final_sliding * geo.r,
+            max_uplift_m: geo.uplift_m(res.max_abs_theta),
+            impacts: res.tally.impacts,
+            mode_time_s: ModeSeconds {
+                rest,
+                slide,
+                rock,
+                slide_rock,
+            },
+            t_end_s: sec(res.tau_end),
+            t_rest_s: (end_state == EndState::Rest).then(|| {
+                res.events
+                    .iter()
+                    .rev()
+                    .find(|e| e.after == Mode::Rest)
+                    .map_or(0.0, |e| sec(e.tau))
+            }),
+            end_state,
+            record_complete: s.record_complete(),
+            record_h: peaks(&s.excitation.record_h, s.excitation.scale_h),
+            record_v: peaks(&s.excitation.record_v, s.excitation.scale_v),
+        }
+    }
+
+    /// The answer in one line, as an engineer would say it:
+    /// `overturned at t = 4.78 s (kobe-1995.dat, PGA 0.69 g)` or
+    /// `survived: peak rotation 12.3° (0.71 α), sliding 17 mm, at rest at t = 31.2 s`.
+    pub fn line(&self) -> String {
+        let input = match &self.record_h {
+            Some(r) => {
+                let name = std::path::Path::new(&r.file)
+                    .file_name()
+                    .map_or_else(|| r.file.clone(), |n| n.to_string_lossy().into_owned());
+                format!(" ({name}, PGA {:.2} g)", r.peaks.pga_g)
+            }
+            None => String::new(),
+        };
+        let cut = if self.record_complete == Some(false) {
+            " (the run ended before the record did: run.t_end is shorter than the record)"
+        } else {
+            ""
+        };
+        let motion = format!(
+            "peak rotation {:.2}° ({:.2} α), uplift {}, sliding {} ({} at the end)",
+            self.max_rotation_deg,
+            self.max_rotation_over_alpha,
+            length(self.max_uplift_m),
+            length(self.max_sliding_m),
+            length(self.residual_sliding_m.abs())
+        );
+        match self.end_state {
+            EndState::Overturned => format!(
+                "overturned at t = {:.2} s{input}",
+                self.t_overturn_s.unwrap_or(self.t_end_s)
+            ),
+            EndState::Flight => format!(
+                "left the ground (flight) at t = {:.2} s{input}: {motion}; the model stops there",
+                self.t_end_s
+            ),
+            EndState::Rest => format!(
+                "survived: {motion}; at rest from t = {:.2} s{input}{cut}",
+                self.t_rest_s.unwrap_or(self.t_end_s)
+            ),
+            EndState::Moving => format!(
+                "still moving at t = {:.2} s, the end of the run (not known to survive): {motion}{input}{cut}",
+                self.t_end_s
+            ),
+        }
+    }
+}
+
+/// A length for people: mm below 1 m, else m.
+fn length(m: f64) -> String {
+    if m.abs() < 1.0 {
+        format!("{:.0} mm", m * 1e3)
+    } else {
+        format!("{m:.2} m")
+    }
+}
