@@ -284,6 +284,8 @@ mod tests {
                 drive: Drive::Record(Record {
                     path: "a.txt".into(),
                     series: series.clone(),
+                    unit: crate::model::units::AccelUnit::G,
+                    dt: None,
                 }),
                 intensity: 0.25,
             },
@@ -291,6 +293,8 @@ mod tests {
                 drive: Drive::Record(Record {
                     path: "b.txt".into(),
                     series,
+                    unit: crate::model::units::AccelUnit::G,
+                    dt: None,
                 }),
                 intensity: 0.5,
             },

@@ -21,4 +21,4 @@ pub mod pulse_map;
 pub mod response;
 pub mod rocking_spectrum;
 
-pub use response::{BlockResponse, BlockSize, Drive, EndState, RECORD_TAIL_S};
+pub use response::{BlockResponse, BlockSize, Drive, EndState};

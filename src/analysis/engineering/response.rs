@@ -7,21 +7,16 @@
 //!   angle `run.tumble_theta`) comes from a base [`Scenario`].
 //! - A run keeps no history (`run.output_dt = 0`) and stops by itself at
 //!   overturning or flight; otherwise it lasts the whole motion and a
-//!   free-vibration tail ([`RECORD_TAIL_S`] for records, [`PULSE_TAIL_TAU`]
-//!   for pulses).
+//!   free-vibration tail: for records the base's `run.tail_s` (default
+//!   [`RECORD_TAIL_S`], 30 s; the run ends earlier once the block is at rest
+//!   after the record), for pulses [`PULSE_TAIL_TAU`].
 //! - Flight (the normal force would vanish) is reported as flight, never as
 //!   safe or overturned.
 //! - Every number in a [`BlockResponse`] is finite.
 
 use crate::model::excitation::Excitation;
-use crate::sim::scenario::{ExcitationKind, Record, ShapeKind};
+use crate::sim::scenario::{ExcitationKind, RECORD_TAIL_S, Record, ShapeKind};
 use crate::sim::{Outcome, Scenario, ScenarioError, SimError, simulate};
-
-/// Free-vibration tail after the last sample of a record, s: a block still
-/// rocking when the ground stops may overturn later, so a record run goes
-/// on this long (the issue asks for at least 20 s). One named constant
-/// until `sim::scenario` owns the record-end rule.
-pub const RECORD_TAIL_S: f64 = 20.0;
 
 /// Free-vibration tail after a pulse, in τ (units of 1/p). A block released
 /// near the overturning angle with a small velocity needs about
@@ -181,7 +176,7 @@ pub enum ResponseError {
 }
 
 /// The scenario of `size` under `drive` at `scale`, built from `base`: no
-/// history, run length = motion + tail.
+/// history, run length = motion + tail, from rest.
 pub fn scenario_for(base: &Scenario, size: BlockSize, drive: &Drive, scale: f64) -> Result<Scenario, ScenarioError> {
     let mut s = base.clone();
     s.block.width = size.width_m;
@@ -198,12 +193,9 @@ pub fn scenario_for(base: &Scenario, size: BlockSize, drive: &Drive, scale: f64)
             s.excitation.kind = ExcitationKind::Record;
             s.excitation.record_h = Some(record.clone());
             s.excitation.scale_h = scale;
-            let end_s = [Some(&record.series), s.excitation.record_v.as_ref().map(|v| &v.series)]
-                .into_iter()
-                .flatten()
-                .filter_map(|series| series.times_s().last().copied())
-                .fold(0.0, f64::max);
-            s.run.tau_end = (end_s + RECORD_TAIL_S) * geo.p;
+            // The whole record and the tail, even when the base config set
+            // an explicit end: a spectrum never cuts a record short.
+            s.run.record_tail_s = Some(s.run.record_tail_s.unwrap_or(RECORD_TAIL_S));
         }
         Drive::PhysicalPulse {
             shape,

@@ -249,6 +249,8 @@ mod tests {
         Drive::Record(Record {
             path: "sine.txt".into(),
             series: Series::new(t, a).unwrap(),
+            unit: crate::model::units::AccelUnit::G,
+            dt: None,
         })
     }
 
