@@ -99,7 +99,7 @@ impl Figure for PulseMapFigure {
         }
         if any_window {
             chart
-                .draw_series(std::iter::once(PathElement::new(vec![(x0, -1.0), (x0, -1.0)], SAFE)))
+                .draw_series(std::iter::empty::<PathElement<(f64, f64)>>())
                 .map_err(e)?
                 .label("safe above the first overturning")
                 .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], SAFE.stroke_width(3)));

@@ -131,7 +131,7 @@ impl Figure for SpectrumFigure {
                 .map_err(e)?;
         }
         chart
-            .draw_series(std::iter::once(Cross::new((x0, -1.0), 5, OVERTURN.stroke_width(2))))
+            .draw_series(std::iter::empty::<Cross<(f64, f64), i32>>())
             .map_err(e)?
             .label("overturned (× on θ/α = 1)")
             .legend(|(x, y)| Cross::new((x + 10, y), 5, OVERTURN.stroke_width(2)));
@@ -229,14 +229,14 @@ impl Figure for OverturnScaleFigure {
         }
         if any_window {
             chart
-                .draw_series(std::iter::once(PathElement::new(vec![(x0, -1.0), (x0, -1.0)], SAFE)))
+                .draw_series(std::iter::empty::<PathElement<(f64, f64)>>())
                 .map_err(e)?
                 .label("safe window above the first overturning")
                 .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], SAFE.stroke_width(3)));
         }
         chart
             .configure_series_labels()
-            .position(SeriesLabelPosition::UpperLeft)
+            .position(SeriesLabelPosition::UpperRight)
             .background_style(WHITE.mix(0.9))
             .border_style(RGBColor(150, 150, 150))
             .label_font((FONT, 16))

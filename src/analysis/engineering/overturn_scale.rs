@@ -80,8 +80,6 @@ pub struct ScaleSearch<S> {
 /// A change of status between two amplitudes, refined.
 #[derive(Clone, Copy, Debug)]
 struct Change<S> {
-    /// Last amplitude with the old status.
-    lo: f64,
     /// First amplitude with the new status.
     hi: f64,
     /// The trial at `hi`.
@@ -112,7 +110,7 @@ where
             lo = mid;
         }
     }
-    Ok(Change { lo, hi, at_hi, trials })
+    Ok(Change { hi, at_hi, trials })
 }
 
 /// Searches `grid` (increasing, > 0) with the trial `f`, refining every
