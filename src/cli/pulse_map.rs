@@ -52,7 +52,7 @@ pub struct PulseMapArgs {
     #[arg(long, value_name = "A", default_value_t = 0.1)]
     pub amp_step: f64,
     /// Largest amplitude a_p/(g tan α) tried.
-    #[arg(long, value_name = "A", default_value_t = 10.0)]
+    #[arg(long, value_name = "A", default_value_t = 20.0)]
     pub amp_max: f64,
     /// Relative width to which each boundary is refined.
     #[arg(long, value_name = "R", default_value_t = 1e-3)]

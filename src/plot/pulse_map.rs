@@ -1,6 +1,6 @@
 //! The pulse overturning map: the smallest overturning amplitude
 //! a_p/(g tan α) against ω_p/p, one line per pulse and slenderness, the
-//! safe windows above it as green bars (the regions that Makris & Roussos
+//! safe windows above it as light bars (the regions that Makris & Roussos
 //! 2000 show between the two overturning modes).
 
 use plotters::coord::Shift;
@@ -32,8 +32,9 @@ pub struct PulseMapFigure {
     pub series: Vec<PulseMapSeries>,
 }
 
-/// Green of the safe windows.
-const SAFE: RGBColor = RGBColor(44, 160, 44);
+/// Grey of the safe windows' legend entry (each window is drawn in its
+/// series' colour, lightened).
+const SAFE: RGBColor = RGBColor(160, 160, 160);
 
 impl Figure for PulseMapFigure {
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), PlotError> {
@@ -77,7 +78,7 @@ impl Figure for PulseMapFigure {
                     chart
                         .draw_series(std::iter::once(PathElement::new(
                             vec![(*x, from), (*x, top)],
-                            SAFE.mix(0.7).stroke_width(3),
+                            c.mix(0.35).stroke_width(4),
                         )))
                         .map_err(e)?;
                 }
@@ -101,7 +102,7 @@ impl Figure for PulseMapFigure {
             chart
                 .draw_series(std::iter::empty::<PathElement<(f64, f64)>>())
                 .map_err(e)?
-                .label("safe above the first overturning")
+                .label("light bars: safe windows above it")
                 .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], SAFE.stroke_width(3)));
         }
         chart

@@ -2,7 +2,7 @@
 //! axis), one line per slenderness, overturned blocks marked by crosses
 //! on the line θ/α = 1 and flight by triangles; and the overturning-scale
 //! spectrum: the smallest overturning PGA against p, with the safe windows
-//! above it as green bars. Also the palette the engineering figures share.
+//! above it as light bars of the series colour. Also the palette the engineering figures share.
 
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -172,8 +172,9 @@ pub struct OverturnScaleFigure {
     pub series: Vec<OverturnSeries>,
 }
 
-/// Green of the safe windows.
-const SAFE: RGBColor = RGBColor(44, 160, 44);
+/// Grey of the safe windows' legend entry (each window is drawn in its
+/// series' colour, lightened).
+const SAFE: RGBColor = RGBColor(160, 160, 160);
 
 impl Figure for OverturnScaleFigure {
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), PlotError> {
@@ -213,7 +214,7 @@ impl Figure for OverturnScaleFigure {
                     chart
                         .draw_series(std::iter::once(PathElement::new(
                             vec![(*p, from), (*p, top)],
-                            SAFE.mix(0.8).stroke_width(3),
+                            c.mix(0.35).stroke_width(4),
                         )))
                         .map_err(e)?;
                 }
@@ -231,7 +232,7 @@ impl Figure for OverturnScaleFigure {
             chart
                 .draw_series(std::iter::empty::<PathElement<(f64, f64)>>())
                 .map_err(e)?
-                .label("safe window above the first overturning")
+                .label("light bars: safe windows above it")
                 .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], SAFE.stroke_width(3)));
         }
         chart

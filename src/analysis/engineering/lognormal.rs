@@ -165,7 +165,7 @@ pub enum FitError {
     #[error("every run failed: the median is below the smallest level")]
     AllFailed,
     /// Separated data: the maximum likelihood is at β → 0.
-    #[error("every run survived at levels <= {survived_up_to} and failed at levels >= {failed_from}: the likelihood is largest as beta -> 0, no lognormal fit")]
+    #[error("the data separate (no failure below {failed_from}, no survivor above {survived_up_to}): the likelihood grows as beta -> 0, so no lognormal fit; more records would give one")]
     Separated {
         /// Largest level with a survivor.
         survived_up_to: String,
