@@ -73,7 +73,7 @@ pub struct FragilityArgs {
     pub im: ImArg,
     /// Intensity levels (g for PGA, m/s for PGV), each > 0:
     /// comma-separated, or FROM:TO:N for N evenly spaced levels.
-    #[arg(long, value_name = "LIST", allow_negative_numbers = true)]
+    #[arg(long, value_name = "LIST", allow_hyphen_values = true)]
     pub levels: String,
     /// A block WIDTHxHEIGHT in metres, e.g. 0.6x2.0; repeatable.
     #[arg(long = "block", value_name = "BxH", required = true)]

@@ -42,10 +42,10 @@ pub struct PulseMapArgs {
     #[arg(long, value_name = "N", default_value_t = 1)]
     pub cycles: u32,
     /// Slenderness ratios B/H, comma-separated or FROM:TO:N.
-    #[arg(long = "b-over-h", value_name = "LIST", default_value = "0.2", allow_negative_numbers = true)]
+    #[arg(long = "b-over-h", value_name = "LIST", default_value = "0.2", allow_hyphen_values = true)]
     pub b_over_h: String,
     /// Pulse frequencies ω_p/p, comma-separated or FROM:TO:N (increasing).
-    #[arg(long, value_name = "LIST", default_value = "1:10:19", allow_negative_numbers = true)]
+    #[arg(long, value_name = "LIST", default_value = "1:10:19", allow_hyphen_values = true)]
     pub omega: String,
     /// Step of the amplitudes a_p/(g tan α) tried (the search's
     /// resolution: windows narrower than a step can be missed).

@@ -109,7 +109,7 @@ pub struct SpectrumArgs {
     #[arg(long, value_name = "N", default_value_t = 50)]
     pub count: usize,
     /// Slenderness ratios B/H, comma-separated or FROM:TO:N.
-    #[arg(long = "b-over-h", value_name = "LIST", default_value = "0.25", allow_negative_numbers = true)]
+    #[arg(long = "b-over-h", value_name = "LIST", default_value = "0.25", allow_hyphen_values = true)]
     pub b_over_h: String,
     /// Also search each block's smallest overturning scale of the motion
     /// (step up by --search-step to --search-max, refine each change by
