@@ -40,17 +40,24 @@ fn refused(o: &Output, needles: &[&str], out: &Path) {
 
 /// The CSV `text` as rows of cells, header first.
 fn cells(text: &str) -> Vec<Vec<String>> {
-    text.lines().map(|l| l.split(',').map(str::to_string).collect()).collect()
+    text.lines()
+        .map(|l| l.split(',').map(str::to_string).collect())
+        .collect()
 }
 
 fn column(rows: &[Vec<String>], name: &str) -> Vec<String> {
-    let i = rows[0].iter().position(|h| h == name).unwrap_or_else(|| panic!("no column {name}"));
+    let i = rows[0]
+        .iter()
+        .position(|h| h == name)
+        .unwrap_or_else(|| panic!("no column {name}"));
     rows[1..].iter().map(|r| r[i].clone()).collect()
 }
 
 fn spectrum(out: &Path, extra: &[&str]) -> Output {
     rocking()
-        .args(["spectrum", "--record", ELCENTRO, "--unit", "g", "--from", "0.1", "--to", "5", "--count", "12"])
+        .args([
+            "spectrum", "--record", ELCENTRO, "--unit", "g", "--from", "0.1", "--to", "5", "--count", "12",
+        ])
         .args(["--b-over-h", "0.2", "-q", "--out"])
         .arg(out)
         .args(extra)
@@ -62,8 +69,19 @@ fn spectrum(out: &Path, extra: &[&str]) -> Output {
 fn spectrum_of_el_centro_small_blocks_overturn_large_ones_survive() {
     let dir = tmpdir("spectrum");
     let out = dir.join("out");
-    ok(&spectrum(&out, &["--overturn-scale", "--search-step", "0.25", "--search-max", "2"]));
-    for f in ["spectrum.csv", "safe_windows.csv", "spectrum.json", "spectrum.png", "spectrum.svg", "overturn_scale.png", "overturn_scale.svg"] {
+    ok(&spectrum(
+        &out,
+        &["--overturn-scale", "--search-step", "0.25", "--search-max", "2"],
+    ));
+    for f in [
+        "spectrum.csv",
+        "safe_windows.csv",
+        "spectrum.json",
+        "spectrum.png",
+        "spectrum.svg",
+        "overturn_scale.png",
+        "overturn_scale.svg",
+    ] {
         assert!(out.join(f).is_file(), "{f}");
     }
     let text = std::fs::read_to_string(out.join("spectrum.csv")).unwrap();
@@ -72,7 +90,10 @@ fn spectrum_of_el_centro_small_blocks_overturn_large_ones_survive() {
     assert_eq!(rows.len(), 13);
     let end = column(&rows, "end");
     let t = column(&rows, "t_overturn_s");
-    let peak: Vec<f64> = column(&rows, "peak_theta_over_alpha").iter().map(|v| v.parse().unwrap()).collect();
+    let peak: Vec<f64> = column(&rows, "peak_theta_over_alpha")
+        .iter()
+        .map(|v| v.parse().unwrap())
+        .collect();
     // R = 0.1 m (p = 8.6/s) overturns under El Centro at B/H = 0.2; R = 5 m
     // barely rocks (Housner's size effect).
     assert_eq!(end[0], "overturned");
@@ -84,7 +105,11 @@ fn spectrum_of_el_centro_small_blocks_overturn_large_ones_survive() {
     // p falls as R grows, and the PGA column is the record's 0.349 g.
     let p: Vec<f64> = column(&rows, "p_per_s").iter().map(|v| v.parse().unwrap()).collect();
     assert!(p.windows(2).all(|w| w[1] < w[0]));
-    assert!(column(&rows, "pga_g").iter().all(|v| (v.parse::<f64>().unwrap() - 0.349).abs() < 1e-3));
+    assert!(
+        column(&rows, "pga_g")
+            .iter()
+            .all(|v| (v.parse::<f64>().unwrap() - 0.349).abs() < 1e-3)
+    );
     // The overturning scale of the smallest block is at most 1 (it
     // overturned at scale 1) and above the uplift scale tan α/PGA.
     let s0: f64 = column(&rows, "overturn_scale")[0].parse().unwrap();
@@ -100,10 +125,41 @@ fn spectrum_of_el_centro_small_blocks_overturn_large_ones_survive() {
 fn spectrum_is_byte_identical_for_one_and_two_threads() {
     let dir = tmpdir("spectrum-threads");
     let (a, b) = (dir.join("a"), dir.join("b"));
-    ok(&spectrum(&a, &["--threads", "1", "--overturn-scale", "--search-step", "0.5", "--search-max", "2"]));
-    ok(&spectrum(&b, &["--threads", "2", "--overturn-scale", "--search-step", "0.5", "--search-max", "2"]));
-    for f in ["spectrum.csv", "safe_windows.csv", "spectrum.json", "spectrum.svg", "overturn_scale.svg"] {
-        assert!(std::fs::read(a.join(f)).unwrap() == std::fs::read(b.join(f)).unwrap(), "{f} differs");
+    ok(&spectrum(
+        &a,
+        &[
+            "--threads",
+            "1",
+            "--overturn-scale",
+            "--search-step",
+            "0.5",
+            "--search-max",
+            "2",
+        ],
+    ));
+    ok(&spectrum(
+        &b,
+        &[
+            "--threads",
+            "2",
+            "--overturn-scale",
+            "--search-step",
+            "0.5",
+            "--search-max",
+            "2",
+        ],
+    ));
+    for f in [
+        "spectrum.csv",
+        "safe_windows.csv",
+        "spectrum.json",
+        "spectrum.svg",
+        "overturn_scale.svg",
+    ] {
+        assert!(
+            std::fs::read(a.join(f)).unwrap() == std::fs::read(b.join(f)).unwrap(),
+            "{f} differs"
+        );
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
@@ -113,7 +169,9 @@ fn spectrum_refuses_a_size_range_from_above_to_and_a_record_without_unit() {
     let dir = tmpdir("spectrum-bad");
     let out = dir.join("out");
     let o = rocking()
-        .args(["spectrum", "--record", ELCENTRO, "--unit", "g", "--from", "2", "--to", "1", "--out"])
+        .args([
+            "spectrum", "--record", ELCENTRO, "--unit", "g", "--from", "2", "--to", "1", "--out",
+        ])
         .arg(&out)
         .output()
         .unwrap();
@@ -125,7 +183,9 @@ fn spectrum_refuses_a_size_range_from_above_to_and_a_record_without_unit() {
         .unwrap();
     refused(&o, &["--unit", "elcentro-1940-ns.dat"], &out);
     let o = rocking()
-        .args(["spectrum", "--record", ELCENTRO, "--unit", "g", "--from", "0.1", "--to", "1"])
+        .args([
+            "spectrum", "--record", ELCENTRO, "--unit", "g", "--from", "0.1", "--to", "1",
+        ])
         .args(["--b-over-h", "0.2,-0.1", "--out"])
         .arg(&out)
         .output()
@@ -139,7 +199,17 @@ fn pulse_map_minimum_overturning_amplitude_rises_with_frequency() {
     let dir = tmpdir("pulse-map");
     let out = dir.join("out");
     let stdout = ok(&rocking()
-        .args(["pulse-map", "--pulse", "one-sine,type-c", "--omega", "2,6", "--amp-step", "0.25", "--amp-max", "12"])
+        .args([
+            "pulse-map",
+            "--pulse",
+            "one-sine,type-c",
+            "--omega",
+            "2,6",
+            "--amp-step",
+            "0.25",
+            "--amp-max",
+            "12",
+        ])
         .args(["-q", "--out"])
         .arg(&out)
         .output()
@@ -163,7 +233,11 @@ fn pulse_map_minimum_overturning_amplitude_rises_with_frequency() {
 
 fn suite_list(dir: &Path) -> PathBuf {
     let list = dir.join("suite.txt");
-    std::fs::write(&list, format!("# El Centro in g, Kobe in m/s2\n{ELCENTRO} g\n{KOBE} m/s2\n")).unwrap();
+    std::fs::write(
+        &list,
+        format!("# El Centro in g, Kobe in m/s2\n{ELCENTRO} g\n{KOBE} m/s2\n"),
+    )
+    .unwrap();
     list
 }
 
@@ -171,7 +245,16 @@ fn fragility(list: &Path, out: &Path, extra: &[&str]) -> Output {
     rocking()
         .args(["fragility", "--suite"])
         .arg(list)
-        .args(["--levels", "0.1:1.5:8", "--block", "0.6x2.0", "--block", "0.3x1.2", "-q", "--out"])
+        .args([
+            "--levels",
+            "0.1:1.5:8",
+            "--block",
+            "0.6x2.0",
+            "--block",
+            "0.3x1.2",
+            "-q",
+            "--out",
+        ])
         .arg(out)
         .args(extra)
         .output()
@@ -237,10 +320,22 @@ fn fragility_is_byte_identical_across_threads_and_shards_merged() {
         .args([&shard_dirs[2], &shard_dirs[0], &shard_dirs[1]])
         .output()
         .unwrap());
-    for f in ["runs.csv", "fractions.csv", "fragility.json", "fragility.svg", "fragility.png"] {
+    for f in [
+        "runs.csv",
+        "fractions.csv",
+        "fragility.json",
+        "fragility.svg",
+        "fragility.png",
+    ] {
         let a = std::fs::read(one.join(f)).unwrap();
-        assert!(a == std::fs::read(two.join(f)).unwrap(), "{f}: differs between 1 and 2 threads");
-        assert!(a == std::fs::read(merged.join(f)).unwrap(), "{f}: the merge differs from one run");
+        assert!(
+            a == std::fs::read(two.join(f)).unwrap(),
+            "{f}: differs between 1 and 2 threads"
+        );
+        assert!(
+            a == std::fs::read(merged.join(f)).unwrap(),
+            "{f}: the merge differs from one run"
+        );
     }
     // A missing shard is refused, naming it, and nothing is written.
     let partial = dir.join("partial");

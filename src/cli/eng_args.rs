@@ -51,16 +51,13 @@ impl BaseArgs {
                 t => match t.parse::<f64>() {
                     Ok(mu) if mu >= 0.0 && mu.is_finite() => mu,
                     _ => {
-                        return Err(input(anyhow!(
-                            "--friction {text}: expected a coefficient >= 0 or none"
-                        )));
+                        return Err(input(anyhow!("--friction {text}: expected a coefficient >= 0 or none")));
                     }
                 },
             };
             base.block.mu_s = mu;
             base.block.mu_k = None;
-            base.validate()
-                .map_err(|e| input(anyhow!("--friction {text}: {e}")))?;
+            base.validate().map_err(|e| input(anyhow!("--friction {text}: {e}")))?;
         }
         Ok(base)
     }
@@ -117,15 +114,22 @@ pub fn read_record(path: &Path, spec: &RecordSpec) -> anyhow::Result<Record> {
 pub fn positive_list(flag: &str, text: &str) -> Result<Vec<f64>, BatchError> {
     let bad = |what: String| input(anyhow!("{flag} {text}: {what}"));
     let values: Vec<f64> = if let [from, to, n] = text.split(':').collect::<Vec<_>>()[..] {
-        let (Ok(from), Ok(to), Ok(n)) = (from.trim().parse::<f64>(), to.trim().parse::<f64>(), n.trim().parse::<usize>())
-        else {
-            return Err(bad("expected FROM:TO:N (numbers, N an integer >= 1) or a comma list".into()));
+        let (Ok(from), Ok(to), Ok(n)) = (
+            from.trim().parse::<f64>(),
+            to.trim().parse::<f64>(),
+            n.trim().parse::<usize>(),
+        ) else {
+            return Err(bad(
+                "expected FROM:TO:N (numbers, N an integer >= 1) or a comma list".into()
+            ));
         };
         if to < from {
             return Err(bad(format!("TO = {to} is below FROM = {from}")));
         }
         if n == 0 || n > MAX_LIST || (n == 1 && from != to) {
-            return Err(bad(format!("N = {n}: must be >= 2 (1 when FROM = TO) and at most {MAX_LIST}")));
+            return Err(bad(format!(
+                "N = {n}: must be >= 2 (1 when FROM = TO) and at most {MAX_LIST}"
+            )));
         }
         (0..n)
             .map(|i| {
@@ -138,7 +142,11 @@ pub fn positive_list(flag: &str, text: &str) -> Result<Vec<f64>, BatchError> {
             .collect()
     } else {
         text.split(',')
-            .map(|t| t.trim().parse::<f64>().map_err(|_| bad(format!("{t:?} is not a number"))))
+            .map(|t| {
+                t.trim()
+                    .parse::<f64>()
+                    .map_err(|_| bad(format!("{t:?} is not a number")))
+            })
             .collect::<Result<_, _>>()?
     };
     if values.is_empty() || values.len() > MAX_LIST {

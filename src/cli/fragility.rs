@@ -31,9 +31,9 @@ use crate::analysis::engineering::fragility::{
     FragilitySpec, Intensity, LevelSummary, MAX_RUNS, SuiteRecord, fit_block, run_fragility, summarise,
 };
 use crate::analysis::engineering::lognormal::{FitError, LognormalFit};
-use crate::analysis::orbit_diagram::Shard;
 use crate::analysis::engineering::response::scenario_for;
 use crate::analysis::engineering::{BlockSize, Drive, EndState};
+use crate::analysis::orbit_diagram::Shard;
 use crate::io::config::to_json;
 use crate::io::csv::{self, Num};
 use crate::io::engineering_files::{FractionRow, FragilityRunRow};
@@ -79,7 +79,12 @@ pub struct FragilityArgs {
     #[arg(long = "block", value_name = "BxH", required = true)]
     pub blocks: Vec<String>,
     /// Peak rotation θ/α whose exceedance is counted and fitted too.
-    #[arg(long, value_name = "THETA/ALPHA", default_value_t = 0.5, allow_negative_numbers = true)]
+    #[arg(
+        long,
+        value_name = "THETA/ALPHA",
+        default_value_t = 0.5,
+        allow_negative_numbers = true
+    )]
     pub threshold: f64,
     /// Compute only runs i with i mod N = K (K from 0), for cluster array
     /// jobs; join the shards with `rocking merge`.
@@ -128,17 +133,17 @@ pub fn run(args: &FragilityArgs) -> Result<(), BatchError> {
     let blocks: Vec<BlockSize> = args
         .blocks
         .iter()
-        .map(|b| block("--block", b).map(|(w, h)| BlockSize { width_m: w, height_m: h }))
+        .map(|b| {
+            block("--block", b).map(|(w, h)| BlockSize {
+                width_m: w,
+                height_m: h,
+            })
+        })
         .collect::<Result<_, _>>()?;
     if !(args.threshold > 0.0 && args.threshold.is_finite()) {
         return Err(input(anyhow!("--threshold {}: must be a θ/α > 0", args.threshold)));
     }
-    let shard = args
-        .shard
-        .as_deref()
-        .map(Shard::parse)
-        .transpose()
-        .map_err(input)?;
+    let shard = args.shard.as_deref().map(Shard::parse).transpose().map_err(input)?;
     let spec_read = args.reading.spec()?;
     let entries = suite(&args.records, args.suite.as_deref(), spec_read)?;
     let mut records = Vec::with_capacity(entries.len());
@@ -155,7 +160,11 @@ pub fn run(args: &FragilityArgs) -> Result<(), BatchError> {
             Intensity::Pgv => peaks.pgv_m_s,
         };
         if !(intensity > 0.0 && intensity.is_finite()) {
-            return Err(named(anyhow!("{}: {} is 0, it cannot be scaled", path.display(), im.column())));
+            return Err(named(anyhow!(
+                "{}: {} is 0, it cannot be scaled",
+                path.display(),
+                im.column()
+            )));
         }
         record_json.push(json!({
             "file": path.display().to_string(),
@@ -224,8 +233,14 @@ pub fn run(args: &FragilityArgs) -> Result<(), BatchError> {
                 scale: Num(r.scale),
                 end: resp.end.name().to_string(),
                 peak_theta_over_alpha: Num(resp.peak_theta_over_alpha),
-                t_overturn_s: (resp.end == EndState::Overturned).then_some(resp.t_end_event_s).flatten().map(Num),
-                t_flight_s: (resp.end == EndState::Flight).then_some(resp.t_end_event_s).flatten().map(Num),
+                t_overturn_s: (resp.end == EndState::Overturned)
+                    .then_some(resp.t_end_event_s)
+                    .flatten()
+                    .map(Num),
+                t_flight_s: (resp.end == EndState::Flight)
+                    .then_some(resp.t_end_event_s)
+                    .flatten()
+                    .map(Num),
             }
         })
         .collect();
@@ -260,7 +275,13 @@ pub fn run(args: &FragilityArgs) -> Result<(), BatchError> {
                 staging.text("fragility.json", &(serde_json::to_string_pretty(&meta)? + "\n"))?;
                 Ok(())
             })?;
-            vec![format!("shard {}/{}: {} of {} runs", s.index, s.count, indices.len(), spec.run_count())]
+            vec![format!(
+                "shard {}/{}: {} of {} runs",
+                s.index,
+                s.count,
+                indices.len(),
+                spec.run_count()
+            )]
         }
         None => write_whole(&args.out, common, &layout, rows)?,
     };
@@ -306,7 +327,12 @@ fn fit_text(fit: &Result<LognormalFit, FitError>, unit: &str) -> String {
 /// The whole study's files from all its rows (in run order), written into
 /// `out`; returns the summary lines. `common` is `fragility.json` without
 /// fits (shard null).
-fn write_whole(out: &Path, common: Json, layout: &Layout, rows: Vec<FragilityRunRow>) -> Result<Vec<String>, BatchError> {
+fn write_whole(
+    out: &Path,
+    common: Json,
+    layout: &Layout,
+    rows: Vec<FragilityRunRow>,
+) -> Result<Vec<String>, BatchError> {
     let (nl, nr) = (layout.levels.len(), layout.records);
     let counts: Vec<Vec<LevelSummary>> = summarise(
         layout.blocks.len(),
@@ -319,7 +345,9 @@ fn write_whole(out: &Path, common: Json, layout: &Layout, rows: Vec<FragilityRun
         }),
     );
     let x_max = layout.levels.iter().copied().fold(0.0, f64::max);
-    let grid: Vec<f64> = (1..=BAND_POINTS).map(|k| 1.1 * x_max * k as f64 / BAND_POINTS as f64).collect();
+    let grid: Vec<f64> = (1..=BAND_POINTS)
+        .map(|k| 1.1 * x_max * k as f64 / BAND_POINTS as f64)
+        .collect();
     let unit = match layout.im {
         Intensity::Pga => "g",
         Intensity::Pgv => "m/s",
@@ -452,18 +480,27 @@ struct ShardDir {
 fn read_shard(dir: &Path) -> anyhow::Result<ShardDir> {
     let path = dir.join("fragility.json");
     let text = std::fs::read_to_string(&path).with_context(|| path.display().to_string())?;
-    let mut common: Json = serde_json::from_str(&text).with_context(|| format!("{}: not valid JSON", path.display()))?;
+    let mut common: Json =
+        serde_json::from_str(&text).with_context(|| format!("{}: not valid JSON", path.display()))?;
     if common.get("command").and_then(Json::as_str) != Some("rocking fragility") {
         bail!("{}: not written by `rocking fragility`", path.display());
     }
     let shard_value = common.get_mut("shard").map(Json::take).unwrap_or(Json::Null);
     if shard_value.is_null() {
-        bail!("{}: not a shard (fragility.json has no shard; it is a whole study)", dir.display());
+        bail!(
+            "{}: not a shard (fragility.json has no shard; it is a whole study)",
+            dir.display()
+        );
     }
     let shard: Shard =
         serde_json::from_value(shard_value).with_context(|| format!("{}: bad \"shard\" entry", path.display()))?;
     if shard.count == 0 || shard.index >= shard.count {
-        bail!("{}: shard {}/{} is out of range", path.display(), shard.index, shard.count);
+        bail!(
+            "{}: shard {}/{} is out of range",
+            path.display(),
+            shard.index,
+            shard.count
+        );
     }
     Ok(ShardDir {
         dir: dir.to_path_buf(),
@@ -475,8 +512,13 @@ fn read_shard(dir: &Path) -> anyhow::Result<ShardDir> {
 
 /// The layout recorded in a shard's `fragility.json`.
 fn layout_of(common: &Json, path: &Path) -> anyhow::Result<Layout> {
-    let field = |k: &str| common.get(k).ok_or_else(|| anyhow!("{}: missing \"{k}\"", path.display()));
-    let im: Intensity = serde_json::from_value(field("im")?.clone()).with_context(|| format!("{}: im", path.display()))?;
+    let field = |k: &str| {
+        common
+            .get(k)
+            .ok_or_else(|| anyhow!("{}: missing \"{k}\"", path.display()))
+    };
+    let im: Intensity =
+        serde_json::from_value(field("im")?.clone()).with_context(|| format!("{}: im", path.display()))?;
     let levels: Vec<f64> =
         serde_json::from_value(field("levels")?.clone()).with_context(|| format!("{}: levels", path.display()))?;
     let blocks: Vec<BlockSize> = field("blocks")?
@@ -581,7 +623,11 @@ pub fn merge(args: &MergeArgs) -> Result<(), BatchError> {
             return Err(input(anyhow!("{}: ends before run {i}", path.display())));
         };
         if row.run != i as u64 {
-            return Err(input(anyhow!("{}:{line}: run {} where the shard has run {i}", path.display(), row.run)));
+            return Err(input(anyhow!(
+                "{}:{line}: run {} where the shard has run {i}",
+                path.display(),
+                row.run
+            )));
         }
         if EndState::from_name(&row.end).is_none() {
             return Err(input(anyhow!("{}:{line}: unknown end {:?}", path.display(), row.end)));

@@ -18,10 +18,10 @@ use super::batch::BatchError;
 use super::eng_args::{BaseArgs, increasing, input, positive_list};
 use super::sweep::{progress_bar, progress_fn, thread_pool};
 use crate::analysis::engineering::BlockSize;
+use crate::analysis::engineering::Drive;
 use crate::analysis::engineering::overturn_scale::ladder;
 use crate::analysis::engineering::pulse_map::{MAP_BLOCK_R_M, PulseKind, PulseMapSpec, pulse_map};
 use crate::analysis::engineering::response::scenario_for;
-use crate::analysis::engineering::Drive;
 use crate::io::config::to_json;
 use crate::io::csv::{self, Num};
 use crate::io::engineering_files::{PulseMapRow, PulseWindowRow};
@@ -42,7 +42,12 @@ pub struct PulseMapArgs {
     #[arg(long, value_name = "N", default_value_t = 1)]
     pub cycles: u32,
     /// Slenderness ratios B/H, comma-separated or FROM:TO:N.
-    #[arg(long = "b-over-h", value_name = "LIST", default_value = "0.2", allow_hyphen_values = true)]
+    #[arg(
+        long = "b-over-h",
+        value_name = "LIST",
+        default_value = "0.2",
+        allow_hyphen_values = true
+    )]
     pub b_over_h: String,
     /// Pulse frequencies ω_p/p, comma-separated or FROM:TO:N (increasing).
     #[arg(long, value_name = "LIST", default_value = "1:10:19", allow_hyphen_values = true)]
@@ -74,7 +79,10 @@ pub struct PulseMapArgs {
 
 fn pulses(args: &PulseMapArgs) -> Result<Vec<PulseKind>, BatchError> {
     if !(1..=MAX_TYPE_C_CYCLES).contains(&args.cycles) {
-        return Err(input(anyhow!("--cycles {}: must be in 1..={MAX_TYPE_C_CYCLES}", args.cycles)));
+        return Err(input(anyhow!(
+            "--cycles {}: must be in 1..={MAX_TYPE_C_CYCLES}",
+            args.cycles
+        )));
     }
     let mut out: Vec<PulseKind> = Vec::new();
     for name in args.pulse.split(',').map(str::trim) {

@@ -72,7 +72,12 @@ pub enum AxisArg {
 pub struct SpectrumArgs {
     /// The ground-acceleration record (PEER .AT2, two-column `time accel`
     /// text, or one-column text with --dt).
-    #[arg(long, value_name = "FILE", conflicts_with = "pulse", required_unless_present = "pulse")]
+    #[arg(
+        long,
+        value_name = "FILE",
+        conflicts_with = "pulse",
+        required_unless_present = "pulse"
+    )]
     pub record: Option<PathBuf>,
     /// Unit and time step of a text record.
     #[command(flatten)]
@@ -109,7 +114,12 @@ pub struct SpectrumArgs {
     #[arg(long, value_name = "N", default_value_t = 50)]
     pub count: usize,
     /// Slenderness ratios B/H, comma-separated or FROM:TO:N.
-    #[arg(long = "b-over-h", value_name = "LIST", default_value = "0.25", allow_hyphen_values = true)]
+    #[arg(
+        long = "b-over-h",
+        value_name = "LIST",
+        default_value = "0.25",
+        allow_hyphen_values = true
+    )]
     pub b_over_h: String,
     /// Also search each block's smallest overturning scale of the motion
     /// (step up by --search-step to --search-max, refine each change by
@@ -242,8 +252,8 @@ pub fn run(args: &SpectrumArgs) -> Result<(), BatchError> {
         return Err(input(anyhow!("--count × --b-over-h: at most 1000000 blocks")));
     }
     let overturn = if args.overturn_scale {
-        let ladder = ladder(args.search_step, args.search_max)
-            .map_err(|e| input(anyhow!("--search-step/--search-max: {e}")))?;
+        let ladder =
+            ladder(args.search_step, args.search_max).map_err(|e| input(anyhow!("--search-step/--search-max: {e}")))?;
         if !(args.rel_tol > 0.0 && args.rel_tol < 1.0) {
             return Err(input(anyhow!("--rel-tol {}: must be in (0, 1)", args.rel_tol)));
         }
@@ -423,8 +433,14 @@ fn row(p: &SpectrumPoint, scale: f64, pga_of: &impl Fn(f64) -> f64) -> SpectrumR
         pga_g: Num(pga_of(scale)),
         end: r.end.name().to_string(),
         peak_theta_over_alpha: Num(r.peak_theta_over_alpha),
-        t_overturn_s: (r.end == EndState::Overturned).then_some(r.t_end_event_s).flatten().map(Num),
-        t_flight_s: (r.end == EndState::Flight).then_some(r.t_end_event_s).flatten().map(Num),
+        t_overturn_s: (r.end == EndState::Overturned)
+            .then_some(r.t_end_event_s)
+            .flatten()
+            .map(Num),
+        t_flight_s: (r.end == EndState::Flight)
+            .then_some(r.t_end_event_s)
+            .flatten()
+            .map(Num),
         overturn_scale: first.map(|(a, _)| Num(a)),
         overturn_pga_g: first.map(|(a, _)| Num(pga_of(a))),
         overturn_end: first.map(|(_, r)| r.end.name().to_string()),
@@ -461,7 +477,11 @@ fn summary(spec: &SpectrumSpec<'_>, points: &[SpectrumPoint]) -> Json {
                 "B/H = {}: {over} of {} overturned{}{}{}",
                 num(ratio),
                 of.len(),
-                if flight > 0 { format!(", {flight} in flight") } else { String::new() },
+                if flight > 0 {
+                    format!(", {flight} in flight")
+                } else {
+                    String::new()
+                },
                 largest_overturned.map_or(String::new(), |r| format!("; largest overturned R = {r:.3} m")),
                 smallest_survivor.map_or(String::new(), |r| format!(
                     "; smallest survivor R = {r:.3} m; survivors' largest peak θ/α = {peak_survivor:.3}"

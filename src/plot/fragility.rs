@@ -53,7 +53,11 @@ impl Figure for FragilityFigure {
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), PlotError> {
         let e = PlotError::from_display;
         let area = titled(root, &self.title, &self.subtitle)?;
-        let x1 = if self.x_max.is_finite() && self.x_max > 0.0 { self.x_max * 1.05 } else { 1.0 };
+        let x1 = if self.x_max.is_finite() && self.x_max > 0.0 {
+            self.x_max * 1.05
+        } else {
+            1.0
+        };
         let cells = area.split_evenly((1, self.panels.len().max(1)));
         for (panel, cell) in self.panels.iter().zip(cells.iter()) {
             let mut chart = ChartBuilder::on(cell)
@@ -89,7 +93,10 @@ impl Figure for FragilityFigure {
                         .draw_series(std::iter::once(Polygon::new(band, c.mix(0.15).filled())))
                         .map_err(e)?;
                     chart
-                        .draw_series(LineSeries::new(fitted.iter().map(|b| (b.level, b.p)), c.stroke_width(2)))
+                        .draw_series(LineSeries::new(
+                            fitted.iter().map(|b| (b.level, b.p)),
+                            c.stroke_width(2),
+                        ))
                         .map_err(e)?;
                 }
                 chart

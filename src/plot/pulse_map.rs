@@ -46,7 +46,11 @@ impl Figure for PulseMapFigure {
             0.5,
             (0.0, 10.0),
         );
-        let y1 = if self.y_max.is_finite() && self.y_max > 0.0 { self.y_max * 1.05 } else { 10.0 };
+        let y1 = if self.y_max.is_finite() && self.y_max > 0.0 {
+            self.y_max * 1.05
+        } else {
+            10.0
+        };
         let mut chart = ChartBuilder::on(&area)
             .margin(16)
             .x_label_area_size(56)
@@ -129,7 +133,11 @@ mod tests {
             y_max: 10.0,
             series: vec![PulseMapSeries {
                 label: "one-sine, B/H = 0.2".into(),
-                points: vec![(1.0, Some(1.2), vec![]), (4.0, Some(3.0), vec![(4.0, None)]), (8.0, None, vec![])],
+                points: vec![
+                    (1.0, Some(1.2), vec![]),
+                    (4.0, Some(3.0), vec![(4.0, None)]),
+                    (8.0, None, vec![]),
+                ],
             }],
         };
         let svg = fig.to_svg().unwrap();

@@ -113,7 +113,11 @@ impl Figure for SpectrumFigure {
                 .label(s.label.as_str())
                 .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], c.stroke_width(2)));
             chart
-                .draw_series(pts.iter().filter(|p| p.2.survived()).map(|p| Circle::new((p.0, p.1), 3, c.filled())))
+                .draw_series(
+                    pts.iter()
+                        .filter(|p| p.2.survived())
+                        .map(|p| Circle::new((p.0, p.1), 3, c.filled())),
+                )
                 .map_err(e)?;
             chart
                 .draw_series(
@@ -180,8 +184,15 @@ impl Figure for OverturnScaleFigure {
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), PlotError> {
         let e = PlotError::from_display;
         let area = titled(root, &self.title, &self.subtitle)?;
-        let (x0, x1) = log_range(self.series.iter().flat_map(|s| s.points.iter().map(|p| p.0)), (0.1, 10.0));
-        let y1 = if self.y_max.is_finite() && self.y_max > 0.0 { self.y_max * 1.05 } else { 1.0 };
+        let (x0, x1) = log_range(
+            self.series.iter().flat_map(|s| s.points.iter().map(|p| p.0)),
+            (0.1, 10.0),
+        );
+        let y1 = if self.y_max.is_finite() && self.y_max > 0.0 {
+            self.y_max * 1.05
+        } else {
+            1.0
+        };
         let mut chart = ChartBuilder::on(&area)
             .margin(16)
             .x_label_area_size(56)

@@ -144,14 +144,13 @@ pub fn run_fragility(
             let at = spec.index(i);
             let scale = spec.scale(at);
             let record = &spec.records[at.record];
-            let response = respond(spec.base, spec.blocks[at.block], &record.drive, scale).map_err(|error| {
-                FragilityError {
+            let response =
+                respond(spec.base, spec.blocks[at.block], &record.drive, scale).map_err(|error| FragilityError {
                     block: at.block,
                     record: record.drive.name(),
                     level: spec.levels[at.level],
                     error,
-                }
-            })?;
+                })?;
             progress(Progress::Done);
             Ok(FragilityRun { at, scale, response })
         })

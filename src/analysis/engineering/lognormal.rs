@@ -165,7 +165,9 @@ pub enum FitError {
     #[error("every run failed: the median is below the smallest level")]
     AllFailed,
     /// Separated data: the maximum likelihood is at β → 0.
-    #[error("the data separate (no failure below {failed_from}, no survivor above {survived_up_to}): the likelihood grows as beta -> 0, so no lognormal fit; more records would give one")]
+    #[error(
+        "the data separate (no failure below {failed_from}, no survivor above {survived_up_to}): the likelihood grows as beta -> 0, so no lognormal fit; more records would give one"
+    )]
     Separated {
         /// Largest level with a survivor.
         survived_up_to: String,
@@ -391,7 +393,9 @@ mod tests {
         let (median, beta) = (0.8, 0.5);
         let mut state: u64 = 0x2545_f491_4f6c_dd1d;
         let mut uniform = || {
-            state = state.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1_442_695_040_888_963_407);
+            state = state
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
             (state >> 11) as f64 / (1u64 << 53) as f64
         };
         let counts: Vec<LevelCount> = (1..=20)
@@ -409,7 +413,10 @@ mod tests {
         let f = fit(&counts).unwrap();
         assert!(f.median_ci95[0] < median && median < f.median_ci95[1], "{f:?}");
         assert!(f.beta_ci95[0] < beta && beta < f.beta_ci95[1], "{f:?}");
-        assert!((f.median / median - 1.0).abs() < 0.1 && (f.beta / beta - 1.0).abs() < 0.3, "{f:?}");
+        assert!(
+            (f.median / median - 1.0).abs() < 0.1 && (f.beta / beta - 1.0).abs() < 0.3,
+            "{f:?}"
+        );
     }
 
     #[test]

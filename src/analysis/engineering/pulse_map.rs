@@ -151,6 +151,13 @@ mod tests {
         let first: Vec<f64> = points.iter().map(|p| p.search.first_failure.unwrap().0).collect();
         assert!(first[0] > 1.0 && first[0] < first[1], "{first:?}");
         assert_eq!(points[1].omega_ratio, 6.0);
-        assert_eq!(PulseKind { shape: ShapeKind::TypeC, cycles: 2 }.name(), "type-c2");
+        assert_eq!(
+            PulseKind {
+                shape: ShapeKind::TypeC,
+                cycles: 2
+            }
+            .name(),
+            "type-c2"
+        );
     }
 }

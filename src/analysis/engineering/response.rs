@@ -288,4 +288,3 @@ mod tests {
         assert!(t > 0.0 && t < (std::f64::consts::TAU / 3.0 + PULSE_TAIL_TAU) / size.p_per_s());
     }
 }
-

@@ -180,7 +180,10 @@ impl SpectrumSpec<'_> {
 }
 
 /// Runs the spectrum; progress counts blocks.
-pub fn rocking_spectrum(spec: &SpectrumSpec<'_>, progress: &ProgressFn<'_>) -> Result<Vec<SpectrumPoint>, SpectrumError> {
+pub fn rocking_spectrum(
+    spec: &SpectrumSpec<'_>,
+    progress: &ProgressFn<'_>,
+) -> Result<Vec<SpectrumPoint>, SpectrumError> {
     let blocks = spec.blocks();
     progress(Progress::Total(blocks.len() as u64));
     blocks
@@ -190,7 +193,10 @@ pub fn rocking_spectrum(spec: &SpectrumSpec<'_>, progress: &ProgressFn<'_>) -> R
             let response = respond(spec.base, block, spec.drive, spec.scale).map_err(fail)?;
             let overturn = match &spec.overturn {
                 Some(o) => Some(
-                    search(&o.ladder, o.rel_tol, &|scale| respond(spec.base, block, spec.drive, scale)).map_err(fail)?,
+                    search(&o.ladder, o.rel_tol, &|scale| {
+                        respond(spec.base, block, spec.drive, scale)
+                    })
+                    .map_err(fail)?,
                 ),
                 None => None,
             };
@@ -221,7 +227,10 @@ mod tests {
         assert_eq!(v[0], 0.1);
         assert!((v[1] - 1.0).abs() < 1e-15);
         assert_eq!(v[2], 10.0);
-        assert_eq!(SizeRange::new(SizeAxis::Height, 2.0, 2.0, 1).unwrap().values(), vec![2.0]);
+        assert_eq!(
+            SizeRange::new(SizeAxis::Height, 2.0, 2.0, 1).unwrap().values(),
+            vec![2.0]
+        );
         assert!(matches!(
             SizeRange::new(SizeAxis::Height, 2.0, 1.0, 5),
             Err(SizeRangeError::Reversed { .. })
