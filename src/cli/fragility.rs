@@ -260,6 +260,7 @@ pub fn run(args: &FragilityArgs) -> Result<(), BatchError> {
         "blocks": blocks,
         "records": record_json,
         "threshold_theta_over_alpha": args.threshold,
+        "record_tail_s": base.run.record_tail_s.unwrap_or(crate::sim::scenario::RECORD_TAIL_S),
         "runs": spec.run_count(),
         "shard": Json::Null,
         "friction": layout.friction,
@@ -341,7 +342,7 @@ fn write_whole(
         rows.iter().map(|r| {
             let i = r.run as usize;
             let end = EndState::from_name(&r.end).unwrap_or(EndState::Moving);
-            ((i / (nl * nr)), (i / nr) % nl, end, r.peak_theta_over_alpha.0)
+            (i / (nl * nr), (i / nr) % nl, end, r.peak_theta_over_alpha.0)
         }),
     );
     let x_max = layout.levels.iter().copied().fold(0.0, f64::max);

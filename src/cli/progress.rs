@@ -52,17 +52,23 @@ impl LogLines {
         }
     }
 
-    /// Prints `text` if an interval has passed since the last line.
+    /// Whether a line is due (an interval has passed since the last one,
+    /// or since the start); if so, the clock restarts.
+    fn due(&self) -> bool {
+        let Ok(mut last) = self.last.lock() else {
+            return false;
+        };
+        let due = last.elapsed() >= self.interval;
+        if due {
+            *last = Instant::now();
+        }
+        due
+    }
+
+    /// Prints `text` if a line is due.
     fn offer(&self, text: &str) {
         let text = text.trim();
-        if text.is_empty() {
-            return;
-        }
-        let Ok(mut last) = self.last.lock() else {
-            return;
-        };
-        if last.elapsed() >= self.interval {
-            *last = Instant::now();
+        if !text.is_empty() && self.due() {
             eprintln!("{text}");
         }
     }
@@ -105,5 +111,19 @@ impl TermLike for LogLines {
 
     fn flush(&self) -> std::io::Result<()> {
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_log_line_is_due_once_per_interval() {
+        let hourly = LogLines::new(Duration::from_secs(3600));
+        assert!(!hourly.due(), "the first line waits one interval");
+        let always = LogLines::new(Duration::ZERO);
+        assert!(always.due() && always.due());
+        assert!(bar(10, "runs", true).is_hidden());
     }
 }

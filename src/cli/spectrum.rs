@@ -207,7 +207,7 @@ fn motion(args: &SpectrumArgs) -> Result<Motion, BatchError> {
         }
         (None, None) => return Err(input(anyhow!("--record FILE or --pulse SHAPE: one is required"))),
     };
-    if !(pga_g > 0.0) {
+    if pga_g <= 0.0 {
         return Err(input(anyhow!("--record: the record is all zeros (PGA 0 g)")));
     }
     let scale = match (args.scale, args.pga) {
@@ -316,7 +316,7 @@ pub fn run(args: &SpectrumArgs) -> Result<(), BatchError> {
         "pga_g": pga_of(motion.scale),
         "sizes": spec.sizes,
         "b_over_h": spec.b_over_h,
-        "record_tail_s": base.run.record_tail_s,
+        "record_tail_s": base.run.record_tail_s.unwrap_or(crate::sim::scenario::RECORD_TAIL_S),
         "pulse_tail_tau": crate::analysis::engineering::response::PULSE_TAIL_TAU,
         "overturn_scale": spec.overturn.as_ref().map(|o| json!({
             "step": args.search_step,

@@ -6,7 +6,7 @@
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use super::rocking_spectrum::colour;
+use super::rocking_spectrum::{ScalePoint, colour};
 use super::{FONT, Figure, PlotError, padded_range, titled};
 
 /// One pulse at one slenderness.
@@ -14,9 +14,8 @@ use super::{FONT, Figure, PlotError, padded_range, titled};
 pub struct PulseMapSeries {
     /// Legend text.
     pub label: String,
-    /// (ω_p/p, smallest overturning a_p/(g tan α) or `None`, safe windows
-    /// (from, to), `to` `None` when open).
-    pub points: Vec<(f64, Option<f64>, Vec<(f64, Option<f64>)>)>,
+    /// (ω_p/p, smallest overturning a_p/(g tan α), safe windows).
+    pub points: Vec<ScalePoint>,
 }
 
 /// The map.
@@ -141,6 +140,6 @@ mod tests {
             }],
         };
         let svg = fig.to_svg().unwrap();
-        assert!(svg.contains("one-sine") && svg.contains("safe above"));
+        assert!(svg.contains("one-sine") && svg.contains("safe windows above it"));
     }
 }

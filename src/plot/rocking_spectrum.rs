@@ -151,14 +151,18 @@ impl Figure for SpectrumFigure {
     }
 }
 
+/// One block of an overturning-scale figure: (x, the smallest failing
+/// amplitude or `None`, the safe windows above it as (from, to), `to`
+/// `None` when open).
+pub type ScalePoint = (f64, Option<f64>, Vec<(f64, Option<f64>)>);
+
 /// One slenderness of an overturning-scale spectrum.
 #[derive(Clone, Debug)]
 pub struct OverturnSeries {
     /// Legend text.
     pub label: String,
-    /// (p in 1/s, smallest overturning PGA in g or `None`, safe windows
-    /// above it as (from, to) PGA in g, `to` `None` when open).
-    pub points: Vec<(f64, Option<f64>, Vec<(f64, Option<f64>)>)>,
+    /// (p in 1/s, smallest overturning PGA in g, safe windows in g).
+    pub points: Vec<ScalePoint>,
 }
 
 /// The overturning-scale spectrum.
@@ -284,7 +288,7 @@ mod tests {
                 points: vec![(1.0, Some(0.5), vec![(0.7, Some(0.9))]), (3.0, None, vec![])],
             }],
         };
-        assert!(over.to_svg().unwrap().contains("safe window"));
+        assert!(over.to_svg().unwrap().contains("safe windows above it"));
         assert_eq!(log_range([f64::NAN, -1.0].into_iter(), (0.1, 10.0)), (0.1, 10.0));
     }
 }

@@ -2,7 +2,7 @@
 //! fitted by maximum likelihood to counts of failures at intensity levels
 //! (the binomial likelihood of Baker 2015, "Efficient analytical fragility
 //! function fitting using dynamic structural analysis", Earthquake
-//! Spectra 31(1), eq. 11), with its confidence band.
+//! Spectra 31(1)), with its confidence band.
 //!
 //! Method: with η = a + b·ln x (a = −ln θ̂/β, b = 1/β) the model is a
 //! probit regression, whose log-likelihood is concave in (a, b); Fisher
@@ -287,7 +287,7 @@ pub fn fit(counts: &[LevelCount]) -> Result<LognormalFit, FitError> {
             break;
         }
     }
-    if !converged || !(a.is_finite() && b.is_finite()) {
+    if !(converged && a.is_finite() && b.is_finite()) {
         return Err(FitError::NoConvergence);
     }
     if b <= 0.0 {
@@ -337,7 +337,7 @@ mod tests {
         // erfc(1), erf(0.5), erfc(3), erfc(5): standard tables (Abramowitz
         // & Stegun 7.1 / high-precision values).
         let cases = [
-            (-1.0 * std::f64::consts::SQRT_2, 0.5 * 0.157_299_207_050_285_13),
+            (-std::f64::consts::SQRT_2, 0.5 * 0.157_299_207_050_285_13),
             (0.5 * std::f64::consts::SQRT_2, 0.5 * (1.0 + 0.520_499_877_813_046_5)),
             (-3.0 * std::f64::consts::SQRT_2, 0.5 * 2.209_049_699_858_544e-5),
             (-5.0 * std::f64::consts::SQRT_2, 0.5 * 1.537_459_794_428_035e-12),

@@ -132,7 +132,7 @@ mod tests {
 
     #[test]
     fn the_minimum_overturning_amplitude_rises_with_frequency() {
-        // Makris & Roussos 2000, Fig. 6: for a slender block the one-sine
+        // As in Makris & Roussos 2000: for a slender block the one-sine
         // boundary rises from just above 1 at low ω_p/p to several g tan α
         // at ω_p/p = 6; the amplitude never falls below the uplift value 1.
         let base = Scenario::default();
