@@ -106,6 +106,7 @@ pub fn read_record(path: &Path, spec: &RecordSpec) -> anyhow::Result<Record> {
         series: loaded.series,
         unit: loaded.unit,
         dt: spec.dt,
+        crc32: loaded.crc32,
     })
 }
 

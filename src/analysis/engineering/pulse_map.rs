@@ -36,7 +36,9 @@ impl PulseKind {
     pub fn name(self) -> String {
         match self.shape {
             ShapeKind::TypeC => format!("type-c{}", self.cycles),
-            ShapeKind::OneSine | ShapeKind::OneCosine => self.shape.name().to_string(),
+            ShapeKind::OneSine | ShapeKind::OneCosine | ShapeKind::Rectangular | ShapeKind::HalfSine => {
+                self.shape.name().to_string()
+            }
         }
     }
 }
