@@ -73,7 +73,15 @@ fn run(command: &str, dir: &Path) -> (bool, String) {
     }
     .unwrap_or_else(|e| panic!("{command}: {e}"));
     let mut text = String::from_utf8_lossy(&output.stdout).into_owned();
-    text.push_str(&String::from_utf8_lossy(&output.stderr));
+    // A long command prints a progress line every 5 s when stderr is not a
+    // terminal: how many depends on the machine's speed, so they are left
+    // out, as timings are matched by `[..]`.
+    for line in String::from_utf8_lossy(&output.stderr).lines() {
+        if !line.starts_with("progress: ") {
+            text.push_str(line);
+            text.push('\n');
+        }
+    }
     (output.status.success(), text)
 }
 
