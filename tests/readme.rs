@@ -96,6 +96,10 @@ fn the_readme_examples_print_what_the_readme_shows() {
     let dir = std::env::temp_dir().join(format!("rocking-readme-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).expect("temp dir");
+    // The README's commands run from the clone's root, where `assets/` is:
+    // the scratch folder gets a link to it.
+    std::os::unix::fs::symlink(concat!(env!("CARGO_MANIFEST_DIR"), "/assets"), dir.join("assets"))
+        .expect("link assets");
     for e in &examples {
         let (ok, actual) = run(&e.command, &dir);
         assert!(ok, "README.md:{}: `{}` failed:\n{actual}", e.line, e.command);
