@@ -409,3 +409,46 @@ fn streamed_batch_files_are_the_in_memory_ones() {
         );
     }
 }
+
+/// Item 1: a shard carries its files' row counts and CRC-32s, so `merge`
+/// refuses one cut at a row boundary (every row well formed) or changed
+/// in place, naming the file; intact shards still merge into exactly the
+/// files one run writes.
+#[test]
+fn merge_refuses_a_shard_cut_at_a_row_boundary_or_changed() {
+    let dir = tmpdir("merge-rows");
+    let sh = shards(&dir, 2);
+    let merge = |out: &Path| {
+        rocking()
+            .arg("merge")
+            .arg("--out")
+            .arg(out)
+            .args(&sh)
+            .output()
+            .expect("runs")
+    };
+    let o = merge(&dir.join("ok"));
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(sh[0].join("sweep.json")).expect("json")).expect("json");
+    assert!(json["files"]["points.csv"]["crc32"].is_string(), "{json}");
+    let merged = std::fs::read_to_string(dir.join("ok").join("sweep.json")).expect("merged");
+    assert!(!merged.contains("\"files\""), "a whole sweep has no files entry");
+    let points = sh[1].join("points.csv");
+    let text = std::fs::read_to_string(&points).expect("points");
+    // Drop the last row: every remaining row is whole.
+    let cut = text.trim_end().rfind('\n').expect("rows") + 1;
+    std::fs::write(&points, &text[..cut]).expect("cut");
+    let o = merge(&dir.join("cut"));
+    refused(&o, "points.csv: ");
+    assert!(String::from_utf8_lossy(&o.stderr).contains("rows, but the shard wrote"));
+    assert!(!dir.join("cut").exists());
+    // Change one digit of a row in place: rows agree, the checksum does not.
+    let changed = text.replacen(",0.", ",1.", 1);
+    assert_ne!(changed, text);
+    std::fs::write(&points, &changed).expect("change");
+    let o = merge(&dir.join("changed"));
+    refused(&o, "points.csv: CRC-32 ");
+    assert!(!dir.join("changed").exists());
+    let _ = std::fs::remove_dir_all(&dir);
+}
