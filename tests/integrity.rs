@@ -452,3 +452,67 @@ fn merge_refuses_a_shard_cut_at_a_row_boundary_or_changed() {
     assert!(!dir.join("changed").exists());
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// The shard readers never panic, whatever a shard file holds: every row
+/// they accept is whole and finite, every refusal names the file and a
+/// line. 300 cases in CI; `ROCKING_STRESS=1` runs the extended tier of 10⁵.
+mod shard_reader_fuzz {
+    use proptest::prelude::*;
+    use rocking::io::csv;
+    use rocking::io::sweep_files::{ClassRow, PointRow};
+
+    fn cases() -> u32 {
+        if std::env::var("ROCKING_STRESS").is_ok_and(|v| v == "1") {
+            100_000
+        } else {
+            300
+        }
+    }
+
+    /// Pieces of real rows, numbers of every kind and separators.
+    fn soup() -> impl Strategy<Value = String> {
+        let token = prop_oneof![
+            Just("value,k,tau,theta,theta_dot\n".to_string()),
+            Just("value,outcome,period,max_abs_theta,lyapunov\n".to_string()),
+            Just("2.5,7,5.497787143782138,0.01,-0.2\n".to_string()),
+            Just("2.5,periodic,1,0.3,\n".to_string()),
+            Just("NaN".to_string()),
+            Just("inf".to_string()),
+            Just(",".to_string()),
+            Just("\n".to_string()),
+            Just("\"".to_string()),
+            any::<f64>().prop_map(|x| format!("{x:?}")),
+            any::<u64>().prop_map(|x| x.to_string()),
+            "[a-z0-9.,-]{0,6}",
+        ];
+        prop::collection::vec(token, 0..40).prop_map(|t| t.concat())
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: cases(), failure_persistence: None, ..ProptestConfig::default() })]
+
+        #[test]
+        fn shard_files_are_read_or_refused_never_panicking(text in soup(), bytes in prop::collection::vec(any::<u8>(), 0..200)) {
+            let dir = std::env::temp_dir().join(format!("rocking-shard-fuzz-{}", std::process::id()));
+            std::fs::create_dir_all(&dir).expect("dir");
+            for (name, content) in [("points.csv", text.as_bytes()), ("classes.csv", text.as_bytes()), ("raw.csv", bytes.as_slice())] {
+                let path = dir.join(name);
+                let prefix = format!("{}:", path.display());
+                let named = |e: &csv::CsvError| e.to_string().starts_with(&prefix) && !e.to_string().contains('\n');
+                std::fs::write(&path, content).expect("write");
+                match csv::read::<PointRow>(&path) {
+                    Ok(rows) => for (_, r) in rows {
+                        prop_assert!(r.value.0.is_finite() && r.tau.0.is_finite() && r.theta.0.is_finite() && r.theta_dot.0.is_finite());
+                    },
+                    Err(e) => prop_assert!(named(&e), "{e}"),
+                }
+                match csv::read::<ClassRow>(&path) {
+                    Ok(rows) => for (_, r) in rows {
+                        prop_assert!(r.value.0.is_finite() && r.max_abs_theta.0.is_finite());
+                    },
+                    Err(e) => prop_assert!(named(&e), "{e}"),
+                }
+            }
+        }
+    }
+}
