@@ -516,3 +516,68 @@ mod shard_reader_fuzz {
         }
     }
 }
+
+/// Item 1: a shard whose points hold a NaN is refused, naming the file and
+/// line.
+#[test]
+fn merge_refuses_a_shard_with_nan() {
+    let dir = tmpdir("merge-nan");
+    let sh = shards(&dir, 2);
+    let points = sh[0].join("points.csv");
+    let text = std::fs::read_to_string(&points).expect("points");
+    let mut lines: Vec<String> = text.lines().map(String::from).collect();
+    let mut cells: Vec<String> = lines[2].split(',').map(String::from).collect();
+    cells[3] = "NaN".into();
+    lines[2] = cells.join(",");
+    std::fs::write(&points, lines.join("\n") + "\n").expect("write");
+    let out = dir.join("merged");
+    let o = rocking()
+        .arg("merge")
+        .arg("--out")
+        .arg(&out)
+        .args(&sh)
+        .output()
+        .expect("runs");
+    refused(&o, "points.csv:3");
+    assert!(!out.exists());
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Item 8: a fixed-step run that will clearly take long says so before it
+/// starts (here about 17 minutes; the test stops it at once by limiting
+/// its events).
+#[test]
+fn a_long_fixed_step_run_says_how_long_before_it_starts() {
+    let dir = tmpdir("ralston-long");
+    let o = rocking()
+        .args([
+            "--batch",
+            "--quiet",
+            "--preset",
+            "fig4",
+            "--set",
+            "run.method=ralston",
+            "--set",
+            "run.step=1e-6",
+            "--set",
+            "run.tau_end=1e4",
+            "--set",
+            "run.max_steps=100000000000",
+            "--set",
+            "run.output_dt=0",
+            "--set",
+            "run.max_events=1",
+            "--out",
+        ])
+        .arg(dir.join("out"))
+        .output()
+        .expect("runs");
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.lines().next().unwrap_or_default().starts_with(
+            "note: run.method = \"ralston\" takes 1.00e10 steps of 1e-6 over τ = 10000.0: about 17 minutes"
+        ),
+        "{err}"
+    );
+    assert!(!dir.join("out").exists());
+}
