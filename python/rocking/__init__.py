@@ -1,0 +1,143 @@
+"""rocking: exact event-driven simulation of a rigid block that rocks,
+slides, slide-rocks, lifts off and tumbles on a shaken base.
+
+    >>> import rocking
+    >>> scene = rocking.Scene("fig3", a_h="0.35 g")
+    >>> run = rocking.simulate(scene)
+    >>> run.t, run.theta_rad, run.summary["outcome"]
+
+Scenes are built by the CLI's config layer (same keys, units and
+messages); runs, sweeps, maps and Lyapunov exponents are the library's,
+computed without the GIL on all cores and returned as numpy arrays, with
+the same numbers as `rocking --batch`, `rocking sweep` and `rocking map`.
+`rocking.dask` runs sweeps and maps on a Dask cluster.
+
+Errors: `ConfigError` (bad input, with `key`, `file`, `line`),
+`RecordError` (a record file, a `ConfigError`), `RunError` (a run that
+failed), each carrying the CLI's one-line message.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from . import _rocking
+from ._results import Lyapunov, OutcomeMap, Run, Sweep
+from ._rocking import ConfigError, RecordError, RunError, Scene, __version__, presets
+from ._table import Table
+
+__all__ = [
+    "ConfigError",
+    "Lyapunov",
+    "OutcomeMap",
+    "RecordError",
+    "Run",
+    "RunError",
+    "Scene",
+    "Sweep",
+    "Table",
+    "__version__",
+    "lyapunov",
+    "outcome_map",
+    "presets",
+    "simulate",
+    "sweep",
+]
+
+Axis = tuple[str, float, float, int]
+
+
+def _scene(scene: Scene | str) -> Scene:
+    """A scene, or the preset of that name."""
+    return scene if isinstance(scene, Scene) else Scene(scene)
+
+
+def simulate(scene: Scene | str) -> Run:
+    """One run of `scene` (or of the preset of that name), as `rocking --batch`
+    makes it: the time history, events, Poincaré section and summary.json,
+    with `analysis.lyapunov` and `analysis.spectrum` when the scene asks
+    for them. Releases the GIL while it runs."""
+    s = _scene(scene)
+    return Run(s, _rocking._simulate(s))
+
+
+def sweep(
+    scene: Scene | str,
+    param: str,
+    start: float,
+    stop: float,
+    step: float,
+    *,
+    transient: float = 600.0,
+    tau_end: float | None = None,
+    continuation: str = "none",
+    lyapunov: bool = False,
+    threads: int | None = None,
+) -> Sweep:
+    """The bifurcation diagram of config key `param` (e.g. "excitation.a_v")
+    over `start, start + step, …` up to `stop` (within half a step), as
+    `rocking sweep --param … --from … --to … --step …`: Poincaré points at
+    `transient ≤ τ_k ≤ tau_end` (default: the scene's run.tau_end), each
+    value classified. `continuation` is "none" (every value from the
+    scene's initial state, in parallel), "up" or "down" (each value from
+    the previous one's final state). `lyapunov` adds the largest exponent
+    of each value. `threads`: worker threads (default one per core).
+    Ctrl-C stops it between chunks."""
+    s = _scene(scene)
+    data = _rocking._sweep(
+        s,
+        param,
+        start,
+        stop,
+        step,
+        transient=transient,
+        tau_end=tau_end,
+        continuation=continuation,
+        lyapunov=lyapunov,
+        threads=threads,
+    )
+    return Sweep._assemble(param, [data])
+
+
+def outcome_map(
+    scene: Scene | str,
+    x: Axis,
+    y: Axis,
+    *,
+    transient: float = 600.0,
+    tau_end: float | None = None,
+    lyapunov: bool = False,
+    threads: int | None = None,
+) -> OutcomeMap:
+    """The outcome map over `x = (key, first, last, count)` and `y` (same),
+    as `rocking map --x … --y …`: each cell's steady response from the
+    scene's initial state (Poincaré points at `transient ≤ τ_k ≤ tau_end`),
+    with its largest Lyapunov exponent if `lyapunov`. Ctrl-C stops it
+    between rows."""
+    s = _scene(scene)
+    data = _rocking._outcome_map(
+        s, tuple(x), tuple(y), transient=transient, tau_end=tau_end, lyapunov=lyapunov, threads=threads
+    )
+    return OutcomeMap._assemble([data])
+
+
+def lyapunov(scene: Scene | str, method: str | None = None) -> Lyapunov:
+    """The Lyapunov exponents of `scene` over its run (discarding
+    min(600, tau_end/2) of transient), as `analysis.lyapunov = true`
+    computes them; `method` is "tangent", "benettin" or "both" (default:
+    the scene's analysis.lyapunov_method)."""
+    s = _scene(scene)
+    return Lyapunov._of(_rocking._lyapunov(s, method))
+
+
+def __dir__() -> list[str]:
+    return sorted(__all__)
+
+
+def __getattr__(name: str) -> Any:
+    # `rocking.dask` is imported on first use: dask stays optional.
+    if name == "dask":
+        import importlib
+
+        return importlib.import_module(".dask", __name__)
+    raise AttributeError(f"module 'rocking' has no attribute {name!r}")
