@@ -40,25 +40,49 @@ fn interrupted() -> Option<PyErr> {
     Python::attach(|py| py.check_signals().err())
 }
 
-/// Runs `f` on a pool of `threads` workers, or on rayon's global pool (one
-/// per core) when `None`; `threads` is checked as the CLI checks
-/// `--threads`.
-fn on_pool<T: Send>(threads: Option<usize>, f: impl FnOnce() -> T + Send) -> PyResult<T> {
-    let cores = std::thread::available_parallelism().map_or(1, usize::from);
-    let most = MAX_THREADS_PER_CORE * cores;
-    match threads {
-        None => Ok(f()),
-        Some(0) => Err(input("--threads 0: must be >= 1")),
-        Some(n) if n > most => Err(input(format!(
-            "--threads {n}: at most {most} ({MAX_THREADS_PER_CORE} per core on {cores} cores); more only adds switching"
-        ))),
-        Some(n) => {
-            let pool = rayon::ThreadPoolBuilder::new()
+/// Where the parallel parts of a computation run: rayon's global pool
+/// (one thread per core) or a pool of the asked size. The loop over chunks
+/// stays on the calling thread, so that Ctrl-C (delivered to Python's main
+/// thread) is seen between chunks.
+enum Workers {
+    Global,
+    Pool(rayon::ThreadPool),
+}
+
+impl Workers {
+    /// `threads` workers (default one per core), checked as the CLI checks
+    /// `--threads`.
+    fn new(threads: Option<usize>) -> PyResult<Self> {
+        let cores = std::thread::available_parallelism().map_or(1, usize::from);
+        let most = MAX_THREADS_PER_CORE * cores;
+        match threads {
+            None => Ok(Workers::Global),
+            Some(0) => Err(input("--threads 0: must be >= 1")),
+            Some(n) if n > most => Err(input(format!(
+                "--threads {n}: at most {most} ({MAX_THREADS_PER_CORE} per core on {cores} cores); more only adds switching"
+            ))),
+            Some(n) => rayon::ThreadPoolBuilder::new()
                 .num_threads(n)
                 .thread_name(|i| format!("rocking-py-{i}"))
                 .build()
-                .map_err(|e| run_error(&anyhow!("starting the worker threads: {e}")))?;
-            Ok(pool.install(f))
+                .map(Workers::Pool)
+                .map_err(|e| run_error(&anyhow!("starting the worker threads: {e}"))),
+        }
+    }
+
+    /// Runs `f`, whose parallel iterators use these workers.
+    fn run<T: Send>(&self, f: impl FnOnce() -> T + Send) -> T {
+        match self {
+            Workers::Global => f(),
+            Workers::Pool(pool) => pool.install(f),
+        }
+    }
+
+    /// Threads available to one chunk.
+    fn threads(&self) -> usize {
+        match self {
+            Workers::Global => rayon::current_num_threads(),
+            Workers::Pool(pool) => pool.current_num_threads(),
         }
     }
 }
@@ -81,8 +105,8 @@ fn lyapunov_hook(on: bool) -> Option<&'static LyapunovFn<'static>> {
 
 /// Values per chunk between two Ctrl-C checks: enough to keep every
 /// thread busy, few enough to answer within a few values' time.
-fn chunk_len() -> usize {
-    4 * rayon::current_num_threads().max(2)
+fn chunk_len(workers: &Workers) -> usize {
+    4 * workers.threads().max(2)
 }
 
 /// A parsed `continuation`.
@@ -180,17 +204,23 @@ fn sweep_failure(param: Param, e: &SweepError<SteadyError>) -> Stop {
 /// (`interruptible`), the first failure in index order reported as the
 /// CLI reports it. With continuation: one value after another, seeding
 /// each from the one before as `block_sweep` does.
-fn compute_sweep(sp: &SweepPlan<'_>, interruptible: bool) -> Result<Vec<(usize, BifurcationValue)>, Stop> {
+fn compute_sweep(
+    sp: &SweepPlan<'_>,
+    workers: &Workers,
+    interruptible: bool,
+) -> Result<Vec<(usize, BifurcationValue)>, Stop> {
     let SweepPlan { spec, plan } = sp;
     if plan.continuation != Continuation::None {
         return compute_continuation(spec, plan, interruptible);
     }
     if let Some(s) = plan.shard {
-        let values = block_sweep(spec, plan, &silent).map_err(|e| sweep_failure(spec.param, &e))?;
+        let values = workers
+            .run(|| block_sweep(spec, plan, &silent))
+            .map_err(|e| sweep_failure(spec.param, &e))?;
         return Ok((s.index..plan.grid.count).step_by(s.count).zip(values).collect());
     }
     let count = plan.grid.count;
-    let shards = count.div_ceil(chunk_len()).max(1);
+    let shards = count.div_ceil(chunk_len(workers)).max(1);
     let mut parts: Vec<Vec<BifurcationValue>> = Vec::with_capacity(shards);
     let mut first_failure: Option<SweepError<SteadyError>> = None;
     for index in 0..shards {
@@ -198,7 +228,7 @@ fn compute_sweep(sp: &SweepPlan<'_>, interruptible: bool) -> Result<Vec<(usize, 
             shard: Some(Shard { index, count: shards }),
             ..*plan
         };
-        match block_sweep(spec, &shard, &silent) {
+        match workers.run(|| block_sweep(spec, &shard, &silent)) {
             Ok(values) => parts.push(values),
             Err(e) => {
                 if first_failure.as_ref().is_none_or(|f| e.index < f.index) {
@@ -383,9 +413,10 @@ pub fn _sweep<'py>(
     if check_only {
         return sweep_columns(py, &sp.plan.grid, &[]);
     }
+    let workers = Workers::new(threads)?;
     let interruptible = shard.is_none();
     let values = py
-        .detach(|| on_pool(threads, || compute_sweep(&sp, interruptible)))?
+        .detach(|| compute_sweep(&sp, &workers, interruptible))
         .map_err(Stop::into_py)?;
     sweep_columns(py, &sp.plan.grid, &values)
 }
@@ -471,6 +502,7 @@ fn map_plan(
 fn compute_rows(
     base: &Scenario,
     plan: &MapPlan,
+    workers: &Workers,
     rows: std::ops::Range<usize>,
     lyapunov: bool,
     interruptible: bool,
@@ -480,7 +512,7 @@ fn compute_rows(
         let yv = plan.y.value(j);
         let row = Axis::new("--y", &plan.y.key, yv, yv, 1).map_err(|e| Stop::Failed(anyhow!("row {j}: {e}")))?;
         let spec = plan.spec(base, &row, lyapunov);
-        let done = block_map(&spec, &silent).map_err(|e| {
+        let done = workers.run(|| block_map(&spec, &silent)).map_err(|e| {
             Stop::Failed(anyhow!(
                 "{} = {}, {} = {}: {}",
                 plan.x.key,
@@ -525,11 +557,12 @@ pub fn _outcome_map<'py>(
             plan.y.n
         )));
     }
+    let workers = Workers::new(threads)?;
     let cells = if check_only {
         Vec::new()
     } else {
         let interruptible = rows.is_none();
-        py.detach(|| on_pool(threads, || compute_rows(base, &plan, j0..j1, lyapunov, interruptible)))?
+        py.detach(|| compute_rows(base, &plan, &workers, j0..j1, lyapunov, interruptible))
             .map_err(Stop::into_py)?
     };
     let out = PyDict::new(py);
