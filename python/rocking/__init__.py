@@ -127,7 +127,12 @@ def lyapunov(scene: Scene | str, method: str | None = None) -> Lyapunov:
     computes them; `method` is "tangent", "benettin" or "both" (default:
     the scene's analysis.lyapunov_method)."""
     s = _scene(scene)
-    return Lyapunov._of(_rocking._lyapunov(s, method))
+    # Checked as `--set analysis.lyapunov=true` is: a scene without harmonic
+    # excitation, or an unknown method, is refused with the CLI's message.
+    analysis: dict[str, object] = {"lyapunov": True}
+    if method is not None:
+        analysis["lyapunov_method"] = method
+    return Lyapunov._of(_rocking._lyapunov(s.with_(analysis=analysis)))
 
 
 def __dir__() -> list[str]:

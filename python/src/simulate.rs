@@ -196,24 +196,15 @@ pub fn _simulate<'py>(py: Python<'py>, scene: &Scene) -> PyResult<Bound<'py, PyD
     columns(py, &done, &cfg.geometry())
 }
 
-/// The Lyapunov exponents of `scene` over its run (`run.tau_end`), as
-/// `analysis.lyapunov` computes them; `method` is `tangent`, `benettin`
-/// or `both` (default: the scene's `analysis.lyapunov_method`). Returns
-/// the full result as a dict (`convergence` as pairs).
+/// The Lyapunov exponents of `scene` over its run (`run.tau_end`) by its
+/// `analysis.lyapunov_method`, as `analysis.lyapunov` computes them.
+/// Returns the full result (`result`, `convergence` as pairs) and
+/// summary.json's entry (`summary`).
 #[pyfunction]
-#[pyo3(signature = (scene, method=None))]
-pub fn _lyapunov<'py>(py: Python<'py>, scene: &Scene, method: Option<&str>) -> PyResult<Bound<'py, PyAny>> {
+pub fn _lyapunov<'py>(py: Python<'py>, scene: &Scene) -> PyResult<Bound<'py, PyAny>> {
     let cfg = scene.scenario();
-    let method = match method {
-        None => method_of(cfg.analyses.lyapunov_method),
-        Some(name) => Method::from_name(name).ok_or_else(|| {
-            key_error(
-                "analysis.lyapunov_method",
-                format!("analysis.lyapunov_method: unknown method \"{name}\" (known: tangent, benettin, both)"),
-            )
-        })?,
-    };
     warn(py, cfg)?;
+    let method = method_of(cfg.analyses.lyapunov_method);
     let l = py.detach(|| scenario_lyapunov(cfg, method)).map_err(Failure::into_py)?;
     let full = serde_json::to_value(&l).map_err(|e| run_error(&anyhow::Error::new(e)))?;
     let out = PyDict::new(py);

@@ -98,6 +98,16 @@ def test_lyapunov_is_the_batch_summarys(cli, tmp_path: Path) -> None:
 
 
 def test_a_tumbling_block_has_no_exponent() -> None:
-    lyap = rocking.lyapunov(rocking.Scene("fig3", a_h=3.0, tau_end=200))
-    assert lyap.largest_per_tau is None
+    scene = rocking.Scene("fig3", a_h=3.0, omega_h=4.0, tau_end=200)
+    assert rocking.simulate(scene).outcome == "tumbled"
+    lyap = rocking.lyapunov(scene)
+    assert lyap.largest_per_tau is None and lyap.per_cycle is None
     assert lyap.no_exponent == "tumbled"
+    assert lyap.summary["no_exponent"] == "tumbled"
+
+
+def test_an_unknown_lyapunov_method_is_refused_like_the_cli(cli, tmp_path: Path) -> None:
+    expected = cli.error("--batch", "--preset", "fig3", "--set", "analysis.lyapunov=true", "--set", "analysis.lyapunov_method=magic", "--out", str(tmp_path))
+    with pytest.raises(rocking.ConfigError) as e:
+        rocking.lyapunov("fig3", method="magic")
+    assert str(e.value) == expected and e.value.key == "analysis.lyapunov_method"
