@@ -13,6 +13,11 @@ order: the result is identical, number for number, to `rocking.sweep` and
 `rocking.outcome_map`. The input is checked on the client first, so bad
 input fails at once with the CLI's message. Workers need `rocking`
 installed and, for record scenes, the record files at the same paths.
+
+A value that fails on a worker raises its `RunError` on the client; when
+several chunks fail, the one raised is the first Dask reports, not
+necessarily the failure with the smallest index that `rocking.sweep`
+(like the CLI) would name.
 """
 
 from __future__ import annotations
