@@ -184,10 +184,14 @@ impl Scene {
     }
 
     /// Warnings about the scene (a record whose peak suggests a wrong
-    /// unit), as the CLI prints them before a run.
+    /// unit): the lines the CLI prints before a run, less `warning: `.
     #[getter]
     fn warnings(&self) -> Vec<String> {
-        self.scenario.warnings()
+        self.scenario
+            .warnings()
+            .into_iter()
+            .map(|w| w.strip_prefix("warning: ").map_or(w.clone(), str::to_string))
+            .collect()
     }
 
     /// Block slenderness ψ = atan(B/H), rad.

@@ -117,12 +117,13 @@ pub fn run_scene(cfg: &Scenario) -> Result<Simulated, Failure> {
     Ok(Simulated { result, summary })
 }
 
-/// Prints the scene's warnings as Python warnings (the CLI prints them on
-/// stderr).
+/// Issues the scene's warnings as Python `UserWarning`s, with the line the
+/// CLI prints on stderr less its `warning: ` prefix.
 pub fn warn(py: Python<'_>, cfg: &Scenario) -> PyResult<()> {
     let warnings = py.import("warnings")?;
     for w in cfg.warnings() {
-        warnings.call_method1("warn", (w,))?;
+        let text = w.strip_prefix("warning: ").unwrap_or(&w);
+        warnings.call_method1("warn", (text,))?;
     }
     Ok(())
 }

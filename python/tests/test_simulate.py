@@ -111,3 +111,19 @@ def test_an_unknown_lyapunov_method_is_refused_like_the_cli(cli, tmp_path: Path)
     with pytest.raises(rocking.ConfigError) as e:
         rocking.lyapunov("fig3", method="magic")
     assert str(e.value) == expected and e.value.key == "analysis.lyapunov_method"
+
+
+def test_an_implausible_record_warns_like_the_cli(cli, tmp_path: Path) -> None:
+    rec = tmp_path / "loud.dat"
+    rec.write_text("0.00 0.0\n0.01 8.0\n0.02 -8.0\n0.03 0.0\n")
+    sets = ["excitation.kind=record", f"excitation.file_h={rec}", "excitation.unit_h=g", "run.tail_s=1"]
+    p = cli.run("--batch", *[a for s in sets for a in ("--set", s)], "--out", str(tmp_path / "o"), "-q")
+    assert p.returncode == 0, p.stderr
+    lines = [line.removeprefix("warning: ") for line in p.stderr.splitlines() if line.startswith("warning: ")]
+    assert len(lines) == 1 and "implausible" in lines[0]
+    scene = rocking.Scene(kind="record", file_h=rec, unit_h="g", tail_s=1)
+    assert scene.warnings == lines
+    with pytest.warns(UserWarning) as caught:
+        run = rocking.simulate(scene)
+    assert [str(w.message) for w in caught] == lines
+    assert run.summary["config"]["excitation"]["file_h"] == str(rec.resolve())

@@ -54,7 +54,7 @@ def test_the_gil_is_released_while_a_sweep_runs() -> None:
     running.wait()
     start = time.perf_counter()
     before = ticks
-    rocking.sweep("fig3", "excitation.a_v", 1.0, 3.0, 0.05, transient=300, tau_end=800, threads=1)
+    rocking.sweep("fig3", "excitation.a_v", 1.5, 2.2, 0.01, transient=600, tau_end=800, threads=1)
     during = ticks - before
     elapsed = time.perf_counter() - start
     done.set()
