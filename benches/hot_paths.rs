@@ -181,3 +181,85 @@ fn taylor_series(bencher: divan::Bencher, mode: &str) {
         black_box(&c);
     });
 }
+
+/// A shipped record read in its unit, as the engineering commands read it.
+fn shipped_record(name: &str, unit: rocking::model::units::AccelUnit) -> rocking::sim::scenario::Record {
+    let path = std::path::PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/assets/records/")).join(name);
+    let spec = rocking::io::record::RecordSpec::stated(unit);
+    let loaded = rocking::io::record::read_record_as(&path, &spec).expect("shipped record");
+    rocking::sim::scenario::Record {
+        path,
+        series: loaded.series,
+        unit: loaded.unit,
+        dt: None,
+    }
+}
+
+/// Issue 14's spectrum target (< 1 s on 2 cores): the rocking spectrum of
+/// 200 block sizes (R = 0.05 … 10 m, B/H = 0.2, no sliding, Housner
+/// impact) under El Centro 1940, on rayon's global pool (one thread per
+/// core), no history, each run stopped at overturning or at rest.
+#[divan::bench(sample_count = 10)]
+fn rocking_spectrum_elcentro_200_sizes() {
+    use rocking::analysis::engineering::Drive;
+    use rocking::analysis::engineering::rocking_spectrum::{SizeAxis, SizeRange, SpectrumSpec, rocking_spectrum};
+    let drive = Drive::Record(shipped_record(
+        "elcentro-1940-ns.dat",
+        rocking::model::units::AccelUnit::G,
+    ));
+    let base = rocking::sim::Scenario::default();
+    let spec = SpectrumSpec {
+        base: &base,
+        drive: &drive,
+        scale: 1.0,
+        sizes: SizeRange::new(SizeAxis::HalfDiagonal, 0.05, 10.0, 200).expect("range"),
+        b_over_h: vec![0.2],
+        overturn: None,
+    };
+    black_box(rocking_spectrum(&spec, &rocking::analysis::silent).expect("runs"));
+}
+
+/// Issue 14's fragility target (< 2 s on 2 cores): El Centro 1940 and Kobe
+/// 1995 scaled to 40 PGA levels (0.05 … 2 g) on 3 blocks (0.6 × 2.0,
+/// 0.4 × 1.6, 1 × 3 m): 240 runs, then both lognormal fits per block.
+#[divan::bench(sample_count = 10)]
+fn fragility_2_records_40_levels_3_blocks() {
+    use rocking::analysis::engineering::fragility::{FragilitySpec, SuiteRecord, fit_block, run_fragility, summarise};
+    use rocking::analysis::engineering::{BlockSize, Drive};
+    use rocking::model::units::AccelUnit;
+    let records: Vec<SuiteRecord> = [
+        ("elcentro-1940-ns.dat", AccelUnit::G),
+        ("kobe-1995.dat", AccelUnit::MetresPerSecond2),
+    ]
+    .into_iter()
+    .map(|(name, unit)| {
+        let record = shipped_record(name, unit);
+        let intensity = record.series.peaks(1.0).pga_g;
+        SuiteRecord {
+            drive: Drive::Record(record),
+            intensity,
+        }
+    })
+    .collect();
+    let levels: Vec<f64> = (1..=40).map(|i| 0.05 * f64::from(i)).collect();
+    let blocks = [(0.6, 2.0), (0.4, 1.6), (1.0, 3.0)].map(|(width_m, height_m)| BlockSize { width_m, height_m });
+    let base = rocking::sim::Scenario::default();
+    let spec = FragilitySpec {
+        base: &base,
+        records: &records,
+        levels: &levels,
+        blocks: &blocks,
+    };
+    let indices: Vec<usize> = (0..spec.run_count()).collect();
+    let runs = run_fragility(&spec, &indices, &rocking::analysis::silent).expect("runs");
+    let counts = summarise(
+        blocks.len(),
+        levels.len(),
+        0.5,
+        runs.iter()
+            .map(|r| (r.at.block, r.at.level, r.response.end, r.response.peak_theta_over_alpha)),
+    );
+    for c in &counts {
+        black_box(fit_block(&levels, c));
+    }
+}

@@ -38,6 +38,16 @@ fn main() {
 /// (the `default` preset unless `--preset`/`--config`/`--set` say otherwise).
 #[cfg(feature = "gui")]
 fn open_window(cli: &Cli) -> ! {
+    // Without a display the window cannot open: say so in one line, with
+    // the headless command, before loading anything (X11 needs DISPLAY,
+    // Wayland WAYLAND_DISPLAY or WAYLAND_SOCKET).
+    let has = |var: &str| std::env::var_os(var).is_some_and(|v| !v.is_empty());
+    if !has("DISPLAY") && !has("WAYLAND_DISPLAY") && !has("WAYLAND_SOCKET") {
+        eprintln!(
+            "error: no display found (DISPLAY and WAYLAND_DISPLAY are unset), so the app cannot open; run headless with `rocking --batch --preset NAME --out DIR` (see `rocking --help`)"
+        );
+        std::process::exit(EXIT_BAD_INPUT);
+    }
     let scene = rocking::gui::Settings::from_cli(
         cli.scene.preset.as_deref(),
         cli.scene.config.as_deref(),

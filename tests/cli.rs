@@ -394,3 +394,27 @@ fn batch_spectrum_of_a_period_one_response_peaks_at_the_forcing_harmonics() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// Without a display the app says so in one line with the headless command
+/// and exits 2 (issue "The app for a lecture hall": robustness); `--help`
+/// says that no arguments opens the app.
+#[test]
+fn without_a_display_the_app_points_to_batch() {
+    let o = rocking()
+        .args(["--preset", "kobe-rack"])
+        .env_remove("DISPLAY")
+        .env_remove("WAYLAND_DISPLAY")
+        .env_remove("WAYLAND_SOCKET")
+        .output()
+        .expect("runs");
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+    assert!(err.contains("rocking --batch"), "{err}");
+    let help = rocking().arg("--help").output().expect("runs");
+    let text = String::from_utf8_lossy(&help.stdout);
+    assert!(
+        text.contains("With no --batch and no subcommand, rocking opens the desktop app"),
+        "{text}"
+    );
+}

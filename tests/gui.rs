@@ -14,10 +14,13 @@ use rocking::analysis::lyapunov::{LyapunovOptions, Method, lyapunov};
 use rocking::analysis::orbit_diagram::{BlockSweep, Continuation, Grid, Plan, block_sweep};
 use rocking::analysis::steady::Window;
 use rocking::gui::panels::lyapunov::TRANSIENT_TAU;
+use rocking::gui::units::Units;
 use rocking::gui::{RockingApp, Settings};
+use rocking::model::units::AccelUnit;
 use rocking::sim::Param;
 use rocking::sim::protocol::{Batch, GhostState, RunId, SectionPoint, SimUpdate, Speed};
 use rocking::sim::runner::record;
+use rocking::sim::scenario::ExcitationKind;
 
 const SIZE: egui::Vec2 = egui::vec2(1280.0, 800.0);
 
@@ -700,4 +703,178 @@ fn the_contact_force_overlay_draws_the_force_inside_the_cone() {
         after > before + 100,
         "arrow pixels: {before} without the overlay, {after} with it"
     );
+}
+
+// ---- Issue 14: "Will it overturn?" — records in physical units ----
+
+/// The app on `preset` (with `sets`) fed the live run's first `tau` from a
+/// fixed stream, without wgpu (labels only).
+fn fixed_lazy(preset: &str, sets: &[&str], tau: f64) -> Harness<'static, RockingApp> {
+    let (s, c) = scene(preset, sets);
+    let updates = record(RunId(1), &c, tau);
+    Harness::builder()
+        .with_size(SIZE)
+        .build_eframe(move |cc| RockingApp::with_stream(cc, s, c, updates))
+}
+
+#[test]
+fn issue_14_the_kobe_rack_shows_seconds_degrees_its_record_and_the_overturn_banner() {
+    // The rack overturns at t = 6.89 s (the batch run's answer, τ = 18.29).
+    let mut h = fixed_lazy("kobe-rack", &[], 30.0);
+    h.run();
+    assert_eq!(h.state().units(), Units::Physical, "a record opens in physical units");
+    let _ = h.get_by_label("θ [deg] against t [s]");
+    let _ = h.get_by_label("Ground acceleration: kobe-1995.dat · PGA 0.69 g");
+    let _ = h.get_by_label("OVERTURNED at t = 6.89 s");
+    assert!(
+        h.query_by_label("Poincaré points (double-click to fit)").is_none(),
+        "a record has no stroboscopic section: no empty Poincaré plot"
+    );
+}
+
+#[test]
+fn issue_14_a_record_run_at_rest_after_the_record_says_survived_with_its_peaks() {
+    // The statue rocks to 4.86° (0.39 α) without sliding and is at rest
+    // long before El Centro's 53.74 s end (the batch run's answer).
+    let (_, c) = scene("elcentro-statue", &[]);
+    let end = c.record_end_tau().expect("a record");
+    let mut h = fixed_lazy("elcentro-statue", &[], end + 2.0);
+    h.run();
+    let _ = h.get_by_label("SURVIVED");
+    let _ = h.get_by_label("peak rotation 4.9° (0.39 α) · sliding 0.0 cm");
+    let _ = h.get_by_label("elcentro-1940-ns.dat · PGA 0.35 g");
+}
+
+#[test]
+fn issue_14_the_units_switch_is_remembered_across_scenes() {
+    let mut h = fixed_lazy("kobe-rack", &[], 5.0);
+    h.run();
+    h.get_by_label("normalised").click();
+    h.run();
+    let _ = h.get_by_label("Θ = θ/ψ against τ = p t");
+    // A harmonic scene opens in normalised units anyway; the choice of
+    // physical units then holds for the next scenes of the session.
+    h.get_by_label("physical").click();
+    h.run();
+    h.state_mut().load_preset("fig16");
+    h.run();
+    assert_eq!(h.state().units(), Units::Physical, "the user's choice holds");
+    let fresh = fixed_lazy("default", &[], 1.0);
+    assert_eq!(
+        fresh.state().units(),
+        Units::Normalised,
+        "the paper's scenes open normalised"
+    );
+}
+
+#[test]
+fn issue_14_fields_that_do_not_apply_to_the_excitation_are_hidden() {
+    let mut h = fixed_lazy("default", &[], 1.0);
+    h.run();
+    for shown in ["Ω_h", "A_h", "Φ_h"] {
+        assert!(h.query_by_label(shown).is_some(), "harmonic: {shown} shown");
+    }
+    for hidden in ["record (h)", "scale_h", "unit (h)", "PGA (h)", "pulse shape"] {
+        assert!(h.query_by_label(hidden).is_none(), "harmonic: {hidden} hidden");
+    }
+    h.state_mut().load_preset("kobe-rack");
+    h.run();
+    for shown in ["record (h)", "unit (h)", "scale_h", "PGA (h)"] {
+        assert!(h.query_by_label(shown).is_some(), "record: {shown} shown");
+    }
+    for hidden in ["Ω_h", "A_h", "Φ_h", "pulse shape"] {
+        assert!(h.query_by_label(hidden).is_none(), "record: {hidden} hidden");
+    }
+}
+
+/// A record file in the temporary folder, unique to this test.
+fn temp_record(name: &str, text: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("rocking-gui-{}-{name}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let path = dir.join(name);
+    std::fs::write(&path, text).expect("write record");
+    path
+}
+
+#[test]
+fn issue_14_a_text_record_without_a_unit_is_asked_for_its_unit() {
+    let path = temp_record("two-columns.txt", "# t a\n0 0\n0.01 0.8\n0.02 -0.5\n0.03 0\n");
+    let mut h = fixed_lazy("default", &[], 1.0);
+    h.run();
+    h.state_mut().open_record(&path);
+    h.run();
+    assert!(h.state().record_question().is_some(), "the app asks");
+    assert_eq!(
+        h.state().config().excitation.kind,
+        ExcitationKind::Harmonic,
+        "nothing changes before the answer"
+    );
+    let _ = h.get_by_label_contains("does not say its unit");
+    h.get_by_label("m/s²").click();
+    h.run();
+    assert!(h.state().record_question().is_none(), "answered");
+    let cfg = h.state().config();
+    assert_eq!(cfg.excitation.kind, ExcitationKind::Record);
+    let rec = cfg.excitation.record_h.as_ref().expect("the record");
+    assert_eq!(rec.unit, AccelUnit::MetresPerSecond2);
+    assert!((rec.series.peak_abs_g() - 0.8 / 9.81).abs() < 1e-12, "read in m/s²");
+}
+
+#[test]
+fn issue_14_a_one_column_record_is_asked_for_its_unit_and_time_step() {
+    let path = temp_record("one-column.txt", "0\n0.2\n-0.1\n0.05\n0\n");
+    let mut h = fixed_lazy("default", &[], 1.0);
+    h.run();
+    h.state_mut().open_record(&path);
+    h.run();
+    h.get_by_label("g (9.81 m/s²)").click();
+    h.run();
+    let q = h.state().record_question().expect("the time step is asked next");
+    assert!(q.needs_step && q.unit == Some(AccelUnit::G), "{q:?}");
+    set_field(&mut h, "time step [s]", "0.02");
+    h.get_by_label("Open record").click();
+    h.run();
+    assert!(h.state().record_question().is_none(), "answered");
+    let rec = h
+        .state()
+        .config()
+        .excitation
+        .record_h
+        .as_ref()
+        .expect("the record")
+        .clone();
+    assert_eq!(rec.dt, Some(0.02));
+    assert!((rec.series.duration_s() - 0.08).abs() < 1e-12, "5 samples 0.02 s apart");
+}
+
+#[test]
+fn issue_14_the_record_presets_are_listed_and_run() {
+    let mut h = live(false, Speed::Max);
+    h.step();
+    for (k, name) in ["kobe-rack", "elcentro-statue"].into_iter().enumerate() {
+        h.key_press(egui::Key::Escape);
+        h.step();
+        open_menu(&mut h, "Presets", name);
+        h.get_by_label(name).click();
+        h.step();
+        assert_eq!(h.state().run_id(), RunId(k as u64 + 2));
+        assert!(pump(&mut h, Duration::from_secs(20), |a| {
+            a.run_info()
+                .is_some_and(|i| i.scenario.excitation.kind == ExcitationKind::Record)
+                && a.history().samples.len() > 100
+        }));
+        assert!(h.state().record_label().is_some(), "{name}: the record is named");
+    }
+}
+
+#[test]
+fn snapshot_of_the_record_unit_question() {
+    let path = temp_record("question.txt", "0 0\n0.01 0.8\n0.02 -0.5\n0.03 0\n");
+    let mut h = fixed("default", &[], 5.0);
+    h.run();
+    h.state_mut().open_record(&path);
+    h.run();
+    let _ = h.get_by_label("Reading the record");
+    let _ = h.get_by_label("cm/s² (gal)");
+    h.snapshot("record_unit_question");
 }

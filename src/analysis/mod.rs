@@ -21,6 +21,7 @@
 //! is varied through a typed [`Param`](crate::sim::Param), never by name.
 
 pub mod classify;
+pub mod engineering;
 pub mod lyapunov;
 pub mod orbit_diagram;
 pub mod outcome_map;

@@ -176,7 +176,7 @@ fn resolved(path: &Path) -> PathBuf {
 
 /// Whether folder `out` is `shard` or contains it (writing `out` would
 /// replace the shard being read).
-fn contains(out: &Path, shard: &Path) -> bool {
+pub(super) fn contains(out: &Path, shard: &Path) -> bool {
     resolved(shard).starts_with(resolved(out))
 }
 

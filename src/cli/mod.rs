@@ -16,9 +16,14 @@ use crate::analysis::lyapunov;
 pub mod args;
 pub mod batch;
 pub mod bench;
+pub mod eng_args;
+pub mod fragility;
 pub mod map;
 pub mod merge;
+pub mod progress;
+pub mod pulse_map;
 pub mod reproduce;
+pub mod spectrum;
 pub mod sweep;
 pub mod write;
 
@@ -34,7 +39,16 @@ pub const EXIT_RUN_FAILED: i32 = 1;
 /// rocking — exact simulator of a rigid block that rocks, slides,
 /// slide-rocks, lifts off and tumbles on a shaken base.
 #[derive(Debug, Parser)]
-#[command(name = "rocking", version, about, long_about = None, args_conflicts_with_subcommands = true)]
+#[command(
+    name = "rocking",
+    version,
+    about,
+    long_about = None,
+    args_conflicts_with_subcommands = true,
+    after_help = "With no --batch and no subcommand, rocking opens the desktop app on the scene \
+                  (the `default` preset unless --preset, --config or --set say otherwise). Without a \
+                  display, run the same scene headless: rocking --batch --preset default --out out"
+)]
 pub struct Cli {
     /// Run one simulation without a window and write summary.json,
     /// events.csv, poincare.csv and history.csv into --out.
@@ -64,8 +78,21 @@ pub enum Command {
     /// steady response and collect its Poincaré points (points.csv,
     /// classes.csv, sweep.json, bifurcation.png/svg).
     Sweep(sweep::SweepArgs),
-    /// Join the shards of a `sweep --shard K/N` into the files one run writes.
+    /// Join the shards of a `sweep --shard K/N` or a `fragility --shard K/N`
+    /// into the files one run writes.
     Merge(merge::MergeArgs),
+    /// Rocking spectrum: peak θ/α and overturning of a range of block sizes
+    /// under one record or pulse, optionally each block's smallest
+    /// overturning scale (spectrum.csv, spectrum.json, spectrum.png/svg).
+    Spectrum(spectrum::SpectrumArgs),
+    /// Pulse overturning map: the smallest a_p/(g tan α) that overturns a
+    /// block against ω_p/p, for one-sine, one-cosine and type-C pulses
+    /// (pulse_map.csv/json/png/svg).
+    PulseMap(pulse_map::PulseMapArgs),
+    /// Fragility curves: a suite of records scaled to intensity levels, the
+    /// fraction of blocks overturned per level and a lognormal fit by
+    /// maximum likelihood (runs.csv, fractions.csv, fragility.json/png/svg).
+    Fragility(fragility::FragilityArgs),
     /// Outcome map over two config keys (map.csv, map.png/svg, map.json).
     Map(map::MapArgs),
     /// Recompute every figure of the paper (Figs. 3–19) and write them with
@@ -84,7 +111,11 @@ impl Command {
                 sweep::run_with(args, Some(&lyapunov::largest_for_scenario))
             }
             Command::Sweep(args) => sweep::run(args),
+            Command::Merge(args) if fragility::are_fragility_shards(&args.shards) => fragility::merge(args),
             Command::Merge(args) => merge::run(args),
+            Command::Spectrum(args) => spectrum::run(args),
+            Command::PulseMap(args) => pulse_map::run(args),
+            Command::Fragility(args) => fragility::run(args),
             Command::Map(args) if args.output.lyapunov => map::run_with(args, Some(&lyapunov::largest_for_scenario)),
             Command::Map(args) => map::run(args),
             Command::Reproduce(args) => reproduce::run(args),

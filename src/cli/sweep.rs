@@ -15,11 +15,10 @@
 //! Bad input exits 2 with a one-line error naming the flag or key, before
 //! anything runs or is written; the directory appears whole or not at all.
 
-use std::io::IsTerminal as _;
 use std::time::Instant;
 
 use anyhow::Context as _;
-use indicatif::{ProgressBar, ProgressStyle};
+use indicatif::ProgressBar;
 use serde_json::{Value as Json, json};
 
 use super::args::{SceneArgs, StudyArgs, StudyOutput};
@@ -157,17 +156,10 @@ impl SweepMeta {
     }
 }
 
-/// A progress bar on a terminal's stderr, hidden otherwise (or when quiet).
+/// A progress bar on stderr: drawn on a terminal, a line every few
+/// seconds in a log ([`super::progress::bar`]), nothing when quiet.
 pub fn progress_bar(len: usize, what: &str, quiet: bool) -> ProgressBar {
-    if quiet || !std::io::stderr().is_terminal() {
-        return ProgressBar::hidden();
-    }
-    let bar = ProgressBar::new(len as u64);
-    let template = format!("{{bar:40}} {{pos}}/{{len}} {what} {{elapsed_precise}} (eta {{eta}})");
-    if let Ok(style) = ProgressStyle::with_template(&template) {
-        bar.set_style(style);
-    }
-    bar
+    super::progress::bar(len, what, quiet)
 }
 
 /// The analyses' progress callback drawing on `bar`.

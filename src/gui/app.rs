@@ -1,7 +1,8 @@
 //! The app: its state, how it is made, what it answers and the actions it
 //! takes. The rest, by job: `receive` (the message loop with the
 //! simulation thread), `controls` (top bar, menus, keyboard), `layout`
-//! (where the panels go, and the frame), `status` (the status bar).
+//! (where the panels go, and the frame), `status` (the status bar),
+//! `record_open` (opening a record, and asking what its file leaves out).
 //!
 //! Contract: the app does no mechanics. Everything it shows comes from the
 //! simulation thread's updates ([`crate::sim::protocol`]), filtered by run
@@ -15,11 +16,13 @@ use std::collections::VecDeque;
 use crate::gui::block_view;
 use crate::gui::history::RunHistory;
 use crate::gui::panels::bifurcation::BifurcationView;
+use crate::gui::panels::ground::{GroundView, RecordLabel};
 use crate::gui::panels::lyapunov::LyapunovView;
 use crate::gui::panels::params::Edits;
 use crate::gui::panels::plots::{HistoryView, PhaseView, PoincareView, SpectrumView};
 use crate::gui::panels::scene::Camera;
 use crate::gui::settings::Settings;
+use crate::gui::units::{Scales, Units};
 use crate::sim::Scenario;
 use crate::sim::protocol::{GhostState, RunEnd, RunId, RunInfo, SimUpdate, Speed};
 use crate::sim::runner::SimHandle;
@@ -27,7 +30,10 @@ use crate::sim::runner::SimHandle;
 mod controls;
 mod layout;
 mod receive;
+mod record_open;
 mod status;
+
+pub use record_open::RecordQuestion;
 
 /// Where the app's data comes from.
 enum Link {
@@ -119,6 +125,13 @@ pub struct RockingApp {
     frame_ms: f32,
     frame_interval_ms: f32,
     last_shown: Option<crate::sim::protocol::Sample>,
+    /// The units the user chose with the switch; `None` until they do,
+    /// then kept for the rest of the session whatever scene is loaded.
+    units_choice: Option<Units>,
+    /// The current run's record (name, PGA), read when it started.
+    record_label: Option<RecordLabel>,
+    ground: GroundView,
+    record_question: Option<RecordQuestion>,
 }
 
 impl RockingApp {
@@ -214,6 +227,10 @@ impl RockingApp {
             frame_ms: 0.0,
             frame_interval_ms: 0.0,
             last_shown: None,
+            units_choice: None,
+            record_label: None,
+            ground: GroundView::default(),
+            record_question: None,
         }
     }
 
@@ -285,6 +302,25 @@ impl RockingApp {
     pub fn lyapunov(&self) -> &LyapunovView {
         &self.lyapunov
     }
+    /// The units numbers are shown in: the user's choice, or the scene's
+    /// default ([`Units::default_for`]: physical for a record).
+    pub fn units(&self) -> Units {
+        self.units_choice
+            .unwrap_or_else(|| Units::default_for(self.config.excitation.kind))
+    }
+    /// Conversions to the units shown, for the block being run (the
+    /// panel's block before the run has started).
+    pub fn scales(&self) -> Scales {
+        let geo = self
+            .info
+            .as_ref()
+            .map_or_else(|| self.config.geometry(), |i| i.geometry);
+        Scales::new(self.units(), geo)
+    }
+    /// The current run's record (name and PGA after scale), for a record run.
+    pub fn record_label(&self) -> Option<&RecordLabel> {
+        self.record_label.as_ref()
+    }
     /// CPU time of the last frame's app code (layout and data), ms.
     pub fn frame_ms(&self) -> f32 {
         self.frame_ms
@@ -299,6 +335,12 @@ impl RockingApp {
     }
 
     // ---- Actions ----
+
+    /// Shows numbers in `units` from now on (this session), whatever scene
+    /// is loaded next.
+    pub fn set_units(&mut self, units: Units) {
+        self.units_choice = Some(units);
+    }
 
     /// Plays or pauses.
     pub fn toggle_pause(&mut self) {
@@ -324,6 +366,7 @@ impl RockingApp {
         self.ghosts.clear();
         self.end = None;
         self.last_shown = None;
+        self.record_label = None;
         self.poincare.reset();
         self.spectrum.reset();
         self.flash_at = None;

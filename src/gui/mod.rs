@@ -13,6 +13,7 @@ pub mod export;
 pub mod history;
 pub mod panels;
 pub mod settings;
+pub mod units;
 
 pub use app::RockingApp;
 pub use settings::Settings;

@@ -9,7 +9,7 @@ use std::path::Path;
 
 use toml::Table;
 
-use crate::io::config::set_dotted;
+use crate::io::config::{ConfigError, set_dotted};
 use crate::io::config::{Source, parse_toml, preset_text, read_file};
 use crate::sim::Scenario;
 
@@ -103,7 +103,40 @@ impl Settings {
 
     /// Resolves and validates.
     pub fn resolve(&self) -> Result<Scenario, String> {
-        crate::io::config::from_table(&self.table, &self.source).map_err(|e| e.to_string())
+        self.resolve_typed().map_err(|e| e.to_string())
+    }
+
+    /// Resolves and validates, keeping the config layer's error as it is
+    /// (so the caller can tell which key is at fault).
+    pub fn resolve_typed(&self) -> Result<Scenario, ConfigError> {
+        crate::io::config::from_table(&self.table, &self.source)
+    }
+
+    /// These settings with each `(key, value)` (`section.key`) set, or
+    /// removed for `None`; not resolved.
+    pub fn with_values(&self, values: &[(&str, Option<toml::Value>)]) -> Self {
+        let mut next = self.clone();
+        for (key, value) in values {
+            let Some((section, name)) = key.split_once('.') else {
+                continue;
+            };
+            let entry = next
+                .table
+                .entry(section.to_string())
+                .or_insert_with(|| toml::Value::Table(Table::new()));
+            let toml::Value::Table(t) = entry else {
+                continue;
+            };
+            match value {
+                Some(v) => {
+                    t.insert(name.to_string(), v.clone());
+                }
+                None => {
+                    t.remove(name);
+                }
+            }
+        }
+        next
     }
 
     /// The explicit value of `key` (`section.key`), as TOML text.

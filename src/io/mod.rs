@@ -9,6 +9,7 @@
 
 pub mod config;
 pub mod csv;
+pub mod engineering_files;
 pub mod output;
 pub mod presets;
 pub mod record;

@@ -6,7 +6,9 @@
 //! stepper stops with an error first); a non-finite number reaching a
 //! writer is an error, never written.
 
-use std::path::Path;
+use std::fs::File;
+use std::io::BufWriter;
+use std::path::{Path, PathBuf};
 
 use serde::Serialize;
 use serde_json::json;
@@ -18,7 +20,7 @@ use crate::model::geometry::G;
 use crate::model::system::EventRecord;
 use crate::model::{Geometry, Mode};
 use crate::sim::scenario::ExcitationKind;
-use crate::sim::{HistoryRow, Physical, RunResult, Scenario, SectionRow};
+use crate::sim::{HistoryRow, Physical, RunResult, Scenario, SectionRow, Sink};
 
 /// A row of `events.csv`: the normalised state (`tau`, `theta`, …) and the
 /// same event in physical units (`t_s`, `theta_rad`, `sliding_m`).
@@ -55,7 +57,12 @@ impl Row for EventRow {
 
 /// `events.csv` of a run of block `geo`.
 pub fn events_csv(events: &[EventRecord], geo: &Geometry) -> String {
-    csv::to_string(events.iter().map(|e| EventRow {
+    csv::to_string(events.iter().map(|e| event_row(e, geo)))
+}
+
+/// The `events.csv` row of event `e` of block `geo`.
+fn event_row(e: &EventRecord, geo: &Geometry) -> EventRow {
+    EventRow {
         tau: Num(e.tau),
         kind: e.kind.name(),
         mode_before: e.before.name(),
@@ -67,7 +74,7 @@ pub fn events_csv(events: &[EventRecord], geo: &Geometry) -> String {
         t_s: Num(e.tau / geo.p),
         theta_rad: Num(e.theta * geo.psi),
         sliding_m: Num(geo.sliding(e.theta, e.x) * geo.r),
-    }))
+    }
 }
 
 /// A row of `poincare.csv`.
@@ -88,7 +95,12 @@ impl Row for PoincareRow {
 
 /// `poincare.csv`.
 pub fn poincare_csv(points: &[SectionRow]) -> String {
-    csv::to_string(points.iter().map(|p| PoincareRow {
+    csv::to_string(points.iter().map(poincare_row))
+}
+
+/// The `poincare.csv` row of section point `p`.
+fn poincare_row(p: &SectionRow) -> PoincareRow {
+    PoincareRow {
         k: p.k,
         tau: Num(p.tau),
         theta: Num(p.theta),
@@ -96,7 +108,7 @@ pub fn poincare_csv(points: &[SectionRow]) -> String {
         x: Num(p.x),
         x_dot: Num(p.x_dot),
         mode: p.mode.name(),
-    }))
+    }
 }
 
 /// A row of `history.csv`: the normalised state and, after `mode`, the
@@ -130,7 +142,12 @@ impl Row for HistoryCsvRow {
 
 /// `history.csv` of a run of block `geo`.
 pub fn history_csv(rows: &[HistoryRow], geo: &Geometry) -> String {
-    csv::to_string(rows.iter().map(|r| HistoryCsvRow {
+    csv::to_string(rows.iter().map(|r| history_row(r, geo)))
+}
+
+/// The `history.csv` row of history row `r` of block `geo`.
+fn history_row(r: &HistoryRow, geo: &Geometry) -> HistoryCsvRow {
+    HistoryCsvRow {
         tau: Num(r.tau),
         theta: Num(r.theta),
         theta_dot: Num(r.theta_dot),
@@ -140,7 +157,7 @@ pub fn history_csv(rows: &[HistoryRow], geo: &Geometry) -> String {
         t_s: Num(r.tau / geo.p),
         theta_rad: Num(r.theta * geo.psi),
         sliding_m: Num(geo.sliding(r.theta, r.x) * geo.r),
-    }))
+    }
 }
 
 /// `summary.json`: outcome, times, the energy audit, work counters and the
@@ -160,7 +177,7 @@ pub fn summary_json(cfg: &Scenario, res: &RunResult) -> serde_json::Value {
         "flight_tau": res.flight_tau,
         "max_abs_theta": res.max_abs_theta,
         "impacts": res.tally.impacts,
-        "events": res.events.len(),
+        "events": res.tallies.events,
         "flight_violations": res.tally.flight_violations,
         "final_mode": res.final_mode.name(),
         "mode_time": mode_time,
@@ -186,6 +203,131 @@ pub fn summary_json(cfg: &Scenario, res: &RunResult) -> serde_json::Value {
         "version": env!("CARGO_PKG_VERSION"),
         "config": to_json(cfg),
     })
+}
+
+/// A run's three CSV files written as the run produces them, into a
+/// staging folder ([`Staging`]), so that a batch run's memory does not grow
+/// with its length. The first write error (a full disk) or non-finite
+/// number is kept and reported by [`RunFiles::finish`]; nothing after it
+/// is written.
+pub struct RunFiles {
+    events: ::csv::Writer<BufWriter<File>>,
+    poincare: ::csv::Writer<BufWriter<File>>,
+    history: ::csv::Writer<BufWriter<File>>,
+    paths: [PathBuf; 3],
+    geo: Geometry,
+    /// History rows kept for an analysis that needs them (the spectrum).
+    kept: Option<Vec<HistoryRow>>,
+    error: Option<OutputError>,
+}
+
+impl RunFiles {
+    /// Opens `events.csv`, `poincare.csv` and `history.csv` in `staging`
+    /// and writes their headers; with `keep_history` the history rows are
+    /// also kept in memory (for `analysis.spectrum`).
+    pub fn create(staging: &mut Staging, geo: Geometry, keep_history: bool) -> Result<Self, OutputError> {
+        let paths = [
+            staging.path("events.csv"),
+            staging.path("poincare.csv"),
+            staging.path("history.csv"),
+        ];
+        let open = |path: &Path, header: &[&str]| -> Result<::csv::Writer<BufWriter<File>>, OutputError> {
+            let file = File::create(path).map_err(|error| OutputError::Io {
+                path: path.display().to_string(),
+                error,
+            })?;
+            // 1 MiB buffers: a few large writes instead of many small ones.
+            let mut w = ::csv::WriterBuilder::new()
+                .has_headers(false)
+                .from_writer(BufWriter::with_capacity(1 << 20, file));
+            w.write_record(header).map_err(|e| csv_error(path, e))?;
+            Ok(w)
+        };
+        Ok(Self {
+            events: open(&paths[0], EventRow::HEADER)?,
+            poincare: open(&paths[1], PoincareRow::HEADER)?,
+            history: open(&paths[2], HistoryCsvRow::HEADER)?,
+            paths,
+            geo,
+            kept: keep_history.then(Vec::new),
+            error: None,
+        })
+    }
+
+    /// Flushes the files; the first error met while writing, if any.
+    /// Returns the history rows kept for the spectrum (empty unless asked).
+    pub fn finish(mut self) -> Result<Vec<HistoryRow>, OutputError> {
+        if let Some(e) = self.error.take() {
+            return Err(e);
+        }
+        for (w, path) in [&mut self.events, &mut self.poincare, &mut self.history]
+            .into_iter()
+            .zip(&self.paths)
+        {
+            w.flush().map_err(|error| OutputError::Io {
+                path: path.display().to_string(),
+                error,
+            })?;
+        }
+        Ok(self.kept.take().unwrap_or_default())
+    }
+
+    fn write<R: Serialize>(
+        error: &mut Option<OutputError>,
+        w: &mut ::csv::Writer<BufWriter<File>>,
+        path: &Path,
+        values: &[f64],
+        row: R,
+    ) {
+        if error.is_some() {
+            return;
+        }
+        if values.iter().any(|v| !v.is_finite()) {
+            *error = Some(OutputError::NonFinite(path.display().to_string()));
+        } else if let Err(e) = w.serialize(row) {
+            *error = Some(csv_error(path, e));
+        }
+    }
+}
+
+/// A CSV writer's error as an output error naming the file.
+fn csv_error(path: &Path, e: ::csv::Error) -> OutputError {
+    let error = match e.into_kind() {
+        ::csv::ErrorKind::Io(error) => error,
+        other => std::io::Error::other(format!("{other:?}")),
+    };
+    OutputError::Io {
+        path: path.display().to_string(),
+        error,
+    }
+}
+
+impl Sink for RunFiles {
+    fn sample(&mut self, row: &HistoryRow) {
+        let values = [row.tau, row.theta, row.theta_dot, row.x, row.x_dot];
+        let csv_row = history_row(row, &self.geo);
+        Self::write(&mut self.error, &mut self.history, &self.paths[2], &values, csv_row);
+        if let Some(kept) = &mut self.kept {
+            kept.push(*row);
+        }
+    }
+
+    fn section(&mut self, row: &SectionRow) {
+        let values = [row.tau, row.theta, row.theta_dot, row.x, row.x_dot];
+        Self::write(
+            &mut self.error,
+            &mut self.poincare,
+            &self.paths[1],
+            &values,
+            poincare_row(row),
+        );
+    }
+
+    fn event(&mut self, e: &EventRecord) {
+        let values = [e.tau, e.theta, e.theta_dot_before, e.theta_dot_after, e.x_dot, e.x];
+        let row = event_row(e, &self.geo);
+        Self::write(&mut self.error, &mut self.events, &self.paths[0], &values, row);
+    }
 }
 
 /// Every resolved input both ways, normalised (as the scenario stores it)
@@ -332,14 +474,11 @@ mod tests {
             mode: Mode::Slide { slip: Sign::Neg },
         }];
         let t_s = 0.30000000000000004 / geo.p;
-        assert_eq!(
-            history_csv(&rows, &geo),
-            format!(
-                "tau,theta,theta_dot,x,x_dot,mode,t_s,theta_rad,sliding_m\n0.30000000000000004,1e-5,-1.0,1e16,0.0001,slide,{},{},5000000000000000.0\n",
-                format!("{:?}", t_s),
-                format!("{:?}", 1e-5 * geo.psi)
-            )
+        let theta_rad = 1e-5 * geo.psi;
+        let expected = format!(
+            "tau,theta,theta_dot,x,x_dot,mode,t_s,theta_rad,sliding_m\n0.30000000000000004,1e-5,-1.0,1e16,0.0001,slide,{t_s:?},{theta_rad:?},5000000000000000.0\n"
         );
+        assert_eq!(history_csv(&rows, &geo), expected);
         // Rocking on the left corner (s = −1) at Θ = −0.5 with X = −0.1:
         // U = X − (sin(ψ/2) − sin ψ), and sliding_m = R·U.
         let e = EventRecord {
@@ -354,14 +493,8 @@ mod tests {
             x: -0.1,
         };
         let u = -0.1 - ((0.5 * geo.psi).sin() - geo.psi.sin());
-        assert_eq!(
-            events_csv(&[e], &geo).lines().nth(1).unwrap_or_default(),
-            format!(
-                "2.5,impact,rock,rest,-0.5,0.25,0.0,0.0,{},{},{}",
-                format!("{:?}", 2.5 / geo.p),
-                format!("{:?}", -0.5 * geo.psi),
-                format!("{:?}", 0.5 * u)
-            )
-        );
+        let (t_s, theta_rad, sliding_m) = (2.5 / geo.p, -0.5 * geo.psi, 0.5 * u);
+        let expected = format!("2.5,impact,rock,rest,-0.5,0.25,0.0,0.0,{t_s:?},{theta_rad:?},{sliding_m:?}");
+        assert_eq!(events_csv(&[e], &geo).lines().nth(1).unwrap_or_default(), expected);
     }
 }

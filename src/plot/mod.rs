@@ -13,9 +13,12 @@
 //! - Non-finite data points are skipped, never drawn.
 
 pub mod bifurcation;
+pub mod fragility;
 pub mod labels;
 pub mod outcome_map;
 pub mod poincare;
+pub mod pulse_map;
+pub mod rocking_spectrum;
 pub mod spectrum;
 pub mod time_history;
 pub mod work_precision;

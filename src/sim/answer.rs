@@ -8,7 +8,6 @@ use serde::Serialize;
 
 use super::run::{Outcome, RunResult};
 use super::scenario::{ExcitationKind, Scenario};
-use crate::model::Mode;
 use crate::model::excitation::record::GroundPeaks;
 
 /// How a run ended, in the words an engineer uses.
@@ -151,13 +150,7 @@ impl Physical {
                 slide_rock,
             },
             t_end_s: sec(res.tau_end),
-            t_rest_s: (end_state == EndState::Rest).then(|| {
-                res.events
-                    .iter()
-                    .rev()
-                    .find(|e| e.after == Mode::Rest)
-                    .map_or(0.0, |e| sec(e.tau))
-            }),
+            t_rest_s: (end_state == EndState::Rest).then(|| res.tallies.last_rest_tau.map_or(0.0, sec)),
             end_state,
             record_complete: s.record_complete(),
             record_h: peaks(&s.excitation.record_h, s.excitation.scale_h),

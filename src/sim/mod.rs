@@ -18,10 +18,10 @@ pub mod scenario;
 mod validate;
 
 pub use answer::{EndState, Physical};
-pub use collect::{HistoryRow, SectionRow};
+pub use collect::{HistoryRow, Keep, SectionRow, Sink, Tallies};
 pub use param::Param;
 pub use run::{
     EnergyAudit, InitialState, Method, Outcome, RunOptions, RunResult, SimError, TAYLOR_DEFAULT_RTOL, initial_mode,
-    simulate,
+    simulate, simulate_into,
 };
 pub use scenario::{Scenario, ScenarioError};

@@ -203,6 +203,21 @@ pub enum RunEnd {
         /// When.
         tau: f64,
     },
+    /// A record run at rest after its record ended (at a chunk end, at most
+    /// [`super::runner::MAX_CHUNK`] τ after it came to rest): the ground is
+    /// still from then on, so the block stays at rest for ever, and the
+    /// run stops as the batch run does ([`super::RunOptions::rest_after`]).
+    /// The block survived the record.
+    Rest {
+        /// When the run stopped, τ.
+        tau: f64,
+        /// Largest |Θ| of the run, units of ψ (at samples, events and the
+        /// model's rocking peaks, as the batch run's `max_abs_theta`).
+        max_abs_theta: f64,
+        /// Largest |sliding displacement| of the run, per R
+        /// ([`Geometry::sliding`], docs/model.md §1.6).
+        max_abs_sliding: f64,
+    },
     /// The integration failed; the message names the cause.
     Failed(String),
 }

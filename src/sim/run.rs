@@ -4,7 +4,7 @@ use std::time::Instant;
 
 use serde::Serialize;
 
-use super::collect::{Collector, HistoryRow, SectionRow};
+use super::collect::{Collector, HistoryRow, Keep, SectionRow, Sink, Tallies};
 use super::method::{StepperVisitor, with_stepper};
 use crate::integrate::hybrid::{Driver, Limits, Outputs};
 use crate::integrate::{StepStats, Stepper, Tolerances};
@@ -171,6 +171,8 @@ pub struct RunResult {
     pub final_mode: Mode,
     /// Final state.
     pub final_state: [f64; N],
+    /// What the run passed to its sink (counts) and tallied as it went.
+    pub tallies: Tallies,
     /// Largest |sliding displacement| over the run, per R
     /// ([`Geometry::sliding`](crate::model::Geometry::sliding)).
     pub max_abs_sliding: f64,
@@ -236,8 +238,27 @@ pub fn initial_mode(model: &Model, init: &InitialState) -> Result<(Mode, [f64; N
     }
 }
 
-/// Runs `model` from `init` with `opts`.
+/// Runs `model` from `init` with `opts`, keeping every event, section
+/// point and history row in the result.
 pub fn simulate(model: Model, init: &InitialState, opts: &RunOptions) -> Result<RunResult, SimError> {
+    let mut keep = Keep::default();
+    let mut res = simulate_into(model, init, opts, &mut keep)?;
+    res.events = keep.events;
+    res.section = keep.section;
+    res.history = keep.history;
+    Ok(res)
+}
+
+/// Runs `model` from `init` with `opts`, passing events, section points
+/// and history rows to `sink` as they are produced; the result's lists are
+/// empty and its [`Tallies`] count what went to the sink. Memory does not
+/// grow with the run's length unless the sink keeps what it is given.
+pub fn simulate_into(
+    model: Model,
+    init: &InitialState,
+    opts: &RunOptions,
+    sink: &mut dyn Sink,
+) -> Result<RunResult, SimError> {
     let (mode0, y0) = initial_mode(&model, init)?;
     /// The run, waiting for its stepper.
     struct Run<'a> {
@@ -245,14 +266,21 @@ pub fn simulate(model: Model, init: &InitialState, opts: &RunOptions) -> Result<
         mode0: Mode,
         y0: [f64; N],
         opts: &'a RunOptions,
+        sink: &'a mut dyn Sink,
     }
     impl StepperVisitor for Run<'_> {
         type Output = Result<RunResult, SimError>;
         fn visit<S: Stepper<N> + Send + 'static>(self, stepper: S) -> Self::Output {
-            run_with(stepper, self.model, self.mode0, self.y0, self.opts)
+            run_with(stepper, self.model, self.mode0, self.y0, self.opts, self.sink)
         }
     }
-    let run = Run { model, mode0, y0, opts };
+    let run = Run {
+        model,
+        mode0,
+        y0,
+        opts,
+        sink,
+    };
     with_stepper(opts.method, opts.tol, run)
 }
 
@@ -262,6 +290,7 @@ fn run_with<S: Stepper<N>>(
     mode0: Mode,
     mut y0: [f64; N],
     opts: &RunOptions,
+    sink: &mut dyn Sink,
 ) -> Result<RunResult, SimError> {
     let start = Instant::now();
     let section_period = if opts.section {
@@ -279,11 +308,16 @@ fn run_with<S: Stepper<N>>(
     let mut driver = Driver::new(stepper, system, mode0, 0.0, y0, opts.limits, outputs);
     let geometry = driver.system().model.geo;
     let mut obs = Collector {
+        sink,
         keep_history: opts.output_dt.is_some(),
-        max_abs_theta: y0[0].abs(),
-        geometry: Some(geometry),
-        max_abs_sliding: geometry.sliding(y0[0], y0[X]).abs(),
-        ..Collector::default()
+        geometry,
+        mode: mode0,
+        mode_since: 0.0,
+        tallies: Tallies {
+            max_abs_theta: y0[0].abs(),
+            max_abs_sliding: geometry.sliding(y0[0], y0[X]).abs(),
+            ..Tallies::default()
+        },
     };
     match opts.rest_after {
         None => {
@@ -311,30 +345,21 @@ fn run_with<S: Stepper<N>>(
     let system = driver.system();
     let tally = system.tally;
 
-    // Time per mode, from the event sequence.
-    let mut mode_time = [0.0; 4];
-    let mut t_last = 0.0;
-    let mut current = mode0;
-    for ev in &obs.events {
-        if current.index() < 4 {
-            mode_time[current.index()] += ev.tau - t_last;
-        }
-        t_last = ev.tau;
-        current = ev.after;
+    // Time per mode: the collector's sums up to the last event, plus the
+    // mode the run ended in up to its end.
+    let tallies = obs.tallies;
+    let mut mode_time = tallies.mode_time;
+    if obs.mode.index() < 4 {
+        mode_time[obs.mode.index()] += (t_final - obs.mode_since).max(0.0);
     }
-    if current.index() < 4 {
-        mode_time[current.index()] += (t_final - t_last).max(0.0);
-    }
-
-    let find = |kind| obs.events.iter().find(|e| e.kind == kind).map(|e| e.tau);
-    let tumble_tau = find(crate::model::EventKind::Tumble);
+    let tumble_tau = tallies.tumble_tau;
     let side_landing_tau = if system.tumble_angle() >= system.model.geo.side_theta() {
         tumble_tau
     } else {
         None
     };
     let flight_tau = if final_mode == Mode::Flight {
-        obs.events.last().map(|e| e.tau)
+        tallies.last_event_tau
     } else {
         None
     };
@@ -363,9 +388,9 @@ fn run_with<S: Stepper<N>>(
         residual,
         relative_residual: if scale > 0.0 { residual.abs() / scale } else { 0.0 },
     };
-    let max_abs_theta = obs.max_abs_theta.max(tally.max_abs_theta).max(y[0].abs());
+    let max_abs_theta = tallies.max_abs_theta.max(tally.max_abs_theta).max(y[0].abs());
     let final_sliding = geometry.sliding(y[0], y[X]);
-    let max_abs_sliding = obs.max_abs_sliding.max(final_sliding.abs());
+    let max_abs_sliding = tallies.max_abs_sliding.max(final_sliding.abs());
     let mut stats = driver.stepper().stats();
     stats.accepted = stats.accepted.max(driver.steps());
     Ok(RunResult {
@@ -375,9 +400,9 @@ fn run_with<S: Stepper<N>>(
         side_landing_tau,
         flight_tau,
         max_abs_theta,
-        events: obs.events,
-        section: obs.section,
-        history: obs.history,
+        events: Vec::new(),
+        section: Vec::new(),
+        history: Vec::new(),
         mode_time,
         energy,
         stats,
@@ -385,6 +410,7 @@ fn run_with<S: Stepper<N>>(
         tally,
         final_mode,
         final_state: y,
+        tallies,
         max_abs_sliding,
         final_sliding,
     })

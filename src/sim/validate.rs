@@ -188,7 +188,7 @@ impl Scenario {
         )?;
         check("run.step", r.step > 0.0 && r.step < 1.0, "in (0, 1)", r.step)?;
         if let Some(tail) = r.record_tail_s {
-            check("run.tail_s", tail >= 0.0 && tail <= 1e6, "in [0, 1e6] (seconds)", tail)?;
+            check("run.tail_s", (0.0..=1e6).contains(&tail), "in [0, 1e6] (seconds)", tail)?;
         }
         let tau_end = self.tau_end();
         let end_key = if self.record_end_tau().is_some() && r.record_tail_s.is_some() {

@@ -4,6 +4,7 @@
 use super::{Message, RockingApp};
 use crate::gui::export;
 use crate::gui::settings::Settings;
+use crate::gui::units::Units;
 use crate::sim::protocol::{MAX_GHOSTS, Speed};
 
 impl RockingApp {
@@ -56,6 +57,21 @@ impl RockingApp {
                 ui.checkbox(&mut self.forces, "Contact force and friction cone");
             });
             ui.separator();
+            let shown = self.units();
+            for units in [Units::Physical, Units::Normalised] {
+                let hover = match units {
+                    Units::Physical => "t in s, θ in degrees, sliding in cm",
+                    Units::Normalised => "the paper's τ = p t, Θ = θ/ψ, X per R",
+                };
+                if ui
+                    .selectable_label(shown == units, units.name())
+                    .on_hover_text(hover)
+                    .clicked()
+                {
+                    self.set_units(units);
+                }
+            }
+            ui.separator();
             let label = if self.paused { "Play" } else { "Pause" };
             if ui.button(label).on_hover_text("Space").clicked() {
                 self.toggle_pause();
@@ -88,6 +104,9 @@ impl RockingApp {
             .on_hover_text("Perturbation of Θ for Reset perturbed, units of ψ");
             ui.separator();
             let speed_label = ui.label("Speed");
+            // Narrower than egui's 100 pt: the whole bar fits one line of a
+            // 1280-pixel window.
+            ui.spacing_mut().slider_width = 72.0;
             let r = ui
                 .add_enabled(
                     !self.max_speed,
@@ -136,6 +155,16 @@ impl RockingApp {
                     Ok((s, c)) => self.apply(s, c),
                     Err(e) => self.message = Some(Message { text: e, error: true }),
                 }
+            }
+        }
+        if ui.button("Open record…").clicked() {
+            ui.close();
+            // No filter: records come as .AT2, .dat, .txt, .acc, .csv, …
+            if let Some(path) = rfd::FileDialog::new()
+                .set_title("Open a ground-motion record")
+                .pick_file()
+            {
+                self.open_record(&path);
             }
         }
         if ui.button("Save scene…").clicked() {

@@ -4,6 +4,8 @@
 use std::time::{Duration, Instant};
 
 use super::RockingApp;
+use crate::gui::panels::banner::{self, Verdict};
+use crate::gui::panels::ground;
 use crate::gui::panels::params;
 use crate::gui::panels::plots;
 use crate::gui::panels::scene::{self, SceneInput};
@@ -19,7 +21,7 @@ impl RockingApp {
         ui.label(egui::RichText::new(&self.settings.origin).weak());
         egui::ScrollArea::vertical().show(ui, |ui| {
             let settings = &self.settings;
-            let explicit = |k: &str| settings.explicit(k).is_some();
+            let explicit = |k: &str| settings.explicit(k);
             let commit = params::show(ui, &self.config, &explicit, &mut self.edits);
             if let Some((key, raw)) = commit {
                 self.set_key(key, &raw);
@@ -56,10 +58,24 @@ impl RockingApp {
     }
 
     fn scene_panel(&mut self, ui: &mut egui::Ui) {
-        let rect = ui.available_rect_before_wrap();
+        let full = ui.available_rect_before_wrap();
         let (Some(info), Some(sample)) = (self.info.as_ref(), self.hist.samples.last()) else {
             ui.centered_and_justified(|ui| ui.label("waiting for the simulation…"));
             return;
+        };
+        let verdict = self.end.as_ref().and_then(|e| Verdict::of(e, info.geometry));
+        // A record scene: the banner in its own strip above the block.
+        let rect = match &self.record_label {
+            Some(label) => {
+                let strip = egui::Rect::from_min_size(full.min, egui::vec2(full.width(), banner::STRIP_HEIGHT));
+                let lines = match &verdict {
+                    Some(v) => banner::Lines::verdict(v, Some(label.title())),
+                    None => banner::Lines::playing(sample, info.geometry, Some(label.title())),
+                };
+                banner::show(ui, strip.shrink2(egui::vec2(10.0, 4.0)), &lines);
+                egui::Rect::from_min_max(egui::pos2(full.min.x, strip.max.y), full.max)
+            }
+            None => full,
         };
         self.last_shown = Some(*sample);
         let now = ui.input(|i| i.time);
@@ -76,7 +92,7 @@ impl RockingApp {
             mu_s: info.scenario.block.mu_s,
             terminal: match &self.end {
                 Some(RunEnd::Terminal { mode, .. }) => Some(*mode),
-                Some(RunEnd::Failed(_)) | None => None,
+                Some(RunEnd::Rest { .. } | RunEnd::Failed(_)) | None => None,
             },
             flash,
             forces: self.forces,
@@ -84,50 +100,83 @@ impl RockingApp {
         let (shapes, scale, y_mid) = scene::build(&input, rect, &mut self.camera);
         let view = scene::view(rect, scale, &self.camera, y_mid, ui.ctx().pixels_per_point());
         scene::paint(ui, rect, shapes, view, self.gpu);
-        ui.allocate_rect(rect, egui::Sense::hover());
+        if self.record_label.is_none()
+            && let Some(v) = &verdict
+        {
+            // Any other scene that tumbles: the verdict over the block.
+            let lines = banner::Lines::verdict(v, None);
+            let below = usize::from(lines.detail.is_some());
+            let plate = egui::Rect::from_min_size(
+                rect.min + egui::vec2(10.0, 10.0),
+                egui::vec2(rect.width() - 20.0, banner::plate_height(below)),
+            );
+            banner::show(ui, plate, &lines);
+        }
+        ui.allocate_rect(full, egui::Sense::hover());
     }
 
+    /// Whether the run takes stroboscopic section points (harmonic
+    /// excitation): without them the Poincaré plot has nothing to show.
+    fn has_section(&self) -> bool {
+        self.info.as_ref().map_or_else(
+            || self.config.excitation.forcing_period().is_some(),
+            |i| i.section_period.is_some(),
+        )
+    }
+
+    /// The bottom panel: the time history, and beside it the ground
+    /// acceleration of a record scene (always) or the power spectrum.
     fn history_panel(&mut self, ui: &mut egui::Ui) {
-        let both = self.show.history && self.show.spectrum;
+        let scales = self.scales();
+        let ground = self.record_label.clone();
+        let spectrum = self.show.spectrum && ground.is_none();
+        let both = self.show.history && (spectrum || ground.is_some());
         let width = ui.available_width();
         let height = ui.available_height();
         ui.horizontal(|ui| {
             if self.show.history {
-                let w = if both { 0.64 * width } else { width };
+                let w = if both { 0.6 * width } else { width };
                 ui.allocate_ui(egui::vec2(w, height), |ui| {
                     ui.vertical(|ui| {
-                        plots::history_plot(ui, &self.hist, &mut self.history_view, self.tau);
+                        plots::history_plot(ui, &self.hist, &mut self.history_view, self.tau, &scales);
                     });
                 });
             }
-            if self.show.spectrum {
+            if let Some(label) = &ground {
+                ui.vertical(|ui| {
+                    ground::ground_plot(ui, &self.hist, &mut self.ground, label, self.tau, &scales);
+                });
+            } else if spectrum {
                 let (dt, omega_h) = self.info.as_ref().map_or(
                     (crate::sim::runner::LIVE_SAMPLE_DT, self.config.excitation.omega_h),
                     |i| (i.sample_dt, i.scenario.excitation.omega_h),
                 );
                 ui.vertical(|ui| {
                     ui.label("Power spectrum of Θ (last 41 τ)");
-                    plots::spectrum_plot(ui, &self.hist, &mut self.spectrum, dt, omega_h);
+                    plots::spectrum_plot(ui, &self.hist, &mut self.spectrum, dt, omega_h, &scales);
                 });
             }
         });
     }
 
     fn plots_panel(&mut self, ui: &mut egui::Ui) {
-        let both = self.show.phase && self.show.poincare;
+        let scales = self.scales();
+        let poincare = self.show.poincare && self.has_section();
+        let both = self.show.phase && poincare;
         let h = ui.available_height();
         if self.show.phase {
             ui.label("Phase portrait (click to start there)");
             let height = if both { 0.5 * h - 24.0 } else { h - 20.0 };
             ui.allocate_ui(egui::vec2(ui.available_width(), height), |ui| {
-                if let Some((theta, theta_dot)) = plots::phase_plot(ui, &self.hist, &mut self.phase, self.tau) {
+                if let Some((theta, theta_dot)) = plots::phase_plot(ui, &self.hist, &mut self.phase, self.tau, &scales)
+                {
                     self.start_at(theta, theta_dot);
                 }
             });
         }
-        if self.show.poincare {
+        if poincare {
             ui.label("Poincaré points (double-click to fit)");
-            plots::poincare_plot(ui, &self.hist, &mut self.poincare);
+            plots::poincare_plot(ui, &self.hist, &mut self.poincare, &scales);
         }
     }
 
@@ -170,10 +219,18 @@ impl eframe::App for RockingApp {
                 .default_size(300.0)
                 .show(ui, |ui| self.params_panel(ui));
         }
-        if self.show.history || self.show.spectrum {
-            egui::Panel::bottom("history")
+        if self.show.history || self.show.spectrum || self.record_label.is_some() {
+            // A record scene's bottom panel carries the ground trace, the
+            // earthquake itself: taller, with its own id so that each kind
+            // keeps the height the user gave it.
+            let (id, height) = if self.record_label.is_some() {
+                ("history with ground", 250.0)
+            } else {
+                ("history", 190.0)
+            };
+            egui::Panel::bottom(id)
                 .resizable(true)
-                .default_size(190.0)
+                .default_size(height)
                 .show(ui, |ui| self.history_panel(ui));
         }
         if self.show.bifurcation || self.show.lyapunov {
@@ -188,7 +245,7 @@ impl eframe::App for RockingApp {
         if !self.show.lyapunov {
             self.lyapunov.hide();
         }
-        if self.show.phase || self.show.poincare {
+        if self.show.phase || (self.show.poincare && self.has_section()) {
             egui::Panel::right("plots")
                 .resizable(true)
                 .default_size(380.0)
@@ -201,6 +258,7 @@ impl eframe::App for RockingApp {
                 ui.centered_and_justified(|ui| ui.label("Block scene hidden (View menu)"));
             }
         });
+        self.record_window(ui.ctx());
         self.time_frame(ui, start);
     }
 }

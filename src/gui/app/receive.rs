@@ -4,6 +4,7 @@
 use std::time::Duration;
 
 use super::{Link, Message, RockingApp};
+use crate::gui::panels::ground::RecordLabel;
 use crate::model::EventKind;
 use crate::sim::protocol::{RunEnd, SimUpdate};
 
@@ -16,6 +17,9 @@ impl RockingApp {
         match u {
             SimUpdate::Started { info, .. } => {
                 self.tau = info.tau0;
+                self.record_label = RecordLabel::of(&info.scenario);
+                self.history_view.fit_run(info.scenario.record_end_tau());
+                self.phase.fit_run(info.scenario.record_end_tau());
                 self.info = Some(*info);
             }
             SimUpdate::Paused { paused, tau, .. } => {

@@ -29,6 +29,12 @@ impl RockingApp {
                     RunEnd::Terminal { mode, tau } => {
                         ui.colored_label(scene::mode_color(*mode), format!("{} at τ = {tau:.3}", mode.name()));
                     }
+                    RunEnd::Rest { tau, .. } => {
+                        ui.colored_label(
+                            scene::mode_color(crate::model::Mode::Rest),
+                            format!("at rest after the record, τ = {tau:.3}"),
+                        );
+                    }
                     RunEnd::Failed(_) => {
                         ui.colored_label(egui::Color32::from_rgb(230, 80, 80), "failed");
                     }

@@ -1,7 +1,9 @@
 //! The panels of the window. Each is a function of the app's state that
 //! draws; a panel the user hides is simply not called.
 
+pub mod banner;
 pub mod bifurcation;
+pub mod ground;
 pub mod lyapunov;
 pub mod params;
 pub mod plots;

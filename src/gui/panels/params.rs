@@ -3,10 +3,14 @@
 //! and a tooltip. A value is committed when its field loses focus (or on
 //! Enter); the whole scene is then re-validated by `Scenario::from_table`, and
 //! a refused value leaves the scene unchanged and shows the one-line reason.
+//! Keys that the scene's excitation kind does not use are not shown
+//! ([`applies`]): no Ω or amplitudes for a record, no record file for a
+//! harmonic scene.
 
 use std::collections::HashMap;
 
 use crate::sim::Scenario;
+use crate::sim::scenario::ExcitationKind;
 
 /// How a key is edited.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -160,9 +164,34 @@ pub const GROUPS: &[(&str, &[Key])] = &[
                 key: "excitation.file_h",
                 label: "record (h)",
                 unit: "",
-                help: "Horizontal record: PEER .AT2 or two columns time_s accel_g. Required for kind = record.",
+                help: "Horizontal record: PEER .AT2, two columns (time in s, acceleration) or one column with dt_h. Required for kind = record. File ▸ Open record… picks one.",
                 kind: Kind::Text,
             },
+            Key {
+                key: "excitation.unit_h",
+                label: "unit (h)",
+                unit: "",
+                help: "Unit of the horizontal record's accelerations: g, m/s2 or cm/s2. Required for text records; an AT2 header states its own.",
+                kind: Kind::Choice(&["g", "m/s2", "cm/s2"]),
+            },
+            num(
+                "excitation.dt_h",
+                "dt (h)",
+                "s",
+                "Time step of a one-column horizontal record, s (> 0). Leave empty for files that hold their times.",
+            ),
+            num(
+                "excitation.scale_h",
+                "scale_h",
+                "",
+                "Factor on the horizontal record, |scale| ≤ 1000. Default 1. Give either this or the target PGA.",
+            ),
+            num(
+                "excitation.pga_h",
+                "PGA (h)",
+                "g",
+                "Scale the horizontal record to this peak ground acceleration, g (e.g. 0.35). Give either this or scale_h.",
+            ),
             Key {
                 key: "excitation.file_v",
                 label: "record (v)",
@@ -170,17 +199,30 @@ pub const GROUPS: &[(&str, &[Key])] = &[
                 help: "Optional vertical record.",
                 kind: Kind::Text,
             },
+            Key {
+                key: "excitation.unit_v",
+                label: "unit (v)",
+                unit: "",
+                help: "Unit of the vertical record's accelerations: g, m/s2 or cm/s2.",
+                kind: Kind::Choice(&["g", "m/s2", "cm/s2"]),
+            },
             num(
-                "excitation.scale_h",
-                "scale_h",
-                "",
-                "Factor on the horizontal record, |scale| ≤ 1000. Default 1.",
+                "excitation.dt_v",
+                "dt (v)",
+                "s",
+                "Time step of a one-column vertical record, s (> 0).",
             ),
             num(
                 "excitation.scale_v",
                 "scale_v",
                 "",
                 "Factor on the vertical record, |scale| ≤ 1000. Default 1.",
+            ),
+            num(
+                "excitation.pga_v",
+                "PGA (v)",
+                "g",
+                "Scale the vertical record to this peak acceleration, g. Give either this or scale_v.",
             ),
         ],
     ),
@@ -246,6 +288,18 @@ pub const GROUPS: &[(&str, &[Key])] = &[
                 "End of a batch run, in (0, 1e9]. The live view runs on until paused. Default 800.",
             ),
             num(
+                "run.t_end",
+                "t end",
+                "s",
+                "End of a batch run in seconds (instead of τ end). A record run lasts the record plus the tail unless this is set.",
+            ),
+            num(
+                "run.tail_s",
+                "tail",
+                "s",
+                "A record run goes on after the record until the block is at rest, at most this long. Default 30 s.",
+            ),
+            num(
                 "run.output_dt",
                 "output dt",
                 "τ",
@@ -262,17 +316,43 @@ pub const GROUPS: &[(&str, &[Key])] = &[
     ),
 ];
 
+/// Whether `key` (`section.key`) means anything for an excitation of
+/// `kind`: harmonic scenes use amplitudes, frequencies and phases; pulses
+/// amplitudes, frequencies and the shape; records their files, units,
+/// steps, scales and the tail after the record. Every other key applies
+/// to every kind.
+pub fn applies(key: &str, kind: ExcitationKind) -> bool {
+    use ExcitationKind as K;
+    let name = match key.split_once('.') {
+        Some(("excitation", name)) => name,
+        Some(("run", "tail_s")) => return kind == K::Record,
+        _ => return true,
+    };
+    match name {
+        "a_h" | "a_v" | "omega_h" | "omega_v" => matches!(kind, K::Harmonic | K::Pulse),
+        "phase_h" | "phase_v" => kind == K::Harmonic,
+        "shape" | "cycles" => kind == K::Pulse,
+        "file_h" | "file_v" | "unit_h" | "unit_v" | "dt_h" | "dt_v" | "scale_h" | "scale_v" | "pga_h" | "pga_v" => {
+            kind == K::Record
+        }
+        _ => true,
+    }
+}
+
 /// Text being typed into fields, by key, until committed.
 #[derive(Clone, Debug, Default)]
 pub struct Edits {
     typing: HashMap<&'static str, String>,
 }
 
-/// Draws the panel. Returns the `(key, raw value)` the user committed, if any.
+/// Draws the panel: the keys that apply to the scene's excitation kind
+/// ([`applies`]). `explicit` gives a key's value as the scene states it
+/// (`None`: the key is left at its default). Returns the `(key, raw
+/// value)` the user committed, if any.
 pub fn show(
     ui: &mut egui::Ui,
     cfg: &Scenario,
-    explicit: &dyn Fn(&str) -> bool,
+    explicit: &dyn Fn(&str) -> Option<String>,
     edits: &mut Edits,
 ) -> Option<(&'static str, String)> {
     let mut commit = None;
@@ -285,12 +365,15 @@ pub fn show(
                     .num_columns(3)
                     .spacing([6.0, 3.0])
                     .show(ui, |ui| {
-                        for k in keys.iter() {
+                        for k in keys.iter().filter(|k| applies(k.key, cfg.excitation.kind)) {
+                            let stated = explicit(k.key);
                             let shown = {
                                 let (section, name) = k.key.split_once('.').unwrap_or((k.key, ""));
                                 match json.get(section).and_then(|s| s.get(name)) {
                                     Some(serde_json::Value::String(s)) => s.clone(),
-                                    Some(serde_json::Value::Null) | None => String::new(),
+                                    // Keys the resolved scene does not
+                                    // repeat (a target PGA, t end): as stated.
+                                    Some(serde_json::Value::Null) | None => stated.clone().unwrap_or_default(),
                                     Some(v) => v.to_string(),
                                 }
                             };
@@ -320,7 +403,7 @@ pub fn show(
                                 Kind::Number | Kind::Text => {
                                     let typing = edits.typing.get(k.key).cloned();
                                     let mut text = typing.clone().unwrap_or_else(|| shown.clone());
-                                    let hint = if explicit(k.key) { "" } else { "default" };
+                                    let hint = if stated.is_some() { "" } else { "default" };
                                     let r = ui
                                         .add(
                                             egui::TextEdit::singleline(&mut text)
@@ -340,7 +423,7 @@ pub fn show(
                                     }
                                 }
                             }
-                            let unit = if explicit(k.key) {
+                            let unit = if stated.is_some() {
                                 k.unit.to_string()
                             } else {
                                 format!("{} ·", k.unit)

@@ -3,12 +3,14 @@
 //!
 //! Each plot draws from the app's [`RunHistory`] decimated to screen
 //! resolution (see [`crate::gui::history`]); a hidden plot is not called and
-//! does no work.
+//! does no work. Values are shown in the units of a [`Scales`]
+//! (normalised or physical), whose axis titles name them.
 
 use egui::Color32;
 use egui_plot::{Line, Plot, PlotBounds, PlotImage, PlotPoint, PlotPoints, Points};
 
 use crate::gui::history::{DensityGrid, RunHistory, decimate_min_max};
+use crate::gui::units::Scales;
 
 /// Phase portrait settings.
 #[derive(Clone, Debug)]
@@ -30,14 +32,29 @@ impl Default for PhaseView {
     }
 }
 
+impl PhaseView {
+    /// The trail for a new run: a record's whole length (`record_tau`, τ),
+    /// so the portrait of an earthquake shows all of it, else the default.
+    pub fn fit_run(&mut self, record_tau: Option<f64>) {
+        self.trail_tau = record_tau.map_or(Self::default().trail_tau, |tau| tau.max(1.0));
+    }
+}
+
 /// Trail segments of decreasing age, drawn with increasing opacity.
 const TRAIL_SEGMENTS: usize = 10;
 
 /// Most trail points drawn: the trail is thinned to this.
 const TRAIL_POINTS: usize = 2400;
 
-/// Draws the phase portrait. Returns the (Θ, Θ') the user clicked, if any.
-pub fn phase_plot(ui: &mut egui::Ui, hist: &RunHistory, view: &mut PhaseView, now: f64) -> Option<(f64, f64)> {
+/// Draws the phase portrait in the units of `scales`. Returns the (Θ, Θ')
+/// the user clicked (in the model's units), if any.
+pub fn phase_plot(
+    ui: &mut egui::Ui,
+    hist: &RunHistory,
+    view: &mut PhaseView,
+    now: f64,
+    scales: &Scales,
+) -> Option<(f64, f64)> {
     let t0 = now - view.trail_tau;
     let start = hist.samples.len() - hist.samples.iter().rev().take_while(|s| s.tau >= t0).count();
     let recent: Vec<[f64; 2]> = {
@@ -48,21 +65,22 @@ pub fn phase_plot(ui: &mut egui::Ui, hist: &RunHistory, view: &mut PhaseView, no
             .iter()
             .skip(start)
             .step_by(stride)
-            .map(|s| [s.theta, s.theta_dot])
+            .map(|s| [scales.theta(s.theta), scales.theta_dot(s.theta_dot)])
             .collect();
         if let Some(last) = hist.samples.last()
             && stride > 1
         {
-            v.push([last.theta, last.theta_dot]);
+            v.push([scales.theta(last.theta), scales.theta_dot(last.theta_dot)]);
         }
         v
     };
     view.work += recent.len() as u64;
+    let tip = scales.tip_angle();
     let resp = Plot::new("phase")
-        .x_axis_label("Θ")
-        .y_axis_label("Θ'")
-        .include_x(-1.0)
-        .include_x(1.0)
+        .x_axis_label(scales.theta_label())
+        .y_axis_label(scales.theta_dot_label())
+        .include_x(-tip)
+        .include_x(tip)
         .include_y(0.0)
         .allow_double_click_reset(true)
         .show(ui, |plot_ui| {
@@ -90,7 +108,7 @@ pub fn phase_plot(ui: &mut egui::Ui, hist: &RunHistory, view: &mut PhaseView, no
             plot_ui.pointer_coordinate()
         });
     if resp.response.clicked() {
-        resp.inner.map(|p| (p.x, p.y))
+        resp.inner.map(|p| scales.state_of(p.x, p.y))
     } else {
         None
     }
@@ -123,15 +141,21 @@ impl PoincareView {
     }
 }
 
-/// Draws the Poincaré points as a per-pixel density image.
-pub fn poincare_plot(ui: &mut egui::Ui, hist: &RunHistory, view: &mut PoincareView) {
-    let bbox = hist.section.bbox();
+/// Draws the Poincaré points as a per-pixel density image, in the units of
+/// `scales` (both are linear in Θ and Θ', so the points are binned in the
+/// model's units over the view converted back).
+pub fn poincare_plot(ui: &mut egui::Ui, hist: &RunHistory, view: &mut PoincareView, scales: &Scales) {
+    let bbox = hist.section.bbox().map(|b| {
+        let (x0, x1) = (scales.theta(b[0]), scales.theta(b[1]));
+        let (y0, y1) = (scales.theta_dot(b[2]), scales.theta_dot(b[3]));
+        [x0.min(x1), x0.max(x1), y0.min(y1), y0.max(y1)]
+    });
     let ppp = ui.ctx().pixels_per_point();
     let auto_fit = view.auto_fit;
     let PoincareView { grid, texture, .. } = view;
     let resp = Plot::new("poincare")
-        .x_axis_label("Θ(τ_k)")
-        .y_axis_label("Θ'(τ_k)")
+        .x_axis_label(format!("{} at τ_k", scales.theta_label()))
+        .y_axis_label(format!("{} at τ_k", scales.theta_dot_label()))
         .auto_bounds(false)
         .allow_double_click_reset(false)
         .show(ui, |plot_ui| {
@@ -149,7 +173,9 @@ pub fn poincare_plot(ui: &mut egui::Ui, hist: &RunHistory, view: &mut PoincareVi
                 (frame.width() * ppp * 0.5).round().max(1.0) as usize,
                 (frame.height() * ppp * 0.5).round().max(1.0) as usize,
             ];
-            let v = [bounds.min()[0], bounds.max()[0], bounds.min()[1], bounds.max()[1]];
+            let shown = [bounds.min()[0], bounds.max()[0], bounds.min()[1], bounds.max()[1]];
+            let (lo, hi) = (scales.state_of(shown[0], shown[2]), scales.state_of(shown[1], shown[3]));
+            let v = [lo.0, hi.0, lo.1, hi.1];
             let changed = grid.update(&hist.section, v, size);
             if changed || texture.is_none() {
                 let image = grid.to_image(Color32::from_rgb(120, 175, 255), Color32::from_rgb(255, 235, 120));
@@ -171,8 +197,8 @@ pub fn poincare_plot(ui: &mut egui::Ui, hist: &RunHistory, view: &mut PoincareVi
                     PlotImage::new(
                         "section",
                         t.id(),
-                        PlotPoint::new(0.5 * (v[0] + v[1]), 0.5 * (v[2] + v[3])),
-                        egui::vec2((v[1] - v[0]) as f32, (v[3] - v[2]) as f32),
+                        PlotPoint::new(0.5 * (shown[0] + shown[1]), 0.5 * (shown[2] + shown[3])),
+                        egui::vec2((shown[1] - shown[0]) as f32, (shown[3] - shown[2]) as f32),
                     )
                     .allow_hover(false),
                 );
@@ -199,6 +225,8 @@ pub struct HistoryView {
     pub show_a_h: bool,
     /// Also draw a_v/g.
     pub show_a_v: bool,
+    /// Whether the user set the window (then a new scene keeps it).
+    pub user_window: bool,
     scratch: Vec<PlotPoint>,
     /// Points passed to the plot over the app's life (work counter).
     pub work: u64,
@@ -213,37 +241,83 @@ impl Default for HistoryView {
             show_x: false,
             show_a_h: false,
             show_a_v: false,
+            user_window: false,
             scratch: Vec::new(),
             work: 0,
         }
     }
 }
 
-/// One curve of the time history: name, shown, colour, and its value.
-type Series = (&'static str, bool, Color32, fn(&crate::sim::protocol::Sample) -> f64);
+impl HistoryView {
+    /// The window for a new run, unless the user chose one: the whole
+    /// record (`record_tau`, τ, and 2 % more) so the response lines up with
+    /// the ground trace beside it, else the default.
+    pub fn fit_run(&mut self, record_tau: Option<f64>) {
+        if self.user_window {
+            return;
+        }
+        self.window = match record_tau {
+            Some(tau) => (1.02 * tau).clamp(1.0, 500.0),
+            None => Self::default().window,
+        };
+    }
+}
 
-/// Draws the time history in the window ending at `now`.
-pub fn history_plot(ui: &mut egui::Ui, hist: &RunHistory, view: &mut HistoryView, now: f64) {
+/// One curve of the time history: legend name, shown, colour, and its
+/// value in the units of the scales.
+type Series = (
+    &'static str,
+    bool,
+    Color32,
+    fn(&Scales, &crate::sim::protocol::Sample) -> f64,
+);
+
+/// Draws the time history in the window ending at `now` (τ), in the units
+/// of `scales`: the time axis in s or τ, θ in degrees or Θ, the sliding
+/// displacement in cm or X per R; accelerations are per unit g in both.
+/// Dashed lines mark ±α, the overturning angle of a block at rest.
+pub fn history_plot(ui: &mut egui::Ui, hist: &RunHistory, view: &mut HistoryView, now: f64, scales: &Scales) {
     ui.horizontal(|ui| {
+        // The axes' units in words too: the plot's own titles are painted
+        // small, and this line is also what a screen reader (and a test) reads.
+        ui.label(egui::RichText::new(format!("{} against {}", scales.theta_label(), scales.time_label())).strong());
+        ui.separator();
         ui.label("window");
-        ui.add(
-            egui::DragValue::new(&mut view.window)
-                .range(1.0..=500.0)
-                .suffix(" τ")
-                .speed(0.5),
-        )
-        .on_hover_text("Length of the moving window, τ");
-        ui.checkbox(&mut view.show_x, "X");
-        ui.checkbox(&mut view.show_a_h, "a_h/g");
-        ui.checkbox(&mut view.show_a_v, "a_v/g");
+        let mut shown = scales.time(view.window);
+        let r = ui
+            .add(
+                egui::DragValue::new(&mut shown)
+                    .range(scales.time(1.0)..=scales.time(500.0))
+                    .suffix(scales.time_suffix())
+                    .speed(scales.time(0.5))
+                    .max_decimals(1),
+            )
+            .on_hover_text("Length of the moving window");
+        if r.changed() {
+            view.window = scales.tau_of(shown).clamp(1.0, 500.0);
+            view.user_window = true;
+        }
+        ui.checkbox(&mut view.show_x, scales.horizontal_label());
+        ui.checkbox(&mut view.show_a_h, "a_h [g]");
+        ui.checkbox(&mut view.show_a_v, "a_v [g]");
     });
-    let (t0, t1) = (now - view.window, now.max(now - view.window + 1e-9));
+    // The window starts at τ = 0 until the run is longer than it, so a
+    // young run fills it from the left instead of hiding behind empty time.
+    let t0 = (now - view.window).max(0.0);
+    let t1 = t0 + view.window;
     let columns = (ui.available_width() * ui.ctx().pixels_per_point()).max(16.0) as usize;
     let series: [Series; 4] = [
-        ("Θ", true, Color32::from_rgb(110, 170, 255), |s| s.theta),
-        ("X", view.show_x, Color32::from_rgb(90, 200, 120), |s| s.x),
-        ("a_h/g", view.show_a_h, Color32::from_rgb(240, 150, 50), |s| s.a_h),
-        ("a_v/g", view.show_a_v, Color32::from_rgb(200, 100, 220), |s| s.a_v),
+        (scales.theta_label(), true, Color32::from_rgb(110, 170, 255), |c, s| {
+            c.theta(s.theta)
+        }),
+        (
+            scales.horizontal_label(),
+            view.show_x,
+            Color32::from_rgb(90, 200, 120),
+            |c, s| c.horizontal(s.theta, s.x),
+        ),
+        ("a_h [g]", view.show_a_h, Color32::from_rgb(240, 150, 50), |_, s| s.a_h),
+        ("a_v [g]", view.show_a_v, Color32::from_rgb(200, 100, 220), |_, s| s.a_v),
     ];
     let mut lines = Vec::new();
     for (name, on, color, f) in series {
@@ -251,26 +325,36 @@ pub fn history_plot(ui: &mut egui::Ui, hist: &RunHistory, view: &mut HistoryView
             continue;
         }
         decimate_min_max(
-            hist.samples.iter().map(|s| (s.tau, f(s))),
-            t0,
-            t1,
+            hist.samples.iter().map(|s| (scales.time(s.tau), f(scales, s))),
+            scales.time(t0),
+            scales.time(t1),
             columns,
             &mut view.scratch,
         );
         view.work += view.scratch.len() as u64;
         lines.push((name, color, view.scratch.clone()));
     }
+    let tip = scales.tip_angle();
     Plot::new("history")
-        .x_axis_label("τ")
+        .x_axis_label(scales.time_label())
+        .y_axis_label(scales.theta_label())
         .legend(egui_plot::Legend::default())
         .auto_bounds([false, true])
-        .include_y(-1.0)
-        .include_y(1.0)
+        .include_y(-tip)
+        .include_y(tip)
         .allow_drag([false, true])
         .allow_zoom([false, true])
         .allow_scroll([false, true])
         .show(ui, |plot_ui| {
-            plot_ui.set_plot_bounds_x(t0..=t1);
+            plot_ui.set_plot_bounds_x(scales.time(t0)..=scales.time(t1));
+            for y in [-tip, tip] {
+                plot_ui.hline(
+                    egui_plot::HLine::new("±α", y)
+                        .color(Color32::from_rgb(230, 80, 80).gamma_multiply(0.6))
+                        .style(egui_plot::LineStyle::dashed_loose())
+                        .allow_hover(false),
+                );
+            }
             for (name, color, pts) in lines {
                 plot_ui.line(Line::new(name, PlotPoints::Owned(pts)).color(color).width(1.2));
             }
@@ -312,8 +396,16 @@ impl SpectrumView {
 
 /// Draws the power spectrum of Θ over the last [`SPECTRUM_SAMPLES`]
 /// samples, computed by [`crate::analysis::spectrum::power_spectrum`], with
-/// the forcing frequency Ω_h marked.
-pub fn spectrum_plot(ui: &mut egui::Ui, hist: &RunHistory, view: &mut SpectrumView, sample_dt: f64, omega_h: f64) {
+/// the forcing frequency Ω_h marked; frequencies in the units of `scales`
+/// (Hz or ω/p).
+pub fn spectrum_plot(
+    ui: &mut egui::Ui,
+    hist: &RunHistory,
+    view: &mut SpectrumView,
+    sample_dt: f64,
+    omega_h: f64,
+    scales: &Scales,
+) {
     let last = hist.samples.last().map_or(0.0, |s| s.tau);
     if view.points.is_empty() || (last - view.at).abs() >= SpectrumView::EVERY_TAU {
         // Only a gap-free stretch on the sample grid is a valid FFT input.
@@ -349,9 +441,9 @@ pub fn spectrum_plot(ui: &mut egui::Ui, hist: &RunHistory, view: &mut SpectrumVi
     if let Some(note) = &view.note {
         ui.label(egui::RichText::new(note).weak());
     }
-    let pts = view.points.clone();
+    let pts: Vec<[f64; 2]> = view.points.iter().map(|p| [scales.frequency(p[0]), p[1]]).collect();
     Plot::new("spectrum")
-        .x_axis_label("ω / p")
+        .x_axis_label(scales.frequency_label())
         .y_axis_label("log10 S/S_max")
         .include_y(0.0)
         .include_y(-8.0)
@@ -362,7 +454,7 @@ pub fn spectrum_plot(ui: &mut egui::Ui, hist: &RunHistory, view: &mut SpectrumVi
                     .width(1.2),
             );
             plot_ui.vline(
-                egui_plot::VLine::new("Ω_h", omega_h)
+                egui_plot::VLine::new("Ω_h", scales.frequency(omega_h))
                     .color(Color32::from_rgb(240, 150, 50).gamma_multiply(0.7))
                     .width(1.0),
             );

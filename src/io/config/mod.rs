@@ -306,7 +306,7 @@ fn record_scale(
         return Err(ConfigError::key(&key, format!("needs {}", keys.key("file"))));
     };
     let target = pga.resolve(&key, Dimension::Pga, geo)?;
-    if !(target > 0.0) {
+    if target.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
         return Err(ConfigError::key(&key, format!("must be > 0, got {target} g")));
     }
     let peak = record.series.peak_abs_g();

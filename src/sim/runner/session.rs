@@ -44,6 +44,8 @@ trait LiveDriver: Send {
     fn mode(&self) -> Mode;
     /// To `t_end` or past it, by whole steps ([`Driver::advance_past`]).
     fn advance(&mut self, t_end: f64, obs: &mut dyn Observer<Mode, EventRecord, N>) -> Result<Advance, ModelError>;
+    /// Largest |Θ| the model found at its rocking peaks (between samples).
+    fn peak_theta(&self) -> f64;
 }
 
 /// An observer behind a `dyn` pointer, for the generic driver.
@@ -73,6 +75,9 @@ impl<S: Stepper<N> + Send> LiveDriver for Driver<S, BlockSystem, N> {
     }
     fn advance(&mut self, t_end: f64, obs: &mut dyn Observer<Mode, EventRecord, N>) -> Result<Advance, ModelError> {
         self.advance_past(t_end, &mut Forward(obs))
+    }
+    fn peak_theta(&self) -> f64 {
+        self.system().tally.max_abs_theta
     }
 }
 
@@ -130,15 +135,37 @@ struct Queue {
     section: VecDeque<SectionRow>,
 }
 
+/// The run's extremes so far, for [`RunEnd::Rest`]: tracked as the batch
+/// run's collector tracks them (`sim::collect`), so the live answer and
+/// the batch one agree.
+#[derive(Clone, Copy, Debug, Default)]
+struct Peaks {
+    /// Largest |Θ| at samples and before events, units of ψ.
+    theta: f64,
+    /// Largest |sliding displacement| at samples and before events, per R.
+    /// Slip keeps one direction between events, so with the values before
+    /// events this is exact.
+    sliding: f64,
+}
+
+impl Peaks {
+    fn see(&mut self, geo: &crate::model::geometry::Geometry, y: &[f64; N]) {
+        self.theta = self.theta.max(y[THETA].abs());
+        self.sliding = self.sliding.max(geo.sliding(y[THETA], y[X]).abs());
+    }
+}
+
 /// The main trajectory's observer: turns driver output into protocol data.
 struct MainSink<'a> {
     probe: &'a BlockSystem,
     base: &'a mut BaseMotion,
     queue: &'a mut Queue,
+    peaks: &'a mut Peaks,
 }
 
 impl Observer<Mode, EventRecord, N> for MainSink<'_> {
     fn sample(&mut self, t: f64, mode: Mode, y: &[f64; N]) {
+        self.peaks.see(&self.probe.model.geo, y);
         let fo = self.probe.model.excitation.forcing(t);
         let base_x = self.base.advance(t, fo.a);
         let (normal, friction) = if mode.is_terminal() {
@@ -161,7 +188,8 @@ impl Observer<Mode, EventRecord, N> for MainSink<'_> {
         self.queue.section.push_back(SectionRow::of_state(k, t, mode, y));
     }
 
-    fn event(&mut self, _t: f64, _before: Mode, _y_before: &[f64; N], record: EventRecord) {
+    fn event(&mut self, _t: f64, _before: Mode, y_before: &[f64; N], record: EventRecord) {
+        self.peaks.see(&self.probe.model.geo, y_before);
         self.queue.events.push_back(record);
     }
 }
@@ -280,6 +308,11 @@ pub struct Session {
     next_chunk: u64,
     /// How the run ended, once the driver stopped.
     ended: Option<RunEnd>,
+    /// For a record run: its end, τ, after which rest ends the run
+    /// ([`RunEnd::Rest`]).
+    rest_after: Option<f64>,
+    /// Extremes so far.
+    peaks: Peaks,
     /// τ up to which output has been released.
     released: f64,
 }
@@ -323,6 +356,8 @@ impl Session {
             section_period,
         };
         let geometry = system.model.geo;
+        let mut peaks = Peaks::default();
+        peaks.see(&geometry, &y0);
         let driver = live_driver(scenario, system, mode0, tau0, y0, outputs);
         Ok(Self {
             run,
@@ -341,6 +376,10 @@ impl Session {
             grid,
             next_chunk,
             ended: None,
+            // Whatever `run.t_end` says: a live run ignores it, and rest after
+            // the record lasts for ever.
+            rest_after: scenario.record_end_tau(),
+            peaks,
             released: tau0,
         })
     }
@@ -419,9 +458,19 @@ impl Session {
             probe: &self.probe,
             base: &mut self.base,
             queue: &mut self.queue,
+            peaks: &mut self.peaks,
         };
         match self.driver.advance(t_end, &mut sink) {
-            Ok(Advance::Reached) => {}
+            Ok(Advance::Reached) => {
+                let t = self.driver.t();
+                if self.rest_after.is_some_and(|end| t >= end) && self.driver.mode() == Mode::Rest {
+                    self.ended = Some(RunEnd::Rest {
+                        tau: t,
+                        max_abs_theta: self.peaks.theta.max(self.driver.peak_theta()),
+                        max_abs_sliding: self.peaks.sliding,
+                    });
+                }
+            }
             Ok(Advance::Terminal) => {
                 self.ended = Some(RunEnd::Terminal {
                     mode: self.driver.mode(),
@@ -535,5 +584,84 @@ impl Session {
     pub fn perturbed(&self, run: RunId, eps: f64, last_sample: Option<&Sample>) -> Result<Session, String> {
         let (tau, mode, y) = self.shown_state(last_sample);
         Session::new(run, &self.info.scenario, Start::Perturbed { tau, y, mode, eps })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::sim::simulate;
+
+    fn preset(name: &str) -> Scenario {
+        crate::io::config::load(Some(name), None, &[]).expect("preset loads")
+    }
+
+    /// Runs `scenario` live, chunk by chunk, until it ends (at most `tau_max`).
+    fn live_end(scenario: &Scenario, tau_max: f64) -> RunEnd {
+        let mut s = Session::new(RunId(1), scenario, Start::Initial).expect("starts");
+        s.fill_to(tau_max);
+        let mut batch = Batch::default();
+        s.release(f64::INFINITY, &mut batch);
+        s.end().cloned().expect("the run ended")
+    }
+
+    #[test]
+    fn a_record_run_at_rest_after_the_record_ends_with_the_batch_runs_peaks() {
+        // El Centro: the statue rocks, comes to rest before the record ends,
+        // and the live run stops at the first chunk end after the record.
+        let sc = preset("elcentro-statue");
+        let record_end = sc.record_end_tau().expect("a record");
+        let RunEnd::Rest {
+            tau,
+            max_abs_theta,
+            max_abs_sliding,
+        } = live_end(&sc, 10.0 * record_end)
+        else {
+            panic!("the statue survives El Centro");
+        };
+        assert!(
+            tau >= record_end && tau <= record_end + MAX_CHUNK + 1e-9,
+            "stopped at τ = {tau}, record ends at {record_end}"
+        );
+        let batch = simulate(sc.model().expect("model"), &sc.initial, &sc.run_options()).expect("batch run");
+        assert!(
+            (max_abs_theta - batch.max_abs_theta).abs() <= 1e-9 * batch.max_abs_theta,
+            "live {max_abs_theta} vs batch {}",
+            batch.max_abs_theta
+        );
+        assert!(
+            (max_abs_sliding - batch.max_abs_sliding).abs() <= 1e-9 + 1e-6 * batch.max_abs_sliding,
+            "live {max_abs_sliding} vs batch {}",
+            batch.max_abs_sliding
+        );
+    }
+
+    #[test]
+    fn a_record_run_that_overturns_ends_terminal_not_at_rest() {
+        let sc = preset("kobe-rack");
+        let end = live_end(&sc, sc.record_end_tau().expect("a record"));
+        assert!(
+            matches!(
+                end,
+                RunEnd::Terminal {
+                    mode: Mode::Tumbled,
+                    ..
+                }
+            ),
+            "{end:?}"
+        );
+    }
+
+    #[test]
+    fn a_harmonic_run_at_rest_goes_on() {
+        // Rest ends only a record run: under harmonic shaking a block at
+        // rest may be set rocking again at any time. A_h = 0.1 (0.1 ψ g)
+        // is far below the uplift threshold, so the block stays flat.
+        let sets = ["excitation.a_h=0.1".to_string(), "excitation.a_v=0".to_string()];
+        let sc = crate::io::config::load(Some("default"), None, &sets).expect("valid");
+        let mut s = Session::new(RunId(1), &sc, Start::Initial).expect("starts");
+        s.fill_to(20.0);
+        assert_eq!(s.state().0, Mode::Rest, "the block stays flat");
+        assert!(!s.is_ended(), "a harmonic run at rest goes on");
     }
 }

@@ -1,0 +1,24 @@
+//! The engineer's analyses of a free-standing block under earthquakes and
+//! pulses: rocking spectra, overturning scales, pulse overturning maps and
+//! fragility curves (docs/engineering.md).
+//!
+//! Contract:
+//! - Each analysis is a set of independent runs of one block under one
+//!   ground motion ([`response`]): physical inputs (metres, seconds, g),
+//!   physical and normalised answers (θ/α, seconds).
+//! - Runs go in parallel (rayon, over the caller's pool) and are collected
+//!   by index: the results do not depend on the number of threads.
+//! - Nothing here reads files, draws or parses flags; records arrive as
+//!   [`Series`](crate::model::excitation::record::Series) inside a
+//!   [`Record`](crate::sim::scenario::Record).
+//! - No NaN leaves this module: a quantity that does not exist (no
+//!   overturning, no fit) is `None` or an error that says why.
+
+pub mod fragility;
+pub mod lognormal;
+pub mod overturn_scale;
+pub mod pulse_map;
+pub mod response;
+pub mod rocking_spectrum;
+
+pub use response::{BlockResponse, BlockSize, Drive, EndState};

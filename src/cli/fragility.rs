@@ -1,0 +1,661 @@
+//! `rocking fragility`: fragility curves of blocks under a suite of
+//! records scaled to intensity levels, and the merge of its shards.
+//!
+//! Writes into `--out`:
+//! - `runs.csv`: one row per run (block outer, level, record inner);
+//! - `fractions.csv`: per block and level the counts, the fractions
+//!   overturned and reaching the θ/α threshold, and the fitted curves with
+//!   their 95 % bands at that level;
+//! - `fragility.json`: the suite (files, units, peaks), levels, blocks,
+//!   threshold, base configuration and version, and per block both
+//!   lognormal fits (median, β, their 95 % intervals, the band on a fine
+//!   grid) or why there is none;
+//! - `fragility.png/svg`.
+//!
+//! A shard (`--shard K/N`) computes the runs i with i mod N = K and writes
+//! only `runs.csv` and `fragility.json`; `rocking merge` joins the shards
+//! and writes exactly the files one run writes (the fits are computed from
+//! the joined rows, whose numbers round-trip bit for bit).
+
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use anyhow::{Context as _, anyhow, bail};
+use serde_json::{Value as Json, json};
+
+use super::batch::BatchError;
+use super::eng_args::{BaseArgs, RecordUnitArgs, block, input, positive_list, read_record, suite};
+use super::merge::MergeArgs;
+use super::sweep::{progress_bar, progress_fn, thread_pool};
+use crate::analysis::engineering::fragility::{
+    FragilitySpec, Intensity, LevelSummary, MAX_RUNS, SuiteRecord, fit_block, run_fragility, summarise,
+};
+use crate::analysis::engineering::lognormal::{FitError, LognormalFit};
+use crate::analysis::engineering::response::scenario_for;
+use crate::analysis::engineering::{BlockSize, Drive, EndState};
+use crate::analysis::orbit_diagram::Shard;
+use crate::io::config::to_json;
+use crate::io::csv::{self, Num};
+use crate::io::engineering_files::{FractionRow, FragilityRunRow};
+use crate::io::output;
+use crate::plot::fragility::{FragilityCurve, FragilityFigure, FragilityPanel};
+use crate::plot::labels::{friction_text, num};
+
+/// The intensity measure on the command line.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum ImArg {
+    /// Peak ground acceleration, g.
+    Pga,
+    /// Peak ground velocity, m/s (integrated from the record as the model
+    /// sees it, no baseline correction).
+    Pgv,
+}
+
+/// Points of the fitted curve in `fragility.json` and the figure.
+const BAND_POINTS: usize = 60;
+
+/// Arguments of `rocking fragility`.
+#[derive(Debug, Clone, clap::Args)]
+pub struct FragilityArgs {
+    /// A record file, or a folder whose files are all records (taken in
+    /// name order); repeatable.
+    #[arg(long = "records", value_name = "FILE|DIR")]
+    pub records: Vec<PathBuf>,
+    /// A list of records, one per line: `PATH [UNIT]` (PATH relative to the
+    /// list's folder, UNIT g|m/s2|cm/s2 for text files; `#` comments).
+    #[arg(long, value_name = "LIST")]
+    pub suite: Option<PathBuf>,
+    /// Unit (and time step) of text records without their own.
+    #[command(flatten)]
+    pub reading: RecordUnitArgs,
+    /// The intensity measure the records are scaled to.
+    #[arg(long, value_enum, default_value = "pga")]
+    pub im: ImArg,
+    /// Intensity levels (g for PGA, m/s for PGV), each > 0:
+    /// comma-separated, or FROM:TO:N for N evenly spaced levels.
+    #[arg(long, value_name = "LIST", allow_hyphen_values = true)]
+    pub levels: String,
+    /// A block WIDTHxHEIGHT in metres, e.g. 0.6x2.0; repeatable.
+    #[arg(long = "block", value_name = "BxH", required = true)]
+    pub blocks: Vec<String>,
+    /// Peak rotation θ/α whose exceedance is counted and fitted too.
+    #[arg(
+        long,
+        value_name = "THETA/ALPHA",
+        default_value_t = 0.5,
+        allow_negative_numbers = true
+    )]
+    pub threshold: f64,
+    /// Compute only runs i with i mod N = K (K from 0), for cluster array
+    /// jobs; join the shards with `rocking merge`.
+    #[arg(long, value_name = "K/N")]
+    pub shard: Option<String>,
+    /// Friction and the base scene.
+    #[command(flatten)]
+    pub base: BaseArgs,
+    /// Worker threads (default: one per core; at most 4 per core). The
+    /// output does not depend on it.
+    #[arg(long, value_name = "N")]
+    pub threads: Option<usize>,
+    /// Output directory.
+    #[arg(long, value_name = "DIR")]
+    pub out: PathBuf,
+    /// Print nothing but errors.
+    #[arg(long, short)]
+    pub quiet: bool,
+}
+
+/// What the files are computed from besides the runs: read back from
+/// `fragility.json` by the merge.
+struct Layout {
+    im: Intensity,
+    levels: Vec<f64>,
+    blocks: Vec<BlockSize>,
+    records: usize,
+    threshold: f64,
+    friction: String,
+}
+
+impl Layout {
+    fn runs(&self) -> usize {
+        self.blocks.len() * self.levels.len() * self.records
+    }
+}
+
+/// Runs `rocking fragility`.
+pub fn run(args: &FragilityArgs) -> Result<(), BatchError> {
+    let base = args.base.load()?;
+    let im = match args.im {
+        ImArg::Pga => Intensity::Pga,
+        ImArg::Pgv => Intensity::Pgv,
+    };
+    let levels = positive_list("--levels", &args.levels)?;
+    let blocks: Vec<BlockSize> = args
+        .blocks
+        .iter()
+        .map(|b| {
+            block("--block", b).map(|(w, h)| BlockSize {
+                width_m: w,
+                height_m: h,
+            })
+        })
+        .collect::<Result<_, _>>()?;
+    if !(args.threshold > 0.0 && args.threshold.is_finite()) {
+        return Err(input(anyhow!("--threshold {}: must be a θ/α > 0", args.threshold)));
+    }
+    let shard = args.shard.as_deref().map(Shard::parse).transpose().map_err(input)?;
+    let spec_read = args.reading.spec()?;
+    let entries = suite(&args.records, args.suite.as_deref(), spec_read)?;
+    let mut records = Vec::with_capacity(entries.len());
+    let mut record_json = Vec::with_capacity(entries.len());
+    for (path, spec, origin) in &entries {
+        let named = |e: anyhow::Error| match origin {
+            Some(o) => input(e.context(o.clone())),
+            None => input(e.context("--records")),
+        };
+        let record = read_record(path, spec).map_err(named)?;
+        let peaks = record.series.peaks(1.0);
+        let intensity = match im {
+            Intensity::Pga => peaks.pga_g,
+            Intensity::Pgv => peaks.pgv_m_s,
+        };
+        if !(intensity > 0.0 && intensity.is_finite()) {
+            return Err(named(anyhow!(
+                "{}: {} is 0, it cannot be scaled",
+                path.display(),
+                im.column()
+            )));
+        }
+        record_json.push(json!({
+            "file": path.display().to_string(),
+            "name": Drive::Record(record.clone()).name(),
+            "unit": record.unit.name(),
+            "pga_g": peaks.pga_g,
+            "pgv_m_s": peaks.pgv_m_s,
+            "pgd_m": peaks.pgd_m,
+            "duration_s": record.series.duration_s(),
+        }));
+        records.push(SuiteRecord {
+            drive: Drive::Record(record),
+            intensity,
+        });
+    }
+    let spec = FragilitySpec {
+        base: &base,
+        records: &records,
+        levels: &levels,
+        blocks: &blocks,
+    };
+    if spec.run_count() > MAX_RUNS {
+        return Err(input(anyhow!(
+            "{} runs (blocks × levels × records): at most {MAX_RUNS}",
+            spec.run_count()
+        )));
+    }
+    for &b in &blocks {
+        for r in &records {
+            let scale = levels.iter().copied().fold(0.0, f64::max) / r.intensity;
+            scenario_for(&base, b, &r.drive, scale)
+                .map_err(|e| input(anyhow!("--block {}x{}: {e}", b.width_m, b.height_m)))?;
+        }
+    }
+    let pool = thread_pool(args.threads)?;
+    output::check_writable(&args.out)
+        .context("--out: cannot write the output directory")
+        .map_err(input)?;
+    let indices: Vec<usize> = match shard {
+        None => (0..spec.run_count()).collect(),
+        Some(s) => (s.index..spec.run_count()).step_by(s.count).collect(),
+    };
+
+    let start = Instant::now();
+    let bar = progress_bar(indices.len(), "runs", args.quiet);
+    let runs = pool
+        .install(|| run_fragility(&spec, &indices, &progress_fn(&bar)))
+        .map_err(|e| BatchError::Run(anyhow!(e)))?;
+    bar.finish_and_clear();
+    let wall = start.elapsed().as_secs_f64();
+
+    let rows: Vec<FragilityRunRow> = runs
+        .iter()
+        .zip(&indices)
+        .map(|(r, &i)| {
+            let b = blocks[r.at.block];
+            let resp = &r.response;
+            FragilityRunRow {
+                run: i as u64,
+                block: r.at.block as u64,
+                width_m: Num(b.width_m),
+                height_m: Num(b.height_m),
+                record: records[r.at.record].drive.name(),
+                im: im.column().to_string(),
+                level: Num(levels[r.at.level]),
+                scale: Num(r.scale),
+                end: resp.end.name().to_string(),
+                peak_theta_over_alpha: Num(resp.peak_theta_over_alpha),
+                t_overturn_s: (resp.end == EndState::Overturned)
+                    .then_some(resp.t_end_event_s)
+                    .flatten()
+                    .map(Num),
+                t_flight_s: (resp.end == EndState::Flight)
+                    .then_some(resp.t_end_event_s)
+                    .flatten()
+                    .map(Num),
+            }
+        })
+        .collect();
+    let layout = Layout {
+        im,
+        levels: levels.clone(),
+        blocks: blocks.clone(),
+        records: records.len(),
+        threshold: args.threshold,
+        friction: friction_text(&base),
+    };
+    let common = json!({
+        "command": "rocking fragility",
+        "version": env!("CARGO_PKG_VERSION"),
+        "im": im,
+        "levels": levels,
+        "blocks": blocks,
+        "records": record_json,
+        "threshold_theta_over_alpha": args.threshold,
+        "record_tail_s": base.run.record_tail_s.unwrap_or(crate::sim::scenario::RECORD_TAIL_S),
+        "runs": spec.run_count(),
+        "shard": Json::Null,
+        "friction": layout.friction,
+        "config": to_json(&base),
+        "units": "levels in the unit of `im` (pga: g, pgv: m/s); lengths m, times s; peak_theta_over_alpha = max|θ|/α; fits: P = Φ(ln(level/median)/beta), 95 % intervals from the Fisher information (delta method)",
+    });
+    let lines = match shard {
+        Some(s) => {
+            let mut meta = common;
+            meta["shard"] = json!(s);
+            super::write::staged(&args.out, |staging| {
+                staging.text("runs.csv", &csv::to_string(rows))?;
+                staging.text("fragility.json", &(serde_json::to_string_pretty(&meta)? + "\n"))?;
+                Ok(())
+            })?;
+            vec![format!(
+                "shard {}/{}: {} of {} runs",
+                s.index,
+                s.count,
+                indices.len(),
+                spec.run_count()
+            )]
+        }
+        None => write_whole(&args.out, common, &layout, rows)?,
+    };
+    if !args.quiet {
+        crate::say!(
+            "fragility: {} blocks × {} levels × {} records = {} runs in {wall:.2} s",
+            blocks.len(),
+            levels.len(),
+            records.len(),
+            indices.len()
+        );
+        for l in lines {
+            crate::say!("  {l}");
+        }
+        crate::say!("wrote {}", args.out.display());
+    }
+    Ok(())
+}
+
+/// Fit or error as JSON, with the band on a fine grid.
+fn fit_json(fit: &Result<LognormalFit, FitError>, grid: &[f64]) -> Json {
+    match fit {
+        Ok(f) => {
+            let mut j = serde_json::to_value(f).unwrap_or(Json::Null);
+            j["band"] = json!(grid.iter().map(|&x| f.at(x)).collect::<Vec<_>>());
+            j
+        }
+        Err(e) => json!({ "error": e.to_string() }),
+    }
+}
+
+/// One-line text of a fit.
+fn fit_text(fit: &Result<LognormalFit, FitError>, unit: &str) -> String {
+    match fit {
+        Ok(f) => format!(
+            "median {:.4} {unit} (95 %: {:.4}–{:.4}), β {:.3} ({:.3}–{:.3})",
+            f.median, f.median_ci95[0], f.median_ci95[1], f.beta, f.beta_ci95[0], f.beta_ci95[1]
+        ),
+        Err(e) => format!("no fit: {e}"),
+    }
+}
+
+/// The whole study's files from all its rows (in run order), written into
+/// `out`; returns the summary lines. `common` is `fragility.json` without
+/// fits (shard null).
+fn write_whole(
+    out: &Path,
+    common: Json,
+    layout: &Layout,
+    rows: Vec<FragilityRunRow>,
+) -> Result<Vec<String>, BatchError> {
+    let (nl, nr) = (layout.levels.len(), layout.records);
+    let counts: Vec<Vec<LevelSummary>> = summarise(
+        layout.blocks.len(),
+        nl,
+        layout.threshold,
+        rows.iter().map(|r| {
+            let i = r.run as usize;
+            let end = EndState::from_name(&r.end).unwrap_or(EndState::Moving);
+            (i / (nl * nr), (i / nr) % nl, end, r.peak_theta_over_alpha.0)
+        }),
+    );
+    let x_max = layout.levels.iter().copied().fold(0.0, f64::max);
+    let grid: Vec<f64> = (1..=BAND_POINTS)
+        .map(|k| 1.1 * x_max * k as f64 / BAND_POINTS as f64)
+        .collect();
+    let unit = match layout.im {
+        Intensity::Pga => "g",
+        Intensity::Pgv => "m/s",
+    };
+    let mut fraction_rows = Vec::new();
+    let mut fits_json = Vec::new();
+    let mut lines = Vec::new();
+    let mut over_curves = Vec::new();
+    let mut exceed_curves = Vec::new();
+    for (b, (block, c)) in layout.blocks.iter().zip(&counts).enumerate() {
+        let fits = fit_block(&layout.levels, c);
+        for (&level, s) in layout.levels.iter().zip(c) {
+            let over = fits.overturn.as_ref().ok().map(|f| f.at(level));
+            let exceed = fits.exceed.as_ref().ok().map(|f| f.at(level));
+            fraction_rows.push(FractionRow {
+                block: b as u64,
+                width_m: Num(block.width_m),
+                height_m: Num(block.height_m),
+                im: layout.im.column().to_string(),
+                level: Num(level),
+                runs: s.runs,
+                overturned: s.overturned,
+                flight: s.flight,
+                exceeded: s.exceeded,
+                fraction_overturned: s.fraction_overturned().map(Num),
+                fraction_exceeded: s.fraction_exceeded().map(Num),
+                fit_overturned: over.map(|p| Num(p.p)),
+                fit_overturned_lo: over.map(|p| Num(p.lo)),
+                fit_overturned_hi: over.map(|p| Num(p.hi)),
+                fit_exceeded: exceed.map(|p| Num(p.p)),
+                fit_exceeded_lo: exceed.map(|p| Num(p.lo)),
+                fit_exceeded_hi: exceed.map(|p| Num(p.hi)),
+            });
+        }
+        let name = format!("{} × {} m", num(block.width_m), num(block.height_m));
+        fits_json.push(json!({
+            "block": b,
+            "width_m": block.width_m,
+            "height_m": block.height_m,
+            "r_m": block.half_diagonal_m(),
+            "alpha_rad": block.alpha(),
+            "p_per_s": block.p_per_s(),
+            "overturning": fit_json(&fits.overturn, &grid),
+            "exceedance": fit_json(&fits.exceed, &grid),
+        }));
+        lines.push(format!("{name}: overturning {}", fit_text(&fits.overturn, unit)));
+        lines.push(format!(
+            "{name}: θ/α ≥ {} {}",
+            num(layout.threshold),
+            fit_text(&fits.exceed, unit)
+        ));
+        let observed = |f: fn(&LevelSummary) -> Option<f64>| -> Vec<(f64, f64)> {
+            layout
+                .levels
+                .iter()
+                .zip(c)
+                .filter_map(|(&x, s)| f(s).map(|y| (x, y)))
+                .collect()
+        };
+        let curve = |fit: &Result<LognormalFit, FitError>| match fit {
+            Ok(f) => grid.iter().map(|&x| f.at(x)).collect(),
+            Err(_) => Vec::new(),
+        };
+        over_curves.push(FragilityCurve {
+            label: match &fits.overturn {
+                Ok(f) => format!("{name}: median {:.3} {unit}, β {:.2}", f.median, f.beta),
+                Err(_) => format!("{name}: no fit"),
+            },
+            observed: observed(LevelSummary::fraction_overturned),
+            fitted: curve(&fits.overturn),
+        });
+        exceed_curves.push(FragilityCurve {
+            label: match &fits.exceed {
+                Ok(f) => format!("{name}: median {:.3} {unit}, β {:.2}", f.median, f.beta),
+                Err(_) => format!("{name}: no fit"),
+            },
+            observed: observed(LevelSummary::fraction_exceeded),
+            fitted: curve(&fits.exceed),
+        });
+    }
+    let mut meta = common;
+    meta["fits"] = Json::Array(fits_json);
+    let fig = FragilityFigure {
+        title: format!(
+            "Fragility of free-standing blocks: {} records × {} levels",
+            layout.records,
+            layout.levels.len()
+        ),
+        subtitle: format!(
+            "{}; dots: fraction of records, lines: lognormal MLE, shaded: 95 % band (Fisher information, delta method)",
+            layout.friction
+        ),
+        x_label: layout.im.label().to_string(),
+        x_max: 1.1 * x_max,
+        panels: vec![
+            FragilityPanel {
+                caption: "P(overturning)".into(),
+                curves: over_curves,
+            },
+            FragilityPanel {
+                caption: format!("P(peak θ/α ≥ {} or overturning)", num(layout.threshold)),
+                curves: exceed_curves,
+            },
+        ],
+    };
+    super::write::staged(out, |staging| {
+        staging.text("runs.csv", &csv::to_string(rows))?;
+        staging.text("fractions.csv", &csv::to_string(fraction_rows))?;
+        staging.text("fragility.json", &(serde_json::to_string_pretty(&meta)? + "\n"))?;
+        super::write::figure(staging, "fragility", &fig)?;
+        Ok(())
+    })?;
+    Ok(lines)
+}
+
+/// Whether `dirs` are fragility shards (the first holds a
+/// `fragility.json`): `rocking merge` then joins them with [`merge`].
+pub fn are_fragility_shards(dirs: &[PathBuf]) -> bool {
+    dirs.first().is_some_and(|d| d.join("fragility.json").is_file())
+}
+
+/// One shard read back.
+struct ShardDir {
+    dir: PathBuf,
+    shard: Shard,
+    common: Json,
+    rows: Vec<(u64, FragilityRunRow)>,
+}
+
+fn read_shard(dir: &Path) -> anyhow::Result<ShardDir> {
+    let path = dir.join("fragility.json");
+    let text = std::fs::read_to_string(&path).with_context(|| path.display().to_string())?;
+    let mut common: Json =
+        serde_json::from_str(&text).with_context(|| format!("{}: not valid JSON", path.display()))?;
+    if common.get("command").and_then(Json::as_str) != Some("rocking fragility") {
+        bail!("{}: not written by `rocking fragility`", path.display());
+    }
+    let shard_value = common.get_mut("shard").map(Json::take).unwrap_or(Json::Null);
+    if shard_value.is_null() {
+        bail!(
+            "{}: not a shard (fragility.json has no shard; it is a whole study)",
+            dir.display()
+        );
+    }
+    let shard: Shard =
+        serde_json::from_value(shard_value).with_context(|| format!("{}: bad \"shard\" entry", path.display()))?;
+    if shard.count == 0 || shard.index >= shard.count {
+        bail!(
+            "{}: shard {}/{} is out of range",
+            path.display(),
+            shard.index,
+            shard.count
+        );
+    }
+    Ok(ShardDir {
+        dir: dir.to_path_buf(),
+        shard,
+        common,
+        rows: csv::read(&dir.join("runs.csv"))?,
+    })
+}
+
+/// The layout recorded in a shard's `fragility.json`.
+fn layout_of(common: &Json, path: &Path) -> anyhow::Result<Layout> {
+    let field = |k: &str| {
+        common
+            .get(k)
+            .ok_or_else(|| anyhow!("{}: missing \"{k}\"", path.display()))
+    };
+    let im: Intensity =
+        serde_json::from_value(field("im")?.clone()).with_context(|| format!("{}: im", path.display()))?;
+    let levels: Vec<f64> =
+        serde_json::from_value(field("levels")?.clone()).with_context(|| format!("{}: levels", path.display()))?;
+    let blocks: Vec<BlockSize> = field("blocks")?
+        .as_array()
+        .ok_or_else(|| anyhow!("{}: blocks is not a list", path.display()))?
+        .iter()
+        .map(|b| {
+            Some(BlockSize {
+                width_m: b.get("width_m")?.as_f64()?,
+                height_m: b.get("height_m")?.as_f64()?,
+            })
+        })
+        .collect::<Option<_>>()
+        .ok_or_else(|| anyhow!("{}: bad blocks", path.display()))?;
+    let records = field("records")?
+        .as_array()
+        .ok_or_else(|| anyhow!("{}: records is not a list", path.display()))?
+        .len();
+    let threshold = field("threshold_theta_over_alpha")?
+        .as_f64()
+        .ok_or_else(|| anyhow!("{}: bad threshold_theta_over_alpha", path.display()))?;
+    let friction = field("friction")?.as_str().unwrap_or_default().to_string();
+    let layout = Layout {
+        im,
+        levels,
+        blocks,
+        records,
+        threshold,
+        friction,
+    };
+    if field("runs")?.as_u64() != Some(layout.runs() as u64) {
+        bail!("{}: runs disagrees with blocks × levels × records", path.display());
+    }
+    Ok(layout)
+}
+
+/// `rocking merge` of fragility shards: checks that they are the shards
+/// 0 … N−1 of one study, each once, with exactly their runs, and writes
+/// the files one run writes.
+pub fn merge(args: &MergeArgs) -> Result<(), BatchError> {
+    if let Some(shard) = args.shards.iter().find(|s| super::merge::contains(&args.out, s)) {
+        return Err(input(anyhow!(
+            "--out {}: is or contains the shard {} being merged; write the merge elsewhere",
+            args.out.display(),
+            shard.display()
+        )));
+    }
+    let shards: Vec<ShardDir> = args
+        .shards
+        .iter()
+        .map(|d| read_shard(d))
+        .collect::<anyhow::Result<_>>()
+        .map_err(input)?;
+    let Some(first) = shards.first() else {
+        return Err(input(anyhow!("no shard directories given")));
+    };
+    let n = first.shard.count;
+    for s in &shards[1..] {
+        if s.common != first.common {
+            return Err(input(anyhow!(
+                "{}: not the same study as {} (fragility.json differs)",
+                s.dir.display(),
+                first.dir.display()
+            )));
+        }
+        if s.shard.count != n {
+            return Err(input(anyhow!(
+                "{}: shard {}/{} but {} is one of {n} shards",
+                s.dir.display(),
+                s.shard.index,
+                s.shard.count,
+                first.dir.display()
+            )));
+        }
+    }
+    let mut by_index: Vec<Option<&ShardDir>> = vec![None; n];
+    for s in &shards {
+        if let Some(other) = by_index[s.shard.index] {
+            return Err(input(anyhow!(
+                "{}: shard {}/{n} is given twice (also {})",
+                s.dir.display(),
+                s.shard.index,
+                other.dir.display()
+            )));
+        }
+        by_index[s.shard.index] = Some(s);
+    }
+    if let Some(missing) = by_index.iter().position(Option::is_none) {
+        return Err(input(anyhow!("shard {missing}/{n} is missing")));
+    }
+    let layout = layout_of(&first.common, &first.dir.join("fragility.json")).map_err(input)?;
+    let total = layout.runs();
+    let mut rows: Vec<FragilityRunRow> = Vec::with_capacity(total);
+    let mut pos = vec![0usize; n];
+    for i in 0..total {
+        let k = i % n;
+        let Some(s) = by_index[k] else {
+            return Err(input(anyhow!("shard {k}/{n} is missing")));
+        };
+        let path = s.dir.join("runs.csv");
+        let Some((line, row)) = s.rows.get(pos[k]) else {
+            return Err(input(anyhow!("{}: ends before run {i}", path.display())));
+        };
+        if row.run != i as u64 {
+            return Err(input(anyhow!(
+                "{}:{line}: run {} where the shard has run {i}",
+                path.display(),
+                row.run
+            )));
+        }
+        if EndState::from_name(&row.end).is_none() {
+            return Err(input(anyhow!("{}:{line}: unknown end {:?}", path.display(), row.end)));
+        }
+        pos[k] += 1;
+        rows.push(row.clone());
+    }
+    for s in &shards {
+        if let Some((line, _)) = s.rows.get(pos[s.shard.index]) {
+            return Err(input(anyhow!(
+                "{}:{line}: a row beyond the shard's runs",
+                s.dir.join("runs.csv").display()
+            )));
+        }
+    }
+    output::check_writable(&args.out)
+        .context("--out: cannot write the output directory")
+        .map_err(input)?;
+    let mut common = first.common.clone();
+    common["shard"] = Json::Null;
+    let lines = write_whole(&args.out, common, &layout, rows)?;
+    if !args.quiet {
+        crate::say!("merged {n} fragility shards: {total} runs");
+        for l in lines {
+            crate::say!("  {l}");
+        }
+        crate::say!("wrote {}", args.out.display());
+    }
+    Ok(())
+}

@@ -1,0 +1,252 @@
+//! The verdict over the block scene, large enough to read on a projector:
+//! `OVERTURNED at t = 4.78 s` when the block tumbles, `SURVIVED` with the
+//! peak rotation and sliding when a record run comes to rest after the
+//! record. A record scene has the banner from the start, in a strip of its
+//! own above the block (so the block never hides behind it, and the scene
+//! does not jump when the verdict comes): the clock and the block's
+//! rotation and sliding while the record plays, and the record's name and
+//! PGA under them.
+//!
+//! It only words what the simulation thread sent (how the run ended,
+//! [`RunEnd`], and the latest sample), in seconds, degrees and centimetres
+//! whatever units the plots show: the verdict is an engineer's answer.
+
+use egui::{Color32, RichText};
+
+use crate::gui::units::{Scales, Units};
+use crate::model::Mode;
+use crate::model::geometry::Geometry;
+use crate::sim::protocol::{RunEnd, Sample};
+
+/// How a run ended, as the banner says it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Verdict {
+    /// Tumbled at `t_s` seconds.
+    Overturned {
+        /// When, s.
+        t_s: f64,
+    },
+    /// Left the ground (the normal force vanished) at `t_s`: the model
+    /// stops there.
+    Flight {
+        /// When, s.
+        t_s: f64,
+    },
+    /// At rest after the record.
+    Survived {
+        /// Largest |θ|, degrees.
+        peak_deg: f64,
+        /// Largest |θ| per α (1 tips a block at rest over).
+        over_alpha: f64,
+        /// Largest |sliding displacement|, cm.
+        sliding_cm: f64,
+    },
+}
+
+impl Verdict {
+    /// The verdict on `end` for a block of geometry `geo`; `None` for a run
+    /// that failed (the status bar says why) or a terminal mode that is
+    /// neither.
+    pub fn of(end: &RunEnd, geo: Geometry) -> Option<Self> {
+        let si = Scales::new(Units::Physical, geo);
+        match *end {
+            RunEnd::Terminal { mode, tau } => match mode {
+                Mode::Tumbled => Some(Verdict::Overturned { t_s: si.seconds(tau) }),
+                Mode::Flight => Some(Verdict::Flight { t_s: si.seconds(tau) }),
+                Mode::Rest | Mode::Slide { .. } | Mode::Rock { .. } | Mode::SlideRock { .. } => None,
+            },
+            RunEnd::Rest {
+                max_abs_theta,
+                max_abs_sliding,
+                ..
+            } => Some(Verdict::Survived {
+                peak_deg: si.theta(max_abs_theta),
+                over_alpha: max_abs_theta,
+                sliding_cm: si.sliding_cm(max_abs_sliding),
+            }),
+            RunEnd::Failed(_) => None,
+        }
+    }
+
+    /// The large line: `OVERTURNED at t = 4.78 s`, `SURVIVED`, …
+    pub fn headline(&self) -> String {
+        match self {
+            Verdict::Overturned { t_s } => format!("OVERTURNED at t = {t_s:.2} s"),
+            Verdict::Flight { t_s } => format!("LEFT THE GROUND at t = {t_s:.2} s"),
+            Verdict::Survived { .. } => "SURVIVED".to_string(),
+        }
+    }
+
+    /// The line under it, if any: the peaks of a block that survived.
+    pub fn detail(&self) -> Option<String> {
+        match self {
+            Verdict::Overturned { .. } | Verdict::Flight { .. } => None,
+            Verdict::Survived {
+                peak_deg,
+                over_alpha,
+                sliding_cm,
+            } => Some(format!(
+                "peak rotation {peak_deg:.1}° ({over_alpha:.2} α) · sliding {sliding_cm:.1} cm"
+            )),
+        }
+    }
+
+    /// The headline's colour: red for a block lost, green for one that stood.
+    pub fn color(&self) -> Color32 {
+        match self {
+            Verdict::Overturned { .. } | Verdict::Flight { .. } => Color32::from_rgb(255, 95, 85),
+            Verdict::Survived { .. } => Color32::from_rgb(110, 225, 120),
+        }
+    }
+}
+
+/// Size of the headline, points: about 5 % of a 1280 × 800 window's
+/// height, readable from the back of a lecture room.
+const HEADLINE_PT: f32 = 40.0;
+
+/// Size of the lines under it, points.
+const DETAIL_PT: f32 = 22.0;
+
+/// The lines of a banner.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Lines {
+    /// The large line.
+    pub headline: String,
+    /// Its colour.
+    pub color: Color32,
+    /// The line under it.
+    pub detail: Option<String>,
+    /// The last line (the record's name and PGA).
+    pub subtitle: Option<String>,
+}
+
+impl Lines {
+    /// The verdict's lines, with `subtitle` under them.
+    pub fn verdict(v: &Verdict, subtitle: Option<String>) -> Self {
+        Self {
+            headline: v.headline(),
+            color: v.color(),
+            detail: v.detail(),
+            subtitle,
+        }
+    }
+
+    /// While a record plays: the clock, and the block's rotation and
+    /// sliding at the latest sample (block geometry `geo`).
+    pub fn playing(sample: &Sample, geo: Geometry, subtitle: Option<String>) -> Self {
+        let si = Scales::new(Units::Physical, geo);
+        Self {
+            headline: format!("t = {:.2} s", si.seconds(sample.tau)),
+            color: Color32::WHITE,
+            detail: Some(format!(
+                "θ = {}° · sliding {} cm",
+                one_decimal(si.theta(sample.theta)),
+                one_decimal(si.horizontal(sample.theta, sample.x))
+            )),
+            subtitle,
+        }
+    }
+}
+
+/// `x` with one decimal, without the `-0.0` a tiny negative value prints as.
+fn one_decimal(x: f64) -> String {
+    let s = format!("{x:.1}");
+    if s == "-0.0" { "0.0".to_string() } else { s }
+}
+
+/// Height of a plate holding a headline and `below` lines under it, points.
+pub fn plate_height(below: usize) -> f32 {
+    1.3 * HEADLINE_PT + below as f32 * 1.35 * DETAIL_PT + 2.0 * PAD
+}
+
+/// Space above and below the lines on the plate, points.
+const PAD: f32 = 8.0;
+
+/// Height of the strip a record scene's banner takes above the block,
+/// points: always room for the headline and two lines, so the scene keeps
+/// its size when the verdict replaces the clock.
+pub const STRIP_HEIGHT: f32 = 1.3 * HEADLINE_PT + 2.0 * 1.35 * DETAIL_PT + 2.0 * PAD;
+
+/// Draws `lines` centred on a dark plate filling `rect` (a fixed size, so
+/// the plate does not change width with the text it holds).
+pub fn show(ui: &mut egui::Ui, rect: egui::Rect, lines: &Lines) {
+    ui.painter().rect_filled(rect, 8.0, Color32::from_black_alpha(170));
+    let builder = egui::UiBuilder::new()
+        .max_rect(rect.shrink2(egui::vec2(12.0, PAD)))
+        .layout(egui::Layout::top_down(egui::Align::Center));
+    ui.scope_builder(builder, |ui| {
+        ui.spacing_mut().item_spacing.y = 2.0;
+        ui.label(
+            RichText::new(&lines.headline)
+                .size(HEADLINE_PT)
+                .strong()
+                .color(lines.color),
+        );
+        if let Some(d) = &lines.detail {
+            ui.label(RichText::new(d).size(DETAIL_PT).color(Color32::WHITE));
+        }
+        if let Some(s) = &lines.subtitle {
+            ui.label(RichText::new(s).size(DETAIL_PT).color(Color32::from_gray(215)));
+        }
+    });
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_tumble_is_worded_in_seconds() {
+        let geo = Geometry::new(0.6, 2.0);
+        let end = RunEnd::Terminal {
+            mode: Mode::Tumbled,
+            tau: 2.0 * geo.p,
+        };
+        let v = Verdict::of(&end, geo).expect("a verdict");
+        assert_eq!(v.headline(), "OVERTURNED at t = 2.00 s");
+        assert_eq!(v.detail(), None);
+    }
+
+    #[test]
+    fn a_survivor_gets_its_peaks_in_degrees_and_centimetres() {
+        let geo = Geometry::new(0.6, 2.0);
+        let end = RunEnd::Rest {
+            tau: 100.0,
+            max_abs_theta: 0.5,
+            max_abs_sliding: 0.01,
+        };
+        let v = Verdict::of(&end, geo).expect("a verdict");
+        assert_eq!(v.headline(), "SURVIVED");
+        let want = format!(
+            "peak rotation {:.1}° (0.50 α) · sliding {:.1} cm",
+            0.5 * geo.psi.to_degrees(),
+            geo.r
+        );
+        assert_eq!(v.detail().as_deref(), Some(want.as_str()));
+    }
+
+    #[test]
+    fn a_playing_record_shows_no_negative_zero() {
+        let geo = Geometry::new(0.6, 2.0);
+        let mut y = [0.0; crate::model::system::N];
+        y[crate::model::system::X] = -1e-9;
+        let state = crate::sim::HistoryRow::of_state(geo.p, Mode::Rest, &y);
+        let sample = Sample {
+            state,
+            a_h: 0.0,
+            a_v: 0.0,
+            base_x: 0.0,
+            normal: 1.0,
+            friction: 0.0,
+        };
+        let lines = Lines::playing(&sample, geo, None);
+        assert_eq!(lines.headline, "t = 1.00 s");
+        assert_eq!(lines.detail.as_deref(), Some("θ = 0.0° · sliding 0.0 cm"));
+    }
+
+    #[test]
+    fn a_failed_run_has_no_verdict() {
+        let geo = Geometry::new(1.0, 4.0);
+        assert_eq!(Verdict::of(&RunEnd::Failed("x".into()), geo), None);
+    }
+}

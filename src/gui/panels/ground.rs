@@ -1,0 +1,124 @@
+//! The ground-acceleration trace of a record scene: a_h in g against time,
+//! titled with the record's name and its PGA after the scale factor, with
+//! the playhead marked.
+//!
+//! The trace is drawn from the samples the simulation thread sent (each
+//! carries a_h/g); the record's name, PGA and length are read once, when a
+//! run starts, from the scenario it runs ([`RecordLabel::of`]).
+
+use egui::Color32;
+use egui_plot::{Line, Plot, PlotPoint, PlotPoints, VLine};
+
+use crate::gui::history::{RunHistory, decimate_min_max};
+use crate::gui::units::Scales;
+use crate::sim::Scenario;
+use crate::sim::scenario::ExcitationKind;
+
+/// What the app says about a run's horizontal record.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RecordLabel {
+    /// The file's name (without its folder).
+    pub name: String,
+    /// Peak ground acceleration after the scale factor, g.
+    pub pga_g: f64,
+    /// The scale factor on the record.
+    pub scale: f64,
+    /// Length of the record, s (time of its last sample).
+    pub duration_s: f64,
+}
+
+impl RecordLabel {
+    /// The horizontal record of `scenario`, if it runs one.
+    pub fn of(scenario: &Scenario) -> Option<Self> {
+        let x = &scenario.excitation;
+        if x.kind != ExcitationKind::Record {
+            return None;
+        }
+        let r = x.record_h.as_ref()?;
+        let name = r
+            .path
+            .file_name()
+            .map_or_else(|| r.path.display().to_string(), |n| n.to_string_lossy().into_owned());
+        Some(Self {
+            name,
+            pga_g: r.series.peaks(x.scale_h).pga_g,
+            scale: x.scale_h,
+            duration_s: r.series.duration_s(),
+        })
+    }
+
+    /// `kobe-1995.dat · PGA 0.69 g` (and the scale when it is not 1).
+    pub fn title(&self) -> String {
+        if self.scale == 1.0 {
+            format!("{} · PGA {:.2} g", self.name, self.pga_g)
+        } else {
+            format!("{} × {} · PGA {:.2} g", self.name, self.scale, self.pga_g)
+        }
+    }
+}
+
+/// Ground-trace state.
+#[derive(Clone, Debug, Default)]
+pub struct GroundView {
+    scratch: Vec<PlotPoint>,
+    /// Points passed to the plot over the app's life (work counter).
+    pub work: u64,
+}
+
+/// Draws the title and the trace of a_h from the start of the run to `now`
+/// (τ), over the whole record's length (so it fills in as the record
+/// plays), in the time unit of `scales`.
+pub fn ground_plot(
+    ui: &mut egui::Ui,
+    hist: &RunHistory,
+    view: &mut GroundView,
+    label: &RecordLabel,
+    now: f64,
+    scales: &Scales,
+) {
+    ui.label(egui::RichText::new(format!("Ground acceleration: {}", label.title())).strong());
+    let t_record = scales.time(scales.tau_of_seconds(label.duration_s));
+    let t_now = scales.time(now);
+    // 2 % past the record's end, as the time history's window for a record
+    // ([`crate::gui::panels::plots::HistoryView::fit_run`]): the two line up.
+    let t1 = (1.02 * t_record).max(t_now);
+    let columns = (ui.available_width() * ui.ctx().pixels_per_point()).max(16.0) as usize;
+    decimate_min_max(
+        hist.samples.iter().map(|s| (scales.time(s.tau), s.a_h)),
+        0.0,
+        t1,
+        columns,
+        &mut view.scratch,
+    );
+    view.work += view.scratch.len() as u64;
+    let pts = view.scratch.clone();
+    let pga = label.pga_g;
+    Plot::new("ground")
+        .x_axis_label(scales.time_label())
+        .y_axis_label("a_h [g]")
+        .include_x(0.0)
+        .include_x(t1)
+        .include_y(-pga)
+        .include_y(pga)
+        // Steps of 1, 5, 25, … × 10ⁿ: labels at ±0.2 g or ±0.5 g where
+        // decimal steps would label only 0 in a panel this short.
+        .y_grid_spacer(egui_plot::log_grid_spacer(5))
+        // Likewise in time: 5 s or 25 s steps label a minute-long record in
+        // this narrow panel where 10 s steps go unlabelled.
+        .x_grid_spacer(egui_plot::log_grid_spacer(5))
+        .allow_drag(false)
+        .allow_zoom(false)
+        .allow_scroll(false)
+        .show(ui, |plot_ui| {
+            plot_ui.line(
+                Line::new("a_h [g]", PlotPoints::Owned(pts))
+                    .color(Color32::from_rgb(240, 150, 50))
+                    .width(1.2),
+            );
+            plot_ui.vline(
+                VLine::new("now", t_now)
+                    .color(Color32::from_rgb(255, 230, 60).gamma_multiply(0.8))
+                    .width(1.5),
+            );
+        });
+}

@@ -1,0 +1,155 @@
+//! Fragility curves: two panels, P(overturning) and P(θ/α ≥ threshold)
+//! against the intensity measure; per block the observed fractions as
+//! dots, the fitted lognormal curve as a line and its pointwise 95 % band
+//! shaded.
+
+use plotters::coord::Shift;
+use plotters::prelude::*;
+
+use super::rocking_spectrum::colour;
+use super::{FONT, Figure, PlotError, titled};
+use crate::analysis::engineering::lognormal::BandPoint;
+
+/// One block in one panel.
+#[derive(Clone, Debug)]
+pub struct FragilityCurve {
+    /// Legend text (the block and its fit).
+    pub label: String,
+    /// Observed (level, fraction).
+    pub observed: Vec<(f64, f64)>,
+    /// The fitted curve with its band, increasing level; empty without a fit.
+    pub fitted: Vec<BandPoint>,
+}
+
+/// One panel.
+#[derive(Clone, Debug)]
+pub struct FragilityPanel {
+    /// Panel caption.
+    pub caption: String,
+    /// Its curves, one per block.
+    pub curves: Vec<FragilityCurve>,
+}
+
+/// The figure.
+#[derive(Clone, Debug)]
+pub struct FragilityFigure {
+    /// First title line.
+    pub title: String,
+    /// Second title line.
+    pub subtitle: String,
+    /// x-axis label with unit.
+    pub x_label: String,
+    /// Largest level (the axis ends a little beyond).
+    pub x_max: f64,
+    /// The panels.
+    pub panels: Vec<FragilityPanel>,
+}
+
+impl Figure for FragilityFigure {
+    fn size(&self) -> (u32, u32) {
+        (1600, 800)
+    }
+
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), PlotError> {
+        let e = PlotError::from_display;
+        let area = titled(root, &self.title, &self.subtitle)?;
+        let x1 = if self.x_max.is_finite() && self.x_max > 0.0 {
+            self.x_max * 1.05
+        } else {
+            1.0
+        };
+        let cells = area.split_evenly((1, self.panels.len().max(1)));
+        for (panel, cell) in self.panels.iter().zip(cells.iter()) {
+            let mut chart = ChartBuilder::on(cell)
+                .caption(panel.caption.as_str(), (FONT, 20))
+                .margin(14)
+                .x_label_area_size(50)
+                .y_label_area_size(64)
+                .build_cartesian_2d(0.0..x1, 0.0..1.02)
+                .map_err(e)?;
+            chart
+                .configure_mesh()
+                .x_desc(self.x_label.as_str())
+                .y_desc("probability")
+                .label_style((FONT, 15))
+                .axis_desc_style((FONT, 17))
+                .light_line_style(RGBColor(238, 238, 238))
+                .draw()
+                .map_err(e)?;
+            for (i, curve) in panel.curves.iter().enumerate() {
+                let c = colour(i);
+                let fitted: Vec<&BandPoint> = curve
+                    .fitted
+                    .iter()
+                    .filter(|b| [b.level, b.p, b.lo, b.hi].iter().all(|v| v.is_finite()))
+                    .collect();
+                if fitted.len() >= 2 {
+                    let band: Vec<(f64, f64)> = fitted
+                        .iter()
+                        .map(|b| (b.level, b.hi))
+                        .chain(fitted.iter().rev().map(|b| (b.level, b.lo)))
+                        .collect();
+                    chart
+                        .draw_series(std::iter::once(Polygon::new(band, c.mix(0.15).filled())))
+                        .map_err(e)?;
+                    chart
+                        .draw_series(LineSeries::new(
+                            fitted.iter().map(|b| (b.level, b.p)),
+                            c.stroke_width(2),
+                        ))
+                        .map_err(e)?;
+                }
+                chart
+                    .draw_series(
+                        curve
+                            .observed
+                            .iter()
+                            .filter(|p| p.0.is_finite() && p.1.is_finite())
+                            .map(|&p| Circle::new(p, 4, c.filled())),
+                    )
+                    .map_err(e)?
+                    .label(curve.label.as_str())
+                    .legend(move |(x, y)| Circle::new((x + 8, y), 4, c.filled()));
+            }
+            chart
+                .configure_series_labels()
+                .position(SeriesLabelPosition::LowerRight)
+                .background_style(WHITE.mix(0.9))
+                .border_style(RGBColor(150, 150, 150))
+                .label_font((FONT, 14))
+                .draw()
+                .map_err(e)?;
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn draws_as_svg() {
+        let band = |level: f64, p: f64| BandPoint {
+            level,
+            p,
+            lo: p * 0.8,
+            hi: (p * 1.2).min(1.0),
+        };
+        let fig = FragilityFigure {
+            title: "t".into(),
+            subtitle: "s".into(),
+            x_label: "PGA (g)".into(),
+            x_max: 1.0,
+            panels: vec![FragilityPanel {
+                caption: "overturning".into(),
+                curves: vec![FragilityCurve {
+                    label: "0.6 × 2.0 m".into(),
+                    observed: vec![(0.5, 0.2), (1.0, 0.9)],
+                    fitted: vec![band(0.5, 0.25), band(1.0, 0.85)],
+                }],
+            }],
+        };
+        assert!(fig.to_svg().unwrap().contains("0.6 × 2.0 m"));
+    }
+}
