@@ -55,12 +55,12 @@ def main() -> None:
 
     # Speedup of an n x n map, 1 vs 2 single-thread workers.
     n = args.cells
-    x, y = ("excitation.a_h", 0.1, 3.0, n), ("excitation.omega_h", 2.0, 12.0, n)
+    x, y = ("excitation.a_h", 0.1, 3.0, n), ("excitation.omega_h", 6.0, 12.0, n)
     times = {}
     results = {}
     for workers in (1, 2):
         with LocalCluster(n_workers=workers, threads_per_worker=1, host="127.0.0.1", dashboard_address=None) as cluster, Client(cluster) as client:
-            rocking.dask.outcome_map(client, scene, x, ("excitation.omega_h", 2.0, 12.0, 2), chunks=2, **window)  # warm up
+            rocking.dask.outcome_map(client, scene, x, ("excitation.omega_h", 6.0, 12.0, 2), chunks=2, **window)  # warm up
             times[workers], results[workers] = timed(lambda: rocking.dask.outcome_map(client, scene, x, y, **window), args.repeats)
     assert np.array_equal(results[1].cells, results[2].cells)
     print(f"{n} x {n} map: 1 worker {times[1]:.2f} s, 2 workers {times[2]:.2f} s (medians of {args.repeats}): "

@@ -22,12 +22,13 @@ from __future__ import annotations
 from typing import Any
 
 from . import _rocking
-from ._results import Lyapunov, OutcomeMap, Run, Sweep
+from ._results import Fragility, Lyapunov, OutcomeMap, Run, Sweep
 from ._rocking import ConfigError, RecordError, RunError, Scene, __version__, presets
 from ._table import Table
 
 __all__ = [
     "ConfigError",
+    "Fragility",
     "Lyapunov",
     "OutcomeMap",
     "RecordError",
@@ -37,6 +38,7 @@ __all__ = [
     "Sweep",
     "Table",
     "__version__",
+    "fragility",
     "lyapunov",
     "outcome_map",
     "presets",
@@ -133,6 +135,44 @@ def lyapunov(scene: Scene | str, method: str | None = None) -> Lyapunov:
     if method is not None:
         analysis["lyapunov_method"] = method
     return Lyapunov._of(_rocking._lyapunov(s.with_(analysis=analysis)))
+
+
+
+
+def _records(records: Any) -> list[tuple[str, str | None]]:
+    """Records as (path, unit or None): a path alone, or (path, unit)."""
+    out = []
+    for r in records:
+        if isinstance(r, tuple):
+            out.append((str(r[0]), r[1]))
+        else:
+            out.append((str(r), None))
+    return out
+
+
+def fragility(
+    records: Any,
+    levels: Any,
+    blocks: Any,
+    *,
+    base: Scene | None = None,
+    im: str = "pga",
+    threshold: float = 0.5,
+    threads: int | None = None,
+) -> Fragility:
+    """Fragility curves, as `rocking fragility`: every block (width, height
+    in m) under every record (a path, or (path, unit) for text records)
+    scaled to every intensity level (`im` "pga" in g or "pgv" in m/s); then
+    per block the lognormal fits of P(overturning) and P(θ/α ≥ `threshold`
+    or overturning). `base` gives friction, impact law, tolerances and the
+    record tail (its block and excitation are replaced); default
+    `Scene.defaults()`, the CLI's base without --preset. Ctrl-C stops it
+    between chunks of runs."""
+    s = base if base is not None else Scene.defaults()
+    levels = [float(v) for v in levels]
+    blocks = [(float(w), float(h)) for w, h in blocks]
+    data = _rocking._fragility_runs(s, _records(records), levels, blocks, im=im, threads=threads)
+    return Fragility._assemble([data], len(blocks), levels, threshold)
 
 
 def __dir__() -> list[str]:

@@ -328,3 +328,54 @@ class Lyapunov:
             summary=d["summary"],
             result=r,
         )
+
+
+RUNS = ("run", "block", "width_m", "height_m", "record", "level", "scale", "end", "peak_theta_over_alpha", "t_end_s", "has_t_end")
+
+
+class Fragility:
+    """A fragility study, as `rocking fragility` computes it.
+
+    `runs` has one row per run (block outer, level, record inner) with
+    runs.csv's columns (`t_end_s` is the time of overturning or flight,
+    0 where `has_t_end` is false); `fits[b]` holds block b's counts per
+    level and both lognormal fits (P(overturning) and P(θ/α ≥ threshold
+    or overturning)): `median` in the unit of the intensity measure,
+    `beta`, their 95 % intervals, or `{"error": …}` when the data admit
+    no fit.
+    """
+
+    def __init__(self, im: str, threshold: float, levels: Sequence[float], runs: Table, fits: list[dict[str, Any]]) -> None:
+        #: pga_g or pgv_m_s.
+        self.im = im
+        #: θ/α whose exceedance is counted.
+        self.threshold = threshold
+        #: Intensity levels.
+        self.levels = np.asarray(levels, dtype=float)
+        #: One row per run.
+        self.runs = runs
+        #: Per block: counts per level and both fits.
+        self.fits = fits
+
+    @classmethod
+    def _assemble(
+        cls, parts: Sequence[Mapping[str, Any]], blocks: int, levels: Sequence[float], threshold: float
+    ) -> "Fragility":
+        from . import _rocking
+
+        runs = concat([table({**p, "record": p["record"], "end": p["end"]}, RUNS) for p in parts])
+        runs = runs[np.argsort(runs["run"], kind="stable")].view(Table)
+        records = len(parts[0]["records"])
+        fits = _rocking._fragility_fits(
+            blocks,
+            list(levels),
+            records,
+            threshold,
+            [int(i) for i in runs["run"]],
+            [str(e) for e in runs["end"]],
+            [float(x) for x in runs["peak_theta_over_alpha"]],
+        )
+        return cls(str(parts[0]["im"]), threshold, levels, runs, fits)
+
+    def __repr__(self) -> str:
+        return f"rocking.Fragility({len(self.runs)} runs, {len(self.fits)} blocks, im={self.im})"

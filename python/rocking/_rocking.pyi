@@ -31,6 +31,10 @@ class Scene:
         config: Mapping[str, Value | Mapping[str, Value]] | None = None,
         **keys: Value | Mapping[str, Value],
     ) -> None: ...
+    @staticmethod
+    def defaults(
+        config: Mapping[str, Value | Mapping[str, Value]] | None = None, **keys: Value | Mapping[str, Value]
+    ) -> Scene: ...
     def with_(
         self, config: Mapping[str, Value | Mapping[str, Value]] | None = None, **keys: Value | Mapping[str, Value]
     ) -> Scene: ...
@@ -77,3 +81,17 @@ def _outcome_map(
     rows: tuple[int, int] | None = None,
     check_only: bool = False,
 ) -> dict[str, Any]: ...
+def _fragility_runs(
+    scene: Scene,
+    records: list[tuple[str, str | None]],
+    levels: list[float],
+    blocks: list[tuple[float, float]],
+    *,
+    im: str = "pga",
+    threads: int | None = None,
+    indices: list[int] | None = None,
+    check_only: bool = False,
+) -> dict[str, Any]: ...
+def _fragility_fits(
+    blocks: int, levels: list[float], records: int, threshold: float, run: list[int], end: list[str], peak: list[float]
+) -> list[dict[str, Any]]: ...

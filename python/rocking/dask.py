@@ -25,7 +25,7 @@ from __future__ import annotations
 from typing import Any, Sequence
 
 from . import _rocking
-from ._results import OutcomeMap, Sweep
+from ._results import Fragility, OutcomeMap, Sweep
 from ._rocking import Scene
 
 Axis = tuple[str, float, float, int]
@@ -113,3 +113,38 @@ def outcome_map(
     futures = client.map(_map_task, _row_chunks(ny, int(n)), scene=s, x=x, y=y, options=options, pure=False)
     parts: Sequence[dict[str, Any]] = client.gather(futures)
     return OutcomeMap._assemble(parts)
+
+
+def _fragility_task(indices: list[int], scene: Scene, args: tuple[Any, ...], options: dict[str, Any]) -> dict[str, Any]:
+    """Runs `indices` of a fragility study, on a worker."""
+    return _rocking._fragility_runs(scene, *args, indices=indices, **options)
+
+
+def fragility(
+    client: Any,
+    records: Any,
+    levels: Any,
+    blocks: Any,
+    *,
+    base: Scene | None = None,
+    im: str = "pga",
+    threshold: float = 0.5,
+    chunks: int | None = None,
+    threads_per_task: int = 1,
+) -> Fragility:
+    """`rocking.fragility` on the cluster behind `client`: the runs split
+    into `chunks` interleaved sets (default: 4 per worker thread), the fits
+    computed on the client from all rows."""
+    from . import _records
+
+    s = base if base is not None else Scene.defaults()
+    levels = [float(v) for v in levels]
+    blocks = [(float(w), float(h)) for w, h in blocks]
+    args = (_records(records), levels, blocks)
+    count = int(_rocking._fragility_runs(s, *args, im=im, check_only=True)["count"])
+    n = chunks if chunks is not None else 4 * _worker_threads(client)
+    n = max(1, min(int(n), count))
+    options: dict[str, Any] = {"im": im, "threads": threads_per_task}
+    parts = [list(range(k, count, n)) for k in range(n)]
+    futures = client.map(_fragility_task, parts, scene=s, args=args, options=options, pure=False)
+    return Fragility._assemble(client.gather(futures), len(blocks), levels, threshold)

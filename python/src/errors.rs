@@ -83,6 +83,22 @@ fn record_line(file: &str, message: &str) -> Option<usize> {
     digits.parse().ok()
 }
 
+/// A record that cannot be read, outside a config (a fragility suite): the
+/// reader's one-line message, naming the file and line.
+pub fn record_error(path: &std::path::Path, e: &rocking::io::record::RecordError) -> PyErr {
+    let file = path.display().to_string();
+    let message = e.to_string();
+    let line = record_line(&file, &message);
+    with_origin::<RecordError>(
+        message,
+        Origin {
+            key: None,
+            file: Some(file),
+            line,
+        },
+    )
+}
+
 /// The Python exception of a config error, with the CLI's message.
 pub fn from_config(e: CoreConfigError) -> PyErr {
     // As the CLI prints it: through anyhow, with the chain on one line.

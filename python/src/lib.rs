@@ -11,6 +11,7 @@ use pyo3::prelude::*;
 
 mod convert;
 mod errors;
+mod fragility;
 mod scene;
 mod simulate;
 mod study;
@@ -29,5 +30,7 @@ fn _rocking(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(simulate::_lyapunov, m)?)?;
     m.add_function(wrap_pyfunction!(study::_sweep, m)?)?;
     m.add_function(wrap_pyfunction!(study::_outcome_map, m)?)?;
+    m.add_function(wrap_pyfunction!(fragility::_fragility_runs, m)?)?;
+    m.add_function(wrap_pyfunction!(fragility::_fragility_fits, m)?)?;
     Ok(())
 }

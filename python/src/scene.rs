@@ -155,6 +155,23 @@ impl Scene {
         Self::resolve(table, source, origin)
     }
 
+    /// The scenario's own defaults with `config` and keyword assignments,
+    /// from no preset: the base scene of `rocking fragility`, `spectrum`
+    /// and `pulse-map` without `--preset`/`--config` (Housner impact, no
+    /// sliding, rtol 1e-10).
+    #[staticmethod]
+    #[pyo3(signature = (config=None, **keys))]
+    fn defaults(config: Option<&Bound<'_, PyDict>>, keys: Option<&Bound<'_, PyDict>>) -> PyResult<Self> {
+        let sets = assignments(config, keys)?;
+        let mut table = Table::new();
+        config::apply_sets(&mut table, &sets).map_err(from_config)?;
+        let mut origin = "defaults".to_string();
+        if !sets.is_empty() {
+            origin = format!("{origin}, {}", sets.join(", "));
+        }
+        Self::resolve(table, Source::default(), origin)
+    }
+
     /// A copy with more assignments (a `config` dict and/or keywords, as
     /// for `Scene(...)`); the scene itself is unchanged.
     #[pyo3(signature = (config=None, **keys))]

@@ -36,7 +36,7 @@ fn input(message: impl std::fmt::Display) -> PyErr {
 
 /// Ctrl-C: the pending KeyboardInterrupt (or other signal handler error),
 /// checked with the GIL taken back for a moment.
-fn interrupted() -> Option<PyErr> {
+pub fn interrupted() -> Option<PyErr> {
     Python::attach(|py| py.check_signals().err())
 }
 
@@ -44,7 +44,7 @@ fn interrupted() -> Option<PyErr> {
 /// (one thread per core) or a pool of the asked size. The loop over chunks
 /// stays on the calling thread, so that Ctrl-C (delivered to Python's main
 /// thread) is seen between chunks.
-enum Workers {
+pub enum Workers {
     Global,
     Pool(rayon::ThreadPool),
 }
@@ -52,7 +52,7 @@ enum Workers {
 impl Workers {
     /// `threads` workers (default one per core), checked as the CLI checks
     /// `--threads`.
-    fn new(threads: Option<usize>) -> PyResult<Self> {
+    pub fn new(threads: Option<usize>) -> PyResult<Self> {
         let cores = std::thread::available_parallelism().map_or(1, usize::from);
         let most = MAX_THREADS_PER_CORE * cores;
         match threads {
@@ -71,7 +71,7 @@ impl Workers {
     }
 
     /// Runs `f`, whose parallel iterators use these workers.
-    fn run<T: Send>(&self, f: impl FnOnce() -> T + Send) -> T {
+    pub fn run<T: Send>(&self, f: impl FnOnce() -> T + Send) -> T {
         match self {
             Workers::Global => f(),
             Workers::Pool(pool) => pool.install(f),
@@ -79,7 +79,7 @@ impl Workers {
     }
 
     /// Threads available to one chunk.
-    fn threads(&self) -> usize {
+    pub fn threads(&self) -> usize {
         match self {
             Workers::Global => rayon::current_num_threads(),
             Workers::Pool(pool) => pool.current_num_threads(),
