@@ -22,9 +22,9 @@ from __future__ import annotations
 from typing import Any
 
 from . import _rocking
-from ._results import Fragility, Lyapunov, OutcomeMap, Run, Sweep
+from ._results import SPECTRUM, Fragility, Lyapunov, OutcomeMap, RockingSpectrum, Run, Sweep
 from ._rocking import ConfigError, RecordError, RunError, Scene, __version__, presets
-from ._table import Table
+from ._table import Table, table
 
 __all__ = [
     "ConfigError",
@@ -32,6 +32,7 @@ __all__ = [
     "Lyapunov",
     "OutcomeMap",
     "RecordError",
+    "RockingSpectrum",
     "Run",
     "RunError",
     "Scene",
@@ -43,6 +44,7 @@ __all__ = [
     "outcome_map",
     "presets",
     "simulate",
+    "spectrum",
     "sweep",
 ]
 
@@ -173,6 +175,48 @@ def fragility(
     blocks = [(float(w), float(h)) for w, h in blocks]
     data = _rocking._fragility_runs(s, _records(records), levels, blocks, im=im, threads=threads)
     return Fragility._assemble([data], len(blocks), levels, threshold)
+
+
+def spectrum(
+    record: Any,
+    sizes: tuple[float, float, int],
+    *,
+    unit: str | None = None,
+    size: str = "r",
+    b_over_h: Any = (0.25,),
+    scale: float | None = None,
+    pga: float | None = None,
+    overturn_scale: bool = False,
+    search_step: float = 0.1,
+    search_max: float = 5.0,
+    rel_tol: float = 1e-3,
+    base: Scene | None = None,
+    threads: int | None = None,
+) -> RockingSpectrum:
+    """The rocking spectrum of a record, as `rocking spectrum --record`:
+    the peak θ/α (and end: rest, moving, overturned, flight) of blocks of
+    `sizes = (from_m, to_m, count)` log-spaced half-diagonals R (`size="r"`)
+    or heights H (`"h"`) for each B/H in `b_over_h`, under the record (in
+    `unit` for text files) scaled by `scale` or to `pga` (g); with
+    `overturn_scale`, each block's smallest overturning scale factor.
+    `base` as for `fragility`. Ctrl-C stops it between B/H ratios."""
+    s = base if base is not None else Scene.defaults()
+    data = _rocking._spectrum(
+        s,
+        str(record),
+        tuple(sizes),
+        unit=unit,
+        size=size,
+        b_over_h=[float(v) for v in b_over_h],
+        scale=scale,
+        pga=pga,
+        overturn_scale=overturn_scale,
+        search_step=search_step,
+        search_max=search_max,
+        rel_tol=rel_tol,
+        threads=threads,
+    )
+    return RockingSpectrum(table(data, SPECTRUM), float(data["pga_g_record"]))
 
 
 def __dir__() -> list[str]:

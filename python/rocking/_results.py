@@ -379,3 +379,30 @@ class Fragility:
 
     def __repr__(self) -> str:
         return f"rocking.Fragility({len(self.runs)} runs, {len(self.fits)} blocks, im={self.im})"
+
+
+SPECTRUM = (
+    "b_over_h", "alpha_rad", "width_m", "height_m", "r_m", "p_per_s", "scale", "pga_g", "end",
+    "peak_theta_over_alpha", "t_end_s", "has_t_end", "overturn_scale", "overturn_pga_g", "overturn_end",
+    "has_overturn_scale", "safe_windows",
+)
+
+
+class RockingSpectrum:
+    """A rocking spectrum, as `rocking spectrum --record` computes it.
+
+    `blocks` has one row per block (B/H outer, size increasing) with
+    spectrum.csv's columns: `t_end_s` is the time of overturning or flight
+    (0 where `has_t_end` is false), `overturn_scale` the smallest scale
+    factor found to overturn the block (0 where `has_overturn_scale` is
+    false), `overturn_pga_g` the PGA at that scale.
+    """
+
+    def __init__(self, blocks: Table, pga_g_record: float) -> None:
+        #: One row per block.
+        self.blocks = blocks
+        #: The record's PGA as read (scale 1), g.
+        self.pga_g_record = pga_g_record
+
+    def __repr__(self) -> str:
+        return f"rocking.RockingSpectrum({len(self.blocks)} blocks)"

@@ -95,3 +95,19 @@ def _fragility_runs(
 def _fragility_fits(
     blocks: int, levels: list[float], records: int, threshold: float, run: list[int], end: list[str], peak: list[float]
 ) -> list[dict[str, Any]]: ...
+def _spectrum(
+    scene: Scene,
+    record: str,
+    sizes: tuple[float, float, int],
+    *,
+    unit: str | None = None,
+    size: str = "r",
+    b_over_h: list[float] = ...,
+    scale: float | None = None,
+    pga: float | None = None,
+    overturn_scale: bool = False,
+    search_step: float = 0.1,
+    search_max: float = 5.0,
+    rel_tol: float = 1e-3,
+    threads: int | None = None,
+) -> dict[str, Any]: ...

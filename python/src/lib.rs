@@ -14,6 +14,7 @@ mod errors;
 mod fragility;
 mod scene;
 mod simulate;
+mod spectrum;
 mod study;
 
 #[pymodule]
@@ -32,5 +33,6 @@ fn _rocking(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(study::_outcome_map, m)?)?;
     m.add_function(wrap_pyfunction!(fragility::_fragility_runs, m)?)?;
     m.add_function(wrap_pyfunction!(fragility::_fragility_fits, m)?)?;
+    m.add_function(wrap_pyfunction!(spectrum::_spectrum, m)?)?;
     Ok(())
 }
