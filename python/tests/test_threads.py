@@ -77,8 +77,11 @@ except KeyboardInterrupt:
 """
 
 
-def test_ctrl_c_stops_a_long_sweep_between_chunks() -> None:
-    p = subprocess.Popen([sys.executable, "-c", SCRIPT], stdout=subprocess.PIPE, text=True)
+def test_ctrl_c_stops_a_long_sweep_between_chunks(tmp_path) -> None:
+    # In an empty folder: `-c` puts the working folder on sys.path, and the
+    # source folder python/rocking (no extension inside) must not shadow
+    # the installed package.
+    p = subprocess.Popen([sys.executable, "-c", SCRIPT], stdout=subprocess.PIPE, text=True, cwd=tmp_path)
     assert p.stdout is not None
     assert p.stdout.readline().strip() == "started"
     time.sleep(1.5)
