@@ -192,6 +192,7 @@ fn shipped_record(name: &str, unit: rocking::model::units::AccelUnit) -> rocking
         series: loaded.series,
         unit: loaded.unit,
         dt: None,
+        crc32: loaded.crc32,
     }
 }
 

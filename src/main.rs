@@ -14,7 +14,7 @@ fn main() {
     if cli.list_presets {
         for (name, text) in rocking::io::presets::PRESETS {
             let title = text.lines().next().unwrap_or("").trim_start_matches('#').trim();
-            rocking::say!("{name:10} {}", title.split_once(": ").map_or(title, |(_, t)| t));
+            rocking::say!("{name:16} {}", title.split_once(": ").map_or(title, |(_, t)| t));
         }
         return;
     }
@@ -38,16 +38,6 @@ fn main() {
 /// (the `default` preset unless `--preset`/`--config`/`--set` say otherwise).
 #[cfg(feature = "gui")]
 fn open_window(cli: &Cli) -> ! {
-    // Without a display the window cannot open: say so in one line, with
-    // the headless command, before loading anything (X11 needs DISPLAY,
-    // Wayland WAYLAND_DISPLAY or WAYLAND_SOCKET).
-    let has = |var: &str| std::env::var_os(var).is_some_and(|v| !v.is_empty());
-    if !has("DISPLAY") && !has("WAYLAND_DISPLAY") && !has("WAYLAND_SOCKET") {
-        eprintln!(
-            "error: no display found (DISPLAY and WAYLAND_DISPLAY are unset), so the app cannot open; run headless with `rocking --batch --preset NAME --out DIR` (see `rocking --help`)"
-        );
-        std::process::exit(EXIT_BAD_INPUT);
-    }
     let scene = rocking::gui::Settings::from_cli(
         cli.scene.preset.as_deref(),
         cli.scene.config.as_deref(),
@@ -60,6 +50,17 @@ fn open_window(cli: &Cli) -> ! {
             std::process::exit(EXIT_BAD_INPUT);
         }
     };
+    // Without a display the window cannot open: say so in one line, with
+    // the headless command (X11 needs DISPLAY, Wayland WAYLAND_DISPLAY or
+    // WAYLAND_SOCKET). After the scene is read, so that a bad scene or
+    // record is reported first, as it is before a window opens.
+    let has = |var: &str| std::env::var_os(var).is_some_and(|v| !v.is_empty());
+    if !has("DISPLAY") && !has("WAYLAND_DISPLAY") && !has("WAYLAND_SOCKET") {
+        eprintln!(
+            "error: no display found (DISPLAY and WAYLAND_DISPLAY are unset), so the app cannot open; run headless with `rocking --batch --preset NAME --out DIR` (see `rocking --help`)"
+        );
+        std::process::exit(EXIT_BAD_INPUT);
+    }
     match rocking::gui::run(settings, config) {
         Ok(()) => std::process::exit(0),
         Err(e) => {

@@ -418,3 +418,29 @@ fn without_a_display_the_app_points_to_batch() {
         "{text}"
     );
 }
+
+/// A bad record is reported before the app's window would open, like every
+/// other config error (issue "Nothing lost", item 12): exit 2, one line
+/// naming the key and file. (A build without the app reads no scene.)
+#[cfg(feature = "gui")]
+#[test]
+fn the_app_reports_a_bad_record_before_its_window() {
+    let o = rocking()
+        .args([
+            "--set",
+            "excitation.kind=record",
+            "--set",
+            "excitation.file_h=/nonexistent/record.txt",
+            "--set",
+            "excitation.unit_h=g",
+        ])
+        .env_remove("DISPLAY")
+        .env_remove("WAYLAND_DISPLAY")
+        .env_remove("WAYLAND_SOCKET")
+        .output()
+        .expect("runs");
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+    assert!(err.contains("excitation.file_h: /nonexistent/record.txt"), "{err}");
+}

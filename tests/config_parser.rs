@@ -15,9 +15,11 @@ use rocking::io::config::{self, KNOWN_KEYS, Source};
 use rocking::io::presets;
 use rocking::sim::Scenario;
 
+/// 400 cases in CI; `ROCKING_STRESS=1` runs the extended tier of 10⁵.
 fn proptest_config() -> ProptestConfig {
+    let stress = std::env::var("ROCKING_STRESS").is_ok_and(|v| v == "1");
     ProptestConfig {
-        cases: 400,
+        cases: if stress { 100_000 } else { 400 },
         // Fixed seed: CI runs the same cases every time.
         rng_seed: RngSeed::Fixed(0x5eed_c0f1),
         failure_persistence: None,

@@ -409,3 +409,175 @@ fn streamed_batch_files_are_the_in_memory_ones() {
         );
     }
 }
+
+/// Item 1: a shard carries its files' row counts and CRC-32s, so `merge`
+/// refuses one cut at a row boundary (every row well formed) or changed
+/// in place, naming the file; intact shards still merge into exactly the
+/// files one run writes.
+#[test]
+fn merge_refuses_a_shard_cut_at_a_row_boundary_or_changed() {
+    let dir = tmpdir("merge-rows");
+    let sh = shards(&dir, 2);
+    let merge = |out: &Path| {
+        rocking()
+            .arg("merge")
+            .arg("--out")
+            .arg(out)
+            .args(&sh)
+            .output()
+            .expect("runs")
+    };
+    let o = merge(&dir.join("ok"));
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(sh[0].join("sweep.json")).expect("json")).expect("json");
+    assert!(json["files"]["points.csv"]["crc32"].is_string(), "{json}");
+    let merged = std::fs::read_to_string(dir.join("ok").join("sweep.json")).expect("merged");
+    assert!(!merged.contains("\"files\""), "a whole sweep has no files entry");
+    let points = sh[1].join("points.csv");
+    let text = std::fs::read_to_string(&points).expect("points");
+    // Drop the last row: every remaining row is whole.
+    let cut = text.trim_end().rfind('\n').expect("rows") + 1;
+    std::fs::write(&points, &text[..cut]).expect("cut");
+    let o = merge(&dir.join("cut"));
+    refused(&o, "points.csv: ");
+    assert!(String::from_utf8_lossy(&o.stderr).contains("rows, but the shard wrote"));
+    assert!(!dir.join("cut").exists());
+    // Change one digit of a row in place: rows agree, the checksum does not.
+    let changed = text.replacen(",0.", ",1.", 1);
+    assert_ne!(changed, text);
+    std::fs::write(&points, &changed).expect("change");
+    let o = merge(&dir.join("changed"));
+    refused(&o, "points.csv: CRC-32 ");
+    assert!(!dir.join("changed").exists());
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// The shard readers never panic, whatever a shard file holds: every row
+/// they accept is whole and finite, every refusal names the file and a
+/// line. 300 cases in CI; `ROCKING_STRESS=1` runs the extended tier of 10⁵.
+mod shard_reader_fuzz {
+    use proptest::prelude::*;
+    use rocking::io::csv;
+    use rocking::io::sweep_files::{ClassRow, PointRow};
+
+    fn cases() -> u32 {
+        if std::env::var("ROCKING_STRESS").is_ok_and(|v| v == "1") {
+            100_000
+        } else {
+            300
+        }
+    }
+
+    /// Pieces of real rows, numbers of every kind and separators.
+    fn soup() -> impl Strategy<Value = String> {
+        let token = prop_oneof![
+            Just("value,k,tau,theta,theta_dot\n".to_string()),
+            Just("value,outcome,period,max_abs_theta,lyapunov\n".to_string()),
+            Just("2.5,7,5.497787143782138,0.01,-0.2\n".to_string()),
+            Just("2.5,periodic,1,0.3,\n".to_string()),
+            Just("NaN".to_string()),
+            Just("inf".to_string()),
+            Just(",".to_string()),
+            Just("\n".to_string()),
+            Just("\"".to_string()),
+            any::<f64>().prop_map(|x| format!("{x:?}")),
+            any::<u64>().prop_map(|x| x.to_string()),
+            "[a-z0-9.,-]{0,6}",
+        ];
+        prop::collection::vec(token, 0..40).prop_map(|t| t.concat())
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: cases(), failure_persistence: None, ..ProptestConfig::default() })]
+
+        #[test]
+        fn shard_files_are_read_or_refused_never_panicking(text in soup(), bytes in prop::collection::vec(any::<u8>(), 0..200)) {
+            let dir = std::env::temp_dir().join(format!("rocking-shard-fuzz-{}", std::process::id()));
+            std::fs::create_dir_all(&dir).expect("dir");
+            for (name, content) in [("points.csv", text.as_bytes()), ("classes.csv", text.as_bytes()), ("raw.csv", bytes.as_slice())] {
+                let path = dir.join(name);
+                let prefix = format!("{}:", path.display());
+                let named = |e: &csv::CsvError| e.to_string().starts_with(&prefix) && !e.to_string().contains('\n');
+                std::fs::write(&path, content).expect("write");
+                match csv::read::<PointRow>(&path) {
+                    Ok(rows) => for (_, r) in rows {
+                        prop_assert!(r.value.0.is_finite() && r.tau.0.is_finite() && r.theta.0.is_finite() && r.theta_dot.0.is_finite());
+                    },
+                    Err(e) => prop_assert!(named(&e), "{e}"),
+                }
+                match csv::read::<ClassRow>(&path) {
+                    Ok(rows) => for (_, r) in rows {
+                        prop_assert!(r.value.0.is_finite() && r.max_abs_theta.0.is_finite());
+                    },
+                    Err(e) => prop_assert!(named(&e), "{e}"),
+                }
+            }
+        }
+    }
+}
+
+/// Item 1: a shard whose points hold a NaN is refused, naming the file and
+/// line.
+#[test]
+fn merge_refuses_a_shard_with_nan() {
+    let dir = tmpdir("merge-nan");
+    let sh = shards(&dir, 2);
+    let points = sh[0].join("points.csv");
+    let text = std::fs::read_to_string(&points).expect("points");
+    let mut lines: Vec<String> = text.lines().map(String::from).collect();
+    let mut cells: Vec<String> = lines[2].split(',').map(String::from).collect();
+    cells[3] = "NaN".into();
+    lines[2] = cells.join(",");
+    std::fs::write(&points, lines.join("\n") + "\n").expect("write");
+    let out = dir.join("merged");
+    let o = rocking()
+        .arg("merge")
+        .arg("--out")
+        .arg(&out)
+        .args(&sh)
+        .output()
+        .expect("runs");
+    refused(&o, "points.csv:3");
+    assert!(!out.exists());
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Item 8: a fixed-step run that will clearly take long says so before it
+/// starts (here about 17 minutes; the test stops it at once by limiting
+/// its events).
+#[test]
+fn a_long_fixed_step_run_says_how_long_before_it_starts() {
+    let dir = tmpdir("ralston-long");
+    let o = rocking()
+        .args([
+            "--batch",
+            "--quiet",
+            "--preset",
+            "fig4",
+            "--set",
+            "run.method=ralston",
+            "--set",
+            "run.step=1e-6",
+            "--set",
+            "run.tau_end=1e4",
+            "--set",
+            "run.max_steps=100000000000",
+            "--set",
+            "run.output_dt=0",
+            "--set",
+            "run.max_events=1",
+            "--out",
+        ])
+        .arg(dir.join("out"))
+        .output()
+        .expect("runs");
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.lines().next().unwrap_or_default().starts_with(
+            "note: run.method = \"ralston\" takes 1.00e10 steps of 1e-6 over τ = 10000.0: about 17 minutes"
+        ),
+        "{err}"
+    );
+    assert!(!dir.join("out").exists());
+}

@@ -14,6 +14,10 @@ use crate::sim::{self, Scenario};
 /// run: 153–160 measured over 5·10⁶ and 5·10⁷ rows of the fig4 scene.
 const HISTORY_BYTES_PER_ROW: f64 = 160.0;
 
+/// Steps per second of `ralston`, for the estimate printed before a long
+/// run: 1.2·10⁷ measured (fig4, τ 4·10⁴, release build), rounded down.
+const RALSTON_STEPS_PER_S: f64 = 1e7;
+
 /// How a batch run failed, with the exit code it maps to.
 #[derive(Debug)]
 pub enum BatchError {
@@ -34,6 +38,21 @@ pub fn run(cli: &Cli) -> Result<(), BatchError> {
     output::check_writable(&cli.out)
         .with_context(|| "--out: cannot write the output directory".to_string())
         .map_err(BatchError::Input)?;
+    // A fixed-step run's length is known before it starts: one clearly
+    // longer than a minute is said (runs beyond run.max_steps are refused
+    // by the scenario's checks).
+    if cfg.run.method() == sim::Method::Ralston {
+        let steps = cfg.tau_end() / cfg.run.step;
+        let seconds = steps / RALSTON_STEPS_PER_S;
+        if seconds > 60.0 {
+            eprintln!(
+                "note: run.method = \"ralston\" takes {steps:.2e} steps of {:?} over τ = {:?}: about {:.0} minutes at 10^7 steps per second",
+                cfg.run.step,
+                cfg.tau_end(),
+                seconds / 60.0
+            );
+        }
+    }
     // A history of more than a gigabyte is said before it is written (the
     // 5e7-row limit of run.output_dt caps it near 8 GB).
     if cfg.run.output_dt > 0.0 {

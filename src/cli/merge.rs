@@ -6,7 +6,10 @@
 //! The shards must belong to one sweep: their `sweep.json` files must agree
 //! in everything but the shard (configuration, parameter, grid, window,
 //! classifier, version), and every shard 0 … N−1 must be given exactly once.
-//! Any disagreement is bad input (exit 2) and nothing is written.
+//! Each shard's files must be whole and unchanged: every row well formed
+//! and finite (a broken one is named by its line), the shard's own values
+//! in order, and the row count and CRC-32 its `sweep.json` recorded
+//! (`files`). Any disagreement is bad input (exit 2) and nothing is written.
 
 use std::path::{Path, PathBuf};
 
@@ -47,6 +50,8 @@ struct ShardDir {
     classes: Vec<(u64, ClassRow)>,
     /// points.csv rows with their lines, in file order.
     points: Vec<(u64, PointRow)>,
+    /// `sweep.json`'s `files`: each file's rows and CRC-32.
+    files: Json,
 }
 
 fn read_text(path: &Path) -> anyhow::Result<String> {
@@ -72,6 +77,15 @@ fn read_shard(dir: &Path) -> anyhow::Result<ShardDir> {
     }
     let shard: Shard =
         serde_json::from_value(shard_value).with_context(|| format!("{}: bad \"shard\" entry", json_path.display()))?;
+    // The files' rows and checksums, written by the shard's run: removed
+    // from the common part (a whole sweep has none) and checked here.
+    let files = common.as_object_mut().and_then(|o| o.remove("files")).ok_or_else(|| {
+        anyhow!(
+            "{}: no \"files\" entry (rows and CRC-32 of the shard's files)",
+            json_path.display()
+        )
+    })?;
+
     if shard.count == 0 || shard.index >= shard.count {
         bail!(
             "{}: shard {}/{} is out of range",
@@ -86,7 +100,36 @@ fn read_shard(dir: &Path) -> anyhow::Result<ShardDir> {
         common,
         classes: csv::read(&dir.join("classes.csv"))?,
         points: csv::read(&dir.join("points.csv"))?,
+        files,
     })
+}
+
+/// Checks shard file `name` in `dir` against its entry in `files` (from
+/// `sweep.json`): the same number of data rows and the same CRC-32.
+fn check_file(dir: &Path, name: &str, files: &Json, json_path: &Path) -> anyhow::Result<()> {
+    let path = dir.join(name);
+    let bytes = std::fs::read(&path).with_context(|| path.display().to_string())?;
+    let entry = files.get(name);
+    let rows = entry.and_then(|e| e.get("rows")).and_then(Json::as_u64);
+    let crc = entry.and_then(|e| e.get("crc32")).and_then(Json::as_str);
+    let (Some(rows), Some(crc)) = (rows, crc) else {
+        bail!("{}: files.{name} lacks its rows or crc32", json_path.display());
+    };
+    let found_rows = String::from_utf8_lossy(&bytes).lines().count().saturating_sub(1) as u64;
+    if found_rows != rows {
+        bail!(
+            "{}: {found_rows} rows, but the shard wrote {rows} (the file was cut or changed)",
+            path.display()
+        );
+    }
+    let found = format!("{:08x}", crc32fast::hash(&bytes));
+    if found != crc {
+        bail!(
+            "{}: CRC-32 {found}, but the shard wrote {crc} (the file changed since)",
+            path.display()
+        );
+    }
+    Ok(())
 }
 
 /// The first top-level key whose value differs between two JSON objects.
@@ -301,6 +344,13 @@ pub fn run(args: &MergeArgs) -> Result<(), BatchError> {
                 "{}:{line}: a point whose value is not the shard's, or out of order",
                 s.dir.join("points.csv").display()
             )));
+        }
+    }
+    // After the rows (a wrong row is named by its line): the counts and
+    // checksums, which catch a file cut at a row boundary or changed.
+    for s in &shards {
+        for name in ["classes.csv", "points.csv"] {
+            check_file(&s.dir, name, &s.files, &s.dir.join("sweep.json")).map_err(input)?;
         }
     }
     let classes_out = csv::to_string(class_rows.into_iter().cloned());

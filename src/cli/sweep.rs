@@ -289,12 +289,24 @@ pub fn run_with(args: &SweepArgs, lyapunov: Option<&LyapunovFn<'_>>) -> Result<(
     let wall = start.elapsed().as_secs_f64();
 
     super::write::staged(&args.output.out, |staging| {
-        staging.text("classes.csv", &classes_csv(&values))?;
-        staging.text("points.csv", &points_csv(&values))?;
-        staging.text(
-            "sweep.json",
-            &(serde_json::to_string_pretty(&meta.to_json(shard))? + "\n"),
-        )?;
+        let (classes, points) = (classes_csv(&values), points_csv(&values));
+        let mut json = meta.to_json(shard);
+        if shard.is_some()
+            && let Some(obj) = json.as_object_mut()
+        {
+            // What makes a shard checkable by `merge`: each file's rows and
+            // CRC-32, so a cut or changed file is noticed.
+            obj.insert(
+                "files".to_string(),
+                serde_json::json!({
+                    "classes.csv": file_check(&classes),
+                    "points.csv": file_check(&points),
+                }),
+            );
+        }
+        staging.text("classes.csv", &classes)?;
+        staging.text("points.csv", &points)?;
+        staging.text("sweep.json", &(serde_json::to_string_pretty(&json)? + "\n"))?;
         if shard.is_none() {
             let classes: Vec<(f64, Response)> = values.iter().map(|v| (v.value, v.response)).collect();
             let points: Vec<(f64, f64)> = values
@@ -325,4 +337,13 @@ pub fn run_with(args: &SweepArgs, lyapunov: Option<&LyapunovFn<'_>>) -> Result<(
         crate::say!("wrote {}", args.output.out.display());
     }
     Ok(())
+}
+
+/// A shard file's check for `sweep.json`: its data rows (lines after the
+/// header) and the CRC-32 of its bytes, as 8 hex digits.
+pub fn file_check(text: &str) -> serde_json::Value {
+    serde_json::json!({
+        "rows": text.lines().count().saturating_sub(1),
+        "crc32": format!("{:08x}", crc32fast::hash(text.as_bytes())),
+    })
 }

@@ -260,6 +260,7 @@ mod tests {
             series: Series::new(t, a).unwrap(),
             unit: crate::model::units::AccelUnit::G,
             dt: None,
+            crc32: 0,
         })
     }
 

@@ -303,7 +303,10 @@ fn tokens_file() -> impl Strategy<Value = Vec<u8>> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(300))]
+    // 300 cases in CI; `ROCKING_STRESS=1` runs the extended tier of 10⁵.
+    #![proptest_config(ProptestConfig::with_cases(
+        if std::env::var("ROCKING_STRESS").is_ok_and(|v| v == "1") { 100_000 } else { 300 }
+    ))]
 
     #[test]
     fn arbitrary_bytes_never_panic(
