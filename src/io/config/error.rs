@@ -41,8 +41,11 @@ pub enum ConfigError {
     /// the file and, where one applies, its line.
     #[error("{key}: {message}")]
     Record {
-        /// `excitation.file_h` or `excitation.file_v`.
-        key: &'static str,
+        /// The key at fault: `excitation.file_h`, or the `unit_*` or `dt_*`
+        /// key when the unit or time step is what is wrong.
+        key: String,
+        /// The record file as read (the path the message starts with).
+        file: String,
         /// The reader's one-line error.
         message: String,
     },

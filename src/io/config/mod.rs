@@ -250,8 +250,9 @@ fn read_record(keys: &RecordKeys<'_>, source: &Source) -> Result<Option<Record>,
             }
             _ => keys.key("file"),
         };
-        ConfigError::Key {
+        ConfigError::Record {
             key,
+            file: path.display().to_string(),
             message: e.to_string(),
         }
     })?;

@@ -1,0 +1,408 @@
+"""The result types of `simulate`, `sweep`, `outcome_map` and `lyapunov`.
+
+They only arrange what the extension computed: columns into numpy arrays
+and structured `Table`s (the CLI's CSV columns, same names and numbers),
+optional values into masked arrays (never NaN), and chunks computed apart
+(Dask) back into one result, identical to the single-machine one.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any, Mapping, Sequence
+
+import numpy as np
+
+from ._table import NAME_WIDTH, Table, concat, table
+
+HISTORY = ("tau", "theta", "theta_dot", "x", "x_dot", "mode", "t_s", "theta_rad", "sliding_m")
+EVENTS = (
+    "tau",
+    "kind",
+    "mode_before",
+    "mode_after",
+    "theta",
+    "theta_dot_before",
+    "theta_dot_after",
+    "x_dot",
+    "t_s",
+    "theta_rad",
+    "sliding_m",
+)
+POINCARE = ("k", "tau", "theta", "theta_dot", "x", "x_dot", "mode")
+POINTS = ("index", "value", "k", "tau", "theta", "theta_dot", "x", "x_dot", "mode")
+CLASSES = ("index", "value", "outcome", "period", "max_abs_theta", "lyapunov", "has_lyapunov")
+CELLS = ("x", "y", "outcome", "period", "max_abs_theta", "lyapunov", "has_lyapunov")
+
+
+class Run:
+    """One run, as `rocking --batch` writes it.
+
+    `history`, `events` and `poincare` are structured arrays with the
+    columns of history.csv, events.csv and poincare.csv (normalised
+    `tau`, `theta` = θ/ψ, `x` = x/R … and physical `t_s` in s, `theta_rad`
+    in rad, `sliding_m` in m); `summary` is summary.json as a dict. The
+    attributes `t`, `tau`, `theta`, … are the history's columns.
+    """
+
+    def __init__(self, scene: Any, data: Mapping[str, Any]) -> None:
+        self.scene = scene
+        #: summary.json as a dict (same keys and numbers as the CLI's file).
+        self.summary: dict[str, Any] = data["summary"]
+        #: The regular time history (history.csv's columns).
+        self.history: Table = table(data["history"], HISTORY)
+        #: Every event (events.csv's columns).
+        self.events: Table = table(data["events"], EVENTS)
+        #: The stroboscopic section at τ_k = 2πk/Ω_h (poincare.csv's columns).
+        self.poincare: Table = table(data["poincare"], POINCARE)
+
+    @property
+    def t(self) -> np.ndarray:
+        """Time of each history row, s."""
+        return self.history["t_s"]
+
+    @property
+    def tau(self) -> np.ndarray:
+        """Normalised time τ = p·t of each history row."""
+        return self.history["tau"]
+
+    @property
+    def theta(self) -> np.ndarray:
+        """Normalised rotation Θ = θ/ψ."""
+        return self.history["theta"]
+
+    @property
+    def theta_rad(self) -> np.ndarray:
+        """Rotation θ, rad."""
+        return self.history["theta_rad"]
+
+    @property
+    def theta_dot(self) -> np.ndarray:
+        """Normalised angular velocity dΘ/dτ."""
+        return self.history["theta_dot"]
+
+    @property
+    def x(self) -> np.ndarray:
+        """Normalised horizontal position of the centre of mass X = x/R."""
+        return self.history["x"]
+
+    @property
+    def x_dot(self) -> np.ndarray:
+        """Normalised horizontal velocity dX/dτ."""
+        return self.history["x_dot"]
+
+    @property
+    def sliding_m(self) -> np.ndarray:
+        """Sliding displacement of the base contact, m (+x to the right)."""
+        return self.history["sliding_m"]
+
+    @property
+    def mode(self) -> np.ndarray:
+        """Contact mode of each history row (rest, slide, rock, slide-rock, tumbled, flight)."""
+        return self.history["mode"]
+
+    @property
+    def outcome(self) -> str:
+        """How the run ended: running, rest, tumbled or flight."""
+        return str(self.summary["outcome"])
+
+    def __repr__(self) -> str:
+        return (
+            f"rocking.Run(outcome={self.outcome!r}, tau_end={self.summary['tau_end']!r}, "
+            f"{len(self.history)} history rows, {len(self.events)} events, {len(self.poincare)} section points)"
+        )
+
+
+def _masked(values: np.ndarray, present: np.ndarray) -> np.ma.MaskedArray:
+    """`values` masked where not `present` (the hidden entries are 0, never NaN)."""
+    return np.ma.MaskedArray(values, mask=~np.asarray(present, dtype=bool))
+
+
+def _responses(d: Mapping[str, Any]) -> dict[str, Any]:
+    """The response columns of one chunk as arrays."""
+    return {
+        "outcome": np.array(d["outcome"], dtype=f"U{NAME_WIDTH}"),
+        "period": np.asarray(d["period"]),
+        "max_abs_theta": np.asarray(d["max_abs_theta"]),
+        "lyapunov": np.asarray(d["lyapunov"]),
+        "has_lyapunov": np.asarray(d["has_lyapunov"]),
+    }
+
+
+class Sweep:
+    """A bifurcation diagram, as `rocking sweep` computes it.
+
+    `values` are the grid's values (increasing); `outcome`, `period`,
+    `max_abs_theta` and `lyapunov` are classes.csv's columns per value
+    (`period` masked where the response is not periodic, `lyapunov` where
+    none was computed); `points` are points.csv's rows (with `index`, the
+    value's index, and the section state `x`, `x_dot`, `mode` besides).
+    """
+
+    def __init__(self, param: str, classes: Table, points: Table) -> None:
+        #: The config key swept.
+        self.param = param
+        #: One row per value: index, value, outcome, period (0 where not
+        #: periodic), max_abs_theta, lyapunov (0 where none), has_lyapunov.
+        self.classes = classes
+        #: Every Poincaré point at τ_k ≥ transient, value by value.
+        self.points = points
+
+    @classmethod
+    def _assemble(cls, param: str, parts: Sequence[Mapping[str, Any]]) -> "Sweep":
+        """One sweep from chunks (shards) computed apart, in index order."""
+        classes = concat(
+            [
+                table({"index": np.asarray(p["index"]), "value": np.asarray(p["value"]), **_responses(p)}, CLASSES)
+                for p in parts
+            ]
+        )
+        points = concat([table({k: p["points"][k] for k in POINTS}, POINTS) for p in parts])
+        # Stable: the points of one value keep their k order.
+        classes = classes[np.argsort(classes["index"], kind="stable")]
+        points = points[np.argsort(points["index"], kind="stable")]
+        return cls(param, classes.view(Table), points.view(Table))
+
+    @property
+    def values(self) -> np.ndarray:
+        """The parameter values, increasing."""
+        return self.classes["value"]
+
+    @property
+    def outcome(self) -> np.ndarray:
+        """Response class per value: periodic, quasiperiodic, chaotic, tumbled, rest or flight."""
+        return self.classes["outcome"]
+
+    @property
+    def period(self) -> np.ma.MaskedArray:
+        """k of a period-k response (the paper's (1,k) mode); masked otherwise."""
+        return _masked(self.classes["period"], self.classes["outcome"] == "periodic")
+
+    @property
+    def max_abs_theta(self) -> np.ndarray:
+        """Largest |Θ| over each run, transient included."""
+        return self.classes["max_abs_theta"]
+
+    @property
+    def lyapunov(self) -> np.ma.MaskedArray:
+        """Largest Lyapunov exponent per unit τ; masked where none was computed."""
+        return _masked(self.classes["lyapunov"], self.classes["has_lyapunov"])
+
+    def to_pandas(self) -> Any:
+        """classes.csv as a `pandas.DataFrame` (value, outcome, period,
+        max_abs_theta, lyapunov; missing entries are `pd.NA`). Needs pandas."""
+        import pandas as pd
+
+        c = self.classes
+        return pd.DataFrame(
+            {
+                "value": np.asarray(c["value"]),
+                "outcome": np.asarray(c["outcome"]),
+                "period": pd.Series(c["period"], dtype="Int64").where(np.asarray(c["outcome"] == "periodic")),
+                "max_abs_theta": np.asarray(c["max_abs_theta"]),
+                "lyapunov": pd.Series(c["lyapunov"], dtype="Float64").where(np.asarray(c["has_lyapunov"])),
+            }
+        )
+
+    def __repr__(self) -> str:
+        return f"rocking.Sweep({self.param!r}, {len(self.classes)} values, {len(self.points)} points)"
+
+
+class OutcomeMap:
+    """An outcome map, as `rocking map` computes it.
+
+    `x` and `y` are the axes' values; `outcome`, `period`, `max_abs_theta`
+    and `lyapunov` are 2-D arrays indexed `[j, i]` (row j = y value, column
+    i = x value); `cells` are map.csv's rows (y outer, x inner).
+    """
+
+    def __init__(self, x_key: str, y_key: str, x: np.ndarray, y: np.ndarray, cells: Table) -> None:
+        #: The config key along the horizontal axis.
+        self.x_key = x_key
+        #: The config key along the vertical axis.
+        self.y_key = y_key
+        #: Horizontal axis values.
+        self.x = x
+        #: Vertical axis values.
+        self.y = y
+        #: One row per cell in map.csv's order: x, y, outcome, period (0
+        #: where not periodic), max_abs_theta, lyapunov (0 where none),
+        #: has_lyapunov.
+        self.cells = cells
+
+    @classmethod
+    def _assemble(cls, parts: Sequence[Mapping[str, Any]]) -> "OutcomeMap":
+        """One map from row chunks computed apart, in row order."""
+        parts = sorted(parts, key=lambda p: tuple(p["rows"]))
+        first = parts[0]
+        cells = concat(
+            [table({"x": np.asarray(p["x"]), "y": np.asarray(p["y"]), **_responses(p)}, CELLS) for p in parts]
+        )
+        return cls(first["x_key"], first["y_key"], np.asarray(first["x_values"]), np.asarray(first["y_values"]), cells)
+
+    def _grid(self, name: str) -> np.ndarray:
+        return np.asarray(self.cells[name]).reshape(len(self.y), len(self.x))
+
+    @property
+    def outcome(self) -> np.ndarray:
+        """Response class per cell, `[j, i]`."""
+        return self._grid("outcome")
+
+    @property
+    def period(self) -> np.ma.MaskedArray:
+        """Period per cell, masked where not periodic."""
+        return _masked(self._grid("period"), self._grid("outcome") == "periodic")
+
+    @property
+    def max_abs_theta(self) -> np.ndarray:
+        """Largest |Θ| per cell."""
+        return self._grid("max_abs_theta")
+
+    @property
+    def lyapunov(self) -> np.ma.MaskedArray:
+        """Largest Lyapunov exponent per unit τ per cell; masked where none."""
+        return _masked(self._grid("lyapunov"), self._grid("has_lyapunov"))
+
+    def to_pandas(self) -> Any:
+        """map.csv as a `pandas.DataFrame` (missing entries `pd.NA`). Needs pandas."""
+        import pandas as pd
+
+        c = self.cells
+        periodic = np.asarray(c["outcome"] == "periodic")
+        return pd.DataFrame(
+            {
+                "x": np.asarray(c["x"]),
+                "y": np.asarray(c["y"]),
+                "outcome": np.asarray(c["outcome"]),
+                "period": pd.Series(c["period"], dtype="Int64").where(periodic),
+                "max_abs_theta": np.asarray(c["max_abs_theta"]),
+                "lyapunov": pd.Series(c["lyapunov"], dtype="Float64").where(np.asarray(c["has_lyapunov"])),
+            }
+        )
+
+    def __repr__(self) -> str:
+        return f"rocking.OutcomeMap({self.x_key!r} × {self.y_key!r}, {len(self.x)} × {len(self.y)} cells)"
+
+
+@dataclass(frozen=True)
+class Lyapunov:
+    """Lyapunov exponents of a scene, as `analysis.lyapunov` computes them.
+
+    Exponents are per unit τ (natural log); `per_cycle` per forcing
+    period. A response without a finite exponent (tumbled, flight, rest,
+    flat phases) has `largest_per_tau = None` and says why in
+    `no_exponent`.
+    """
+
+    #: tangent, benettin or both.
+    method: str
+    #: Largest exponent per τ, or None.
+    largest_per_tau: float | None
+    #: Largest exponent per forcing cycle, or None.
+    per_cycle: float | None
+    #: Standard error of `largest_per_tau` (batch means), or None.
+    stderr: float | None
+    #: The finite exponents of (Θ, Θ', X') per τ, largest first (tangent only).
+    spectrum: np.ndarray
+    #: Why there is no exponent (tumbled, flight, rest, flat-phases), or None.
+    no_exponent: str | None
+    #: (τ, running estimate per τ) rows.
+    convergence: np.ndarray
+    #: summary.json's `lyapunov` entry.
+    summary: dict[str, Any]
+    #: Every field the library returns.
+    result: dict[str, Any]
+
+    @classmethod
+    def _of(cls, d: Mapping[str, Any]) -> "Lyapunov":
+        r = d["result"]
+        conv = np.asarray(r.get("convergence", []), dtype=float).reshape(-1, 2)
+        return cls(
+            method=str(r["method"]),
+            largest_per_tau=r.get("largest_per_tau"),
+            per_cycle=r.get("per_cycle"),
+            stderr=r.get("stderr"),
+            spectrum=np.asarray(r.get("spectrum", []), dtype=float),
+            no_exponent=r.get("no_exponent"),
+            convergence=conv,
+            summary=d["summary"],
+            result=r,
+        )
+
+
+RUNS = ("run", "block", "width_m", "height_m", "record", "level", "scale", "end", "peak_theta_over_alpha", "t_end_s", "has_t_end")
+
+
+class Fragility:
+    """A fragility study, as `rocking fragility` computes it.
+
+    `runs` has one row per run (block outer, level, record inner) with
+    runs.csv's columns (`t_end_s` is the time of overturning or flight,
+    0 where `has_t_end` is false); `fits[b]` holds block b's counts per
+    level and both lognormal fits (P(overturning) and P(θ/α ≥ threshold
+    or overturning)): `median` in the unit of the intensity measure,
+    `beta`, their 95 % intervals, or `{"error": …}` when the data admit
+    no fit.
+    """
+
+    def __init__(self, im: str, threshold: float, levels: Sequence[float], runs: Table, fits: list[dict[str, Any]]) -> None:
+        #: pga_g or pgv_m_s.
+        self.im = im
+        #: θ/α whose exceedance is counted.
+        self.threshold = threshold
+        #: Intensity levels.
+        self.levels = np.asarray(levels, dtype=float)
+        #: One row per run.
+        self.runs = runs
+        #: Per block: counts per level and both fits.
+        self.fits = fits
+
+    @classmethod
+    def _assemble(
+        cls, parts: Sequence[Mapping[str, Any]], blocks: int, levels: Sequence[float], threshold: float
+    ) -> "Fragility":
+        from . import _rocking
+
+        runs = concat([table({**p, "record": p["record"], "end": p["end"]}, RUNS) for p in parts])
+        runs = runs[np.argsort(runs["run"], kind="stable")].view(Table)
+        records = len(parts[0]["records"])
+        fits = _rocking._fragility_fits(
+            blocks,
+            list(levels),
+            records,
+            threshold,
+            [int(i) for i in runs["run"]],
+            [str(e) for e in runs["end"]],
+            [float(x) for x in runs["peak_theta_over_alpha"]],
+        )
+        return cls(str(parts[0]["im"]), threshold, levels, runs, fits)
+
+    def __repr__(self) -> str:
+        return f"rocking.Fragility({len(self.runs)} runs, {len(self.fits)} blocks, im={self.im})"
+
+
+SPECTRUM = (
+    "b_over_h", "alpha_rad", "width_m", "height_m", "r_m", "p_per_s", "scale", "pga_g", "end",
+    "peak_theta_over_alpha", "t_end_s", "has_t_end", "overturn_scale", "overturn_pga_g", "overturn_end",
+    "has_overturn_scale", "safe_windows",
+)
+
+
+class RockingSpectrum:
+    """A rocking spectrum, as `rocking spectrum --record` computes it.
+
+    `blocks` has one row per block (B/H outer, size increasing) with
+    spectrum.csv's columns: `t_end_s` is the time of overturning or flight
+    (0 where `has_t_end` is false), `overturn_scale` the smallest scale
+    factor found to overturn the block (0 where `has_overturn_scale` is
+    false), `overturn_pga_g` the PGA at that scale.
+    """
+
+    def __init__(self, blocks: Table, pga_g_record: float) -> None:
+        #: One row per block.
+        self.blocks = blocks
+        #: The record's PGA as read (scale 1), g.
+        self.pga_g_record = pga_g_record
+
+    def __repr__(self) -> str:
+        return f"rocking.RockingSpectrum({len(self.blocks)} blocks)"

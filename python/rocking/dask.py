@@ -1,0 +1,150 @@
+"""Sweeps and outcome maps on a Dask cluster (`dask.distributed`).
+
+    >>> from dask.distributed import Client
+    >>> import rocking, rocking.dask
+    >>> client = Client("scheduler:8786")          # or Client(LocalCluster())
+    >>> m = rocking.dask.outcome_map(client, "fig3", ("excitation.a_h", 0.1, 3.0, 100),
+    ...                              ("excitation.omega_h", 2.0, 12.0, 100))
+
+The work is split into chunks (shards of a sweep's grid, as
+`rocking sweep --shard K/N` splits it; rows of a map), each computed on a
+worker by the same library call as on one machine, and joined in index
+order: the result is identical, number for number, to `rocking.sweep` and
+`rocking.outcome_map`. The input is checked on the client first, so bad
+input fails at once with the CLI's message. Workers need `rocking`
+installed and, for record scenes, the record files at the same paths.
+
+A value that fails on a worker raises its `RunError` on the client; when
+several chunks fail, the one raised is the first Dask reports, not
+necessarily the failure with the smallest index that `rocking.sweep`
+(like the CLI) would name.
+"""
+
+from __future__ import annotations
+
+from typing import Any, Sequence
+
+from . import _rocking
+from ._results import Fragility, OutcomeMap, Sweep
+from ._rocking import Scene
+
+Axis = tuple[str, float, float, int]
+
+
+def _scene(scene: Scene | str) -> Scene:
+    return scene if isinstance(scene, Scene) else Scene(scene)
+
+
+def _worker_threads(client: Any) -> int:
+    """Threads over all workers of the cluster (at least 1)."""
+    return max(1, sum(client.nthreads().values()))
+
+
+def _sweep_task(shard: tuple[int, int], scene: Scene, args: tuple[Any, ...], options: dict[str, Any]) -> dict[str, Any]:
+    """One shard of a sweep, on a worker."""
+    return _rocking._sweep(scene, *args, shard=shard, **options)
+
+
+def _map_task(rows: tuple[int, int], scene: Scene, x: Axis, y: Axis, options: dict[str, Any]) -> dict[str, Any]:
+    """Rows j0 ≤ j < j1 of a map, on a worker."""
+    return _rocking._outcome_map(scene, x, y, rows=rows, **options)
+
+
+def sweep(
+    client: Any,
+    scene: Scene | str,
+    param: str,
+    start: float,
+    stop: float,
+    step: float,
+    *,
+    transient: float = 600.0,
+    tau_end: float | None = None,
+    lyapunov: bool = False,
+    chunks: int | None = None,
+    threads_per_task: int = 1,
+) -> Sweep:
+    """`rocking.sweep` on the cluster behind `client`, split into `chunks`
+    shards (default: 4 per worker thread, at most one per value). Each
+    task uses `threads_per_task` threads (1: Dask's worker threads are the
+    parallelism). Continuation sweeps cannot be split (each value seeds
+    the next): run them with `rocking.sweep`."""
+    s = _scene(scene)
+    args = (param, start, stop, step)
+    options: dict[str, Any] = {"transient": transient, "tau_end": tau_end, "lyapunov": lyapunov}
+    count = int(_rocking._sweep(s, *args, check_only=True, **options)["count"])
+    n = chunks if chunks is not None else 4 * _worker_threads(client)
+    n = max(1, min(int(n), count))
+    options["threads"] = threads_per_task
+    futures = client.map(
+        _sweep_task, [(k, n) for k in range(n)], scene=s, args=args, options=options, pure=False
+    )
+    return Sweep._assemble(param, client.gather(futures))
+
+
+def _row_chunks(rows: int, chunks: int) -> list[tuple[int, int]]:
+    """`rows` split into `chunks` contiguous ranges of nearly equal length."""
+    chunks = max(1, min(chunks, rows))
+    bounds = [rows * i // chunks for i in range(chunks + 1)]
+    return [(bounds[i], bounds[i + 1]) for i in range(chunks)]
+
+
+def outcome_map(
+    client: Any,
+    scene: Scene | str,
+    x: Axis,
+    y: Axis,
+    *,
+    transient: float = 600.0,
+    tau_end: float | None = None,
+    lyapunov: bool = False,
+    chunks: int | None = None,
+    threads_per_task: int = 1,
+) -> OutcomeMap:
+    """`rocking.outcome_map` on the cluster behind `client`, split into
+    `chunks` blocks of rows (default: 4 per worker thread, at most one per
+    row)."""
+    s = _scene(scene)
+    x, y = tuple(x), tuple(y)  # type: ignore[assignment]
+    options: dict[str, Any] = {"transient": transient, "tau_end": tau_end, "lyapunov": lyapunov}
+    ny = len(_rocking._outcome_map(s, x, y, check_only=True, **options)["y_values"])
+    n = chunks if chunks is not None else 4 * _worker_threads(client)
+    options["threads"] = threads_per_task
+    futures = client.map(_map_task, _row_chunks(ny, int(n)), scene=s, x=x, y=y, options=options, pure=False)
+    parts: Sequence[dict[str, Any]] = client.gather(futures)
+    return OutcomeMap._assemble(parts)
+
+
+def _fragility_task(indices: list[int], scene: Scene, args: tuple[Any, ...], options: dict[str, Any]) -> dict[str, Any]:
+    """Runs `indices` of a fragility study, on a worker."""
+    return _rocking._fragility_runs(scene, *args, indices=indices, **options)
+
+
+def fragility(
+    client: Any,
+    records: Any,
+    levels: Any,
+    blocks: Any,
+    *,
+    base: Scene | None = None,
+    im: str = "pga",
+    threshold: float = 0.5,
+    chunks: int | None = None,
+    threads_per_task: int = 1,
+) -> Fragility:
+    """`rocking.fragility` on the cluster behind `client`: the runs split
+    into `chunks` interleaved sets (default: 4 per worker thread), the fits
+    computed on the client from all rows."""
+    from . import _records
+
+    s = base if base is not None else Scene.defaults()
+    levels = [float(v) for v in levels]
+    blocks = [(float(w), float(h)) for w, h in blocks]
+    args = (_records(records), levels, blocks)
+    count = int(_rocking._fragility_runs(s, *args, im=im, check_only=True)["count"])
+    n = chunks if chunks is not None else 4 * _worker_threads(client)
+    n = max(1, min(int(n), count))
+    options: dict[str, Any] = {"im": im, "threads": threads_per_task}
+    parts = [list(range(k, count, n)) for k in range(n)]
+    futures = client.map(_fragility_task, parts, scene=s, args=args, options=options, pure=False)
+    return Fragility._assemble(client.gather(futures), len(blocks), levels, threshold)

@@ -1,0 +1,275 @@
+//! `fragility`: the runs of `rocking fragility` (blocks × intensity levels ×
+//! records, each record scaled to the level) and the lognormal fits of
+//! each block, over the library's `analysis::engineering::fragility`.
+//!
+//! The runs are indexed as the CLI indexes them (block outer, level,
+//! record inner), so any subset (a Dask chunk, a CLI shard) computes the
+//! same rows; the fits are computed from all rows at the end.
+
+use std::path::PathBuf;
+
+use anyhow::anyhow;
+use numpy::IntoPyArray as _;
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use rocking::analysis::engineering::fragility::{
+    FragilitySpec, Intensity, MAX_RUNS, SuiteRecord, fit_block, run_fragility, summarise,
+};
+use rocking::analysis::engineering::lognormal::{FitError, LognormalFit};
+use rocking::analysis::engineering::response::scenario_for;
+use rocking::analysis::engineering::{BlockSize, Drive, EndState};
+use rocking::analysis::silent;
+use rocking::io::record::{RecordSpec, read_record_as};
+use rocking::model::units::AccelUnit;
+use rocking::sim::scenario::Record;
+use serde_json::json;
+
+use crate::convert::json_to_py;
+use crate::errors::{Origin, config_error, record_error, run_error};
+use crate::scene::Scene;
+use crate::study::{Workers, interrupted};
+
+/// Bad input without a key.
+fn input(message: impl std::fmt::Display) -> PyErr {
+    config_error(message.to_string(), Origin::default())
+}
+
+/// The intensity measure named `im`.
+fn intensity(im: &str) -> PyResult<Intensity> {
+    match im {
+        "pga" => Ok(Intensity::Pga),
+        "pgv" => Ok(Intensity::Pgv),
+        other => Err(input(format!("--im {other}: expected pga or pgv"))),
+    }
+}
+
+/// Reads the suite: each record in its unit (text files need one; an AT2
+/// header states its own), with its intensity at scale 1.
+fn suite(records: Vec<(PathBuf, Option<String>)>, im: Intensity) -> PyResult<Vec<SuiteRecord>> {
+    let mut out = Vec::with_capacity(records.len());
+    for (path, unit) in records {
+        let unit = match unit.as_deref() {
+            None => None,
+            Some(text) => Some(
+                AccelUnit::parse(text)
+                    .ok_or_else(|| input(format!("--unit {text}: unknown unit (known: g, m/s2, cm/s2)")))?,
+            ),
+        };
+        let loaded = read_record_as(&path, &RecordSpec { unit, dt: None }).map_err(|e| record_error(&path, &e))?;
+        let peaks = loaded.series.peaks(1.0);
+        let value = match im {
+            Intensity::Pga => peaks.pga_g,
+            Intensity::Pgv => peaks.pgv_m_s,
+        };
+        if !(value > 0.0 && value.is_finite()) {
+            return Err(input(format!(
+                "{}: {} is 0, it cannot be scaled",
+                path.display(),
+                im.column()
+            )));
+        }
+        let record = Record {
+            path: path.clone(),
+            series: loaded.series,
+            unit: loaded.unit,
+            dt: None,
+            crc32: loaded.crc32,
+        };
+        out.push(SuiteRecord {
+            drive: Drive::Record(record),
+            intensity: value,
+        });
+    }
+    if out.is_empty() {
+        return Err(input("--records: no records given"));
+    }
+    Ok(out)
+}
+
+/// The runs `indices` (default all) of a fragility study of `blocks`
+/// (width, height in m) under `records` ((path, unit or None)) scaled to
+/// `levels` of `im` ("pga" in g, "pgv" in m/s), on the scene's friction,
+/// impact law and tolerances: runs.csv's columns.
+#[pyfunction]
+#[pyo3(signature = (scene, records, levels, blocks, *, im="pga", threads=None, indices=None, check_only=false))]
+#[allow(clippy::too_many_arguments)]
+pub fn _fragility_runs<'py>(
+    py: Python<'py>,
+    scene: &Scene,
+    records: Vec<(PathBuf, Option<String>)>,
+    levels: Vec<f64>,
+    blocks: Vec<(f64, f64)>,
+    im: &str,
+    threads: Option<usize>,
+    indices: Option<Vec<usize>>,
+    check_only: bool,
+) -> PyResult<Bound<'py, PyDict>> {
+    let base = scene.scenario();
+    let im = intensity(im)?;
+    if let Some(bad) = levels.iter().find(|v| !(v.is_finite() && **v > 0.0)) {
+        return Err(input(format!("--levels {bad}: every level must be finite and > 0")));
+    }
+    if levels.is_empty() || blocks.is_empty() {
+        return Err(input("--levels and --block: give at least one of each"));
+    }
+    let blocks: Vec<BlockSize> = blocks
+        .into_iter()
+        .map(|(width_m, height_m)| BlockSize { width_m, height_m })
+        .collect();
+    let records = suite(records, im)?;
+    let spec = FragilitySpec {
+        base,
+        records: &records,
+        levels: &levels,
+        blocks: &blocks,
+    };
+    if spec.run_count() > MAX_RUNS {
+        return Err(input(format!(
+            "{} runs (blocks × levels × records): at most {MAX_RUNS}",
+            spec.run_count()
+        )));
+    }
+    // As the CLI: every block under every record at the largest level is
+    // a valid scenario, before anything runs.
+    let top = levels.iter().copied().fold(0.0, f64::max);
+    for &b in &blocks {
+        for r in &records {
+            scenario_for(base, b, &r.drive, top / r.intensity)
+                .map_err(|e| input(format!("--block {}x{}: {e}", b.width_m, b.height_m)))?;
+        }
+    }
+    let indices = indices.unwrap_or_else(|| (0..spec.run_count()).collect());
+    if let Some(i) = indices.iter().find(|&&i| i >= spec.run_count()) {
+        return Err(input(format!("run {i}: there are {} runs", spec.run_count())));
+    }
+    let workers = Workers::new(threads)?;
+    let runs = if check_only {
+        Vec::new()
+    } else {
+        let chunk = 4 * workers.threads().max(2);
+        py.detach(|| -> PyResult<_> {
+            let mut runs = Vec::with_capacity(indices.len());
+            for part in indices.chunks(chunk) {
+                let done = workers
+                    .run(|| run_fragility(&spec, part, &silent))
+                    .map_err(|e| run_error(&anyhow!(e)))?;
+                runs.extend(done);
+                if let Some(e) = interrupted() {
+                    return Err(e);
+                }
+            }
+            Ok(runs)
+        })?
+    };
+    let out = PyDict::new(py);
+    out.set_item("count", spec.run_count())?;
+    out.set_item("im", im.column())?;
+    out.set_item("records", records.iter().map(|r| r.drive.name()).collect::<Vec<_>>())?;
+    out.set_item(
+        "run",
+        indices[..runs.len()]
+            .iter()
+            .map(|&i| i as u64)
+            .collect::<Vec<_>>()
+            .into_pyarray(py),
+    )?;
+    out.set_item(
+        "block",
+        runs.iter()
+            .map(|r| r.at.block as u64)
+            .collect::<Vec<_>>()
+            .into_pyarray(py),
+    )?;
+    let col = |f: &dyn Fn(&rocking::analysis::engineering::fragility::FragilityRun) -> f64| {
+        runs.iter().map(f).collect::<Vec<f64>>()
+    };
+    out.set_item("width_m", col(&|r| blocks[r.at.block].width_m).into_pyarray(py))?;
+    out.set_item("height_m", col(&|r| blocks[r.at.block].height_m).into_pyarray(py))?;
+    out.set_item(
+        "record",
+        runs.iter()
+            .map(|r| records[r.at.record].drive.name())
+            .collect::<Vec<_>>(),
+    )?;
+    out.set_item("level", col(&|r| levels[r.at.level]).into_pyarray(py))?;
+    out.set_item("scale", col(&|r| r.scale).into_pyarray(py))?;
+    out.set_item("end", runs.iter().map(|r| r.response.end.name()).collect::<Vec<_>>())?;
+    out.set_item(
+        "peak_theta_over_alpha",
+        col(&|r| r.response.peak_theta_over_alpha).into_pyarray(py),
+    )?;
+    out.set_item(
+        "t_end_s",
+        col(&|r| r.response.t_end_event_s.unwrap_or(0.0)).into_pyarray(py),
+    )?;
+    out.set_item(
+        "has_t_end",
+        runs.iter()
+            .map(|r| r.response.t_end_event_s.is_some())
+            .collect::<Vec<_>>()
+            .into_pyarray(py),
+    )?;
+    Ok(out)
+}
+
+/// A fit as fragility.json writes it, or `{"error": …}`.
+fn fit_json(fit: &Result<LognormalFit, FitError>) -> serde_json::Value {
+    match fit {
+        Ok(f) => serde_json::to_value(f).unwrap_or(serde_json::Value::Null),
+        Err(e) => json!({ "error": e.to_string() }),
+    }
+}
+
+/// Counts and both lognormal fits per block, from the runs (run index,
+/// end state name, peak θ/α) of a study with `blocks` blocks, `levels` and
+/// `records` records; `threshold` is the θ/α whose exceedance is counted.
+#[pyfunction]
+#[allow(clippy::too_many_arguments)]
+pub fn _fragility_fits<'py>(
+    py: Python<'py>,
+    blocks: usize,
+    levels: Vec<f64>,
+    records: usize,
+    threshold: f64,
+    run: Vec<usize>,
+    end: Vec<String>,
+    peak: Vec<f64>,
+) -> PyResult<Bound<'py, PyAny>> {
+    if !(threshold > 0.0 && threshold.is_finite()) {
+        return Err(input(format!("--threshold {threshold}: must be a θ/α > 0")));
+    }
+    let (nl, nr) = (levels.len(), records.max(1));
+    let mut rows = Vec::with_capacity(run.len());
+    for ((&i, e), &p) in run.iter().zip(&end).zip(&peak) {
+        let state = EndState::from_name(e).ok_or_else(|| input(format!("end state {e:?}: unknown")))?;
+        rows.push((i / (nl * nr), (i / nr) % nl, state, p));
+    }
+    let counts = summarise(blocks, nl, threshold, rows);
+    let out: Vec<serde_json::Value> = counts
+        .iter()
+        .enumerate()
+        .map(|(b, c)| {
+            let fits = fit_block(&levels, c);
+            let per_level: Vec<serde_json::Value> = levels
+                .iter()
+                .zip(c)
+                .map(|(&level, s)| {
+                    json!({
+                        "level": level, "runs": s.runs, "overturned": s.overturned, "flight": s.flight,
+                        "exceeded": s.exceeded, "fraction_overturned": s.fraction_overturned(),
+                        "fraction_exceeded": s.fraction_exceeded(),
+                        "fit_overturned": fits.overturn.as_ref().ok().map(|f| f.at(level)),
+                        "fit_exceeded": fits.exceed.as_ref().ok().map(|f| f.at(level)),
+                    })
+                })
+                .collect();
+            json!({
+                "block": b,
+                "overturning": fit_json(&fits.overturn),
+                "exceedance": fit_json(&fits.exceed),
+                "levels": per_level,
+            })
+        })
+        .collect();
+    json_to_py(py, &serde_json::Value::Array(out))
+}

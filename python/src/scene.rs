@@ -1,0 +1,265 @@
+//! `rocking.Scene`: a resolved, validated scenario built through the
+//! config layer, so its keys, units, defaults and error messages are the
+//! CLI's (`--preset`, `--config`, `--set`).
+
+use std::path::{Path, PathBuf};
+
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyTuple};
+use rocking::io::config::{self, KNOWN_KEYS, Source};
+use rocking::sim::Scenario;
+use toml::Table;
+
+use crate::convert::{json_to_py, toml_literal};
+use crate::errors::{from_config, key_error};
+
+/// A block, its excitation, initial state and run settings, resolved and
+/// validated exactly as the CLI resolves `--preset`/`--config` and `--set`.
+///
+/// `Scene(preset=None, *, file=None, config=None, **keys)`: the preset (or
+/// the file; neither means the `default` preset), then the assignments of
+/// `config` (a dict of `"section.key": value` or `"section": {key: value}`),
+/// then the keyword arguments: `a_h="0.35 g"` (a key unique to one section),
+/// `friction={"static": 0.7}` (a section). Quantities take the CLI's unit
+/// strings; plain numbers are in the model's normalised units.
+#[pyclass(frozen, module = "rocking._rocking", name = "Scene")]
+pub struct Scene {
+    /// The unresolved config: what `with_` modifies.
+    table: Table,
+    /// Where relative record paths are resolved from.
+    source: Source,
+    /// The resolved scenario.
+    scenario: Scenario,
+    /// What the scene was made from, for `repr`.
+    origin: String,
+}
+
+impl Scene {
+    /// The resolved scenario.
+    pub fn scenario(&self) -> &Scenario {
+        &self.scenario
+    }
+
+    fn resolve(table: Table, source: Source, origin: String) -> PyResult<Self> {
+        let scenario = config::from_table(&table, &source).map_err(from_config)?;
+        Ok(Self {
+            table,
+            source,
+            scenario,
+            origin,
+        })
+    }
+}
+
+/// The section of an undotted keyword: the one section that has the key.
+fn section_of(name: &str) -> PyResult<&'static str> {
+    let sections: Vec<&'static str> = KNOWN_KEYS
+        .iter()
+        .filter(|(_, keys)| keys.contains(&name))
+        .map(|(s, _)| *s)
+        .collect();
+    match sections.as_slice() {
+        [one] => Ok(one),
+        [] => {
+            let names: Vec<&str> = KNOWN_KEYS.iter().map(|(s, _)| *s).collect();
+            Err(key_error(
+                name,
+                format!(
+                    "{name}: unknown key (a keyword is a key of one section, e.g. a_h=\"0.35 g\", or a section with a dict, e.g. friction={{\"static\": 0.7}}; sections: {})",
+                    names.join(", ")
+                ),
+            ))
+        }
+        several => Err(key_error(
+            name,
+            format!(
+                "{name}: the key is in several sections ({}); give the section, e.g. {}={{\"{name}\": …}}",
+                several.join(", "),
+                several[0]
+            ),
+        )),
+    }
+}
+
+/// `KEY=VALUE` assignments (the CLI's `--set`) from a dict of dotted keys
+/// or sections.
+fn dict_assignments(dict: &Bound<'_, PyDict>, out: &mut Vec<String>) -> PyResult<()> {
+    for (k, v) in dict.iter() {
+        let key: String = k.extract()?;
+        if let Ok(inner) = v.cast::<PyDict>() {
+            for (ik, iv) in inner.iter() {
+                let name: String = ik.extract()?;
+                let dotted = format!("{key}.{name}");
+                out.push(format!("{dotted}={}", toml_literal(&dotted, &iv)?));
+            }
+        } else {
+            out.push(format!("{key}={}", toml_literal(&key, &v)?));
+        }
+    }
+    Ok(())
+}
+
+/// Assignments from keyword arguments: a section name with a dict, or a
+/// key unique to one section.
+fn keyword_assignments(kwargs: &Bound<'_, PyDict>, out: &mut Vec<String>) -> PyResult<()> {
+    for (k, v) in kwargs.iter() {
+        let name: String = k.extract()?;
+        if KNOWN_KEYS.iter().any(|(s, _)| *s == name)
+            && let Ok(inner) = v.cast::<PyDict>()
+        {
+            for (ik, iv) in inner.iter() {
+                let key: String = ik.extract()?;
+                let dotted = format!("{name}.{key}");
+                out.push(format!("{dotted}={}", toml_literal(&dotted, &iv)?));
+            }
+            continue;
+        }
+        let dotted = format!("{}.{name}", section_of(&name)?);
+        out.push(format!("{dotted}={}", toml_literal(&dotted, &v)?));
+    }
+    Ok(())
+}
+
+/// All assignments of a `config` dict and keyword arguments, in that order.
+fn assignments(config: Option<&Bound<'_, PyDict>>, kwargs: Option<&Bound<'_, PyDict>>) -> PyResult<Vec<String>> {
+    let mut sets = Vec::new();
+    if let Some(c) = config {
+        dict_assignments(c, &mut sets)?;
+    }
+    if let Some(k) = kwargs {
+        keyword_assignments(k, &mut sets)?;
+    }
+    Ok(sets)
+}
+
+#[pymethods]
+impl Scene {
+    #[new]
+    #[pyo3(signature = (preset=None, *, file=None, config=None, **keys))]
+    fn new(
+        preset: Option<&str>,
+        file: Option<PathBuf>,
+        config: Option<&Bound<'_, PyDict>>,
+        keys: Option<&Bound<'_, PyDict>>,
+    ) -> PyResult<Self> {
+        let sets = assignments(config, keys)?;
+        let (table, source) = config::load_table(preset, file.as_deref(), &sets).map_err(from_config)?;
+        let mut origin = match (&file, preset) {
+            (Some(f), _) => format!("file {}", f.display()),
+            (None, Some(p)) => format!("preset {p}"),
+            (None, None) => "preset default".to_string(),
+        };
+        if !sets.is_empty() {
+            origin = format!("{origin}, {}", sets.join(", "));
+        }
+        Self::resolve(table, source, origin)
+    }
+
+    /// The scenario's own defaults with `config` and keyword assignments,
+    /// from no preset: the base scene of `rocking fragility`, `spectrum`
+    /// and `pulse-map` without `--preset`/`--config` (Housner impact, no
+    /// sliding, rtol 1e-10).
+    #[staticmethod]
+    #[pyo3(signature = (config=None, **keys))]
+    fn defaults(config: Option<&Bound<'_, PyDict>>, keys: Option<&Bound<'_, PyDict>>) -> PyResult<Self> {
+        let sets = assignments(config, keys)?;
+        let mut table = Table::new();
+        config::apply_sets(&mut table, &sets).map_err(from_config)?;
+        let mut origin = "defaults".to_string();
+        if !sets.is_empty() {
+            origin = format!("{origin}, {}", sets.join(", "));
+        }
+        Self::resolve(table, Source::default(), origin)
+    }
+
+    /// A copy with more assignments (a `config` dict and/or keywords, as
+    /// for `Scene(...)`); the scene itself is unchanged.
+    #[pyo3(signature = (config=None, **keys))]
+    fn with_(&self, config: Option<&Bound<'_, PyDict>>, keys: Option<&Bound<'_, PyDict>>) -> PyResult<Self> {
+        let sets = assignments(config, keys)?;
+        let mut table = self.table.clone();
+        config::apply_sets(&mut table, &sets).map_err(from_config)?;
+        let origin = if sets.is_empty() {
+            self.origin.clone()
+        } else {
+            format!("{}, {}", self.origin, sets.join(", "))
+        };
+        Self::resolve(table, self.source.clone(), origin)
+    }
+
+    /// The resolved configuration as a dict in the config's sections and
+    /// keys (summary.json's `config`): block sizes in m, the rest in the
+    /// model's normalised units, infinite friction as `"inf"`.
+    fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        json_to_py(py, &config::to_json(&self.scenario))
+    }
+
+    /// Every resolved input in normalised and physical units (summary.json's
+    /// `resolved`).
+    fn resolved<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        json_to_py(py, &rocking::io::output::resolved_json(&self.scenario))
+    }
+
+    /// Warnings about the scene (a record whose peak suggests a wrong
+    /// unit): the lines the CLI prints before a run, less `warning: `.
+    #[getter]
+    fn warnings(&self) -> Vec<String> {
+        self.scenario
+            .warnings()
+            .into_iter()
+            .map(|w| w.strip_prefix("warning: ").map_or(w.clone(), str::to_string))
+            .collect()
+    }
+
+    /// Block slenderness ψ = atan(B/H), rad.
+    #[getter]
+    fn psi_rad(&self) -> f64 {
+        self.scenario.geometry().psi
+    }
+
+    /// Frequency parameter p = √(3g/(4R)), rad/s (τ = p·t).
+    #[getter]
+    fn p_per_s(&self) -> f64 {
+        self.scenario.geometry().p
+    }
+
+    /// Half-diagonal R, m.
+    #[getter]
+    fn r_m(&self) -> f64 {
+        self.scenario.geometry().r
+    }
+
+    fn __repr__(&self) -> String {
+        format!("rocking.Scene({})", self.origin)
+    }
+
+    /// Pickles as the unresolved config and its folder, re-resolved (and
+    /// records re-read) where it is unpickled: a Dask worker needs the
+    /// record files at the same paths.
+    fn __reduce__<'py>(&self, py: Python<'py>) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyTuple>)> {
+        let text =
+            toml::to_string(&self.table).map_err(|e| key_error("", format!("cannot serialise the scene: {e}")))?;
+        let rebuild = py.import("rocking._rocking")?.getattr("_scene_from_state")?;
+        let args = PyTuple::new(
+            py,
+            [text, self.source.base_dir.display().to_string(), self.origin.clone()],
+        )?;
+        Ok((rebuild, args))
+    }
+}
+
+/// Rebuilds a pickled [`Scene`].
+#[pyfunction]
+pub fn _scene_from_state(text: &str, base_dir: &str, origin: String) -> PyResult<Scene> {
+    let table = config::parse_toml(text, "pickled scene").map_err(from_config)?;
+    let source = Source {
+        base_dir: Path::new(base_dir).to_path_buf(),
+    };
+    Scene::resolve(table, source, origin)
+}
+
+/// The names of the presets shipped with the CLI.
+#[pyfunction]
+pub fn presets() -> Vec<&'static str> {
+    rocking::io::presets::names()
+}

@@ -1,0 +1,203 @@
+//! `spectrum`: the rocking spectrum of one record over a range of block
+//! sizes (`rocking spectrum --record`), over the library's
+//! `analysis::engineering::rocking_spectrum`, optionally with each block's
+//! overturning scale; spectrum.csv's columns.
+
+use std::path::PathBuf;
+
+use anyhow::anyhow;
+use numpy::IntoPyArray as _;
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use rocking::analysis::engineering::overturn_scale::ladder;
+use rocking::analysis::engineering::response::scenario_for;
+use rocking::analysis::engineering::rocking_spectrum::{
+    MAX_BLOCKS, OverturnOptions, SizeAxis, SizeRange, SizeRangeError, SpectrumPoint, SpectrumSpec, rocking_spectrum,
+};
+use rocking::analysis::engineering::{Drive, EndState};
+use rocking::analysis::silent;
+use rocking::io::record::{RecordSpec, read_record_as};
+use rocking::model::units::AccelUnit;
+use rocking::sim::scenario::Record;
+
+use crate::errors::{Origin, config_error, record_error, run_error};
+use crate::scene::Scene;
+use crate::study::{Workers, interrupted};
+
+fn input(message: impl std::fmt::Display) -> PyErr {
+    config_error(message.to_string(), Origin::default())
+}
+
+/// The rocking spectrum of the record at `record` (in `unit`, for text
+/// files) scaled by `scale` or to `pga` (g), over `count` log-spaced sizes
+/// `from_m … to_m` of the half-diagonal R (`size="r"`) or the height H
+/// (`"h"`), for each B/H in `b_over_h`; with `overturn_scale`, each
+/// block's smallest overturning scale, searched on the ladder
+/// `search_step … search_max` and refined to `rel_tol`. Checked with the
+/// CLI's messages; Ctrl-C is checked between B/H ratios.
+#[pyfunction]
+#[pyo3(signature = (scene, record, sizes, *, unit=None, size="r", b_over_h=vec![0.25], scale=None, pga=None, overturn_scale=false, search_step=0.1, search_max=5.0, rel_tol=1e-3, threads=None))]
+#[allow(clippy::too_many_arguments)]
+pub fn _spectrum<'py>(
+    py: Python<'py>,
+    scene: &Scene,
+    record: PathBuf,
+    sizes: (f64, f64, usize),
+    unit: Option<&str>,
+    size: &str,
+    b_over_h: Vec<f64>,
+    scale: Option<f64>,
+    pga: Option<f64>,
+    overturn_scale: bool,
+    search_step: f64,
+    search_max: f64,
+    rel_tol: f64,
+    threads: Option<usize>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let base = scene.scenario();
+    let unit = match unit {
+        None => None,
+        Some(text) => Some(
+            AccelUnit::parse(text)
+                .ok_or_else(|| input(format!("--unit {text}: unknown unit (known: g, m/s2, cm/s2)")))?,
+        ),
+    };
+    let loaded = read_record_as(&record, &RecordSpec { unit, dt: None }).map_err(|e| record_error(&record, &e))?;
+    let pga_g = loaded.series.peaks(1.0).pga_g;
+    if pga_g <= 0.0 {
+        return Err(input("--record: the record is all zeros (PGA 0 g)"));
+    }
+    let drive = Drive::Record(Record {
+        path: record.clone(),
+        series: loaded.series,
+        unit: loaded.unit,
+        dt: None,
+        crc32: loaded.crc32,
+    });
+    if scale.is_some() && pga.is_some() {
+        return Err(input("--scale and --pga: give one"));
+    }
+    let scale = match (scale, pga) {
+        (Some(s), _) if !(s > 0.0 && s.is_finite()) => return Err(input(format!("--scale {s}: must be > 0"))),
+        (Some(s), _) => s,
+        (None, Some(p)) if !(p > 0.0 && p.is_finite()) => return Err(input(format!("--pga {p}: must be > 0 (g)"))),
+        (None, Some(p)) => p / pga_g,
+        (None, None) => 1.0,
+    };
+    let axis = match size {
+        "r" => SizeAxis::HalfDiagonal,
+        "h" => SizeAxis::Height,
+        other => return Err(input(format!("--size {other}: expected r or h"))),
+    };
+    let (from, to, count) = sizes;
+    let range = SizeRange::new(axis, from, to, count).map_err(|e| match e {
+        SizeRangeError::From(v) => input(format!("--from {v}: must be a size > 0 (m)")),
+        SizeRangeError::Reversed { from, to } => input(format!("--to {to}: below --from {from}; give from <= to")),
+        SizeRangeError::Count(n) => input(format!(
+            "--count {n}: must be >= 2 (or 1 when --from = --to) and at most 1000000"
+        )),
+    })?;
+    if let Some(bad) = b_over_h.iter().find(|v| !(v.is_finite() && **v > 0.0)) {
+        return Err(input(format!("--b-over-h {bad}: every ratio must be finite and > 0")));
+    }
+    if b_over_h.is_empty() || b_over_h.windows(2).any(|w| w[0] >= w[1]) {
+        return Err(input("--b-over-h: give increasing ratios"));
+    }
+    if range.count * b_over_h.len() > MAX_BLOCKS {
+        return Err(input("--count × --b-over-h: at most 1000000 blocks"));
+    }
+    let overturn = if overturn_scale {
+        let ladder = ladder(search_step, search_max).map_err(|e| input(format!("--search-step/--search-max: {e}")))?;
+        if !(rel_tol > 0.0 && rel_tol < 1.0) {
+            return Err(input(format!("--rel-tol {rel_tol}: must be in (0, 1)")));
+        }
+        Some(OverturnOptions { ladder, rel_tol })
+    } else {
+        None
+    };
+    let spec = SpectrumSpec {
+        base,
+        drive: &drive,
+        scale,
+        sizes: range,
+        b_over_h: b_over_h.clone(),
+        overturn,
+    };
+    for (_, _, block) in spec.blocks() {
+        scenario_for(base, block, &drive, scale)
+            .map_err(|e| input(format!("block {} × {} m: {e}", block.width_m, block.height_m)))?;
+    }
+    let workers = Workers::new(threads)?;
+    // One B/H at a time: the blocks of a ratio are a spectrum of their own
+    // (ratio outer, size inner), so the rows are the same.
+    let points: Vec<SpectrumPoint> = py.detach(|| -> PyResult<_> {
+        let mut all = Vec::new();
+        for &ratio in &b_over_h {
+            let one = SpectrumSpec {
+                b_over_h: vec![ratio],
+                ..spec.clone()
+            };
+            let done = workers
+                .run(|| rocking_spectrum(&one, &silent))
+                .map_err(|e| run_error(&anyhow!(e)))?;
+            all.extend(done);
+            if let Some(e) = interrupted() {
+                return Err(e);
+            }
+        }
+        Ok(all)
+    })?;
+    let out = PyDict::new(py);
+    let f = |g: &dyn Fn(&SpectrumPoint) -> f64| points.iter().map(g).collect::<Vec<f64>>().into_pyarray(py);
+    let first = |p: &SpectrumPoint| {
+        p.overturn
+            .as_ref()
+            .and_then(|s| s.first_failure.as_ref().map(|(a, r)| (*a, r.end)))
+    };
+    out.set_item("b_over_h", f(&|p| p.b_over_h))?;
+    out.set_item("alpha_rad", f(&|p| p.block.alpha()))?;
+    out.set_item("width_m", f(&|p| p.block.width_m))?;
+    out.set_item("height_m", f(&|p| p.block.height_m))?;
+    out.set_item("r_m", f(&|p| p.block.half_diagonal_m()))?;
+    out.set_item("p_per_s", f(&|p| p.block.p_per_s()))?;
+    out.set_item("scale", f(&|_| scale))?;
+    out.set_item("pga_g", f(&|_| scale * pga_g))?;
+    out.set_item("end", points.iter().map(|p| p.response.end.name()).collect::<Vec<_>>())?;
+    out.set_item("peak_theta_over_alpha", f(&|p| p.response.peak_theta_over_alpha))?;
+    out.set_item("t_end_s", f(&|p| p.response.t_end_event_s.unwrap_or(0.0)))?;
+    out.set_item(
+        "has_t_end",
+        points
+            .iter()
+            .map(|p| p.response.t_end_event_s.is_some())
+            .collect::<Vec<_>>()
+            .into_pyarray(py),
+    )?;
+    out.set_item("overturn_scale", f(&|p| first(p).map_or(0.0, |(a, _)| a)))?;
+    out.set_item("overturn_pga_g", f(&|p| first(p).map_or(0.0, |(a, _)| a * pga_g)))?;
+    out.set_item(
+        "overturn_end",
+        points
+            .iter()
+            .map(|p| first(p).map_or("", |(_, e): (f64, EndState)| e.name()))
+            .collect::<Vec<_>>(),
+    )?;
+    out.set_item(
+        "has_overturn_scale",
+        points
+            .iter()
+            .map(|p| first(p).is_some())
+            .collect::<Vec<_>>()
+            .into_pyarray(py),
+    )?;
+    out.set_item(
+        "safe_windows",
+        points
+            .iter()
+            .map(|p| p.overturn.as_ref().map_or(0, |s| s.safe_windows.len() as u32))
+            .collect::<Vec<_>>()
+            .into_pyarray(py),
+    )?;
+    out.set_item("pga_g_record", pga_g)?;
+    Ok(out)
+}

@@ -1,0 +1,60 @@
+"""rocking.dask: chunks on a LocalCluster of 2 worker processes (loopback
+only) give results identical to the single-machine ones."""
+
+from __future__ import annotations
+
+from typing import Iterator
+
+import numpy as np
+import pytest
+
+import rocking
+import rocking.dask
+
+distributed = pytest.importorskip("distributed")
+
+
+@pytest.fixture(scope="module")
+def client() -> Iterator[object]:
+    cluster = distributed.LocalCluster(
+        n_workers=2, threads_per_worker=1, processes=True, host="127.0.0.1", dashboard_address=None
+    )
+    c = distributed.Client(cluster)
+    try:
+        yield c
+    finally:
+        c.close()
+        cluster.close()
+
+
+def test_a_sweep_on_the_cluster_is_the_local_one(client) -> None:
+    scene = rocking.Scene("fig3", a_h="0.3 g")
+    local = rocking.sweep(scene, "excitation.a_v", 1.5, 2.5, 0.1, transient=100, tau_end=200)
+    for chunks in (None, 3, 11):
+        remote = rocking.dask.sweep(client, scene, "excitation.a_v", 1.5, 2.5, 0.1, transient=100, tau_end=200, chunks=chunks)
+        np.testing.assert_array_equal(remote.classes, local.classes)
+        np.testing.assert_array_equal(remote.points, local.points)
+    # Both workers took part.
+    assert len(client.scheduler_info()["workers"]) == 2
+
+
+def test_a_map_on_the_cluster_is_the_local_one(client) -> None:
+    x, y = ("excitation.a_h", 0.5, 3.0, 4), ("excitation.omega_h", 6, 10, 5)
+    local = rocking.outcome_map("fig3", x, y, transient=100, tau_end=200)
+    remote = rocking.dask.outcome_map(client, "fig3", x, y, transient=100, tau_end=200, chunks=3)
+    np.testing.assert_array_equal(remote.cells, local.cells)
+    np.testing.assert_array_equal(remote.x, local.x)
+    np.testing.assert_array_equal(remote.y, local.y)
+    assert remote.outcome.shape == (5, 4)
+
+
+def test_bad_input_fails_on_the_client_with_the_clis_message(client) -> None:
+    with pytest.raises(rocking.ConfigError, match="^--param excitation.a_q: unknown key"):
+        rocking.dask.sweep(client, "fig3", "excitation.a_q", 1, 2, 0.5)
+    with pytest.raises(rocking.ConfigError, match="--continuation"):
+        rocking.sweep("fig3", "excitation.a_v", 1, 2, 0.5, continuation="sideways")
+
+
+def test_a_failed_value_on_a_worker_is_a_run_error(client) -> None:
+    with pytest.raises(rocking.RunError, match="simulation failed"):
+        rocking.dask.sweep(client, rocking.Scene("fig3", max_steps=50), "excitation.a_v", 2.0, 2.2, 0.1, transient=100, tau_end=200)

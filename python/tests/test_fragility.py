@@ -1,0 +1,87 @@
+"""rocking.fragility (and on Dask): the runs and fits of `rocking fragility`."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import rocking
+from conftest import REPO, floats, read_csv
+
+ELCENTRO = REPO / "assets" / "records" / "elcentro-1940-ns.dat"
+KOBE = REPO / "assets" / "records" / "kobe-1995.dat"
+LEVELS = [0.1, 0.4, 0.7, 1.0]
+BLOCKS = [(0.6, 2.0), (0.3, 1.2)]
+
+
+def cli_fragility(cli, tmp_path: Path) -> Path:
+    suite = tmp_path / "suite.txt"
+    suite.write_text(f"{ELCENTRO} g\n{KOBE} m/s2\n")
+    out = tmp_path / "out"
+    cli.ok(
+        "fragility", "--suite", str(suite), "--levels", ",".join(map(str, LEVELS)),
+        "--block", "0.6x2.0", "--block", "0.3x1.2", "--out", str(out), "-q",
+    )
+    return out
+
+
+def local() -> rocking.Fragility:
+    return rocking.fragility([(ELCENTRO, "g"), (KOBE, "m/s2")], LEVELS, BLOCKS)
+
+
+def test_the_runs_and_fits_are_the_clis(cli, tmp_path: Path) -> None:
+    out = cli_fragility(cli, tmp_path)
+    f = local()
+    rows = read_csv(out / "runs.csv")
+    assert len(f.runs) == len(rows) == 2 * 4 * 2
+    assert list(f.runs["record"]) == [r["record"] for r in rows]
+    assert list(f.runs["end"]) == [r["end"] for r in rows]
+    for name in ("run", "width_m", "height_m", "level", "scale", "peak_theta_over_alpha"):
+        assert list(f.runs[name].astype(float)) == floats(rows, name), name
+    t_cli = [r["t_overturn_s"] or r["t_flight_s"] or None for r in rows]
+    assert [float(t) if h else None for t, h in zip(f.runs["t_end_s"], f.runs["has_t_end"])] == [
+        float(t) if t else None for t in t_cli
+    ]
+    meta = json.loads((out / "fragility.json").read_text())
+    for mine, theirs in zip(f.fits, meta["fits"]):
+        for curve in ("overturning", "exceedance"):
+            expected = {k: v for k, v in theirs[curve].items() if k != "band"}
+            assert mine[curve] == expected, curve
+    fractions = read_csv(out / "fractions.csv")
+    mine = [lv for b in f.fits for lv in b["levels"]]
+    assert [lv["overturned"] for lv in mine] == [int(r["overturned"]) for r in fractions]
+    assert [lv["fraction_exceeded"] for lv in mine] == [float(r["fraction_exceeded"]) for r in fractions]
+
+
+def test_a_fragility_on_the_cluster_is_the_local_one() -> None:
+    distributed = pytest.importorskip("distributed")
+    import rocking.dask
+
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, host="127.0.0.1", dashboard_address=None) as cluster:
+        with distributed.Client(cluster) as client:
+            remote = rocking.dask.fragility(client, [(ELCENTRO, "g"), (KOBE, "m/s2")], LEVELS, BLOCKS, chunks=5)
+    f = local()
+    np.testing.assert_array_equal(remote.runs, f.runs)
+    assert remote.fits == f.fits
+
+
+def test_a_bad_record_in_a_suite_is_a_record_error(tmp_path: Path) -> None:
+    bad = tmp_path / "bad.dat"
+    bad.write_text("0.0 0.1\n0.01 zz\n")
+    with pytest.raises(rocking.RecordError) as e:
+        rocking.fragility([(bad, "g")], LEVELS, BLOCKS)
+    assert (e.value.file, e.value.line) == (str(bad), 2)
+
+
+def test_a_base_scene_sets_friction_as_the_clis_base_does(cli, tmp_path: Path) -> None:
+    suite = tmp_path / "suite.txt"
+    suite.write_text(f"{KOBE} m/s2\n")
+    out = tmp_path / "out"
+    cli.ok("fragility", "--suite", str(suite), "--levels", "0.5,1.0", "--block", "0.3x1.2", "--set", "friction.static=0.3", "--out", str(out), "-q")
+    f = rocking.fragility([(KOBE, "m/s2")], [0.5, 1.0], [(0.3, 1.2)], base=rocking.Scene.defaults(friction={"static": 0.3}))
+    rows = read_csv(out / "runs.csv")
+    assert list(f.runs["end"]) == [r["end"] for r in rows]
+    assert list(f.runs["peak_theta_over_alpha"]) == floats(rows, "peak_theta_over_alpha")

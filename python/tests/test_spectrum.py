@@ -1,0 +1,40 @@
+"""rocking.spectrum: spectrum.csv of `rocking spectrum --record`."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+import rocking
+from conftest import REPO, floats, read_csv
+
+KOBE = REPO / "assets" / "records" / "kobe-1995.dat"
+
+
+def test_the_spectrum_is_the_clis(cli, tmp_path: Path) -> None:
+    out = tmp_path / "out"
+    cli.ok(
+        "spectrum", "--record", str(KOBE), "--unit", "m/s2", "--from", "0.2", "--to", "3", "--count", "5",
+        "--b-over-h", "0.2,0.3", "--pga", "0.5", "--overturn-scale", "--search-max", "2", "--out", str(out), "-q",
+    )
+    s = rocking.spectrum(KOBE, (0.2, 3.0, 5), unit="m/s2", b_over_h=[0.2, 0.3], pga=0.5, overturn_scale=True, search_max=2.0)
+    rows = read_csv(out / "spectrum.csv")
+    b = s.blocks
+    assert len(b) == len(rows) == 10
+    for name in ("b_over_h", "alpha_rad", "width_m", "height_m", "r_m", "p_per_s", "scale", "pga_g", "peak_theta_over_alpha"):
+        assert list(b[name]) == floats(rows, name), name
+    assert list(b["end"]) == [r["end"] for r in rows]
+    assert [float(x) if h else None for x, h in zip(b["overturn_scale"], b["has_overturn_scale"])] == [
+        float(r["overturn_scale"]) if r["overturn_scale"] else None for r in rows
+    ]
+    assert [e or None for e in b["overturn_end"]] == [r["overturn_end"] or None for r in rows]
+    assert [int(w) for w in b["safe_windows"]] == [int(r["safe_windows"]) for r in rows]
+    assert any(b["has_overturn_scale"]) and not all(b["end"] == "overturned")
+
+
+def test_bad_sizes_are_refused_with_the_clis_message(cli, tmp_path: Path) -> None:
+    expected = cli.error("spectrum", "--record", str(KOBE), "--unit", "m/s2", "--from", "3", "--to", "0.2", "--out", str(tmp_path))
+    with pytest.raises(rocking.ConfigError) as e:
+        rocking.spectrum(KOBE, (3.0, 0.2, 50), unit="m/s2")
+    assert str(e.value) == expected
