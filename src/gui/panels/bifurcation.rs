@@ -24,6 +24,7 @@ pub mod sweeper;
 
 use std::time::{Duration, Instant};
 
+use crate::gui::panels::axes;
 use egui::Color32;
 use egui_plot::{Legend, Plot, PlotBounds, PlotPoint, PlotPoints, Points, Polygon, VLine};
 
@@ -471,7 +472,7 @@ impl BifurcationView {
             .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &t| {
                 (lo.min(t), hi.max(t))
             });
-        let resp = Plot::new("bifurcation")
+        let resp = axes::readable(Plot::new("bifurcation"))
             .x_axis_label(self.param.as_str())
             .y_axis_label("Θ(τ_k)")
             .legend(Legend::default())

@@ -6,6 +6,7 @@
 //! carries a_h/g); the record's name, PGA and length are read once, when a
 //! run starts, from the scenario it runs ([`RecordLabel::of`]).
 
+use crate::gui::panels::axes;
 use egui::Color32;
 use egui_plot::{Line, Plot, PlotPoint, PlotPoints, VLine};
 
@@ -93,19 +94,13 @@ pub fn ground_plot(
     view.work += view.scratch.len() as u64;
     let pts = view.scratch.clone();
     let pga = label.pga_g;
-    Plot::new("ground")
+    axes::readable(Plot::new("ground"))
         .x_axis_label(scales.time_label())
         .y_axis_label("a_h [g]")
         .include_x(0.0)
         .include_x(t1)
         .include_y(-pga)
         .include_y(pga)
-        // Steps of 1, 5, 25, … × 10ⁿ: labels at ±0.2 g or ±0.5 g where
-        // decimal steps would label only 0 in a panel this short.
-        .y_grid_spacer(egui_plot::log_grid_spacer(5))
-        // Likewise in time: 5 s or 25 s steps label a minute-long record in
-        // this narrow panel where 10 s steps go unlabelled.
-        .x_grid_spacer(egui_plot::log_grid_spacer(5))
         .allow_drag(false)
         .allow_zoom(false)
         .allow_scroll(false)

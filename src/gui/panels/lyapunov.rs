@@ -19,6 +19,7 @@
 //!   over. Hidden, the view does no work: the computation is cancelled and
 //!   starts over when shown again.
 
+use crate::gui::panels::axes;
 use egui::Color32;
 use egui_plot::{HLine, Line, Plot, PlotPoints};
 
@@ -205,7 +206,7 @@ impl LyapunovView {
                 .on_hover_text("Tangent dynamics with saltation matrices; ± is the standard error of batch means");
                 let stride = r.convergence.len().div_ceil(CURVE_POINTS).max(1);
                 let pts: Vec<[f64; 2]> = r.convergence.iter().step_by(stride).map(|&(t, l)| [t, l]).collect();
-                Plot::new("lyapunov")
+                axes::readable(Plot::new("lyapunov"))
                     .x_axis_label("τ")
                     .y_axis_label("λ₁ running, per τ")
                     .allow_double_click_reset(true)

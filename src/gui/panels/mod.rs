@@ -1,6 +1,7 @@
 //! The panels of the window. Each is a function of the app's state that
 //! draws; a panel the user hides is simply not called.
 
+pub mod axes;
 pub mod banner;
 pub mod bifurcation;
 pub mod ground;

@@ -6,6 +6,7 @@
 //! does no work. Values are shown in the units of a [`Scales`]
 //! (normalised or physical), whose axis titles name them.
 
+use crate::gui::panels::axes;
 use egui::Color32;
 use egui_plot::{Line, Plot, PlotBounds, PlotImage, PlotPoint, PlotPoints, Points};
 
@@ -76,7 +77,7 @@ pub fn phase_plot(
     };
     view.work += recent.len() as u64;
     let tip = scales.tip_angle();
-    let resp = Plot::new("phase")
+    let resp = axes::readable(Plot::new("phase"))
         .x_axis_label(scales.theta_label())
         .y_axis_label(scales.theta_dot_label())
         .include_x(-tip)
@@ -153,7 +154,7 @@ pub fn poincare_plot(ui: &mut egui::Ui, hist: &RunHistory, view: &mut PoincareVi
     let ppp = ui.ctx().pixels_per_point();
     let auto_fit = view.auto_fit;
     let PoincareView { grid, texture, .. } = view;
-    let resp = Plot::new("poincare")
+    let resp = axes::readable(Plot::new("poincare"))
         .x_axis_label(format!("{} at τ_k", scales.theta_label()))
         .y_axis_label(format!("{} at τ_k", scales.theta_dot_label()))
         .auto_bounds(false)
@@ -335,7 +336,7 @@ pub fn history_plot(ui: &mut egui::Ui, hist: &RunHistory, view: &mut HistoryView
         lines.push((name, color, view.scratch.clone()));
     }
     let tip = scales.tip_angle();
-    Plot::new("history")
+    axes::readable(Plot::new("history"))
         .x_axis_label(scales.time_label())
         .y_axis_label(scales.theta_label())
         .legend(egui_plot::Legend::default())
@@ -442,7 +443,7 @@ pub fn spectrum_plot(
         ui.label(egui::RichText::new(note).weak());
     }
     let pts: Vec<[f64; 2]> = view.points.iter().map(|p| [scales.frequency(p[0]), p[1]]).collect();
-    Plot::new("spectrum")
+    axes::readable(Plot::new("spectrum"))
         .x_axis_label(scales.frequency_label())
         .y_axis_label("log10 S/S_max")
         .include_y(0.0)

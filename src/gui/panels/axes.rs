@@ -1,0 +1,176 @@
+//! Readable plot axes at any zoom: numbered ticks on both axes, spaced
+//! 1–2–5 × 10ᵏ apart, and tick numbers with as many decimals as the
+//! spacing needs and no more.
+//!
+//! Why not egui_plot's default: its log-10 grid jumps tenfold between
+//! levels, so an axis spanning, say, −0.4 … 0.9 on 230 points gets lines
+//! every 0.1 (too close to number) and every 1 (only "0" visible): a
+//! plot with a single numbered tick, which a projector audience cannot
+//! read. A 1–2–5 ladder always leaves a level whose numbered ticks are
+//! between [`MIN_LABEL_GAP`] and 2.5× that apart.
+
+use std::ops::RangeInclusive;
+
+use egui_plot::{GridInput, GridMark, Plot};
+
+/// Smallest distance between numbered ticks, points, per axis: x numbers
+/// are wide ("−0.125"), so they need more room than y numbers (one line
+/// high). Both are above egui_plot's own label thresholds (60 and 20
+/// points), below which it fades numbers out.
+pub const MIN_LABEL_GAP: [f64; 2] = [72.0, 34.0];
+
+/// egui_plot's smallest grid spacing (points), which it turns into
+/// [`GridInput::base_step_size`]; set explicitly so the conversion from
+/// plot units to points is known.
+const GRID_MIN: f32 = 8.0;
+
+/// The smallest 1, 2 or 5 × 10ᵏ that is ≥ `raw` (> 0).
+pub fn nice_step(raw: f64) -> f64 {
+    if !(raw.is_finite() && raw > 0.0) {
+        return 1.0;
+    }
+    let k = raw.log10().floor();
+    let base = 10f64.powf(k);
+    for m in [1.0, 2.0, 5.0, 10.0] {
+        // A hair of slack so 0.2 (not exactly representable) is 2 × 0.1.
+        if m * base >= raw * (1.0 - 1e-9) {
+            return m * base;
+        }
+    }
+    10.0 * base
+}
+
+/// Grid marks for one axis: numbered ticks `major` apart and thin lines a
+/// fifth (or half, for a 2 step) of that. `points_per_unit` is the axis's
+/// scale, `min_gap` the smallest gap between numbered ticks in points.
+pub fn marks(bounds: (f64, f64), points_per_unit: f64, min_gap: f64) -> Vec<GridMark> {
+    let (lo, hi) = (bounds.0.min(bounds.1), bounds.0.max(bounds.1));
+    if !(lo.is_finite() && hi.is_finite() && points_per_unit.is_finite() && points_per_unit > 0.0) {
+        return Vec::new();
+    }
+    let major = nice_step(min_gap / points_per_unit);
+    let mantissa = major / 10f64.powf(major.log10().floor());
+    let minor = if (mantissa - 2.0).abs() < 1e-6 {
+        major / 2.0
+    } else {
+        major / 5.0
+    };
+    let mut out = Vec::new();
+    // Index from the step, not by accumulating, so 0 is exactly 0.
+    let first = (lo / minor).floor() as i64;
+    let last = (hi / minor).ceil() as i64;
+    if last - first > 2000 {
+        return out;
+    }
+    let per_major = (major / minor).round() as i64;
+    for i in first..=last {
+        let value = i as f64 * minor;
+        let step_size = if i.rem_euclid(per_major) == 0 { major } else { minor };
+        out.push(GridMark { value, step_size });
+    }
+    out
+}
+
+/// A tick's number: as many decimals as its step needs (a 0.05 step gives
+/// two, a 0.2 step one, a 5 step none), in scientific notation for very
+/// large or very small steps so a deep zoom still reads.
+pub fn format_tick(mark: GridMark, _range: &RangeInclusive<f64>) -> String {
+    let step = mark.step_size.abs();
+    let v = if mark.value.abs() < step * 1e-9 {
+        0.0
+    } else {
+        mark.value
+    };
+    if !(step.is_finite() && step > 0.0) {
+        return format!("{v}");
+    }
+    if step >= 1e5 || step < 1e-4 {
+        // Significant digits enough to tell neighbouring ticks apart.
+        let digits = ((v.abs().max(step)).log10().floor() - step.log10().floor()).clamp(0.0, 12.0) as usize;
+        return format!("{v:.digits$e}");
+    }
+    let decimals = (-step.log10() - 1e-9).ceil().clamp(0.0, 12.0) as usize;
+    format!("{v:.decimals$}")
+}
+
+/// `plot` with readable axes: 1–2–5 ticks numbered on both axes at any
+/// zoom ([`marks`]) and their numbers ([`format_tick`]).
+pub fn readable(plot: Plot<'_>) -> Plot<'_> {
+    let spacer = |axis: usize| {
+        move |input: GridInput| {
+            // base_step_size is the plot-unit length of GRID_MIN points.
+            let ppu = f64::from(GRID_MIN) / input.base_step_size;
+            marks(input.bounds, ppu, MIN_LABEL_GAP[axis])
+        }
+    };
+    plot.grid_spacing(egui::Rangef::new(GRID_MIN, 300.0))
+        .x_grid_spacer(spacer(0))
+        .y_grid_spacer(spacer(1))
+        .x_axis_formatter(format_tick)
+        .y_axis_formatter(format_tick)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn nice_steps_climb_the_one_two_five_ladder() {
+        assert_eq!(nice_step(0.7), 1.0);
+        assert_eq!(nice_step(1.0), 1.0);
+        assert_eq!(nice_step(1.3), 2.0);
+        assert_eq!(nice_step(3.0), 5.0);
+        assert_eq!(nice_step(6.0), 10.0);
+        assert!((nice_step(0.013) - 0.02).abs() < 1e-15);
+        assert!((nice_step(0.2) - 0.2).abs() < 1e-15);
+        assert_eq!(nice_step(f64::NAN), 1.0);
+    }
+
+    /// The case the issue saw: Θ' over −0.4 … 0.9 on 230 points showed
+    /// only "0". Now at least three numbered ticks, each at least the
+    /// minimum gap apart.
+    #[test]
+    fn a_short_axis_gets_several_numbered_ticks() {
+        let ppu = 230.0 / 1.3;
+        let m = marks((-0.4, 0.9), ppu, MIN_LABEL_GAP[1]);
+        let major: Vec<_> = m.iter().filter(|g| g.step_size > 0.15).collect();
+        assert!(major.len() >= 3, "{major:?}");
+        assert!(major[0].step_size * ppu >= MIN_LABEL_GAP[1]);
+        assert!(major.iter().any(|g| g.value == 0.0));
+    }
+
+    /// At any zoom, from 1e-9 to 1e9 wide, an axis of 300 points has
+    /// between 2 and 10 numbered ticks, and their numbers differ.
+    #[test]
+    fn any_zoom_keeps_two_to_ten_distinct_numbers() {
+        for e in -9..=9 {
+            for centre in [0.0, 0.3, -123.456] {
+                let width = 10f64.powi(e);
+                let bounds = (centre - width / 2.0, centre + width / 2.0);
+                let ppu = 300.0 / width;
+                let m = marks(bounds, ppu, MIN_LABEL_GAP[0]);
+                let top = m.iter().map(|g| g.step_size).fold(0.0, f64::max);
+                let labelled: Vec<_> = m
+                    .iter()
+                    .filter(|g| g.step_size == top && g.value >= bounds.0 && g.value <= bounds.1)
+                    .map(|g| format_tick(*g, &(bounds.0..=bounds.1)))
+                    .collect();
+                assert!((2..=10).contains(&labelled.len()), "{width} at {centre}: {labelled:?}");
+                let mut unique = labelled.clone();
+                unique.dedup();
+                assert_eq!(unique.len(), labelled.len(), "{width} at {centre}: {labelled:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn tick_numbers_have_the_decimals_their_step_needs() {
+        let t = |value, step_size| format_tick(GridMark { value, step_size }, &(0.0..=1.0));
+        assert_eq!(t(0.05, 0.05), "0.05");
+        assert_eq!(t(0.4, 0.2), "0.4");
+        assert_eq!(t(10.0, 5.0), "10");
+        assert_eq!(t(-1e-17, 0.1), "0.0");
+        assert_eq!(t(2e-6, 1e-6), "2e-6");
+        assert_eq!(t(3e6, 1e6), "3e6");
+    }
+}
