@@ -217,6 +217,11 @@ pub fn initial_mode(model: &Model, init: &InitialState) -> Result<(Mode, [f64; N
         Sign::of(init.theta_dot)
     };
     let tilt = Tilt::new(geo, pivot, init.theta);
+    // Tipped about its corner from the centred position, so the sliding
+    // displacement starts at 0 (docs/model.md §1.7): X₀ = −U's tilt term.
+    // Without this a block released tilted reported "sliding" of up to
+    // B/2 before it had slid at all.
+    y[2] = init.theta.signum() * (geo.sin_psi - (geo.psi * (1.0 - init.theta.abs())).sin());
     let stuck = tilt.c * geo.psi * init.theta_dot;
     let x_dot = init.x_dot.unwrap_or(stuck);
     y[3] = x_dot;
