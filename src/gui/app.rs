@@ -29,6 +29,7 @@ use crate::sim::runner::SimHandle;
 
 mod controls;
 mod layout;
+pub mod lecture;
 mod receive;
 mod record_open;
 mod status;
@@ -132,6 +133,8 @@ pub struct RockingApp {
     record_label: Option<RecordLabel>,
     ground: GroundView,
     record_question: Option<RecordQuestion>,
+    /// The note, the side panel's tab, the presentation scale, the fall.
+    lecture: lecture::Lecture,
 }
 
 impl RockingApp {
@@ -167,6 +170,11 @@ impl RockingApp {
             Speed::Max => app.max_speed = true,
         }
         app.message = message;
+        app.lecture.note = app
+            .settings
+            .origin
+            .strip_prefix("preset ")
+            .and_then(crate::gui::lessons::Note::of_preset);
         app
     }
 
@@ -231,6 +239,7 @@ impl RockingApp {
             record_label: None,
             ground: GroundView::default(),
             record_question: None,
+            lecture: lecture::Lecture::default(),
         }
     }
 
@@ -370,6 +379,7 @@ impl RockingApp {
         self.poincare.reset();
         self.spectrum.reset();
         self.flash_at = None;
+        self.lecture.fall_t0 = None;
     }
 
     /// Restarts from τ = 0.
@@ -398,6 +408,10 @@ impl RockingApp {
 
     /// Makes `settings` (resolved to `config`) the scene and restarts with it.
     pub fn apply(&mut self, settings: Settings, config: Scenario) {
+        if settings.origin != self.settings.origin {
+            // Another scene: its note, if any, comes with it (load_preset).
+            self.lecture.note = None;
+        }
         self.settings = settings;
         self.config = config.clone();
         self.new_run();
@@ -433,6 +447,8 @@ impl RockingApp {
         match Settings::preset(name).and_then(|s| s.resolve().map(|c| (s, c))) {
             Ok((s, c)) => {
                 self.apply(s, c);
+                self.lecture.note = crate::gui::lessons::Note::of_preset(name);
+                self.lecture.note_hidden = false;
                 self.message = Some(Message {
                     text: format!("preset {name}"),
                     error: false,

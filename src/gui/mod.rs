@@ -10,8 +10,11 @@
 pub mod app;
 pub mod block_view;
 pub mod export;
+pub mod glossary;
 pub mod history;
+pub mod lessons;
 pub mod panels;
+pub mod prefs;
 pub mod settings;
 pub mod units;
 
@@ -37,13 +40,9 @@ pub fn run(settings: Settings, config: Scenario) -> Result<(), String> {
         &title,
         options,
         Box::new(move |cc| {
-            Ok(Box::new(RockingApp::live(
-                cc,
-                settings,
-                config,
-                Speed::default(),
-                false,
-            )))
+            let mut app = RockingApp::live(cc, settings, config, Speed::default(), false);
+            app.remember_scale(&cc.egui_ctx);
+            Ok(Box::new(app))
         }),
     )
     .map_err(|e| format!("cannot open the window: {e}"))

@@ -4,6 +4,13 @@
 /// `(name, TOML text)` of every preset.
 pub const PRESETS: &[(&str, &str)] = &[
     ("default", include_str!("../../assets/presets/default.toml")),
+    ("free-rocking", include_str!("../../assets/presets/free-rocking.toml")),
+    ("period-one", include_str!("../../assets/presets/period-one.toml")),
+    (
+        "period-doubling",
+        include_str!("../../assets/presets/period-doubling.toml"),
+    ),
+    ("sliding", include_str!("../../assets/presets/sliding.toml")),
     ("fig3", include_str!("../../assets/presets/fig3.toml")),
     ("fig4", include_str!("../../assets/presets/fig4.toml")),
     ("fig5", include_str!("../../assets/presets/fig5.toml")),

@@ -1,10 +1,12 @@
 //! The top bar (File, Presets and View menus, playback, perturbation, speed
 //! and ghosts) and the keyboard shortcuts that mirror its buttons.
 
+use super::lecture::SideTab;
 use super::{Message, RockingApp};
 use crate::gui::export;
 use crate::gui::settings::Settings;
 use crate::gui::units::Units;
+use crate::gui::{glossary, lessons, prefs};
 use crate::sim::protocol::{MAX_GHOSTS, Speed};
 
 impl RockingApp {
@@ -35,33 +37,15 @@ impl RockingApp {
     pub(super) fn controls(&mut self, ui: &mut egui::Ui) {
         ui.horizontal_wrapped(|ui| {
             ui.menu_button("File", |ui| self.file_menu(ui));
-            ui.menu_button("Presets", |ui| {
-                for (name, text) in crate::io::presets::PRESETS {
-                    let title = text.lines().next().unwrap_or("").trim_start_matches('#').trim();
-                    if ui.button(*name).on_hover_text(title).clicked() {
-                        self.load_preset(name);
-                        ui.close();
-                    }
-                }
-            });
-            ui.menu_button("View", |ui| {
-                ui.checkbox(&mut self.show.params, "Parameters");
-                ui.checkbox(&mut self.show.scene, "Block scene");
-                ui.checkbox(&mut self.show.phase, "Phase portrait");
-                ui.checkbox(&mut self.show.poincare, "Poincaré points");
-                ui.checkbox(&mut self.show.history, "Time history");
-                ui.checkbox(&mut self.show.spectrum, "Power spectrum");
-                ui.checkbox(&mut self.show.bifurcation, "Bifurcation diagram");
-                ui.checkbox(&mut self.show.lyapunov, "Lyapunov exponent");
-                ui.separator();
-                ui.checkbox(&mut self.forces, "Contact force and friction cone");
-            });
+            ui.menu_button("Presets", |ui| self.presets_menu(ui));
+            ui.menu_button("View", |ui| self.view_menu(ui));
+            ui.menu_button("Help", |ui| self.help_menu(ui));
             ui.separator();
             let shown = self.units();
             for units in [Units::Physical, Units::Normalised] {
                 let hover = match units {
                     Units::Physical => "t in s, θ in degrees, sliding in cm",
-                    Units::Normalised => "the paper's τ = p t, Θ = θ/ψ, X per R",
+                    Units::Normalised => "the paper's τ = p t, Θ = θ/ψ, X per R (the Help menu says what they mean)",
                 };
                 if ui
                     .selectable_label(shown == units, units.name())
@@ -120,7 +104,7 @@ impl RockingApp {
             if r.changed() {
                 self.send_speed();
             }
-            if ui.checkbox(&mut self.max_speed, "As fast as possible").changed() {
+            if ui.checkbox(&mut self.max_speed, "max").changed() {
                 self.send_speed();
             }
             ui.separator();
@@ -142,6 +126,95 @@ impl RockingApp {
                 self.send_ghosts();
             }
         });
+    }
+
+    /// Presets ▸ Phenomena (each with its note), The paper's figures (each
+    /// saying what the paper claims and what this model shows) and
+    /// Engineering (real records).
+    fn presets_menu(&mut self, ui: &mut egui::Ui) {
+        ui.menu_button("Phenomena", |ui| {
+            for lesson in lessons::PHENOMENA {
+                if ui.button(lesson.title).on_hover_text(lesson.look).clicked() {
+                    self.load_lesson(lesson);
+                    ui.close();
+                }
+            }
+        });
+        ui.menu_button("The paper's figures", |ui| {
+            for (name, says) in lessons::FIGURES {
+                let label = format!("{name}: {}", lessons::figure_title(name));
+                if ui.button(label).on_hover_text(*says).clicked() {
+                    self.load_preset(name);
+                    ui.close();
+                }
+            }
+        });
+        ui.menu_button("Engineering", |ui| {
+            for name in lessons::ENGINEERING {
+                let label = format!("{name}: {}", lessons::figure_title(name));
+                if ui.button(label).clicked() {
+                    self.load_preset(name);
+                    ui.close();
+                }
+            }
+        });
+        ui.separator();
+        if ui
+            .button("default: chaotic rocking with sliding")
+            .on_hover_text(lessons::figure_title("default"))
+            .clicked()
+        {
+            self.load_preset("default");
+            ui.close();
+        }
+    }
+
+    /// View ▸ panels, the contact force, and the presentation scale.
+    fn view_menu(&mut self, ui: &mut egui::Ui) {
+        ui.checkbox(&mut self.show.params, "Parameters");
+        ui.checkbox(&mut self.show.scene, "Block scene");
+        ui.checkbox(&mut self.show.phase, "Phase portrait");
+        ui.checkbox(&mut self.show.poincare, "Poincaré points");
+        ui.checkbox(&mut self.show.history, "Time history");
+        ui.checkbox(&mut self.show.spectrum, "Power spectrum");
+        // Opening an analysis brings its tab to the front.
+        if ui.checkbox(&mut self.show.bifurcation, "Bifurcation diagram").changed() && self.show.bifurcation {
+            self.set_side_tab(SideTab::Bifurcation);
+        }
+        if ui.checkbox(&mut self.show.lyapunov, "Lyapunov exponent").changed() && self.show.lyapunov {
+            self.set_side_tab(SideTab::Lyapunov);
+        }
+        ui.separator();
+        ui.checkbox(&mut self.forces, "Contact force and friction cone");
+        ui.separator();
+        let now = self.presentation_scale();
+        ui.label("Presentation scale (Ctrl + / Ctrl − / Ctrl 0)");
+        ui.horizontal_wrapped(|ui| {
+            for scale in prefs::SCALES {
+                let on = (now - scale).abs() < 0.01;
+                if ui.selectable_label(on, format!("{:.0} %", 100.0 * scale)).clicked() {
+                    self.set_presentation_scale(ui.ctx(), scale);
+                }
+            }
+        });
+    }
+
+    /// Help ▸ Symbols: Θ, τ, ψ and p in one sentence each.
+    fn help_menu(&mut self, ui: &mut egui::Ui) {
+        ui.label(egui::RichText::new("Symbols").strong());
+        ui.set_max_width(460.0);
+        let geo = self
+            .info
+            .as_ref()
+            .map_or_else(|| self.config.geometry(), |i| i.geometry);
+        for (symbol, sentence) in glossary::entries(&geo) {
+            ui.horizontal_wrapped(|ui| {
+                ui.label(egui::RichText::new(symbol).strong().size(18.0));
+                ui.label(sentence);
+            });
+        }
+        ui.separator();
+        ui.label("Keys: Space play/pause · S step · R reset · Ctrl +/− presentation scale");
     }
 
     fn file_menu(&mut self, ui: &mut egui::Ui) {

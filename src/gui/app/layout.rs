@@ -4,6 +4,7 @@
 use std::time::{Duration, Instant};
 
 use super::RockingApp;
+use super::lecture::{self, SideTab};
 use crate::gui::panels::banner::{self, Verdict};
 use crate::gui::panels::ground;
 use crate::gui::panels::params;
@@ -19,46 +20,78 @@ impl RockingApp {
     fn params_panel(&mut self, ui: &mut egui::Ui) {
         ui.heading("Parameters");
         ui.label(egui::RichText::new(&self.settings.origin).weak());
-        egui::ScrollArea::vertical().show(ui, |ui| {
+        egui::ScrollArea::both().show(ui, |ui| {
             let settings = &self.settings;
             let explicit = |k: &str| settings.explicit(k);
             let commit = params::show(ui, &self.config, &explicit, &mut self.edits);
             if let Some((key, raw)) = commit {
                 self.set_key(key, &raw);
             }
-            ui.add_space(8.0);
-            ui.label(egui::RichText::new("Modes").strong());
-            for (i, name) in Mode::NAMES.iter().enumerate() {
-                ui.horizontal(|ui| {
-                    let (r, _) = ui.allocate_exact_size(egui::vec2(12.0, 12.0), egui::Sense::hover());
-                    ui.painter().rect_filled(r, 2.0, scene::MODE_COLORS[i]);
-                    ui.label(*name);
-                });
-            }
         });
     }
 
-    fn analyses_panel(&mut self, ui: &mut egui::Ui) {
+    /// The tabs the side panel has: the plots and each analysis the View
+    /// menu opened.
+    pub(super) fn side_tabs(&self) -> Vec<SideTab> {
+        let mut tabs = Vec::new();
+        if self.show.phase || (self.show.poincare && self.has_section()) {
+            tabs.push(SideTab::Plots);
+        }
         if self.show.bifurcation {
-            ui.label("Bifurcation diagram (drag to zoom, double-click: full range)");
-            let height = if self.show.lyapunov {
-                ui.available_height() - 230.0
-            } else {
-                ui.available_height()
-            };
-            ui.allocate_ui(egui::vec2(ui.available_width(), height), |ui| {
-                ui.vertical(|ui| self.bifurcation.show(ui, &self.settings, &self.config));
-            });
+            tabs.push(SideTab::Bifurcation);
         }
         if self.show.lyapunov {
+            tabs.push(SideTab::Lyapunov);
+        }
+        tabs
+    }
+
+    /// A side panel showing one of `tabs`, with a tab bar when there are
+    /// several.
+    fn side_panel(&mut self, ui: &mut egui::Ui, tabs: &[SideTab]) {
+        let Some(&first) = tabs.first() else {
+            return;
+        };
+        if !tabs.contains(&self.lecture.tab) {
+            self.lecture.tab = first;
+        }
+        if tabs.len() > 1 {
+            ui.horizontal_wrapped(|ui| {
+                for &tab in tabs {
+                    ui.selectable_value(&mut self.lecture.tab, tab, tab.name());
+                }
+            });
             ui.separator();
-            ui.label("Largest Lyapunov exponent (from the initial state)");
-            self.lyapunov.show(ui, &self.config);
+        }
+        match self.lecture.tab {
+            SideTab::Plots => self.plots_panel(ui),
+            SideTab::Bifurcation => {
+                ui.label("Bifurcation diagram (drag to zoom, double-click: full range)");
+                self.bifurcation.show(ui, &self.settings, &self.config);
+            }
+            SideTab::Lyapunov => {
+                ui.label("Largest Lyapunov exponent (from the initial state)");
+                self.lyapunov.show(ui, &self.config);
+            }
         }
     }
 
     fn scene_panel(&mut self, ui: &mut egui::Ui) {
-        let full = ui.available_rect_before_wrap();
+        let mut full = ui.available_rect_before_wrap();
+        // What to look at, then the mode legend, each as tall as its text
+        // needs at this width, above the block.
+        if self.note().is_some() {
+            let used = ui
+                .scope_builder(egui::UiBuilder::new().max_rect(full), |ui| self.note_strip(ui))
+                .response
+                .rect;
+            full.min.y = used.max.y + 4.0;
+        }
+        let used = ui
+            .scope_builder(egui::UiBuilder::new().max_rect(full), lecture::legend)
+            .response
+            .rect;
+        full.min.y = used.max.y + 2.0;
         let (Some(info), Some(sample)) = (self.info.as_ref(), self.hist.samples.last()) else {
             ui.centered_and_justified(|ui| ui.label("waiting for the simulation…"));
             return;
@@ -77,8 +110,27 @@ impl RockingApp {
             }
             None => full,
         };
-        self.last_shown = Some(*sample);
         let now = ui.input(|i| i.time);
+        // After a tumble: the fall onto the side, drawn (not simulated).
+        let tumbled = matches!(
+            self.end,
+            Some(RunEnd::Terminal {
+                mode: Mode::Tumbled,
+                ..
+            })
+        );
+        let mut falling = None;
+        if tumbled {
+            let t0 = *self.lecture.fall_t0.get_or_insert(now);
+            let (shown, done) = lecture::fallen(&info.geometry, sample, now - t0);
+            if !done {
+                ui.ctx().request_repaint();
+            }
+            falling = Some(shown);
+        }
+        let sample = falling.as_ref().unwrap_or(sample);
+        self.last_shown = Some(*sample);
+        self.lecture.scene_rect = Some(full);
         let flash = self
             .flash_at
             .map_or(0.0, |t0| (1.0 - (now - t0) / FLASH_S).clamp(0.0, 1.0)) as f32;
@@ -100,6 +152,16 @@ impl RockingApp {
         let (shapes, scale, y_mid) = scene::build(&input, rect, &mut self.camera);
         let view = scene::view(rect, scale, &self.camera, y_mid, ui.ctx().pixels_per_point());
         scene::paint(ui, rect, shapes, view, self.gpu);
+        if falling.is_some() {
+            let text = "after the tumble: drawn, not simulated (the model stops when the centre of mass passes over the corner)";
+            ui.painter().text(
+                egui::pos2(rect.center().x, rect.max.y - 8.0),
+                egui::Align2::CENTER_BOTTOM,
+                text,
+                egui::FontId::proportional(14.0),
+                egui::Color32::from_rgb(255, 170, 150),
+            );
+        }
         if self.record_label.is_none()
             && let Some(v) = &verdict
         {
@@ -211,12 +273,24 @@ impl eframe::App for RockingApp {
     fn ui(&mut self, ui: &mut egui::Ui, _frame: &mut eframe::Frame) {
         let start = Instant::now();
         self.keys(ui);
+        self.follow_scale(ui.ctx());
+        // Panel sizes are fractions of the window (in points, so of what
+        // the presentation scale leaves): the block scene keeps at least
+        // a third of the width with every panel open, at 1280 × 800 and
+        // on a 1920 × 1080 projector alike.
+        let screen = ui.ctx().content_rect();
+        let (w, h) = (screen.width(), screen.height());
+        // Panels remember the size the user gave them, per presentation
+        // scale: a new scale starts from its own proportional defaults
+        // instead of keeping sizes in points meant for another.
+        let at = (self.lecture.scale * 100.0).round() as i32;
         egui::Panel::top("controls").show(ui, |ui| self.controls(ui));
         egui::Panel::bottom("status").show(ui, |ui| self.status(ui));
         if self.show.params {
-            egui::Panel::left("params")
+            egui::Panel::left(("params", at))
                 .resizable(true)
-                .default_size(300.0)
+                .default_size((0.23 * w).clamp(180.0, 340.0))
+                .size_range(150.0..=(0.3 * w).max(160.0))
                 .show(ui, |ui| self.params_panel(ui));
         }
         if self.show.history || self.show.spectrum || self.record_label.is_some() {
@@ -224,20 +298,15 @@ impl eframe::App for RockingApp {
             // earthquake itself: taller, with its own id so that each kind
             // keeps the height the user gave it.
             let (id, height) = if self.record_label.is_some() {
-                ("history with ground", 250.0)
+                ("history with ground", 0.31 * h)
             } else {
-                ("history", 190.0)
+                ("history", 0.24 * h)
             };
-            egui::Panel::bottom(id)
+            egui::Panel::bottom((id, at))
                 .resizable(true)
-                .default_size(height)
+                .default_size(height.clamp(140.0, 330.0))
+                .size_range(90.0..=(0.42 * h).max(100.0))
                 .show(ui, |ui| self.history_panel(ui));
-        }
-        if self.show.bifurcation || self.show.lyapunov {
-            egui::Panel::right("analyses")
-                .resizable(true)
-                .default_size(420.0)
-                .show(ui, |ui| self.analyses_panel(ui));
         }
         if !self.show.bifurcation {
             self.bifurcation.hide();
@@ -245,11 +314,27 @@ impl eframe::App for RockingApp {
         if !self.show.lyapunov {
             self.lyapunov.hide();
         }
-        if self.show.phase || (self.show.poincare && self.has_section()) {
-            egui::Panel::right("plots")
+        let tabs = self.side_tabs();
+        // A wide window (a 1920-pixel projector at scale 1) has room for
+        // the plots beside an analysis; a narrower one tabs them.
+        let wide = w >= 1500.0;
+        if wide && tabs.len() > 1 && tabs[0] == SideTab::Plots {
+            egui::Panel::right(("analyses", at))
                 .resizable(true)
-                .default_size(380.0)
+                .default_size(0.22 * w)
+                .size_range(200.0..=0.27 * w)
+                .show(ui, |ui| self.side_panel(ui, &tabs[1..]));
+            egui::Panel::right(("plots", at))
+                .resizable(true)
+                .default_size(0.2 * w)
+                .size_range(200.0..=0.25 * w)
                 .show(ui, |ui| self.plots_panel(ui));
+        } else if !tabs.is_empty() {
+            egui::Panel::right(("side", at))
+                .resizable(true)
+                .default_size((0.3 * w).clamp(220.0, 560.0))
+                .size_range(180.0..=(0.35 * w).max(190.0))
+                .show(ui, |ui| self.side_panel(ui, &tabs));
         }
         egui::CentralPanel::default().show(ui, |ui| {
             if self.show.scene {

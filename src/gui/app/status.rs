@@ -11,6 +11,14 @@ impl RockingApp {
             let p = self.info.as_ref().map_or(self.config.geometry().p, |i| i.geometry.p);
             ui.label(format!("τ = {:.2}", self.tau));
             ui.label(format!("t = {:.2} s", self.tau / p));
+            // The symbols, explained on hover (Help ▸ Symbols lists them).
+            let geo = self.info.as_ref().map_or_else(|| self.config.geometry(), |i| i.geometry);
+            let [theta, tau, psi, p_sym] = crate::gui::glossary::entries(&geo);
+            ui.label("Θ = θ/ψ").on_hover_text(theta.1);
+            ui.label("τ = p t").on_hover_text(tau.1);
+            ui.label(format!("ψ = {:.2}°", geo.psi.to_degrees())).on_hover_text(psi.1);
+            ui.label(format!("p = {:.3}/s", geo.p)).on_hover_text(p_sym.1);
+            ui.separator();
             let mode = self.hist.samples.last().map_or("–", |s| s.mode.name());
             ui.label(format!("mode: {mode}"));
             ui.label(format!("impacts: {}", self.hist.impacts));
@@ -26,6 +34,20 @@ impl RockingApp {
             ui.label(format!("speed: {rate}"));
             if let Some(end) = &self.end {
                 match end {
+                    RunEnd::Terminal {
+                        mode: crate::model::Mode::Tumbled,
+                        tau,
+                    } => {
+                        // When and why, and that the fall shown is drawn.
+                        let limit = self.info.as_ref().map_or(1.0, |i| i.scenario.run.tumble_theta);
+                        ui.colored_label(
+                            scene::mode_color(crate::model::Mode::Tumbled),
+                            format!(
+                                "tumbled at τ = {tau:.2} (t = {:.2} s): |Θ| reached {limit}, the centre of mass over the corner; the fall after it is drawn, not simulated",
+                                tau / p
+                            ),
+                        );
+                    }
                     RunEnd::Terminal { mode, tau } => {
                         ui.colored_label(scene::mode_color(*mode), format!("{} at τ = {tau:.3}", mode.name()));
                     }

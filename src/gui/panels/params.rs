@@ -164,7 +164,7 @@ pub const GROUPS: &[(&str, &[Key])] = &[
                 key: "excitation.file_h",
                 label: "record (h)",
                 unit: "",
-                help: "Horizontal record: PEER .AT2, two columns (time in s, acceleration) or one column with dt_h. Required for kind = record. File ▸ Open record… picks one.",
+                help: "Horizontal record: PEER .AT2, two columns (time in s, acceleration) or one column with dt_h. Required for kind = record. File menu: Open record… picks one.",
                 kind: Kind::Text,
             },
             Key {

@@ -170,9 +170,12 @@ pub fn poincare_plot(ui: &mut egui::Ui, hist: &RunHistory, view: &mut PoincareVi
             let bounds = plot_ui.plot_bounds();
             let frame = *plot_ui.transform().frame();
             // One cell per 2×2 physical pixels: a lone point stays visible.
+            // Never more than the GPU's largest texture (a tall panel at a
+            // large presentation scale would ask for more, and egui panics).
+            let max_side = plot_ui.ctx().input(|i| i.max_texture_side).max(1) as f32;
             let size = [
-                (frame.width() * ppp * 0.5).round().max(1.0) as usize,
-                (frame.height() * ppp * 0.5).round().max(1.0) as usize,
+                (frame.width() * ppp * 0.5).round().clamp(1.0, max_side) as usize,
+                (frame.height() * ppp * 0.5).round().clamp(1.0, max_side) as usize,
             ];
             let shown = [bounds.min()[0], bounds.max()[0], bounds.min()[1], bounds.max()[1]];
             let (lo, hi) = (scales.state_of(shown[0], shown[2]), scales.state_of(shown[1], shown[3]));

@@ -1,0 +1,306 @@
+//! The lecture-hall extras: the note above the block saying what to look
+//! at, the mode legend kept whole inside the block scene, the side panel's
+//! tabs, the presentation scale (remembered between sessions) and the
+//! fall drawn after a tumble.
+
+use std::path::PathBuf;
+
+use super::{Message, RockingApp};
+use crate::gui::lessons::{Lesson, Note};
+use crate::gui::panels::scene;
+use crate::gui::prefs::{self, Prefs};
+use crate::model::Mode;
+use crate::model::geometry::Geometry;
+use crate::sim::protocol::Sample;
+
+/// How long the drawn fall after a tumble takes, s of wall-clock time:
+/// about what a 2 m block takes to fall over, slow enough to follow.
+pub const FALL_S: f64 = 1.2;
+
+/// What the side panel shows when several analyses are open (a narrow
+/// window tabs them instead of squeezing the block between columns).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SideTab {
+    /// Phase portrait and Poincaré points.
+    Plots,
+    /// The bifurcation diagram.
+    Bifurcation,
+    /// The running Lyapunov exponent.
+    Lyapunov,
+}
+
+impl SideTab {
+    /// The tab's label.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Plots => "Phase & Poincaré",
+            Self::Bifurcation => "Bifurcation",
+            Self::Lyapunov => "Lyapunov",
+        }
+    }
+}
+
+/// The state of the extras.
+#[derive(Debug)]
+pub struct Lecture {
+    /// The note above the block, if the scene has one.
+    pub note: Option<Note>,
+    /// Whether the user closed it.
+    pub note_hidden: bool,
+    /// The side panel's tab.
+    pub tab: SideTab,
+    /// The presentation scale in effect (egui's zoom factor).
+    pub scale: f32,
+    /// Where the scale is remembered; `None`: not remembered (tests,
+    /// fixed streams).
+    pub prefs_path: Option<PathBuf>,
+    /// Wall-clock time (egui's input time, s) the drawn fall started.
+    pub fall_t0: Option<f64>,
+    /// Where the block scene was drawn last frame, points.
+    pub scene_rect: Option<egui::Rect>,
+}
+
+impl Default for Lecture {
+    fn default() -> Self {
+        Self {
+            note: None,
+            note_hidden: false,
+            tab: SideTab::Plots,
+            scale: 1.0,
+            prefs_path: None,
+            fall_t0: None,
+            scene_rect: None,
+        }
+    }
+}
+
+/// The sample to draw `t` seconds into the fall after a tumble at `end`:
+/// the block turned about the corner it tumbled over until it lies on its
+/// side (|θ| = π/2), that corner held fixed. This is geometry, not
+/// mechanics: the model stops at its tumble criterion, and what comes
+/// after is drawn, accelerating like a fall (angle ∝ t²) so it reads as one.
+pub fn fallen(geo: &Geometry, end: &Sample, t: f64) -> (Sample, bool) {
+    let s = if end.theta == 0.0 { 1.0 } else { end.theta.signum() };
+    let progress = (t / FALL_S).clamp(0.0, 1.0);
+    let theta = end.theta + (s * geo.side_theta() - end.theta) * progress * progress;
+    // The pivot's position stays where it was at the tumble (docs/model.md
+    // §1.4: X_p = X + s·sin(ψ(1 − |Θ|))).
+    let pivot = end.x + s * (geo.psi * (1.0 - end.theta.abs())).sin();
+    let x = pivot - s * (geo.psi * (1.0 - theta.abs())).sin();
+    let mut shown = *end;
+    shown.state.theta = theta;
+    shown.state.x = x;
+    shown.state.theta_dot = 0.0;
+    shown.state.mode = Mode::Tumbled;
+    (shown, progress >= 1.0)
+}
+
+impl RockingApp {
+    /// The note shown above the block, if any (and not closed).
+    pub fn note(&self) -> Option<&Note> {
+        self.lecture.note.as_ref().filter(|_| !self.lecture.note_hidden)
+    }
+
+    /// Shows `note` above the block (a scene loaded some other way than
+    /// by its preset's name, e.g. a fixed stream in a snapshot).
+    pub fn set_note(&mut self, note: Note) {
+        self.lecture.note = Some(note);
+        self.lecture.note_hidden = false;
+    }
+
+    /// Where the block scene (below the note and legend) was drawn last
+    /// frame, points.
+    pub fn scene_rect(&self) -> Option<egui::Rect> {
+        self.lecture.scene_rect
+    }
+
+    /// The state the scene drew last frame: the run's latest sample, or
+    /// after a tumble the drawn fall.
+    pub fn shown_sample(&self) -> Option<&Sample> {
+        self.last_shown.as_ref()
+    }
+
+    /// What the scene came from (`preset NAME` or a file).
+    pub fn settings_origin(&self) -> &str {
+        &self.settings.origin
+    }
+
+    /// How many ghost copies the app asked for.
+    pub fn ghost_count(&self) -> usize {
+        self.ghost_count
+    }
+
+    /// The ghost copies' latest states.
+    pub fn ghosts(&self) -> &[crate::sim::protocol::GhostState] {
+        &self.ghosts
+    }
+
+    /// The side panel's tab.
+    pub fn side_tab(&self) -> SideTab {
+        self.lecture.tab
+    }
+
+    /// Shows `tab` in the side panel.
+    pub fn set_side_tab(&mut self, tab: SideTab) {
+        self.lecture.tab = tab;
+    }
+
+    /// The presentation scale in effect.
+    pub fn presentation_scale(&self) -> f32 {
+        self.lecture.scale
+    }
+
+    /// Remembers the presentation scale in `path` from now on (and uses
+    /// the one stored there, if any).
+    pub fn remember_scale_in(&mut self, ctx: &egui::Context, path: PathBuf) {
+        match Prefs::load(&path) {
+            Ok(p) => {
+                self.lecture.scale = p.scale;
+                ctx.set_zoom_factor(p.scale);
+            }
+            Err(e) => self.message = Some(Message { text: e, error: true }),
+        }
+        self.lecture.prefs_path = Some(path);
+    }
+
+    /// Remembers the scale where the user's config lives
+    /// ([`prefs::default_path`]): the desktop app does, tests do not.
+    pub fn remember_scale(&mut self, ctx: &egui::Context) {
+        if let Some(path) = prefs::default_path() {
+            self.remember_scale_in(ctx, path);
+        }
+    }
+
+    /// Sets the presentation scale (clamped), and remembers it.
+    pub fn set_presentation_scale(&mut self, ctx: &egui::Context, scale: f32) {
+        ctx.set_zoom_factor(Prefs::clamp_scale(scale));
+        self.follow_scale(ctx);
+    }
+
+    /// Picks up a scale changed by egui's own Ctrl +/−/0 and stores it.
+    pub(super) fn follow_scale(&mut self, ctx: &egui::Context) {
+        let z = ctx.zoom_factor();
+        if z == self.lecture.scale {
+            return;
+        }
+        let clamped = Prefs::clamp_scale(z);
+        if clamped != z {
+            ctx.set_zoom_factor(clamped);
+        }
+        self.lecture.scale = clamped;
+        if let Some(path) = &self.lecture.prefs_path
+            && let Err(e) = (Prefs { scale: clamped }).save(path)
+        {
+            self.message = Some(Message { text: e, error: true });
+        }
+    }
+
+    /// Loads phenomenon `lesson`: its preset, its note, and how the app
+    /// shows it (ghosts, speed, forces).
+    pub fn load_lesson(&mut self, lesson: &Lesson) {
+        self.load_preset(lesson.preset);
+        if self.message.as_ref().is_some_and(|m| m.error) {
+            return;
+        }
+        self.lecture.note = Some(Note::of_lesson(lesson));
+        self.lecture.note_hidden = false;
+        (self.ghost_count, self.ghost_eps) = lesson.ghosts;
+        self.send_ghosts();
+        self.speed = lesson.speed;
+        self.max_speed = false;
+        self.send_speed();
+        self.forces = lesson.forces;
+    }
+
+    /// The note strip at the top of `ui`: the title in bold, the sentence
+    /// wrapped, and a button to close it.
+    pub(super) fn note_strip(&mut self, ui: &mut egui::Ui) {
+        let Some(note) = self.note().cloned() else {
+            return;
+        };
+        egui::Frame::new()
+            .fill(egui::Color32::from_rgb(28, 44, 66))
+            .corner_radius(4.0)
+            .inner_margin(egui::Margin::symmetric(10, 6))
+            .show(ui, |ui| {
+                ui.set_width(ui.available_width());
+                ui.horizontal(|ui| {
+                    ui.label(egui::RichText::new(&note.title).strong().size(17.0));
+                    ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
+                        if ui.small_button("×").on_hover_text("Hide this note").clicked() {
+                            self.lecture.note_hidden = true;
+                        }
+                    });
+                });
+                ui.label(egui::RichText::new(&note.text).size(15.0));
+            });
+    }
+}
+
+/// The mode legend, one swatch and name per contact mode, wrapped to the
+/// width it is given so it is never cut off.
+pub fn legend(ui: &mut egui::Ui) {
+    ui.horizontal_wrapped(|ui| {
+        ui.spacing_mut().item_spacing.x = 4.0;
+        for (i, name) in Mode::NAMES.iter().enumerate() {
+            let (r, _) = ui.allocate_exact_size(egui::vec2(12.0, 12.0), egui::Sense::hover());
+            ui.painter().rect_filled(r, 2.0, scene::MODE_COLORS[i]);
+            ui.label(*name);
+            ui.add_space(8.0);
+        }
+    });
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::sim::HistoryRow;
+
+    fn at_tumble(geo: &Geometry) -> Sample {
+        let _ = geo;
+        Sample {
+            state: HistoryRow {
+                tau: 10.0,
+                theta: 1.0,
+                theta_dot: 0.3,
+                x: 0.02,
+                x_dot: 0.0,
+                mode: Mode::Tumbled,
+            },
+            a_h: 0.0,
+            a_v: 0.0,
+            base_x: 0.0,
+            normal: 0.0,
+            friction: 0.0,
+        }
+    }
+
+    /// The fall ends lying on the side, its centre of mass B/2 above the
+    /// base and H/2 beyond the corner it fell over, which never moves.
+    #[test]
+    fn the_drawn_fall_ends_on_the_side_about_a_fixed_corner() {
+        let geo = Geometry::new(1.0, 4.0);
+        let end = at_tumble(&geo);
+        let corner = |s: &Sample| {
+            crate::sim::protocol::pose(&geo, s.theta, s.x, s.mode, 0.0)
+                .pivot
+                .unwrap()
+                .0
+        };
+        let c0 = corner(&end);
+        let (mid, done) = fallen(&geo, &end, 0.5 * FALL_S);
+        assert!(!done);
+        assert!(mid.theta > 1.0 && mid.theta < geo.side_theta());
+        assert!((corner(&mid) - c0).abs() < 1e-12);
+        let (last, done) = fallen(&geo, &end, 2.0 * FALL_S);
+        assert!(done);
+        assert!((last.theta * geo.psi - std::f64::consts::FRAC_PI_2).abs() < 1e-12);
+        let p = crate::sim::protocol::pose(&geo, last.theta, last.x, last.mode, 0.0);
+        assert!((p.y - 0.5).abs() < 1e-12, "centre at B/2, got {}", p.y);
+        assert!(
+            (p.x - c0 - 2.0).abs() < 1e-12,
+            "H/2 beyond the corner, got {}",
+            p.x - c0
+        );
+    }
+}
