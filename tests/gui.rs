@@ -74,6 +74,19 @@ fn open_menu(h: &mut Harness<'static, RockingApp>, menu: &str, item: &str) {
     panic!("menu {menu} did not show {item}");
 }
 
+/// Opens Presets, then its submenu `group`, until `item` shows.
+fn open_preset(h: &mut Harness<'static, RockingApp>, group: &str, item: &str) {
+    open_menu(h, "Presets", group);
+    h.get_by_label(group).click();
+    for _ in 0..10 {
+        h.step();
+        if h.query_by_label(item).is_some() {
+            return;
+        }
+    }
+    panic!("Presets > {group} did not show {item}");
+}
+
 /// Toggles a panel from the View menu, starting with every menu closed.
 fn toggle_view(h: &mut Harness<'static, RockingApp>, item: &str) {
     h.key_press(egui::Key::Escape);
@@ -136,8 +149,8 @@ fn an_invalid_value_is_refused_with_a_message_naming_the_key() {
 fn choosing_a_preset_runs_it() {
     let mut h = live(false, Speed::RealTime(1.0));
     h.step();
-    open_menu(&mut h, "Presets", "fig16");
-    h.get_by_label("fig16").click();
+    open_preset(&mut h, "The paper's figures", "fig16: Rocking with sliding");
+    h.get_by_label("fig16: Rocking with sliding").click();
     h.step();
     let cfg = h.state().config();
     assert_eq!(
@@ -854,8 +867,9 @@ fn issue_14_the_record_presets_are_listed_and_run() {
     for (k, name) in ["kobe-rack", "elcentro-statue"].into_iter().enumerate() {
         h.key_press(egui::Key::Escape);
         h.step();
-        open_menu(&mut h, "Presets", name);
-        h.get_by_label(name).click();
+        let label = format!("{name}: {}", rocking::gui::lessons::figure_title(name));
+        open_preset(&mut h, "Engineering", &label);
+        h.get_by_label(&label).click();
         h.step();
         assert_eq!(h.state().run_id(), RunId(k as u64 + 2));
         assert!(pump(&mut h, Duration::from_secs(20), |a| {

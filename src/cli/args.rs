@@ -12,7 +12,7 @@ use crate::sim::Scenario;
 /// (`--batch`, `sweep`, `map` and the app).
 #[derive(Debug, Clone, Default, clap::Args)]
 pub struct SceneArgs {
-    /// A preset (default, fig3 … fig19; `--list-presets` shows them); the
+    /// A preset (default, phenomena such as period-doubling, fig3 … fig19; `--list-presets` shows them); the
     /// default preset if neither this nor --config is given.
     #[arg(long, value_name = "NAME")]
     pub preset: Option<String>,

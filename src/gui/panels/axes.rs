@@ -57,8 +57,10 @@ pub fn marks(bounds: (f64, f64), points_per_unit: f64, min_gap: f64) -> Vec<Grid
     };
     let mut out = Vec::new();
     // Index from the step, not by accumulating, so 0 is exactly 0.
-    let first = (lo / minor).floor() as i64;
-    let last = (hi / minor).ceil() as i64;
+    // Only marks inside the axis: a number just outside it is drawn
+    // half-clipped at the plot's edge.
+    let first = (lo / minor).ceil() as i64;
+    let last = (hi / minor).floor() as i64;
     if last - first > 2000 {
         return out;
     }
