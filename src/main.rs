@@ -61,7 +61,7 @@ fn open_window(cli: &Cli) -> ! {
         );
         std::process::exit(EXIT_BAD_INPUT);
     }
-    match rocking::gui::run(settings, config) {
+    match rocking::gui::run(settings, config, cli.paused) {
         Ok(()) => std::process::exit(0),
         Err(e) => {
             eprintln!("error: {e}");

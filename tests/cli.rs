@@ -444,3 +444,30 @@ fn the_app_reports_a_bad_record_before_its_window() {
     assert_eq!(err.trim_end().lines().count(), 1, "{err}");
     assert!(err.contains("excitation.file_h: /nonexistent/record.txt"), "{err}");
 }
+
+/// `--paused` is for the app; with `--batch` it is refused, not ignored.
+#[test]
+fn paused_is_refused_with_batch() {
+    let o = rocking().args(["--batch", "--paused"]).output().expect("runs");
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(err.contains("'--paused'") && err.contains("'--batch'"), "{err}");
+}
+
+/// Every phenomenon preset runs headless too, as its header says.
+#[test]
+fn the_phenomenon_presets_run_headless_as_their_headers_say() {
+    let dir = std::env::temp_dir().join(format!("rocking-phenomena-{}", std::process::id()));
+    let o = rocking()
+        .args(["--batch", "--preset", "free-rocking", "--out"])
+        .arg(&dir)
+        .output()
+        .expect("runs");
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert_eq!(o.status.code(), Some(0), "{out}");
+    // 124 impacts, at rest by t = 11.2 s, and no sliding: released
+    // tilted about its corner, it has not slid at all.
+    assert!(out.contains("no sliding; at rest from t = 11.2"), "{out}");
+    assert!(out.contains("impacts 124 "), "{out}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}

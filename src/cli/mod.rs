@@ -63,6 +63,10 @@ pub struct Cli {
     /// List the presets and exit.
     #[arg(long)]
     pub list_presets: bool,
+    /// Open the app paused on its first frame (Space plays): for a lecture
+    /// that starts with the question "what will it do?".
+    #[arg(long, conflicts_with = "batch")]
+    pub paused: bool,
     /// Print nothing but errors.
     #[arg(long, short)]
     pub quiet: bool,

@@ -25,8 +25,9 @@ use crate::sim::Scenario;
 use crate::sim::protocol::Speed;
 
 /// Opens the window on `settings` (resolved to `config`) and runs until it
-/// is closed. The block starts moving at once, in real time.
-pub fn run(settings: Settings, config: Scenario) -> Result<(), String> {
+/// is closed. The block starts moving at once, in real time, unless
+/// `paused`.
+pub fn run(settings: Settings, config: Scenario, paused: bool) -> Result<(), String> {
     let title = format!("rocking — {}", settings.origin);
     let options = eframe::NativeOptions {
         viewport: egui::ViewportBuilder::default()
@@ -40,7 +41,7 @@ pub fn run(settings: Settings, config: Scenario) -> Result<(), String> {
         &title,
         options,
         Box::new(move |cc| {
-            let mut app = RockingApp::live(cc, settings, config, Speed::default(), false);
+            let mut app = RockingApp::live(cc, settings, config, Speed::default(), paused);
             app.remember_scale(&cc.egui_ctx);
             Ok(Box::new(app))
         }),
