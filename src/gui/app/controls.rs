@@ -53,6 +53,7 @@ impl RockingApp {
                 ui.checkbox(&mut self.show.spectrum, "Power spectrum");
                 ui.checkbox(&mut self.show.bifurcation, "Bifurcation diagram");
                 ui.checkbox(&mut self.show.lyapunov, "Lyapunov exponent");
+                ui.checkbox(&mut self.show.map, "Outcome map");
                 ui.separator();
                 ui.checkbox(&mut self.forces, "Contact force and friction cone");
             });

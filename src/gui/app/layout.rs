@@ -46,8 +46,18 @@ impl RockingApp {
             } else {
                 ui.available_height()
             };
+            // With the outcome map below, the diagram takes half.
+            let height = if self.show.map { 0.5 * height } else { height };
             ui.allocate_ui(egui::vec2(ui.available_width(), height), |ui| {
                 ui.vertical(|ui| self.bifurcation.show(ui, &self.settings, &self.config));
+            });
+        }
+        if self.show.map {
+            ui.separator();
+            let lyapunov = if self.show.lyapunov { 230.0 } else { 0.0 };
+            let height = ui.available_height() - lyapunov;
+            ui.allocate_ui(egui::vec2(ui.available_width(), height), |ui| {
+                ui.vertical(|ui| self.outcome_map_panel(ui));
             });
         }
         if self.show.lyapunov {
@@ -233,7 +243,7 @@ impl eframe::App for RockingApp {
                 .default_size(height)
                 .show(ui, |ui| self.history_panel(ui));
         }
-        if self.show.bifurcation || self.show.lyapunov {
+        if self.show.bifurcation || self.show.lyapunov || self.show.map {
             egui::Panel::right("analyses")
                 .resizable(true)
                 .default_size(420.0)
@@ -244,6 +254,9 @@ impl eframe::App for RockingApp {
         }
         if !self.show.lyapunov {
             self.lyapunov.hide();
+        }
+        if !self.show.map {
+            self.outcome_map.hide();
         }
         if self.show.phase || (self.show.poincare && self.has_section()) {
             egui::Panel::right("plots")
