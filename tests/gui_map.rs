@@ -121,45 +121,53 @@ fn the_outcome_map_computes_in_the_background_refines_and_a_click_loads_the_cell
     assert!(!drawn.iter().any(|(s, _)| *s == Slot::Failed), "{drawn:?}");
     let (computed, total) = m.computed();
     assert_eq!(total, N * N);
-    assert!(computed < total, "refinement skipped some cells ({computed} of {total})");
+    assert!(
+        computed < total,
+        "refinement skipped some cells ({computed} of {total})"
+    );
     let _ = h.get_by_label_contains("refined where classes meet");
 
-    // The computed cells are the analysis layer's: spot-check the first
-    // computed cell of each class drawn against `block_map` of that cell.
+    // The computed cells are the analysis layer's, exactly: the full
+    // 16 × 16 `block_map` over the same axes and window.
     let (s, _) = scene();
     let base = s.resolve().unwrap();
-    let window = window_for(TINY, Y.1);
-    let mut checked = Vec::new();
-    for j in 0..N {
-        for i in 0..N {
-            let Some((class, Source::Computed)) = m.cell(i, j) else {
-                continue;
-            };
-            if checked.iter().any(|(_, _, c)| *c == class) {
-                continue;
+    let (ax, ay) = (
+        Axis::new("--x", X.0, X.1, X.2, N).unwrap(),
+        Axis::new("--y", Y.0, Y.1, Y.2, N).unwrap(),
+    );
+    let spec = BlockMap {
+        base: &base,
+        x_param: Param::Ah,
+        x: &ax,
+        y_param: Param::OmegaH,
+        y: &ay,
+        window: window_for(TINY, Y.1),
+        classify: ClassifyOptions::default(),
+        lyapunov: None,
+    };
+    let full = block_map(&spec, &rocking::analysis::silent).unwrap();
+    let (mut inherited, mut agree) = (0, 0);
+    for (c, want) in full.iter().enumerate() {
+        let (i, j) = (c % N, c / N);
+        let (slot, source) = m.cell(i, j).expect("every cell has a class");
+        match source {
+            Source::Computed => {
+                assert_eq!(m.response(i, j), Some(Some(want.response)), "cell ({i}, {j})");
+                assert_eq!(slot, Slot::of(Some(want.response)));
             }
-            checked.push((i, j, class));
+            Source::Inherited => {
+                inherited += 1;
+                agree += usize::from(slot == Slot::of(Some(want.response)));
+            }
+            Source::Unknown => panic!("cell ({i}, {j}) unknown"),
         }
     }
-    for &(i, j, class) in &checked {
-        let [(_, x), (_, y)] = m.cell_values(i, j).unwrap();
-        let (ax, ay) = (
-            Axis::new("--x", X.0, x, x, 1).unwrap(),
-            Axis::new("--y", Y.0, y, y, 1).unwrap(),
-        );
-        let spec = BlockMap {
-            base: &base,
-            x_param: Param::Ah,
-            x: &ax,
-            y_param: Param::OmegaH,
-            y: &ay,
-            window,
-            classify: ClassifyOptions::default(),
-            lyapunov: None,
-        };
-        let want = block_map(&spec, &rocking::analysis::silent).unwrap()[0].response;
-        assert_eq!(class, Some(want), "cell ({i}, {j}) at A_h = {x}, Ω_h = {y}");
-    }
+    println!("{agree} of {inherited} inherited cells have the full grid's class");
+    assert!(inherited > 0);
+    assert!(
+        agree as f64 >= 0.9 * inherited as f64,
+        "{agree} of {inherited} inherited cells agree with the full grid"
+    );
 
     // A click on a cell loads its two values; the map does not restart.
     let (i, j) = (11, 4);
@@ -189,10 +197,14 @@ fn the_outcome_map_computes_in_the_background_refines_and_a_click_loads_the_cell
 fn a_hidden_outcome_map_stops_and_a_bad_range_is_refused() {
     let mut h = quiet();
     // Long enough that it cannot finish before it is hidden.
-    small_map(h.state_mut(), 256, Window {
-        transient: 600.0,
-        tau_end: 800.0,
-    });
+    small_map(
+        h.state_mut(),
+        256,
+        Window {
+            transient: 600.0,
+            tau_end: 800.0,
+        },
+    );
     toggle_map(&mut h);
     assert!(pump(&mut h, Duration::from_secs(60), |a| a.outcome_map().threads() > 0));
     toggle_map(&mut h);
@@ -209,7 +221,10 @@ fn a_hidden_outcome_map_stops_and_a_bad_range_is_refused() {
         .outcome_map_mut()
         .set_axes(X, ("excitation.omega_h", 0.0, 8.0));
     toggle_map(&mut h);
-    assert!(pump(&mut h, Duration::from_secs(60), |a| a.outcome_map().invalid().is_some()));
+    assert!(pump(&mut h, Duration::from_secs(60), |a| a
+        .outcome_map()
+        .invalid()
+        .is_some()));
     let msg = h.state().outcome_map().invalid().unwrap().to_string();
     assert!(msg.contains("excitation.omega_h"), "{msg}");
     assert_eq!(h.state().outcome_map().computed().0, 0, "nothing ran");
@@ -218,11 +233,22 @@ fn a_hidden_outcome_map_stops_and_a_bad_range_is_refused() {
 /// Time to the first drawn level and to the whole 128 × 128 A_h × Ω_h map
 /// of the default scene over the view's default ranges and window, and
 /// the cells refinement computed. A measurement, not a check: run with
-/// `cargo test --release --test gui_map -- --ignored --nocapture`.
+/// `cargo test --release --test gui_map -- --ignored --nocapture` (set
+/// `OUTCOME_MAP_PNG=path` to keep a rendering).
 #[test]
 #[ignore]
 fn measure_the_default_outcome_map() {
-    let mut h = quiet();
+    // With `OUTCOME_MAP_PNG=path`, rendered on wgpu and saved there.
+    let png = std::env::var("OUTCOME_MAP_PNG").ok();
+    let mut h = if png.is_some() {
+        let (s, c) = scene();
+        Harness::builder()
+            .with_size(SIZE)
+            .wgpu()
+            .build_eframe(move |cc| RockingApp::with_stream(cc, s, c, Vec::new()))
+    } else {
+        quiet()
+    };
     h.state_mut().show.map = true;
     let start = Instant::now();
     h.step();
@@ -249,4 +275,8 @@ fn measure_the_default_outcome_map() {
         share = 100.0 * computed as f64 / total as f64,
         drawn = m.drawn(),
     );
+    if let Some(path) = png {
+        h.step();
+        h.render().expect("render").save(path).expect("png written");
+    }
 }

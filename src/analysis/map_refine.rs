@@ -90,7 +90,7 @@ impl<C: Copy + PartialEq> Refiner<C> {
         // The largest power of two s with s·(coarse − 1) ≤ n − 1: the coarse
         // lattice then has at least `coarse` points along the longer axis.
         let mut s = 1;
-        while 2 * s * (coarse.max(2) - 1) <= n - 1 {
+        while 2 * s * (coarse.max(2) - 1) < n {
             s *= 2;
         }
         Self {
@@ -290,7 +290,11 @@ mod tests {
         let r: Refiner<u8> = Refiner::new(256, 64, 16, 1);
         assert_eq!(r.coarse_stride(), 16);
         let r: Refiner<u8> = Refiner::new(5, 3, 16, 1);
-        assert_eq!(r.coarse_stride(), 1, "a map smaller than the coarse grid is computed whole");
+        assert_eq!(
+            r.coarse_stride(),
+            1,
+            "a map smaller than the coarse grid is computed whole"
+        );
     }
 
     #[test]
@@ -358,7 +362,10 @@ mod tests {
         for c in cells {
             r.record(c, 3);
         }
-        assert!(r.picture().iter().all(|&c| c == Some(3)), "drawn whole from the coarse level");
+        assert!(
+            r.picture().iter().all(|&c| c == Some(3)),
+            "drawn whole from the coarse level"
+        );
         let mut more = 0;
         while let Some(cells) = r.next_level() {
             more += cells.len();

@@ -22,19 +22,23 @@
 //! - The map is one texture of one texel per cell, rebuilt at most once a
 //!   frame when cells have arrived.
 
+mod draw;
 pub mod mapper;
+mod slot;
+
+pub use self::slot::Slot;
 
 use std::time::{Duration, Instant};
 
 use egui::{Color32, TextureHandle, TextureOptions};
-use egui_plot::{HLine, Plot, PlotBounds, PlotImage, PlotPoint, PlotTransform, VLine};
+use egui_plot::{PlotPoint, PlotTransform};
 
 use self::mapper::{Class, Mapper, Reply, Request};
-use crate::analysis::classify::{ClassifyOptions, Response};
+use crate::analysis::classify::ClassifyOptions;
 use crate::analysis::map_refine::{Refiner, Source};
 use crate::analysis::outcome_map::Axis;
 use crate::analysis::steady::Window;
-use crate::gui::panels::bifurcation::{PAPER_WINDOW, SHORT_WINDOW};
+use crate::gui::panels::bifurcation::SHORT_WINDOW;
 use crate::gui::settings::Settings;
 use crate::sim::{Param, Scenario};
 
@@ -54,8 +58,8 @@ pub const KEYS: [&str; 9] = [
 ];
 
 /// Cells per axis to choose from. 128 is the default: fine enough to see
-/// the structure of the overturning map, a few minutes of all cores in a
-/// release build for the default scene.
+/// the structure of the overturning map, about 35 s on two cores for the
+/// default scene (optimised build).
 pub const RESOLUTIONS: [usize; 4] = [32, 64, 128, 256];
 
 /// Default cells per axis.
@@ -64,91 +68,6 @@ pub const DEFAULT_RESOLUTION: usize = 128;
 /// Cells of the coarse level along the longer axis (at least): 17 × 17 at
 /// 128, a first picture after about 2 % of the full map's work.
 pub const COARSE: usize = 16;
-
-/// The classes the map tells apart, in legend order.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum Slot {
-    /// At rest.
-    Rest,
-    /// Period 1.
-    Period1,
-    /// Period 2.
-    Period2,
-    /// Period k ≥ 3.
-    PeriodK,
-    /// Quasiperiodic.
-    Quasiperiodic,
-    /// Chaotic.
-    Chaotic,
-    /// Tumbled.
-    Tumbled,
-    /// Left the base.
-    Flight,
-    /// The run failed.
-    Failed,
-}
-
-impl Slot {
-    /// Every slot, in legend order.
-    pub const ALL: [Slot; 9] = [
-        Slot::Rest,
-        Slot::Period1,
-        Slot::Period2,
-        Slot::PeriodK,
-        Slot::Quasiperiodic,
-        Slot::Chaotic,
-        Slot::Tumbled,
-        Slot::Flight,
-        Slot::Failed,
-    ];
-
-    /// The slot of a cell's class.
-    pub fn of(class: Class) -> Slot {
-        match class {
-            None => Slot::Failed,
-            Some(Response::Rest) => Slot::Rest,
-            Some(Response::Periodic { period: 1 }) => Slot::Period1,
-            Some(Response::Periodic { period: 2 }) => Slot::Period2,
-            Some(Response::Periodic { .. }) => Slot::PeriodK,
-            Some(Response::Quasiperiodic) => Slot::Quasiperiodic,
-            Some(Response::Chaotic) => Slot::Chaotic,
-            Some(Response::Tumbled) => Slot::Tumbled,
-            Some(Response::Flight) => Slot::Flight,
-        }
-    }
-
-    /// Legend name.
-    pub fn name(self) -> &'static str {
-        match self {
-            Slot::Rest => "rest",
-            Slot::Period1 => "period 1",
-            Slot::Period2 => "period 2",
-            Slot::PeriodK => "period k ≥ 3",
-            Slot::Quasiperiodic => "quasiperiodic",
-            Slot::Chaotic => "chaotic",
-            Slot::Tumbled => "tumbled",
-            Slot::Flight => "flight",
-            Slot::Failed => "failed",
-        }
-    }
-
-    /// Fill colour: blues for the periodic family (darker for longer
-    /// periods), green quasiperiodic, orange chaotic, grey rest, dark red
-    /// tumbled (the overturned region, the map's point), purple flight.
-    pub fn color(self) -> Color32 {
-        match self {
-            Slot::Rest => Color32::from_gray(150),
-            Slot::Period1 => Color32::from_rgb(150, 200, 255),
-            Slot::Period2 => Color32::from_rgb(80, 140, 235),
-            Slot::PeriodK => Color32::from_rgb(35, 75, 170),
-            Slot::Quasiperiodic => Color32::from_rgb(120, 220, 140),
-            Slot::Chaotic => Color32::from_rgb(255, 170, 80),
-            Slot::Tumbled => Color32::from_rgb(150, 30, 40),
-            Slot::Flight => Color32::from_rgb(190, 110, 230),
-            Slot::Failed => Color32::from_rgb(255, 60, 200),
-        }
-    }
-}
 
 /// The range a key is mapped over when chosen: |Θ₀| up to 0.9 (the
 /// tumble angle is 1) and Θ'₀ within ±1 for a basin; 0 to twice the
@@ -225,7 +144,9 @@ pub struct OutcomeMapView {
     key: Option<Key>,
     mapper: Option<Mapper>,
     retired: Vec<Mapper>,
-    refiner: Option<Refiner<Class>>,
+    refiner: Option<Refiner<Slot>>,
+    /// The exact class of each computed cell (the refiner keeps the slot).
+    responses: Vec<Option<Class>>,
     axes: Option<(Axis, Axis)>,
     texture: Option<TextureHandle>,
     transform: Option<PlotTransform>,
@@ -264,6 +185,7 @@ impl Default for OutcomeMapView {
             mapper: None,
             retired: Vec::new(),
             refiner: None,
+            responses: Vec::new(),
             axes: None,
             texture: None,
             transform: None,
@@ -350,7 +272,7 @@ impl OutcomeMapView {
     /// The class of cell (i, j) of the current map (column i from the
     /// left, row j from the bottom), if known, and whether it was computed
     /// or inherited.
-    pub fn cell(&self, i: usize, j: usize) -> Option<(Class, Source)> {
+    pub fn cell(&self, i: usize, j: usize) -> Option<(Slot, Source)> {
         let r = self.refiner.as_ref()?;
         let (x, y) = self.axes.as_ref()?;
         if i >= x.n || j >= y.n {
@@ -358,6 +280,16 @@ impl OutcomeMapView {
         }
         let c = j * x.n + i;
         r.class(c).map(|k| (k, r.source(c)))
+    }
+
+    /// The exact class of cell (i, j) if it was computed (`Some(None)`:
+    /// its run failed).
+    pub fn response(&self, i: usize, j: usize) -> Option<Class> {
+        let (x, y) = self.axes.as_ref()?;
+        if i >= x.n || j >= y.n {
+            return None;
+        }
+        self.responses.get(j * x.n + i).copied().flatten()
     }
 
     /// The values of cell (i, j): the pair of (key, value) a click on it
@@ -423,6 +355,7 @@ impl OutcomeMapView {
             self.retired.push(old);
         }
         self.refiner = None;
+        self.responses.clear();
         self.axes = None;
         self.failed.clear();
         self.counts.clear();
@@ -439,6 +372,7 @@ impl OutcomeMapView {
                 let ny = req.y.n;
                 self.axes = Some((req.x.clone(), req.y.clone()));
                 self.refiner = Some(Refiner::new(nx, ny, req.coarse, mapper::HALO));
+                self.responses = vec![None; nx * ny];
                 let ctx = ctx.clone();
                 match mapper::start(req, Box::new(move || ctx.request_repaint())) {
                     Ok(m) => {
@@ -502,7 +436,10 @@ impl OutcomeMapView {
                 Reply::Cell { index, class, error } => {
                     self.cells += 1;
                     self.level.1 += 1;
-                    r.record(index, class);
+                    r.record(index, Slot::of(class));
+                    if let Some(slot) = self.responses.get_mut(index) {
+                        *slot = Some(class);
+                    }
                     if let Some(e) = error {
                         self.failed.push((index, e));
                     }
@@ -536,19 +473,14 @@ impl OutcomeMapView {
         let mut counts = [0usize; Slot::ALL.len()];
         let mut pixels = vec![Color32::TRANSPARENT; nx * ny];
         for (c, class) in picture.iter().enumerate() {
-            if let Some(class) = class {
-                let slot = Slot::of(*class);
+            if let Some(slot) = *class {
                 counts[Slot::ALL.iter().position(|s| *s == slot).unwrap_or(0)] += 1;
                 // Texture rows go down, the map's y goes up.
                 let (i, j) = (c % nx, c / nx);
                 pixels[(ny - 1 - j) * nx + i] = slot.color();
             }
         }
-        self.counts = Slot::ALL
-            .into_iter()
-            .zip(counts)
-            .filter(|(_, n)| *n > 0)
-            .collect();
+        self.counts = Slot::ALL.into_iter().zip(counts).filter(|(_, n)| *n > 0).collect();
         let image = egui::ColorImage::new([nx, ny], pixels);
         if let Some(t) = self.texture.as_mut().filter(|t| t.size() == [nx, ny]) {
             t.set(image, TextureOptions::NEAREST);
@@ -575,234 +507,6 @@ impl OutcomeMapView {
         self.status(ui);
         self.legend(ui);
         self.plot(ui, cfg)
-    }
-
-    fn axis_controls(ui: &mut egui::Ui, name: &str, axis: &mut AxisChoice, cfg: &Scenario) {
-        ui.horizontal_wrapped(|ui| {
-            let label = ui.label(name);
-            let mut chosen = None;
-            egui::ComboBox::from_id_salt(("outcome map axis", name))
-                .selected_text(&axis.key)
-                .show_ui(ui, |ui| {
-                    for k in KEYS {
-                        if ui.selectable_label(k == axis.key, k).clicked() {
-                            chosen = Some(k);
-                        }
-                    }
-                })
-                .response
-                .labelled_by(label.id)
-                .on_hover_text(format!("The configuration key along the {name} axis"));
-            if let Some(k) = chosen
-                && k != axis.key
-            {
-                axis.key = k.to_string();
-                (axis.from, axis.to) = default_range(k, current_value(cfg, k).unwrap_or(0.0));
-            }
-            let l = ui.label(format!("{name} from"));
-            ui.add(egui::DragValue::new(&mut axis.from).speed(0.01))
-                .labelled_by(l.id);
-            let l = ui.label(format!("{name} to"));
-            ui.add(egui::DragValue::new(&mut axis.to).speed(0.01))
-                .labelled_by(l.id);
-        });
-    }
-
-    fn controls(&mut self, ui: &mut egui::Ui, cfg: &Scenario) {
-        ui.horizontal_wrapped(|ui| {
-            if ui
-                .button("A_h × Ω_h")
-                .on_hover_text("The overturning map: horizontal amplitude against forcing frequency")
-                .clicked()
-            {
-                self.edit.0.key = "excitation.a_h".into();
-                self.edit.1.key = "excitation.omega_h".into();
-                self.x = self.edit.0.clone();
-                self.y = self.edit.1.clone();
-                self.range_from(cfg);
-            }
-            if ui
-                .button("Θ₀ × Θ'₀")
-                .on_hover_text("The basin of attraction: where each initial state ends up")
-                .clicked()
-            {
-                self.edit.0.key = "initial.theta".into();
-                self.edit.1.key = "initial.theta_dot".into();
-                self.x = self.edit.0.clone();
-                self.y = self.edit.1.clone();
-                self.range_from(cfg);
-            }
-            let l = ui.label("Cells");
-            egui::ComboBox::from_id_salt("outcome map resolution")
-                .selected_text(format!("{0} × {0}", self.resolution))
-                .show_ui(ui, |ui| {
-                    for n in RESOLUTIONS {
-                        ui.selectable_value(&mut self.resolution, n, format!("{n} × {n}"));
-                    }
-                })
-                .response
-                .labelled_by(l.id)
-                .on_hover_text("Cells per axis of the finest level");
-            let run_label = ui.label("Run");
-            let text = |w: Window| format!("τ {}–{}", w.transient, w.tau_end);
-            egui::ComboBox::from_id_salt("outcome map window")
-                .selected_text(text(self.window))
-                .show_ui(ui, |ui| {
-                    ui.selectable_value(&mut self.window, SHORT_WINDOW, text(SHORT_WINDOW))
-                        .on_hover_text("Interactive: a third of the paper's run per cell");
-                    ui.selectable_value(&mut self.window, PAPER_WINDOW, text(PAPER_WINDOW))
-                        .on_hover_text("The paper's: section points from τ 600 to 800");
-                })
-                .response
-                .labelled_by(run_label.id)
-                .on_hover_text(
-                    "Section points are kept from the first τ to the second (longer where Ω_h is low, to hold enough points)",
-                );
-        });
-        Self::axis_controls(ui, "x", &mut self.edit.0, cfg);
-        Self::axis_controls(ui, "y", &mut self.edit.1, cfg);
-        ui.horizontal(|ui| {
-            if ui.button("Map").on_hover_text("Compute the map over these axes").clicked() {
-                self.x = self.edit.0.clone();
-                self.y = self.edit.1.clone();
-                self.ranged = true;
-            }
-            if ui
-                .button("Around the scene")
-                .on_hover_text("Ranges around the scene's current values")
-                .clicked()
-            {
-                self.x.key = self.edit.0.key.clone();
-                self.y.key = self.edit.1.key.clone();
-                self.range_from(cfg);
-            }
-        });
-    }
-
-    fn status(&self, ui: &mut egui::Ui) {
-        let red = Color32::from_rgb(235, 90, 90);
-        if let Some(e) = &self.invalid {
-            ui.colored_label(red, e);
-            return;
-        }
-        let (computed, total) = self.computed();
-        let share = if total > 0 {
-            100.0 * computed as f64 / total as f64
-        } else {
-            0.0
-        };
-        let line = if self.done {
-            let took = self
-                .took
-                .map_or(String::new(), |t| format!(" in {:.1} s", t.as_secs_f64()));
-            format!(
-                "{n} × {n} cells{took}; {computed} computed ({share:.0} %), the rest refined where classes meet",
-                n = self.resolution
-            )
-        } else {
-            let (stride, got, of) = self.level;
-            format!(
-                "computing: level {stride} cells per block, {got} / {of}; {computed} of {total} cells computed so far"
-            )
-        };
-        ui.horizontal_wrapped(|ui| {
-            ui.label(line).on_hover_text(
-                "Computed coarse first, then refined where classes meet: a cell whose surroundings at the level above \
-                 all have one class inherits it without being run",
-            );
-            if let Some((_, e)) = self.failed.first() {
-                ui.colored_label(red, format!("{} failed, first: {e}", self.failed.len()));
-            }
-        });
-    }
-
-    fn legend(&self, ui: &mut egui::Ui) {
-        ui.horizontal_wrapped(|ui| {
-            for slot in Slot::ALL {
-                let n = self.counts.iter().find(|(s, _)| *s == slot).map_or(0, |(_, n)| *n);
-                if slot == Slot::Failed && n == 0 {
-                    continue;
-                }
-                let (r, _) = ui.allocate_exact_size(egui::vec2(12.0, 12.0), egui::Sense::hover());
-                ui.painter().rect_filled(r, 2.0, slot.color());
-                let text = egui::RichText::new(slot.name());
-                ui.label(if n > 0 { text } else { text.weak() });
-            }
-        });
-    }
-
-    fn plot(&mut self, ui: &mut egui::Ui, cfg: &Scenario) -> Option<[(String, f64); 2]> {
-        let (x, y) = self.axes.clone()?;
-        let cell_w = (x.to - x.from) / (x.n - 1) as f64;
-        let cell_h = (y.to - y.from) / (y.n - 1) as f64;
-        let (x0, x1) = (x.from - 0.5 * cell_w, x.to + 0.5 * cell_w);
-        let (y0, y1) = (y.from - 0.5 * cell_h, y.to + 0.5 * cell_h);
-        let current = (current_value(cfg, &x.key), current_value(cfg, &y.key));
-        let texture = self.texture.as_ref().map(TextureHandle::id);
-        let index = |p: PlotPoint| {
-            let i = ((p.x - x.from) / cell_w).round();
-            let j = ((p.y - y.from) / cell_h).round();
-            (i >= 0.0 && j >= 0.0 && i < x.n as f64 && j < y.n as f64).then_some((i as usize, j as usize))
-        };
-        let resp = Plot::new("outcome map")
-            .x_axis_label(x.key.as_str())
-            .y_axis_label(y.key.as_str())
-            .allow_drag(false)
-            .allow_zoom(false)
-            .allow_scroll(false)
-            .allow_boxed_zoom(false)
-            .allow_double_click_reset(false)
-            .show_grid(false)
-            .show(ui, |plot_ui| {
-                plot_ui.set_plot_bounds(PlotBounds::from_min_max([x0, y0], [x1, y1]));
-                if let Some(t) = texture {
-                    plot_ui.image(
-                        PlotImage::new(
-                            "map",
-                            t,
-                            PlotPoint::new(0.5 * (x0 + x1), 0.5 * (y0 + y1)),
-                            egui::vec2((x1 - x0) as f32, (y1 - y0) as f32),
-                        )
-                        .allow_hover(false),
-                    );
-                }
-                let mark = Color32::from_rgb(255, 230, 60);
-                if let Some(v) = current.0 {
-                    plot_ui.vline(VLine::new("scene", v).color(mark).width(1.5));
-                }
-                if let Some(v) = current.1 {
-                    plot_ui.hline(HLine::new("scene", v).color(mark).width(1.5));
-                }
-                plot_ui.pointer_coordinate()
-            });
-        self.transform = Some(resp.transform);
-        let hovered = resp.inner.and_then(index);
-        let clicked = resp.response.clicked();
-        if let Some((i, j)) = hovered {
-            let what = match self.cell(i, j) {
-                Some((class, source)) => {
-                    let how = match source {
-                        Source::Computed => "computed",
-                        Source::Inherited => "inherited: refined where classes meet",
-                        Source::Unknown => "not yet known",
-                    };
-                    format!("{} ({how})", Slot::of(class).name())
-                }
-                None => "not yet computed".to_string(),
-            };
-            resp.response.on_hover_text(format!(
-                "{} = {:.4}, {} = {:.4}: {what}\nclick to load this scene",
-                x.key,
-                x.value(i),
-                y.key,
-                y.value(j)
-            ));
-        }
-        if clicked {
-            hovered.and_then(|(i, j)| self.cell_values(i, j))
-        } else {
-            None
-        }
     }
 }
 

@@ -15,8 +15,11 @@
 //!   mirrors the schedule with its own [`Refiner`] (the schedule depends
 //!   only on the classes, which it receives), so it never needs the
 //!   thread's copy.
-//! - A failed cell counts as a class of its own (`None`): its neighbours
-//!   are refined, and the view paints it as failed.
+//! - Refinement tells cells apart by their legend class ([`Slot`]): the
+//!   picture shows period 3 and period 6 in one colour, so a boundary
+//!   between them is not refined. A failed cell is a class of its own:
+//!   its neighbours are refined, and the view paints it as failed. Each
+//!   computed cell's exact class is still sent.
 //! - Cancellation: a flag checked before and after each cell. A cancelled
 //!   map finishes the cells already running (at most one per core) and
 //!   sends nothing more.
@@ -26,6 +29,7 @@
 
 use rayon::prelude::*;
 
+use super::Slot;
 use crate::analysis::classify::{ClassifyOptions, Response};
 use crate::analysis::map_refine::Refiner;
 use crate::analysis::outcome_map::{Axis, BlockMap};
@@ -121,7 +125,7 @@ fn run(req: &Request, link: &Link<Reply>) {
         return;
     }
     let nx = req.x.n;
-    let mut refiner: Refiner<Class> = Refiner::new(nx, req.y.n, req.coarse, HALO);
+    let mut refiner: Refiner<Slot> = Refiner::new(nx, req.y.n, req.coarse, HALO);
     while let Some(cells) = refiner.next_level() {
         let stride = refiner.stride().unwrap_or(1);
         if !send(Reply::Level {
@@ -154,7 +158,7 @@ fn run(req: &Request, link: &Link<Reply>) {
             return;
         }
         for (index, class) in results.into_iter().flatten() {
-            refiner.record(index, class);
+            refiner.record(index, Slot::of(class));
         }
     }
     send(Reply::Done);
