@@ -12,7 +12,7 @@ use rocking::analysis::classify::ClassifyOptions;
 use rocking::analysis::map_refine::Source;
 use rocking::analysis::outcome_map::{Axis, BlockMap, block_map};
 use rocking::analysis::steady::Window;
-use rocking::gui::panels::outcome_map::{Slot, window_for};
+use rocking::gui::panels::outcome_map::{Slot, default_range, window_for};
 use rocking::gui::{RockingApp, Settings};
 use rocking::sim::Param;
 
@@ -249,6 +249,19 @@ fn measure_the_default_outcome_map() {
     } else {
         quiet()
     };
+    // `OUTCOME_MAP_BASIN=1`: the Θ₀ × Θ'₀ basin instead; `OUTCOME_MAP_N=64`:
+    // another resolution.
+    if std::env::var("OUTCOME_MAP_BASIN").is_ok() {
+        let m = h.state_mut().outcome_map_mut();
+        let (x, y) = (
+            default_range("initial.theta", 0.0),
+            default_range("initial.theta_dot", 0.0),
+        );
+        m.set_axes(("initial.theta", x.0, x.1), ("initial.theta_dot", y.0, y.1));
+    }
+    if let Some(n) = std::env::var("OUTCOME_MAP_N").ok().and_then(|n| n.parse().ok()) {
+        h.state_mut().outcome_map_mut().resolution = n;
+    }
     h.state_mut().show.map = true;
     let start = Instant::now();
     h.step();

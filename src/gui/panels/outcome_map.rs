@@ -58,8 +58,8 @@ pub const KEYS: [&str; 9] = [
 ];
 
 /// Cells per axis to choose from. 128 is the default: fine enough to see
-/// the structure of the overturning map, about 35 s on two cores for the
-/// default scene (optimised build).
+/// the structure of the overturning map, 35–100 s on a shared two-core
+/// machine for the default scene (optimised build).
 pub const RESOLUTIONS: [usize; 4] = [32, 64, 128, 256];
 
 /// Default cells per axis.
