@@ -8,9 +8,10 @@
 //! - The view does no physics and no classification: each cell is the
 //!   analysis layer's steady response (run by [`mapper`] on a named
 //!   thread), and which cells are computed is the analysis layer's
-//!   refinement schedule ([`crate::analysis::map_refine`]). Cells inside a
-//!   uniform block inherit its class without being computed; the panel
-//!   says so.
+//!   refinement schedule ([`crate::analysis::map_refine`]), applied to
+//!   the legend's classes ([`Slot`]: period 3 and period 6 share a colour,
+//!   so the boundary between them is not refined). Cells inside a uniform
+//!   block inherit its class without being computed; the panel says so.
 //! - A map is computed for the scene's explicit keys with the two mapped
 //!   keys free. It restarts when any other key of the scene changes, or
 //!   when the axes, resolution or window change; setting a mapped key
