@@ -187,6 +187,7 @@ fn with_every_panel_open_the_block_keeps_a_third_of_the_width_and_the_legend_is_
             let show = &mut h.state_mut().show;
             show.bifurcation = true;
             show.lyapunov = true;
+            show.map = true;
         }
         assert!(pump(&mut h, Duration::from_secs(10), |a| a.scene_rect().is_some()));
         h.step();
@@ -201,9 +202,13 @@ fn with_every_panel_open_the_block_keeps_a_third_of_the_width_and_the_legend_is_
         // (kittest's rectangles are in points, like the scene's.)
         let inside =
             |r: egui::Rect| r.min.x >= scene.min.x - 1.0 && r.max.x <= scene.max.x + 1.0 && r.max.y <= size.y / scale;
+        // (The outcome map has a legend of its own with some of these.)
         for name in ["rest", "slide-rock", "tumbled", "flight"] {
-            let r = h.get_by_label(name).rect();
-            assert!(inside(r), "{size:?} at {scale}: {name} at {r:?}, scene {scene:?}");
+            let rects: Vec<_> = h.query_all_by_label(name).map(|n| n.rect()).collect();
+            assert!(
+                rects.iter().any(|&r| inside(r)),
+                "{size:?} at {scale}: {name} at {rects:?}, scene {scene:?}"
+            );
         }
         // The analyses are tabs beside the plots (narrow) or a column of
         // their own (wide), never a third column squeezing the block.
@@ -212,10 +217,12 @@ fn with_every_panel_open_the_block_keeps_a_third_of_the_width_and_the_legend_is_
             h.get_by_label("Lyapunov").click();
             h.step();
             assert_eq!(h.state().side_tab(), SideTab::Lyapunov);
+            assert!(h.query_all_by_label("Outcome map").count() >= 1, "the map is a tab too");
         }
         let show = &mut h.state_mut().show;
         show.bifurcation = false;
         show.lyapunov = false;
+        show.map = false;
         h.step();
     }
 }

@@ -23,6 +23,7 @@
 pub mod classify;
 pub mod engineering;
 pub mod lyapunov;
+pub mod map_refine;
 pub mod orbit_diagram;
 pub mod outcome_map;
 pub mod section;

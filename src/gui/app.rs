@@ -18,6 +18,7 @@ use crate::gui::history::RunHistory;
 use crate::gui::panels::bifurcation::BifurcationView;
 use crate::gui::panels::ground::{GroundView, RecordLabel};
 use crate::gui::panels::lyapunov::LyapunovView;
+use crate::gui::panels::outcome_map::OutcomeMapView;
 use crate::gui::panels::params::Edits;
 use crate::gui::panels::plots::{HistoryView, PhaseView, PoincareView, SpectrumView};
 use crate::gui::panels::scene::Camera;
@@ -30,6 +31,7 @@ use crate::sim::runner::SimHandle;
 mod controls;
 mod layout;
 pub mod lecture;
+mod map_panel;
 mod receive;
 mod record_open;
 mod status;
@@ -67,6 +69,9 @@ pub struct Show {
     /// The running largest Lyapunov exponent. Off at start, like the
     /// bifurcation diagram: it keeps a core busy for seconds.
     pub lyapunov: bool,
+    /// The outcome map over two keys. Off at start: it keeps every core
+    /// busy for minutes.
+    pub map: bool,
 }
 
 impl Default for Show {
@@ -80,6 +85,7 @@ impl Default for Show {
             spectrum: true,
             bifurcation: false,
             lyapunov: false,
+            map: false,
         }
     }
 }
@@ -119,6 +125,7 @@ pub struct RockingApp {
     spectrum: SpectrumView,
     bifurcation: BifurcationView,
     lyapunov: LyapunovView,
+    outcome_map: OutcomeMapView,
     camera: Camera,
     flash_at: Option<f64>,
     message: Option<Message>,
@@ -228,6 +235,7 @@ impl RockingApp {
             spectrum: SpectrumView::default(),
             bifurcation: BifurcationView::default(),
             lyapunov: LyapunovView::default(),
+            outcome_map: OutcomeMapView::default(),
             camera: Camera::default(),
             flash_at: None,
             message: None,

@@ -1,7 +1,6 @@
 //! The top bar (File, Presets and View menus, playback, perturbation, speed
 //! and ghosts) and the keyboard shortcuts that mirror its buttons.
 
-use super::lecture::SideTab;
 use super::{Message, RockingApp};
 use crate::gui::export;
 use crate::gui::settings::Settings;
@@ -177,13 +176,10 @@ impl RockingApp {
         ui.checkbox(&mut self.show.poincare, "Poincaré points");
         ui.checkbox(&mut self.show.history, "Time history");
         ui.checkbox(&mut self.show.spectrum, "Power spectrum");
-        // Opening an analysis brings its tab to the front.
-        if ui.checkbox(&mut self.show.bifurcation, "Bifurcation diagram").changed() && self.show.bifurcation {
-            self.set_side_tab(SideTab::Bifurcation);
-        }
-        if ui.checkbox(&mut self.show.lyapunov, "Lyapunov exponent").changed() && self.show.lyapunov {
-            self.set_side_tab(SideTab::Lyapunov);
-        }
+        // Opening an analysis brings its tab to the front (side_panel).
+        ui.checkbox(&mut self.show.bifurcation, "Bifurcation diagram");
+        ui.checkbox(&mut self.show.lyapunov, "Lyapunov exponent");
+        ui.checkbox(&mut self.show.map, "Outcome map");
         ui.separator();
         ui.checkbox(&mut self.forces, "Contact force and friction cone");
         ui.separator();

@@ -43,6 +43,9 @@ impl RockingApp {
         if self.show.lyapunov {
             tabs.push(SideTab::Lyapunov);
         }
+        if self.show.map {
+            tabs.push(SideTab::Map);
+        }
         tabs
     }
 
@@ -52,6 +55,12 @@ impl RockingApp {
         let Some(&first) = tabs.first() else {
             return;
         };
+        // A tab that just appeared (an analysis opened from the View menu
+        // or by a test) comes to the front; a closed one gives way.
+        if let Some(&new) = tabs.iter().rev().find(|t| !self.lecture.tabs_seen.contains(t)) {
+            self.lecture.tab = new;
+        }
+        self.lecture.tabs_seen = tabs.to_vec();
         if !tabs.contains(&self.lecture.tab) {
             self.lecture.tab = first;
         }
@@ -73,6 +82,7 @@ impl RockingApp {
                 ui.label("Largest Lyapunov exponent (from the initial state)");
                 self.lyapunov.show(ui, &self.config);
             }
+            SideTab::Map => self.outcome_map_panel(ui),
         }
     }
 
@@ -314,6 +324,9 @@ impl eframe::App for RockingApp {
         if !self.show.lyapunov {
             self.lyapunov.hide();
         }
+        if !self.show.map {
+            self.outcome_map.hide();
+        }
         let tabs = self.side_tabs();
         // A wide window (a 1920-pixel projector at scale 1) has room for
         // the plots beside an analysis; a narrower one tabs them.
@@ -324,6 +337,7 @@ impl eframe::App for RockingApp {
                 .default_size(0.22 * w)
                 .size_range(200.0..=0.27 * w)
                 .show(ui, |ui| self.side_panel(ui, &tabs[1..]));
+            self.lecture.tabs_seen.push(SideTab::Plots);
             egui::Panel::right(("plots", at))
                 .resizable(true)
                 .default_size(0.2 * w)

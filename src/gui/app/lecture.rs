@@ -27,6 +27,8 @@ pub enum SideTab {
     Bifurcation,
     /// The running Lyapunov exponent.
     Lyapunov,
+    /// The outcome map (or basin).
+    Map,
 }
 
 impl SideTab {
@@ -36,6 +38,7 @@ impl SideTab {
             Self::Plots => "Phase & Poincaré",
             Self::Bifurcation => "Bifurcation",
             Self::Lyapunov => "Lyapunov",
+            Self::Map => "Outcome map",
         }
     }
 }
@@ -49,6 +52,8 @@ pub struct Lecture {
     pub note_hidden: bool,
     /// The side panel's tab.
     pub tab: SideTab,
+    /// The tabs the side panel had last frame.
+    pub tabs_seen: Vec<SideTab>,
     /// The presentation scale in effect (egui's zoom factor).
     pub scale: f32,
     /// Where the scale is remembered; `None`: not remembered (tests,
@@ -66,6 +71,7 @@ impl Default for Lecture {
             note: None,
             note_hidden: false,
             tab: SideTab::Plots,
+            tabs_seen: vec![SideTab::Plots],
             scale: 1.0,
             prefs_path: None,
             fall_t0: None,

@@ -6,6 +6,7 @@ pub mod banner;
 pub mod bifurcation;
 pub mod ground;
 pub mod lyapunov;
+pub mod outcome_map;
 pub mod params;
 pub mod plots;
 pub mod scene;

@@ -1,0 +1,299 @@
+//! The app's outcome-map panel, driven headless through egui_kittest:
+//! a small map over A_h × Ω_h of the default scene computes in the
+//! background, draws several classes, matches the analysis layer cell for
+//! cell where it computed, and a click on a cell loads that scene.
+#![cfg(feature = "gui")]
+
+use std::time::{Duration, Instant};
+
+use egui_kittest::Harness;
+use egui_kittest::kittest::Queryable as _;
+use rocking::analysis::classify::ClassifyOptions;
+use rocking::analysis::map_refine::Source;
+use rocking::analysis::outcome_map::{Axis, BlockMap, block_map};
+use rocking::analysis::steady::Window;
+use rocking::gui::panels::outcome_map::{Slot, default_range, window_for};
+use rocking::gui::{RockingApp, Settings};
+use rocking::sim::Param;
+
+const SIZE: egui::Vec2 = egui::vec2(1280.0, 800.0);
+
+/// A window short enough for a debug build (70 τ holds 76 section points
+/// at Ω_h = 8; the view lengthens it for lower Ω_h).
+const TINY: Window = Window {
+    transient: 10.0,
+    tau_end: 70.0,
+};
+
+/// The small map: 16 × 16 cells of A_h 0.5–4 × Ω_h 6–12, coarse level
+/// 5 × 5. Over this range the default scene is period 1 at small A_h and
+/// chaotic or of longer period above (checked with `rocking map`).
+const X: (&str, f64, f64) = ("excitation.a_h", 0.5, 4.0);
+const Y: (&str, f64, f64) = ("excitation.omega_h", 6.0, 12.0);
+const N: usize = 16;
+
+fn scene() -> (Settings, rocking::sim::Scenario) {
+    Settings::from_cli(Some("default"), None, &[]).expect("valid scene")
+}
+
+/// The default scene on an empty fixed stream, without a GPU: the map
+/// needs no simulation thread.
+fn quiet() -> Harness<'static, RockingApp> {
+    let (s, c) = scene();
+    Harness::builder()
+        .with_size(SIZE)
+        .with_step_dt(0.05)
+        .build_eframe(move |cc| RockingApp::with_stream(cc, s, c, Vec::new()))
+}
+
+fn small_map(app: &mut RockingApp, n: usize, window: Window) {
+    let m = app.outcome_map_mut();
+    m.set_axes(X, Y);
+    m.resolution = n;
+    m.coarse = 4;
+    m.window = window;
+}
+
+fn pump(h: &mut Harness<'static, RockingApp>, timeout: Duration, done: impl Fn(&RockingApp) -> bool) -> bool {
+    let start = Instant::now();
+    while start.elapsed() < timeout {
+        h.step();
+        if done(h.state()) {
+            return true;
+        }
+        std::thread::sleep(Duration::from_millis(10));
+    }
+    false
+}
+
+/// Toggles the map from the View menu, starting with every menu closed.
+fn toggle_map(h: &mut Harness<'static, RockingApp>) {
+    h.key_press(egui::Key::Escape);
+    h.step();
+    h.step();
+    h.get_by_label("View").click();
+    for _ in 0..10 {
+        h.step();
+        if h.query_by_role_and_label(egui::accesskit::Role::CheckBox, "Outcome map")
+            .is_some()
+        {
+            break;
+        }
+    }
+    // The View menu's checkbox (the side panel has a tab of that name too).
+    h.get_by_role_and_label(egui::accesskit::Role::CheckBox, "Outcome map")
+        .click();
+    h.step();
+    h.step();
+    h.key_press(egui::Key::Escape);
+    h.step();
+}
+
+fn click(h: &mut Harness<'static, RockingApp>, pos: egui::Pos2) {
+    h.event(egui::Event::PointerMoved(pos));
+    h.step();
+    for pressed in [true, false] {
+        h.event(egui::Event::PointerButton {
+            pos,
+            button: egui::PointerButton::Primary,
+            pressed,
+            modifiers: egui::Modifiers::NONE,
+        });
+        h.step();
+    }
+}
+
+#[test]
+fn the_outcome_map_computes_in_the_background_refines_and_a_click_loads_the_cell() {
+    let mut h = quiet();
+    small_map(h.state_mut(), N, TINY);
+    for _ in 0..3 {
+        h.step();
+    }
+    assert_eq!(h.state().outcome_map().maps, 0, "hidden: no map started");
+    toggle_map(&mut h);
+    assert!(h.state().show.map);
+    let _ = h.get_by_label("Map");
+    assert!(pump(&mut h, Duration::from_secs(300), |a| a.outcome_map().done()));
+    h.step();
+    let m = h.state().outcome_map();
+    assert_eq!(m.maps, 1);
+    assert!(m.invalid().is_none(), "{:?}", m.invalid());
+    let drawn = m.drawn().to_vec();
+    assert_eq!(drawn.iter().map(|(_, n)| n).sum::<usize>(), N * N, "every cell drawn");
+    assert!(drawn.len() >= 2, "at least two classes drawn: {drawn:?}");
+    assert!(!drawn.iter().any(|(s, _)| *s == Slot::Failed), "{drawn:?}");
+    let (computed, total) = m.computed();
+    assert_eq!(total, N * N);
+    assert!(
+        computed < total,
+        "refinement skipped some cells ({computed} of {total})"
+    );
+    let _ = h.get_by_label_contains("refined where classes meet");
+
+    // The computed cells are the analysis layer's, exactly: the full
+    // 16 × 16 `block_map` over the same axes and window.
+    let (s, _) = scene();
+    let base = s.resolve().unwrap();
+    let (ax, ay) = (
+        Axis::new("--x", X.0, X.1, X.2, N).unwrap(),
+        Axis::new("--y", Y.0, Y.1, Y.2, N).unwrap(),
+    );
+    let spec = BlockMap {
+        base: &base,
+        x_param: Param::Ah,
+        x: &ax,
+        y_param: Param::OmegaH,
+        y: &ay,
+        window: window_for(TINY, Y.1),
+        classify: ClassifyOptions::default(),
+        lyapunov: None,
+    };
+    let full = block_map(&spec, &rocking::analysis::silent).unwrap();
+    let (mut inherited, mut agree) = (0, 0);
+    for (c, want) in full.iter().enumerate() {
+        let (i, j) = (c % N, c / N);
+        let (slot, source) = m.cell(i, j).expect("every cell has a class");
+        match source {
+            Source::Computed => {
+                assert_eq!(m.response(i, j), Some(Some(want.response)), "cell ({i}, {j})");
+                assert_eq!(slot, Slot::of(Some(want.response)));
+            }
+            Source::Inherited => {
+                inherited += 1;
+                agree += usize::from(slot == Slot::of(Some(want.response)));
+            }
+            Source::Unknown => panic!("cell ({i}, {j}) unknown"),
+        }
+    }
+    println!("{agree} of {inherited} inherited cells have the full grid's class");
+    assert!(inherited > 0);
+    assert!(
+        agree as f64 >= 0.9 * inherited as f64,
+        "{agree} of {inherited} inherited cells agree with the full grid"
+    );
+
+    // A click on a cell loads its two values; the map does not restart.
+    let (i, j) = (11, 4);
+    let [(kx, x), (ky, y)] = m.cell_values(i, j).unwrap();
+    assert_eq!((kx.as_str(), ky.as_str()), (X.0, Y.0));
+    let pos = m.cell_position(i, j).expect("drawn");
+    click(&mut h, pos);
+    h.step();
+    let cfg = h.state().config();
+    assert_eq!(cfg.excitation.a_h, x);
+    assert_eq!(cfg.excitation.omega_h, y);
+    assert!(
+        h.state()
+            .message()
+            .is_some_and(|m| !m.error && m.text.starts_with("from the outcome map")),
+        "{:?}",
+        h.state().message()
+    );
+    assert_eq!(h.state().outcome_map().maps, 1, "a mapped key only moves the crosshair");
+    // Another key restarts the map.
+    assert!(h.state_mut().set_key("excitation.a_v", "2.4"));
+    h.step();
+    assert_eq!(h.state().outcome_map().maps, 2);
+}
+
+#[test]
+fn a_hidden_outcome_map_stops_and_a_bad_range_is_refused() {
+    let mut h = quiet();
+    // Long enough that it cannot finish before it is hidden.
+    small_map(
+        h.state_mut(),
+        256,
+        Window {
+            transient: 600.0,
+            tau_end: 800.0,
+        },
+    );
+    toggle_map(&mut h);
+    assert!(pump(&mut h, Duration::from_secs(60), |a| a.outcome_map().threads() > 0));
+    toggle_map(&mut h);
+    assert!(!h.state().show.map);
+    assert!(pump(&mut h, Duration::from_secs(60), |a| a.outcome_map().threads() == 0));
+    assert!(!h.state().outcome_map().done());
+    let cells = h.state().outcome_map().cells;
+    let _ = pump(&mut h, Duration::from_millis(300), |_| false);
+    assert_eq!(h.state().outcome_map().cells, cells, "nothing received while hidden");
+
+    // Ω_h down to 0 is not a scene: refused before anything runs, naming
+    // the key.
+    h.state_mut()
+        .outcome_map_mut()
+        .set_axes(X, ("excitation.omega_h", 0.0, 8.0));
+    toggle_map(&mut h);
+    assert!(pump(&mut h, Duration::from_secs(60), |a| a
+        .outcome_map()
+        .invalid()
+        .is_some()));
+    let msg = h.state().outcome_map().invalid().unwrap().to_string();
+    assert!(msg.contains("excitation.omega_h"), "{msg}");
+    assert_eq!(h.state().outcome_map().computed().0, 0, "nothing ran");
+}
+
+/// Time to the first drawn level and to the whole 128 × 128 A_h × Ω_h map
+/// of the default scene over the view's default ranges and window, and
+/// the cells refinement computed. A measurement, not a check: run with
+/// `cargo test --release --test gui_map -- --ignored --nocapture` (set
+/// `OUTCOME_MAP_PNG=path` to keep a rendering).
+#[test]
+#[ignore]
+fn measure_the_default_outcome_map() {
+    // With `OUTCOME_MAP_PNG=path`, rendered on wgpu and saved there.
+    let png = std::env::var("OUTCOME_MAP_PNG").ok();
+    let mut h = if png.is_some() {
+        let (s, c) = scene();
+        Harness::builder()
+            .with_size(SIZE)
+            .wgpu()
+            .build_eframe(move |cc| RockingApp::with_stream(cc, s, c, Vec::new()))
+    } else {
+        quiet()
+    };
+    // `OUTCOME_MAP_BASIN=1`: the Θ₀ × Θ'₀ basin instead; `OUTCOME_MAP_N=64`:
+    // another resolution.
+    if std::env::var("OUTCOME_MAP_BASIN").is_ok() {
+        let m = h.state_mut().outcome_map_mut();
+        let (x, y) = (
+            default_range("initial.theta", 0.0),
+            default_range("initial.theta_dot", 0.0),
+        );
+        m.set_axes(("initial.theta", x.0, x.1), ("initial.theta_dot", y.0, y.1));
+    }
+    if let Some(n) = std::env::var("OUTCOME_MAP_N").ok().and_then(|n| n.parse().ok()) {
+        h.state_mut().outcome_map_mut().resolution = n;
+    }
+    h.state_mut().show.map = true;
+    let start = Instant::now();
+    h.step();
+    let mut last = Instant::now();
+    while !h.state().outcome_map().done() {
+        h.step();
+        std::thread::sleep(Duration::from_millis(20));
+        if last.elapsed() > Duration::from_secs(30) {
+            last = Instant::now();
+            let (c, t) = h.state().outcome_map().computed();
+            println!("{:.0} s: {c} of {t} cells computed", start.elapsed().as_secs_f64());
+        }
+    }
+    let m = h.state().outcome_map();
+    let (first, all) = m.timings();
+    let (computed, total) = m.computed();
+    println!(
+        "{n} × {n} on {threads} threads: first level drawn after {first:.1} s, whole map after {all:.1} s; \
+         {computed} of {total} cells computed ({share:.1} %); classes drawn {drawn:?}",
+        n = m.resolution,
+        threads = rayon::current_num_threads(),
+        first = first.unwrap_or_default().as_secs_f64(),
+        all = all.unwrap_or_default().as_secs_f64(),
+        share = 100.0 * computed as f64 / total as f64,
+        drawn = m.drawn(),
+    );
+    if let Some(path) = png {
+        h.step();
+        h.render().expect("render").save(path).expect("png written");
+    }
+}
