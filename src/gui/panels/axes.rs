@@ -86,7 +86,7 @@ pub fn format_tick(mark: GridMark, _range: &RangeInclusive<f64>) -> String {
     if !(step.is_finite() && step > 0.0) {
         return format!("{v}");
     }
-    if step >= 1e5 || step < 1e-4 {
+    if !(1e-4..1e5).contains(&step) {
         // Significant digits enough to tell neighbouring ticks apart.
         let digits = ((v.abs().max(step)).log10().floor() - step.log10().floor()).clamp(0.0, 12.0) as usize;
         return format!("{v:.digits$e}");
