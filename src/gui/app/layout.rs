@@ -23,8 +23,8 @@ impl RockingApp {
             let settings = &self.settings;
             let explicit = |k: &str| settings.explicit(k);
             let commit = params::show(ui, &self.config, &explicit, &mut self.edits);
-            if let Some((key, raw)) = commit {
-                self.set_key(key, &raw);
+            if let Some(c) = commit {
+                self.commit(c);
             }
             ui.add_space(8.0);
             ui.label(egui::RichText::new("Modes").strong());
@@ -176,7 +176,9 @@ impl RockingApp {
         }
         if poincare {
             ui.label("Poincaré points (double-click to fit)");
-            plots::poincare_plot(ui, &self.hist, &mut self.poincare, &scales);
+            if let Some(phase) = plots::poincare_plot(ui, &self.hist, &mut self.poincare, &scales) {
+                self.set_section_phase(phase);
+            }
         }
     }
 

@@ -17,6 +17,7 @@ impl RockingApp {
         match u {
             SimUpdate::Started { info, .. } => {
                 self.tau = info.tau0;
+                self.hist.forcing_period = info.section_period;
                 self.record_label = RecordLabel::of(&info.scenario);
                 self.history_view.fit_run(info.scenario.record_end_tau());
                 self.phase.fit_run(info.scenario.record_end_tau());
