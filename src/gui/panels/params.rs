@@ -457,8 +457,7 @@ pub fn show(
 ) -> Option<Commit> {
     let mut commit = None;
     ui.horizontal_wrapped(|ui| {
-        let l = ui
-            .label("Sliders restart from")
+        ui.label("Sliders restart from")
             .on_hover_text("Where the run restarts when a slider is dragged. A typed value always starts the scene over from its initial state.");
         for (from, text, help) in [
             (
@@ -473,7 +472,6 @@ pub fn show(
             ),
         ] {
             ui.selectable_value(&mut edits.drag_from, from, text)
-                .labelled_by(l.id)
                 .on_hover_text(help);
         }
     });
