@@ -158,7 +158,7 @@ fn restart_from_current_keeps_tau_running_and_from_initial_starts_at_zero() {
     assert!(first >= tau, "first sample of the new run at τ = {first}, before {tau}");
 
     // The toggle in the panel's header: from the initial state.
-    h.get_by_label("initial state").click();
+    h.get_by_label("initial").click();
     h.step();
     h.step();
     assert_eq!(h.state().drag_from(), StartFrom::Initial);

@@ -457,17 +457,17 @@ pub fn show(
 ) -> Option<Commit> {
     let mut commit = None;
     ui.horizontal_wrapped(|ui| {
-        ui.label("Sliders restart from")
+        ui.label("Drag restarts from")
             .on_hover_text("Where the run restarts when a slider is dragged. A typed value always starts the scene over from its initial state.");
         for (from, text, help) in [
             (
                 StartFrom::Current,
-                "current state",
+                "current",
                 "Continue from the state shown (Θ, Θ', X, X', mode) with τ running on: the attractor deforms as you drag",
             ),
             (
                 StartFrom::Initial,
-                "initial state",
+                "initial",
                 "Start over from τ = 0 and the initial state at every new value",
             ),
         ] {
@@ -529,7 +529,7 @@ pub fn show(
                                             commit = Some(c);
                                         }
                                         if let Some(c) =
-                                            text_field(ui, k, &shown, stated.is_some(), label.id, edits, 64.0)
+                                            text_field(ui, k, &shown, stated.is_some(), label.id, edits, 60.0)
                                         {
                                             commit = Some(c);
                                         }
@@ -564,7 +564,9 @@ fn slider(ui: &mut egui::Ui, k: &Key, shown: &str) -> Option<Commit> {
     let range = slider_range(k.key)?;
     let value = shown.trim().parse::<f64>().ok().filter(|v| v.is_finite())?;
     let mut v = value;
-    ui.spacing_mut().slider_width = 96.0;
+    // With the 60-point field beside it, the row fits the panel's
+    // default 300 points.
+    ui.spacing_mut().slider_width = 72.0;
     let r = ui
         .add(
             egui::Slider::new(&mut v, range.min..=range.max)
@@ -607,8 +609,12 @@ fn text_field(
     let typing = edits.typing.get(k.key).cloned();
     let mut text = typing.unwrap_or_else(|| shown.to_string());
     let hint = if stated { "" } else { "default" };
+    // Sized exactly: beside a slider in a grid cell, a field that may
+    // shrink to what the cell had last frame would stay too narrow to read.
+    let height = ui.spacing().interact_size.y;
     let r = ui
-        .add(
+        .add_sized(
+            [width, height],
             egui::TextEdit::singleline(&mut text)
                 .desired_width(width)
                 .hint_text(hint),
