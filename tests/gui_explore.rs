@@ -9,7 +9,7 @@
 use std::time::{Duration, Instant};
 
 use egui_kittest::Harness;
-use egui_kittest::kittest::Queryable as _;
+use egui_kittest::kittest::{NodeT as _, Queryable as _};
 use rocking::gui::panels::plots::SectionKind;
 use rocking::gui::{RockingApp, Settings};
 use rocking::sim::protocol::{RunId, SectionPoint, Speed, StartFrom};
@@ -276,10 +276,16 @@ fn henon(n: usize) -> Vec<SectionPoint> {
         .collect()
 }
 
-/// Frame time of the app code with 10⁶ Poincaré points while a slider is
-/// dragged, and the wall-clock time from releasing a slider to the first
-/// Poincaré point of the new value. A measurement, not a check: run with
-/// `cargo test --release --test gui_explore -- --ignored --nocapture`.
+/// Frame times with 10⁶ Poincaré points while a slider is dragged, and the
+/// wall-clock time from releasing a slider to the first Poincaré point of
+/// the new value. A measurement, not a check: run with
+/// `cargo test --test gui_explore -- --ignored --nocapture measure`.
+///
+/// A parameter drag clears the plots on its first frame (the old
+/// parameter's points are not the new one's), so three numbers are
+/// printed: the frame in which a drag of A_v drops 10⁶ points, the frames
+/// of that drag after it, and frames of a drag of the speed slider, which
+/// keeps the run and so redraws all 10⁶ points every frame.
 #[test]
 #[ignore]
 fn measure_drag_frame_time_and_release_to_first_point() {
@@ -289,31 +295,74 @@ fn measure_drag_frame_time_and_release_to_first_point() {
         RockingApp::live(cc, s, c, Speed::RealTime(1.0), false)
     });
     assert!(pump(&mut h, Duration::from_secs(20), |a| a.tau() > 1.0));
+    let frames = 30;
+    // A drag of the speed slider: the run and its points stay.
+    h.state_mut().push_section_points(points.iter().copied());
+    h.step();
+    let speed = h
+        .get_all_by_label("Speed")
+        .find(|n| n.accesskit_node().role() == egui::accesskit::Role::Slider)
+        .expect("the speed slider")
+        .rect();
+    let (a, b) = (
+        egui::pos2(speed.left() + 0.3 * speed.width(), speed.center().y),
+        egui::pos2(speed.left() + 0.6 * speed.width(), speed.center().y),
+    );
+    pointer(&mut h, a, None);
+    pointer(&mut h, a, Some(true));
+    let start = Instant::now();
+    for k in 1..=frames {
+        h.event(egui::Event::PointerMoved(a + (b - a) * (k as f32 / frames as f32)));
+        h.step();
+    }
+    let per = start.elapsed().as_secs_f64() * 1000.0 / frames as f64;
+    pointer(&mut h, b, Some(false));
+    assert!(h.state().history().section.points().len() >= 1_000_000);
+    println!(
+        "dragging the speed slider with 1e6 Poincaré points shown: {per:.1} ms per frame (app + layout + tessellation), app code {:.1} ms",
+        h.state().frame_ms()
+    );
+
+    // A drag of A_v: its first frame drops the 10⁶ points.
     let rect = h.get_by_label("A_v slider").rect();
     let y = rect.center().y;
     let (a, b) = (
         egui::pos2(slider_x(rect, (0.0, 5.0), 2.5), y),
-        egui::pos2(slider_x(rect, (0.0, 5.0), 2.0), y),
+        egui::pos2(slider_x(rect, (0.0, 5.0), 1.0), y),
     );
     pointer(&mut h, a, None);
-    pointer(&mut h, a, Some(true));
-    let frames = 30;
-    let (mut step_ms, mut app_ms) = (0.0, 0.0);
-    for k in 1..=frames {
-        // Every dragged frame clears the plots (a new run): refill them
-        // so that each measured frame draws 10⁶ points, the worst case.
-        h.state_mut().push_section_points(points.iter().copied());
-        h.event(egui::Event::PointerMoved(a + (b - a) * (k as f32 / frames as f32)));
-        let start = Instant::now();
-        h.step();
-        step_ms += start.elapsed().as_secs_f64() * 1000.0;
-        app_ms += h.state().frame_ms() as f64;
-    }
-    println!(
-        "dragging A_v with 1e6 Poincaré points: {:.1} ms per frame (app + layout + tessellation), app code {:.1} ms (smoothed)",
-        step_ms / frames as f64,
-        app_ms / frames as f64
+    h.event(egui::Event::PointerButton {
+        pos: a,
+        button: egui::PointerButton::Primary,
+        pressed: true,
+        modifiers: egui::Modifiers::NONE,
+    });
+    h.step();
+    assert!(
+        h.state().history().section.points().len() >= 1_000_000,
+        "pressing on the handle keeps the value"
     );
+    // The first frame that moves the handle past egui's drag threshold
+    // applies a new value.
+    h.event(egui::Event::PointerMoved(a + (b - a) * 0.4));
+    let start = Instant::now();
+    h.step();
+    let first = start.elapsed().as_secs_f64() * 1000.0;
+    assert!(
+        h.state().history().section.points().len() < 1_000_000,
+        "the drag cleared the points"
+    );
+    let start = Instant::now();
+    for k in 1..=frames {
+        h.event(egui::Event::PointerMoved(
+            a + (b - a) * (0.4 + 0.6 * k as f32 / frames as f32),
+        ));
+        h.step();
+    }
+    let per = start.elapsed().as_secs_f64() * 1000.0 / frames as f64;
+    pointer(&mut h, b, Some(false));
+    println!("dragging A_v: first frame (drops 1e6 points) {first:.1} ms, then {per:.1} ms per frame");
+
     for (speed, name) in [(Speed::RealTime(1.0), "×1"), (Speed::Max, "max")] {
         let mut h = live(speed);
         assert!(pump(&mut h, Duration::from_secs(20), |a| a.tau() > 1.0));
