@@ -379,3 +379,31 @@ fn measure_drag_frame_time_and_release_to_first_point() {
         );
     }
 }
+
+/// The bifurcation view with the current run's value marked and labelled:
+/// a sweep of A_v over 0–3 (31 values, τ 10–70) on the default scene, whose
+/// A_v is 2.5. Rendered on the software adapter.
+#[test]
+fn snapshot_of_the_bifurcation_view_marking_the_current_run() {
+    let mut h = Harness::builder()
+        .with_size(SIZE)
+        .with_step_dt(0.05)
+        .wgpu()
+        .build_eframe(|cc| {
+            let (s, c) = Settings::from_cli(Some("default"), None, &[]).expect("valid scene");
+            RockingApp::with_stream(cc, s, c, Vec::new())
+        });
+    {
+        let app = h.state_mut();
+        app.show.bifurcation = true;
+        let b = app.bifurcation_mut();
+        b.count = 31;
+        b.window = rocking::analysis::steady::Window {
+            transient: 10.0,
+            tau_end: 70.0,
+        };
+    }
+    assert!(pump(&mut h, Duration::from_secs(120), |a| a.bifurcation().done()));
+    h.run();
+    h.snapshot("bifurcation_marker");
+}

@@ -195,9 +195,9 @@ fn marker_text(v: f64) -> String {
 /// inside the plot.
 fn marker_anchor(v: f64, from: f64, to: f64) -> egui::Align2 {
     if v <= 0.5 * (from + to) {
-        egui::Align2::LEFT_TOP
+        egui::Align2::LEFT_BOTTOM
     } else {
-        egui::Align2::RIGHT_TOP
+        egui::Align2::RIGHT_BOTTOM
     }
 }
 
@@ -574,14 +574,17 @@ impl BifurcationView {
                 if let Some(v) = current {
                     let marker = Color32::from_rgb(255, 230, 60);
                     plot_ui.vline(VLine::new("current run", v).color(marker).width(1.5));
-                    // Labelled at the top of the line, inside the plot.
+                    // Labelled at the foot of the line, inside the plot (the
+                    // legend holds the top corner); unnamed, so that the
+                    // legend lists the line once.
                     plot_ui.text(
                         Text::new(
-                            "current run value",
-                            PlotPoint::new(v, y1 - 0.02 * (y1 - y0)),
+                            "",
+                            PlotPoint::new(v, y0 + 0.02 * (y1 - y0)),
                             egui::RichText::new(format!(" current run: {} = {} ", short_name(param), marker_text(v)))
+                                .size(14.0)
                                 .color(marker)
-                                .background_color(Color32::from_black_alpha(160)),
+                                .background_color(Color32::from_black_alpha(180)),
                         )
                         .anchor(marker_anchor(v, from, to))
                         .allow_hover(false),
