@@ -483,8 +483,14 @@ impl RockingApp {
     /// now on: the run goes on from the state shown, so the time history
     /// and phase portrait are kept and only the section points start over.
     pub fn set_section_phase(&mut self, phase: f64) {
-        self.hist.clear_section();
-        self.poincare.reset();
+        self.poincare.phase = phase;
+        if self.end.is_some() {
+            // An ended run cannot go on: the thread starts the scene over.
+            self.new_run();
+        } else {
+            self.hist.clear_section();
+            self.poincare.reset();
+        }
         match &mut self.link {
             Link::Live(h) => {
                 h.set_section_phase(phase);

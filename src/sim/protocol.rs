@@ -3,9 +3,10 @@
 //!
 //! Contract:
 //! - Every update carries the [`RunId`] of the run that produced it. A run is
-//!   one continuous trajectory: a reset, new parameters or a perturbed
-//!   restart start a new run with a new id, so data of a run that was reset
-//!   can be recognised and dropped.
+//!   one continuous trajectory: a reset, new parameters (from τ = 0 or
+//!   from the state shown), a new section phase or a perturbed restart
+//!   start a new run with a new id, so data of a run that was replaced can
+//!   be recognised and dropped.
 //! - Within one run, updates arrive in the order they were produced, and the
 //!   samples, events and section points inside a [`Batch`] are in time order
 //!   and continue those of the previous batch of the same run.
