@@ -6,7 +6,7 @@ use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::time::{Duration, Instant};
 
 use rocking::io::config::load;
-use rocking::sim::protocol::{Batch, RunEnd, RunId, SimUpdate, Speed};
+use rocking::sim::protocol::{Batch, RunEnd, RunId, SimUpdate, Speed, StartFrom};
 use rocking::sim::runner::{LIVE_SAMPLE_DT, SimHandle, record};
 use rocking::sim::{RunOptions, Scenario, simulate};
 
@@ -264,6 +264,78 @@ fn a_perturbed_reset_continues_from_the_shown_state_with_theta_plus_eps() {
     let first = batches(&got, run)[0].samples[0];
     assert_eq!(first.tau, last.tau);
     assert_eq!(first.theta, last.theta + eps);
+}
+
+#[test]
+fn new_parameters_from_the_current_state_continue_at_the_shown_tau_and_state() {
+    let mut h =
+        SimHandle::spawn(preset("default", &[]), Speed::RealTime(1.0), true, no_waker()).expect("thread starts");
+    h.step(5.0);
+    let got = collect(&h, Duration::from_secs(5), |u| {
+        u.iter()
+            .any(|x| matches!(x, SimUpdate::Paused { tau, .. } if *tau > 0.0))
+    });
+    let last = *batches(&got, RunId(1))
+        .iter()
+        .rev()
+        .find_map(|b| b.samples.last())
+        .expect("samples");
+    let run = h.set_params_from(preset("default", &["excitation.a_v=2.0"]), StartFrom::Current);
+    h.step(0.1);
+    let got = collect(&h, Duration::from_secs(5), |u| !batches(u, run).is_empty());
+    let info = got
+        .iter()
+        .find_map(|u| match u {
+            SimUpdate::Started { run: r, info } if *r == run => Some(info),
+            _ => None,
+        })
+        .expect("continued run started");
+    assert_eq!(info.tau0, last.tau, "τ runs on from the shown τ");
+    assert_eq!(info.scenario.excitation.a_v, 2.0);
+    let first = batches(&got, run)[0].samples[0];
+    assert_eq!(
+        (first.tau, first.theta, first.theta_dot),
+        (last.tau, last.theta, last.theta_dot)
+    );
+
+    // From the initial state: τ = 0 again.
+    let run = h.set_params_from(preset("default", &["excitation.a_v=1.5"]), StartFrom::Initial);
+    h.step(0.1);
+    let got = collect(&h, Duration::from_secs(5), |u| !batches(u, run).is_empty());
+    assert_eq!(batches(&got, run)[0].samples[0].tau, 0.0);
+}
+
+#[test]
+fn a_section_phase_puts_the_points_at_that_forcing_phase_and_the_motion_goes_on() {
+    let mut h = SimHandle::spawn(preset("default", &[]), Speed::Max, true, no_waker()).expect("thread starts");
+    h.step(3.0);
+    let _ = collect(&h, Duration::from_secs(5), |u| {
+        u.iter()
+            .any(|x| matches!(x, SimUpdate::Paused { tau, .. } if *tau > 0.0))
+    });
+    let phi = 2.5;
+    let run = h.set_section_phase(phi);
+    h.step(10.0);
+    let got = collect(&h, Duration::from_secs(10), |u| {
+        u.iter()
+            .any(|x| matches!(x, SimUpdate::Paused { run: r, tau, .. } if *r == run && *tau > 12.0))
+    });
+    let info = got
+        .iter()
+        .find_map(|u| match u {
+            SimUpdate::Started { run: r, info } if *r == run => Some(info),
+            _ => None,
+        })
+        .expect("run started");
+    assert_eq!(info.section_phase, phi);
+    assert!(info.tau0 > 2.5, "the motion goes on from τ = {}", info.tau0);
+    let omega = info.scenario.excitation.omega_h;
+    let points: Vec<_> = batches(&got, run).iter().flat_map(|b| b.section.clone()).collect();
+    assert!(points.len() >= 12, "{} points in 10 τ at Ω_h = 8", points.len());
+    for p in &points {
+        let miss = omega * p.tau - phi - std::f64::consts::TAU * p.k as f64;
+        assert!(miss.abs() <= 1e-12, "Ω τ_k − φ − 2πk = {miss:e} at k = {}", p.k);
+    }
 }
 
 #[test]

@@ -19,13 +19,13 @@ use crate::gui::panels::bifurcation::BifurcationView;
 use crate::gui::panels::ground::{GroundView, RecordLabel};
 use crate::gui::panels::lyapunov::LyapunovView;
 use crate::gui::panels::outcome_map::OutcomeMapView;
-use crate::gui::panels::params::Edits;
+use crate::gui::panels::params::{Commit, Edits};
 use crate::gui::panels::plots::{HistoryView, PhaseView, PoincareView, SpectrumView};
 use crate::gui::panels::scene::Camera;
 use crate::gui::settings::Settings;
 use crate::gui::units::{Scales, Units};
 use crate::sim::Scenario;
-use crate::sim::protocol::{GhostState, RunEnd, RunId, RunInfo, SimUpdate, Speed};
+use crate::sim::protocol::{GhostState, RunEnd, RunId, RunInfo, SimUpdate, Speed, StartFrom};
 use crate::sim::runner::SimHandle;
 
 mod controls;
@@ -315,6 +315,14 @@ impl RockingApp {
     pub fn bifurcation_mut(&mut self) -> &mut BifurcationView {
         &mut self.bifurcation
     }
+    /// The Poincaré view: which section it shows and what it binned.
+    pub fn poincare(&self) -> &PoincareView {
+        &self.poincare
+    }
+    /// Where a slider drag restarts the run from (the panel's toggle).
+    pub fn drag_from(&self) -> StartFrom {
+        self.edits.drag_from
+    }
     /// The Lyapunov view.
     pub fn lyapunov(&self) -> &LyapunovView {
         &self.lyapunov
@@ -414,8 +422,16 @@ impl RockingApp {
         }
     }
 
-    /// Makes `settings` (resolved to `config`) the scene and restarts with it.
+    /// Makes `settings` (resolved to `config`) the scene and restarts with
+    /// it from τ = 0.
     pub fn apply(&mut self, settings: Settings, config: Scenario) {
+        self.apply_from(settings, config, StartFrom::Initial);
+    }
+
+    /// Makes `settings` (resolved to `config`) the scene and restarts with
+    /// it from `from`. The old run's plots are cleared either way, so the
+    /// new parameters' attractor is drawn alone.
+    pub fn apply_from(&mut self, settings: Settings, config: Scenario, from: StartFrom) {
         if settings.origin != self.settings.origin {
             // Another scene: its note, if any, comes with it (load_preset).
             self.lecture.note = None;
@@ -423,11 +439,13 @@ impl RockingApp {
         self.settings = settings;
         self.config = config.clone();
         self.new_run();
-        self.tau = 0.0;
+        if from == StartFrom::Initial {
+            self.tau = 0.0;
+        }
         self.message = None;
         match &mut self.link {
             Link::Live(h) => {
-                h.set_params(config);
+                h.set_params_from(config, from);
             }
             Link::Fixed { run, pending } => {
                 *run = RunId(run.0 + 1);
@@ -446,6 +464,62 @@ impl RockingApp {
             Err(e) => {
                 self.message = Some(Message { text: e, error: true });
                 false
+            }
+        }
+    }
+
+    /// Sets one key to `raw` as a slider drag does: through the same
+    /// validation as [`RockingApp::set_key`], restarting from where the
+    /// panel's toggle says ([`RockingApp::drag_from`]; an initial-state key
+    /// always restarts from the initial state it sets).
+    pub fn drag_key(&mut self, key: &str, raw: &str) -> bool {
+        let from = if key.starts_with("initial.") {
+            StartFrom::Initial
+        } else {
+            self.edits.drag_from
+        };
+        match self.settings.with(key, raw) {
+            Ok((s, cfg)) => {
+                self.apply_from(s, cfg, from);
+                true
+            }
+            Err(e) => {
+                self.message = Some(Message { text: e, error: true });
+                false
+            }
+        }
+    }
+
+    /// Applies a value from the parameter panel: a drag as
+    /// [`RockingApp::drag_key`], a typed or chosen value as
+    /// [`RockingApp::set_key`].
+    pub fn commit(&mut self, c: Commit) -> bool {
+        if c.dragged {
+            self.drag_key(c.key, &c.raw)
+        } else {
+            self.set_key(c.key, &c.raw)
+        }
+    }
+
+    /// Takes the stroboscopic section at forcing phase `phase` (rad) from
+    /// now on: the run goes on from the state shown, so the time history
+    /// and phase portrait are kept and only the section points start over.
+    pub fn set_section_phase(&mut self, phase: f64) {
+        self.poincare.phase = phase;
+        if self.end.is_some() {
+            // An ended run cannot go on: the thread starts the scene over.
+            self.new_run();
+        } else {
+            self.hist.clear_section();
+            self.poincare.reset();
+        }
+        match &mut self.link {
+            Link::Live(h) => {
+                h.set_section_phase(phase);
+            }
+            Link::Fixed { run, pending } => {
+                *run = RunId(run.0 + 1);
+                pending.clear();
             }
         }
     }

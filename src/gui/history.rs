@@ -143,6 +143,16 @@ pub struct RunHistory {
     pub events: Ring<EventRecord>,
     /// Section points.
     pub section: SectionStore,
+    /// The impact section: (forcing phase Ω_h τ mod 2π, rad; Θ' just
+    /// before the impact) of each impact, for harmonic forcing. Θ itself
+    /// is 0 at every impact (the block lands flat), so the phase is the
+    /// section's second coordinate, as in the impact maps of the rocking
+    /// literature.
+    pub impact_section: SectionStore,
+    /// Period of the forcing, τ, when it is harmonic (from the run's
+    /// [`crate::sim::protocol::RunInfo::section_period`]): what the impact
+    /// section's phase is taken over.
+    pub forcing_period: Option<f64>,
     /// Section points with mode and τ, for the CSV export (the newest).
     pub section_rows: Ring<SectionRow>,
     /// Impacts seen in this run.
@@ -159,6 +169,8 @@ impl Default for RunHistory {
             samples: Ring::new(SAMPLE_CAPACITY),
             events: Ring::new(EVENT_CAPACITY),
             section: SectionStore::default(),
+            impact_section: SectionStore::default(),
+            forcing_period: None,
             section_rows: Ring::new(EVENT_CAPACITY),
             impacts: 0,
             dropped_samples: 0,
@@ -170,9 +182,19 @@ impl Default for RunHistory {
 impl RunHistory {
     /// Forgets everything (a new run).
     pub fn clear(&mut self) {
-        let generation = self.section.generation;
+        let generation = self.section.generation.max(self.impact_section.generation);
         *self = Self::default();
         self.section.generation = generation + 1;
+        self.impact_section.generation = generation + 1;
+    }
+
+    /// Forgets the stroboscopic section points only (their phase changed;
+    /// the motion, and so the samples and impacts, go on).
+    pub fn clear_section(&mut self) {
+        let generation = self.section.generation;
+        self.section = SectionStore::default();
+        self.section.generation = generation + 1;
+        self.section_rows.clear();
     }
 
     /// Adds a sample unless it has a non-finite value.
@@ -209,6 +231,10 @@ impl RunHistory {
         }
         if e.kind == crate::model::EventKind::Impact {
             self.impacts += 1;
+            if let Some(period) = self.forcing_period.filter(|p| *p > 0.0 && p.is_finite()) {
+                let phase = std::f64::consts::TAU * (e.tau.rem_euclid(period) / period);
+                self.impact_section.push(phase, e.theta_dot_before);
+            }
         }
         self.events.push(e);
     }
@@ -361,6 +387,20 @@ impl DensityGrid {
         self.work += new.len() as u64;
         self.binned = store.points().len();
         true
+    }
+
+    /// Forgets every count (another store is to be binned), keeping the
+    /// work counter.
+    pub fn forget(&mut self) {
+        *self = Self {
+            work: self.work,
+            ..Self::default()
+        };
+    }
+
+    /// How many of the store's points are binned (in view or not).
+    pub fn binned(&self) -> usize {
+        self.binned
     }
 
     /// The grid as an image: empty pixels transparent, occupied ones

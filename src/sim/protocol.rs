@@ -3,9 +3,10 @@
 //!
 //! Contract:
 //! - Every update carries the [`RunId`] of the run that produced it. A run is
-//!   one continuous trajectory: a reset, new parameters or a perturbed
-//!   restart start a new run with a new id, so data of a run that was reset
-//!   can be recognised and dropped.
+//!   one continuous trajectory: a reset, new parameters (from τ = 0 or
+//!   from the state shown), a new section phase or a perturbed restart
+//!   start a new run with a new id, so data of a run that was replaced can
+//!   be recognised and dropped.
 //! - Within one run, updates arrive in the order they were produced, and the
 //!   samples, events and section points inside a [`Batch`] are in time order
 //!   and continue those of the previous batch of the same run.
@@ -54,17 +55,47 @@ impl Default for Speed {
     }
 }
 
+/// Where a run with new parameters starts.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum StartFrom {
+    /// τ = 0 and the configuration's initial state: the run the batch CLI
+    /// computes for the same configuration.
+    #[default]
+    Initial,
+    /// The state shown now (the last sample released: Θ, Θ', X, X', the
+    /// mode) at the τ shown now, so the forcing phase runs on without a
+    /// jump: what DynamicalSystems.jl's interactive apps do when a
+    /// parameter is dragged, and what lets the eye follow an attractor as
+    /// it changes. Falls back to [`StartFrom::Initial`] when there is no
+    /// state to continue (the run ended, or never started) or the state is
+    /// not admissible under the new parameters.
+    Current,
+}
+
 /// Commands to the simulation thread.
 #[derive(Clone, Debug)]
 pub enum SimCommand {
-    /// Start a new run from τ = 0 with this configuration and its initial
-    /// state. The run's `run.tau_end` is ignored: a live run goes on until
-    /// it reaches a terminal mode or is replaced.
+    /// Start a new run with this configuration, from τ = 0 and its initial
+    /// state or from the state shown now (`from`). The run's `run.tau_end`
+    /// is ignored: a live run goes on until it reaches a terminal mode or
+    /// is replaced.
     SetParams {
         /// Id of the new run.
         run: RunId,
         /// The validated configuration.
         scenario: Box<Scenario>,
+        /// Where the new run starts.
+        from: StartFrom,
+    },
+    /// Take stroboscopic section points at forcing phase `phase` from now
+    /// on, τ_k = (2πk + φ)/Ω_h: a new run of the same configuration from
+    /// the state shown now (as [`StartFrom::Current`]), so the motion goes
+    /// on and only the section changes. The phase is kept for later runs.
+    SetSectionPhase {
+        /// Id of the new run.
+        run: RunId,
+        /// φ, rad; taken modulo 2π.
+        phase: f64,
     },
     /// Restart the current configuration from τ = 0.
     Reset {
@@ -133,7 +164,8 @@ impl std::ops::Deref for Sample {
     }
 }
 
-/// A point of the stroboscopic (Poincaré) section, τ_k = 2πk/Ω_h: the
+/// A point of the stroboscopic (Poincaré) section, τ_k = (2πk + φ)/Ω_h
+/// ([`RunInfo::section_phase`] is φ; 0 unless asked for): the
 /// batch run's [`SectionRow`] (one type for both; this is the name the
 /// protocol has always used).
 pub use super::SectionRow as SectionPoint;
@@ -159,8 +191,12 @@ pub struct RunInfo {
     /// Period of the stroboscopic section, τ; `None` without harmonic
     /// excitation (then no section points come).
     pub section_period: Option<f64>,
-    /// τ at which the run starts (0, or the current τ for a perturbed
-    /// restart).
+    /// Forcing phase φ ∈ [0, 2π) of the section, rad: points at
+    /// τ_k = (2πk + φ)/Ω_h. 0 (today's τ_k = k·period) unless the user
+    /// chose another ([`SimCommand::SetSectionPhase`]).
+    pub section_phase: f64,
+    /// τ at which the run starts (0, or the τ shown when a run was
+    /// continued from the current state or restarted perturbed).
     pub tau0: f64,
     /// Spacing of the samples, τ.
     pub sample_dt: f64,

@@ -43,11 +43,11 @@ mod worker;
 use std::time::{Duration, Instant};
 
 pub use outbox::{MAX_QUEUED_EXACT, MAX_QUEUED_SAMPLES};
-pub use session::{LIVE_SAMPLE_DT, MAX_CHUNK, Session, Start};
+pub use session::{LIVE_SAMPLE_DT, MAX_CHUNK, Session, Start, normalise_phase};
 
 use super::job::Job;
 pub use super::job::Waker;
-use super::protocol::{Batch, RunEnd, RunId, SimCommand, SimUpdate, Speed};
+use super::protocol::{Batch, RunEnd, RunId, SimCommand, SimUpdate, Speed, StartFrom};
 use crate::sim::Scenario;
 
 /// Capacity of the update channel, in messages. At one batch per
@@ -101,11 +101,26 @@ impl SimHandle {
     }
     /// Starts a new run of `scenario` from τ = 0; returns its id.
     pub fn set_params(&mut self, scenario: Scenario) -> RunId {
+        self.set_params_from(scenario, StartFrom::Initial)
+    }
+
+    /// Starts a new run of `scenario` from τ = 0 or from the state shown
+    /// now (`from`); returns its id.
+    pub fn set_params_from(&mut self, scenario: Scenario, from: StartFrom) -> RunId {
         let run = self.next_run();
         self.send(SimCommand::SetParams {
             run,
             scenario: Box::new(scenario),
+            from,
         });
+        run
+    }
+
+    /// Takes stroboscopic section points at forcing phase `phase` (rad)
+    /// from now on: a new run from the state shown now. Returns its id.
+    pub fn set_section_phase(&mut self, phase: f64) -> RunId {
+        let run = self.next_run();
+        self.send(SimCommand::SetSectionPhase { run, phase });
         run
     }
 

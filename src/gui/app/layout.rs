@@ -18,14 +18,17 @@ const FLASH_S: f64 = 0.18;
 
 impl RockingApp {
     fn params_panel(&mut self, ui: &mut egui::Ui) {
+        // Fill the width the layout gave the panel (a panel otherwise
+        // shrinks to its widest row and clips the unit column).
+        ui.set_min_width(ui.available_width());
         ui.heading("Parameters");
         ui.label(egui::RichText::new(&self.settings.origin).weak());
         egui::ScrollArea::both().show(ui, |ui| {
             let settings = &self.settings;
             let explicit = |k: &str| settings.explicit(k);
             let commit = params::show(ui, &self.config, &explicit, &mut self.edits);
-            if let Some((key, raw)) = commit {
-                self.set_key(key, &raw);
+            if let Some(c) = commit {
+                self.commit(c);
             }
         });
     }
@@ -238,7 +241,8 @@ impl RockingApp {
         let h = ui.available_height();
         if self.show.phase {
             ui.label("Phase portrait (click to start there)");
-            let height = if both { 0.5 * h - 24.0 } else { h - 20.0 };
+            // The Poincaré plot below has its section controls to fit too.
+            let height = if both { 0.44 * h - 20.0 } else { h - 20.0 };
             ui.allocate_ui(egui::vec2(ui.available_width(), height), |ui| {
                 if let Some((theta, theta_dot)) = plots::phase_plot(ui, &self.hist, &mut self.phase, self.tau, &scales)
                 {
@@ -248,7 +252,9 @@ impl RockingApp {
         }
         if poincare {
             ui.label("Poincaré points (double-click to fit)");
-            plots::poincare_plot(ui, &self.hist, &mut self.poincare, &scales);
+            if let Some(phase) = plots::poincare_plot(ui, &self.hist, &mut self.poincare, &scales) {
+                self.set_section_phase(phase);
+            }
         }
     }
 

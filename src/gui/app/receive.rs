@@ -16,7 +16,13 @@ impl RockingApp {
     fn ingest(&mut self, u: SimUpdate, now: f64) {
         match u {
             SimUpdate::Started { info, .. } => {
+                if self.hist.samples.last().is_some_and(|s| s.tau > info.tau0) {
+                    // Kept across a section-phase change, but the thread
+                    // could not go on and started over: time went back.
+                    self.hist.clear();
+                }
                 self.tau = info.tau0;
+                self.hist.forcing_period = info.section_period;
                 self.record_label = RecordLabel::of(&info.scenario);
                 self.history_view.fit_run(info.scenario.record_end_tau());
                 self.phase.fit_run(info.scenario.record_end_tau());

@@ -10,7 +10,12 @@
 //!   free. It restarts when any other key of the scene changes, when the
 //!   range, resolution or window changes, or after a zoom; setting the swept
 //!   key itself only moves the marker. A restart cancels the old sweep and
-//!   drops its channel, so nothing stale is drawn.
+//!   drops its channel, so nothing stale is drawn. While a pointer button
+//!   is held (a slider of another key being dragged), the restart waits for
+//!   the release: a sweep started and cancelled on every core each frame
+//!   would only slow the live run being dragged.
+//! - The current run's value of the swept key is marked by a labelled
+//!   vertical line, so the live run can be placed on the diagram.
 //! - Dragging a rectangle on the plot zooms into it: the same number of
 //!   values over the narrower range, i.e. a finer step. Double-click (or
 //!   "Full range") goes back.
@@ -26,7 +31,7 @@ use std::time::{Duration, Instant};
 
 use crate::gui::panels::axes;
 use egui::Color32;
-use egui_plot::{Legend, Plot, PlotBounds, PlotPoint, PlotPoints, Points, Polygon, VLine};
+use egui_plot::{Legend, Plot, PlotBounds, PlotPoint, PlotPoints, Points, Polygon, Text, VLine};
 
 use self::sweeper::{Column, MAX_VALUES, Reply, Request, Sweeper};
 use crate::analysis::classify::Response;
@@ -65,6 +70,18 @@ struct Key {
     to: f64,
     count: usize,
     window: Window,
+}
+
+impl Key {
+    /// Whether `other` asks for the same sweep of another scene (only the
+    /// scene's keys differ).
+    fn same_sweep(&self, other: &Key) -> bool {
+        self.param == other.param
+            && self.from == other.from
+            && self.to == other.to
+            && self.count == other.count
+            && self.window == other.window
+    }
 }
 
 /// The bifurcation view's state. The public fields are the sweep the view
@@ -162,6 +179,27 @@ fn current_value(cfg: &Scenario, param: &str) -> Option<f64> {
         .find(|(k, _)| k == param)
         .map(|(_, v)| v)
         .filter(|v| v.is_finite())
+}
+
+/// The key's name without its section (`excitation.a_v` → `a_v`).
+fn short_name(param: &str) -> &str {
+    param.split_once('.').map_or(param, |(_, name)| name)
+}
+
+/// The marker's value: four significant digits, as the sliders apply them.
+fn marker_text(v: f64) -> String {
+    crate::gui::panels::params::slider_text(v)
+}
+
+/// Where the marker's label sits against its line: to the right of it in
+/// the left half of the range, to the left in the right half, so it stays
+/// inside the plot.
+fn marker_anchor(v: f64, from: f64, to: f64) -> egui::Align2 {
+    if v <= 0.5 * (from + to) {
+        egui::Align2::LEFT_BOTTOM
+    } else {
+        egui::Align2::RIGHT_BOTTOM
+    }
 }
 
 /// Colour of a response class in the diagram.
@@ -362,7 +400,10 @@ impl BifurcationView {
         self.controls(ui, cfg);
         let key = self.wanted(settings);
         if self.key.as_ref() != Some(&key) {
-            self.restart(key, settings, ui.ctx());
+            let dragging = ui.input(|i| i.pointer.any_down()) && self.key.as_ref().is_some_and(|k| k.same_sweep(&key));
+            if !dragging {
+                self.restart(key, settings, ui.ctx());
+            }
         }
         self.status(ui);
         self.plot(ui, cfg);
@@ -462,6 +503,7 @@ impl BifurcationView {
 
     fn plot(&mut self, ui: &mut egui::Ui, cfg: &Scenario) {
         let current = current_value(cfg, &self.param);
+        let param = self.param.as_str();
         let (from, to) = (self.from, self.to);
         let y_zoom = self.y_zoom;
         let columns = &self.columns;
@@ -531,10 +573,22 @@ impl BifurcationView {
                     );
                 }
                 if let Some(v) = current {
-                    plot_ui.vline(
-                        VLine::new("current value", v)
-                            .color(Color32::from_rgb(255, 230, 60))
-                            .width(1.5),
+                    let marker = Color32::from_rgb(255, 230, 60);
+                    plot_ui.vline(VLine::new("current run", v).color(marker).width(1.5));
+                    // Labelled at the foot of the line, inside the plot (the
+                    // legend holds the top corner); unnamed, so that the
+                    // legend lists the line once.
+                    plot_ui.text(
+                        Text::new(
+                            "",
+                            PlotPoint::new(v, y0 + 0.02 * (y1 - y0)),
+                            egui::RichText::new(format!(" current run: {} = {} ", short_name(param), marker_text(v)))
+                                .size(14.0)
+                                .color(marker)
+                                .background_color(Color32::from_black_alpha(180)),
+                        )
+                        .anchor(marker_anchor(v, from, to))
+                        .allow_hover(false),
                     );
                 }
                 let pointer = plot_ui.pointer_coordinate();

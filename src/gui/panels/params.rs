@@ -6,10 +6,20 @@
 //! Keys that the scene's excitation kind does not use are not shown
 //! ([`applies`]): no Ω or amplitudes for a record, no record file for a
 //! harmonic scene.
+//!
+//! Every continuous parameter also has a slider ([`slider_range`]) beside
+//! its field. A drag applies each new value as it comes (at most once a
+//! frame, the panel's one commit per frame), through the same validation as
+//! a typed value; the run restarts from the state shown now or from the
+//! initial state, as the toggle at the top of the panel says
+//! ([`Edits::drag_from`]). A typed value always starts the scene over from
+//! its initial state: it states a scene (the run `rocking run` would
+//! compute), where a drag explores around the motion being watched.
 
 use std::collections::HashMap;
 
 use crate::sim::Scenario;
+use crate::sim::protocol::StartFrom;
 use crate::sim::scenario::ExcitationKind;
 
 /// How a key is edited.
@@ -339,23 +349,132 @@ pub fn applies(key: &str, kind: ExcitationKind) -> bool {
     }
 }
 
-/// Text being typed into fields, by key, until committed.
-#[derive(Clone, Debug, Default)]
-pub struct Edits {
-    typing: HashMap<&'static str, String>,
+/// The range of a key's slider: from `min` to `max` in the key's unit,
+/// on a logarithmic scale if `log`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SliderRange {
+    /// Left end.
+    pub min: f64,
+    /// Right end.
+    pub max: f64,
+    /// Logarithmic (for scales: sizes and frequencies).
+    pub log: bool,
 }
 
-/// Draws the panel: the keys that apply to the scene's excitation kind
-/// ([`applies`]). `explicit` gives a key's value as the scene states it
-/// (`None`: the key is left at its default). Returns the `(key, raw
-/// value)` the user committed, if any.
+const fn lin(min: f64, max: f64) -> Option<SliderRange> {
+    Some(SliderRange { min, max, log: false })
+}
+
+const fn log(min: f64, max: f64) -> Option<SliderRange> {
+    Some(SliderRange { min, max, log: true })
+}
+
+/// The slider of `key`, for the continuous parameters; `None` for the
+/// rest (integers, choices, files, solver settings, record time steps),
+/// which are typed only. The ranges cover every shipped preset and the
+/// paper's figures with room to explore; the field beside takes any valid
+/// value beyond them.
+pub fn slider_range(key: &str) -> Option<SliderRange> {
+    match key {
+        // 5 cm (a statuette) to 10 m (a tall tank): three decades of size.
+        "block.width" | "block.height" => log(0.05, 10.0),
+        // Dry friction coefficients of real contacts lie below 1.5; `inf`
+        // (no sliding) stays typed only.
+        "friction.static" | "friction.kinetic" | "impact.static" | "impact.kinetic" => lin(0.0, 2.0),
+        "impact.r" | "impact.e" => lin(0.0, 1.0),
+        // Uplift needs A_h > tan ψ/ψ ≈ 1 (ψ g); 5 is five times that and
+        // above every preset (the paper's bifurcations run to A_v = 3).
+        "excitation.a_h" | "excitation.a_v" => lin(0.0, 5.0),
+        // From slow rocking to far above the block's own frequencies.
+        "excitation.omega_h" | "excitation.omega_v" => log(0.5, 30.0),
+        "excitation.phase_h" | "excitation.phase_v" => lin(0.0, std::f64::consts::TAU),
+        "excitation.pga_h" | "excitation.pga_v" => lin(0.0, 2.0),
+        "excitation.scale_h" | "excitation.scale_v" => lin(0.0, 5.0),
+        "initial.theta" => lin(-1.0, 1.0),
+        "initial.theta_dot" | "initial.x_dot" => lin(-3.0, 3.0),
+        _ => None,
+    }
+}
+
+/// A slider's value as the text to apply: four significant digits, which
+/// is finer than a pixel of any slider and keeps the scene's numbers
+/// readable.
+pub fn slider_text(v: f64) -> String {
+    if v == 0.0 || !v.is_finite() {
+        return "0".to_string();
+    }
+    let digits = (3 - v.abs().log10().floor() as i32).clamp(0, 15) as usize;
+    let text = format!("{v:.digits$}");
+    if text.contains('.') {
+        text.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        text
+    }
+}
+
+/// A value the user set in the panel.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Commit {
+    /// `section.key`.
+    pub key: &'static str,
+    /// The value, as TOML text.
+    pub raw: String,
+    /// Whether it came from a slider being dragged (else typed or chosen).
+    pub dragged: bool,
+}
+
+/// The panel's own state: text being typed into fields, by key, until
+/// committed, and where a slider drag restarts the run from.
+#[derive(Clone, Debug)]
+pub struct Edits {
+    typing: HashMap<&'static str, String>,
+    /// Where a slider drag restarts the run from. Default: the current
+    /// state, as DynamicalSystems.jl's interactive apps do, so that
+    /// dragging A_v shows the attractor deform (and double) instead of a
+    /// transient from rest after every pixel.
+    pub drag_from: StartFrom,
+}
+
+impl Default for Edits {
+    fn default() -> Self {
+        Self {
+            typing: HashMap::new(),
+            drag_from: StartFrom::Current,
+        }
+    }
+}
+
+/// Draws the panel: the restart toggle, then the keys that apply to the
+/// scene's excitation kind ([`applies`]). `explicit` gives a key's value as
+/// the scene states it (`None`: the key is left at its default). Returns
+/// the value the user committed or dragged to, if any (at most one a
+/// frame).
 pub fn show(
     ui: &mut egui::Ui,
     cfg: &Scenario,
     explicit: &dyn Fn(&str) -> Option<String>,
     edits: &mut Edits,
-) -> Option<(&'static str, String)> {
+) -> Option<Commit> {
     let mut commit = None;
+    ui.horizontal_wrapped(|ui| {
+        ui.label("Drag restarts from")
+            .on_hover_text("Where the run restarts when a slider is dragged. A typed value always starts the scene over from its initial state.");
+        for (from, text, help) in [
+            (
+                StartFrom::Current,
+                "current",
+                "Continue from the state shown (Θ, Θ', X, X', mode) with τ running on: the attractor deforms as you drag",
+            ),
+            (
+                StartFrom::Initial,
+                "initial",
+                "Start over from τ = 0 and the initial state at every new value",
+            ),
+        ] {
+            ui.selectable_value(&mut edits.drag_from, from, text)
+                .on_hover_text(help);
+        }
+    });
     let json = crate::io::config::to_json(cfg);
     for (group, keys) in GROUPS {
         egui::CollapsingHeader::new(*group)
@@ -397,29 +516,29 @@ pub fn show(
                                     if let Some(o) = chosen
                                         && o != shown
                                     {
-                                        commit = Some((k.key, o.to_string()));
+                                        commit = Some(Commit {
+                                            key: k.key,
+                                            raw: o.to_string(),
+                                            dragged: false,
+                                        });
                                     }
                                 }
+                                Kind::Number if slider_range(k.key).is_some() => {
+                                    ui.horizontal(|ui| {
+                                        if let Some(c) = slider(ui, k, &shown) {
+                                            commit = Some(c);
+                                        }
+                                        if let Some(c) =
+                                            text_field(ui, k, &shown, stated.is_some(), label.id, edits, 60.0)
+                                        {
+                                            commit = Some(c);
+                                        }
+                                    });
+                                }
                                 Kind::Number | Kind::Text => {
-                                    let typing = edits.typing.get(k.key).cloned();
-                                    let mut text = typing.clone().unwrap_or_else(|| shown.clone());
-                                    let hint = if stated.is_some() { "" } else { "default" };
-                                    let r = ui
-                                        .add(
-                                            egui::TextEdit::singleline(&mut text)
-                                                .desired_width(120.0)
-                                                .hint_text(hint),
-                                        )
-                                        .labelled_by(label.id)
-                                        .on_hover_text(k.help);
-                                    if r.changed() {
-                                        edits.typing.insert(k.key, text.clone());
-                                    }
-                                    if r.lost_focus()
-                                        && let Some(t) = edits.typing.remove(k.key)
-                                        && t.trim() != shown
+                                    if let Some(c) = text_field(ui, k, &shown, stated.is_some(), label.id, edits, 120.0)
                                     {
-                                        commit = Some((k.key, t));
+                                        commit = Some(c);
                                     }
                                 }
                             }
@@ -436,4 +555,115 @@ pub fn show(
             });
     }
     commit
+}
+
+/// The slider of number key `k` (whose value reads `shown`); returns the
+/// new value while it is dragged. None is drawn for a value that is not a
+/// finite number (`inf`, or an empty default).
+fn slider(ui: &mut egui::Ui, k: &Key, shown: &str) -> Option<Commit> {
+    let range = slider_range(k.key)?;
+    let value = shown.trim().parse::<f64>().ok().filter(|v| v.is_finite())?;
+    let mut v = value;
+    // With the 60-point field beside it, the row fits the panel's
+    // default 300 points.
+    ui.spacing_mut().slider_width = 72.0;
+    let r = ui
+        .add(
+            egui::Slider::new(&mut v, range.min..=range.max)
+                .logarithmic(range.log)
+                .show_value(false)
+                // A value beyond the range stays as it is until dragged.
+                .clamping(egui::SliderClamping::Never),
+        )
+        .on_hover_text(format!(
+            "Drag to explore {} from {} to {} {}; the field beside takes any valid value",
+            k.label,
+            slider_text(range.min),
+            slider_text(range.max),
+            k.unit
+        ));
+    // Its own accessible name: the field beside is the one named by the label.
+    let name = format!("{} slider", k.label);
+    ui.ctx().accesskit_node_builder(r.id, |node| node.set_label(name));
+    if !r.changed() {
+        return None;
+    }
+    let raw = slider_text(v);
+    (raw.parse::<f64>().ok() != Some(value)).then_some(Commit {
+        key: k.key,
+        raw,
+        dragged: true,
+    })
+}
+
+/// The text field of key `k`, committed when it loses focus (or on Enter).
+fn text_field(
+    ui: &mut egui::Ui,
+    k: &Key,
+    shown: &str,
+    stated: bool,
+    label: egui::Id,
+    edits: &mut Edits,
+    width: f32,
+) -> Option<Commit> {
+    let typing = edits.typing.get(k.key).cloned();
+    let mut text = typing.unwrap_or_else(|| shown.to_string());
+    let hint = if stated { "" } else { "default" };
+    // Sized exactly: beside a slider in a grid cell, a field that may
+    // shrink to what the cell had last frame would stay too narrow to read.
+    let height = ui.spacing().interact_size.y;
+    let r = ui
+        .add_sized(
+            [width, height],
+            egui::TextEdit::singleline(&mut text)
+                .desired_width(width)
+                .hint_text(hint),
+        )
+        .labelled_by(label)
+        .on_hover_text(k.help);
+    if r.changed() {
+        edits.typing.insert(k.key, text.clone());
+    }
+    if r.lost_focus()
+        && let Some(t) = edits.typing.remove(k.key)
+        && t.trim() != shown
+    {
+        return Some(Commit {
+            key: k.key,
+            raw: t,
+            dragged: false,
+        });
+    }
+    None
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn slider_values_are_applied_with_four_significant_digits() {
+        assert_eq!(slider_text(1.83333333), "1.833");
+        assert_eq!(slider_text(0.0123456), "0.01235");
+        assert_eq!(slider_text(12.5), "12.5");
+        assert_eq!(slider_text(2.0), "2");
+        assert_eq!(slider_text(-0.5), "-0.5");
+        assert_eq!(slider_text(0.0), "0");
+    }
+
+    #[test]
+    fn every_slider_is_on_a_number_key_of_the_panel_with_a_valid_range() {
+        let keys: Vec<&Key> = GROUPS.iter().flat_map(|(_, ks)| ks.iter()).collect();
+        let mut sliders = 0;
+        for k in &keys {
+            if let Some(r) = slider_range(k.key) {
+                sliders += 1;
+                assert_eq!(k.kind, Kind::Number, "{}", k.key);
+                assert!(r.min < r.max && (!r.log || r.min > 0.0), "{}: {r:?}", k.key);
+            }
+        }
+        // B, H, four friction coefficients, r, e, two amplitudes, two
+        // frequencies, two phases, two PGAs, two scales, Θ₀, Θ'₀, X'₀.
+        assert_eq!(sliders, 21);
+    }
 }

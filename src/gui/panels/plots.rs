@@ -115,14 +115,32 @@ pub fn phase_plot(
     }
 }
 
-/// Poincaré plot state: the density grid, its texture, and whether the view
-/// follows the data.
+/// Which Poincaré section the plot shows.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum SectionKind {
+    /// Stroboscopic: (Θ, Θ') once a forcing period, at forcing phase φ,
+    /// τ_k = (2πk + φ)/Ω_h (the simulation thread takes these points).
+    #[default]
+    Stroboscopic,
+    /// At impacts: (forcing phase at the impact, Θ' just before it), from
+    /// the events the app keeps (Θ is 0 at every impact).
+    Impact,
+}
+
+/// Poincaré plot state: which section, the density grid, its texture, and
+/// whether the view follows the data.
 pub struct PoincareView {
-    /// Density grid (work counter inside).
+    /// Density grid of the section shown (work counter inside).
     pub grid: DensityGrid,
     texture: Option<egui::TextureHandle>,
     /// Fit the view to the points each frame until the user pans or zooms.
     pub auto_fit: bool,
+    /// The section shown.
+    pub section: SectionKind,
+    /// The stroboscopic section's forcing phase φ, rad, as the user set it.
+    pub phase: f64,
+    /// The section the grid was binned for (a switch rebins).
+    binned_for: SectionKind,
 }
 
 impl Default for PoincareView {
@@ -131,6 +149,10 @@ impl Default for PoincareView {
             grid: DensityGrid::default(),
             texture: None,
             auto_fit: true,
+            section: SectionKind::default(),
+            // τ_k = 2πk/Ω_h: the paper's section.
+            phase: 0.0,
+            binned_for: SectionKind::default(),
         }
     }
 }
@@ -140,23 +162,117 @@ impl PoincareView {
     pub fn reset(&mut self) {
         self.auto_fit = true;
     }
+
+    /// How many points the grid has binned from the section shown (all of
+    /// them once it is up to date, in view or not).
+    pub fn plotted(&self) -> usize {
+        self.grid.binned()
+    }
+
+    /// Shows `section` from now on: refits the view and rebins from the
+    /// points kept (the grid keeps its work counter).
+    pub fn switch(&mut self, section: SectionKind) {
+        self.section = section;
+        if self.binned_for != section {
+            self.binned_for = section;
+            self.grid.forget();
+            self.auto_fit = true;
+        }
+    }
 }
 
-/// Draws the Poincaré points as a per-pixel density image, in the units of
-/// `scales` (both are linear in Θ and Θ', so the points are binned in the
-/// model's units over the view converted back).
-pub fn poincare_plot(ui: &mut egui::Ui, hist: &RunHistory, view: &mut PoincareView, scales: &Scales) {
-    let bbox = hist.section.bbox().map(|b| {
-        let (x0, x1) = (scales.theta(b[0]), scales.theta(b[1]));
-        let (y0, y1) = (scales.theta_dot(b[2]), scales.theta_dot(b[3]));
+/// The section selector above the plot: stroboscopic (with its phase) or
+/// at impacts. Returns a new phase if the user changed it.
+fn section_selector(ui: &mut egui::Ui, view: &mut PoincareView) -> Option<f64> {
+    let mut chosen = view.section;
+    let mut new_phase = None;
+    ui.horizontal_wrapped(|ui| {
+        ui.label("Section");
+        ui.selectable_value(&mut chosen, SectionKind::Stroboscopic, "stroboscopic")
+            .on_hover_text("(Θ, Θ') once a forcing period, at τ_k = (2πk + φ)/Ω_h");
+        ui.selectable_value(&mut chosen, SectionKind::Impact, "at impacts")
+            .on_hover_text("Θ' just before each impact against the forcing phase Ω_h τ mod 2π at that impact (Θ is 0 at every impact)");
+        if chosen == SectionKind::Stroboscopic {
+            let pl = ui.label("φ");
+            let mut phase = view.phase;
+            ui.spacing_mut().slider_width = 90.0;
+            let r = ui
+                .add(
+                    egui::Slider::new(&mut phase, 0.0..=std::f64::consts::TAU)
+                        .suffix(" rad")
+                        .max_decimals(2),
+                )
+                .labelled_by(pl.id)
+                .on_hover_text("Forcing phase of the section, τ_k = (2πk + φ)/Ω_h: changing it keeps the motion going and starts the section's points over");
+            if r.changed() && phase != view.phase {
+                view.phase = phase;
+                new_phase = Some(phase);
+            }
+        }
+    });
+    view.switch(chosen);
+    // What the points are, in words: the plot's axis titles are painted
+    // small, and this line is what a screen reader (and a test) reads.
+    let caption = match view.section {
+        SectionKind::Stroboscopic => format!("(Θ, Θ') once a forcing period, at Ω_h τ = 2πk + {:.2}", view.phase),
+        SectionKind::Impact => "Θ' just before each impact, against the forcing phase at that impact".to_string(),
+    };
+    // One line, cut with "…" when narrow (the hover has it whole), so the
+    // plot below keeps its height at a large presentation scale.
+    ui.add(egui::Label::new(egui::RichText::new(&caption).weak()).truncate())
+        .on_hover_text(caption);
+    new_phase
+}
+
+/// Draws the section selector and the Poincaré points of the section
+/// chosen as a per-pixel density image, in the units of `scales` (both are
+/// linear in Θ and Θ', so the points are binned in the model's units over
+/// the view converted back; the impact section's phase is in rad in both).
+/// Returns the stroboscopic phase the user asked for, if they changed it:
+/// the caller sends it to the simulation thread.
+pub fn poincare_plot(ui: &mut egui::Ui, hist: &RunHistory, view: &mut PoincareView, scales: &Scales) -> Option<f64> {
+    let new_phase = section_selector(ui, view);
+    let impact = view.section == SectionKind::Impact;
+    let store = if impact { &hist.impact_section } else { &hist.section };
+    // Converts a point of the section, in the model's units, to the units shown.
+    let to_shown = |x: f64, y: f64| -> (f64, f64) {
+        if impact {
+            (x, scales.theta_dot(y))
+        } else {
+            (scales.theta(x), scales.theta_dot(y))
+        }
+    };
+    let to_model = |x: f64, y: f64| -> (f64, f64) {
+        let (theta, theta_dot) = scales.state_of(x, y);
+        if impact { (x, theta_dot) } else { (theta, theta_dot) }
+    };
+    let bbox = store.bbox().map(|b| {
+        let (x0, y0) = to_shown(b[0], b[2]);
+        let (x1, y1) = to_shown(b[1], b[3]);
         [x0.min(x1), x0.max(x1), y0.min(y1), y0.max(y1)]
     });
+    let (x_label, y_label) = if impact {
+        (
+            "Ω_h τ mod 2π at impact [rad]".to_string(),
+            format!("{} before impact", scales.theta_dot_label()),
+        )
+    } else {
+        let at = if view.phase == 0.0 {
+            "at τ_k = 2πk/Ω_h".to_string()
+        } else {
+            format!("at τ_k = (2πk + {:.2})/Ω_h", view.phase)
+        };
+        (
+            format!("{} {at}", scales.theta_label()),
+            format!("{} {at}", scales.theta_dot_label()),
+        )
+    };
     let ppp = ui.ctx().pixels_per_point();
     let auto_fit = view.auto_fit;
     let PoincareView { grid, texture, .. } = view;
     let resp = axes::readable(Plot::new("poincare"))
-        .x_axis_label(format!("{} at τ_k", scales.theta_label()))
-        .y_axis_label(format!("{} at τ_k", scales.theta_dot_label()))
+        .x_axis_label(x_label)
+        .y_axis_label(y_label)
         .auto_bounds(false)
         .allow_double_click_reset(false)
         .show(ui, |plot_ui| {
@@ -178,9 +294,9 @@ pub fn poincare_plot(ui: &mut egui::Ui, hist: &RunHistory, view: &mut PoincareVi
                 (frame.height() * ppp * 0.5).round().clamp(1.0, max_side) as usize,
             ];
             let shown = [bounds.min()[0], bounds.max()[0], bounds.min()[1], bounds.max()[1]];
-            let (lo, hi) = (scales.state_of(shown[0], shown[2]), scales.state_of(shown[1], shown[3]));
+            let (lo, hi) = (to_model(shown[0], shown[2]), to_model(shown[1], shown[3]));
             let v = [lo.0, hi.0, lo.1, hi.1];
-            let changed = grid.update(&hist.section, v, size);
+            let changed = grid.update(store, v, size);
             if changed || texture.is_none() {
                 let image = grid.to_image(Color32::from_rgb(120, 175, 255), Color32::from_rgb(255, 235, 120));
                 match texture {
@@ -216,6 +332,7 @@ pub fn poincare_plot(ui: &mut egui::Ui, hist: &RunHistory, view: &mut PoincareVi
     if r.double_clicked() {
         view.auto_fit = true;
     }
+    new_phase
 }
 
 /// Time-history settings.

@@ -13,6 +13,19 @@
 //! chunk produces is queued here and *released* up to a τ chosen by the
 //! caller (the playhead), which is how the thread paces output in real
 //! time without putting step stops at wall-clock times.
+//!
+//! # Section phase
+//!
+//! The stroboscopic section is taken at τ_k = (2πk + φ)/Ω_h. At φ = 0 (the
+//! default) the driver takes the points from its dense output at k·period,
+//! as the batch run does, bit for bit. At any other φ the driver takes no
+//! section points: the chunk grid is shifted by φ/Ω_h so that every period
+//! boundary is a section time, each chunk is advanced *onto* its end
+//! ([`Driver::advance`]), and the state there is the section point. Those
+//! runs stop their steps on chunk ends (one extra stop per chunk, at most
+//! one per τ), so they agree with a batch run to the tolerance rather than
+//! bit for bit; the section points are the integrator's own states, not
+//! interpolated.
 
 use std::collections::VecDeque;
 
@@ -44,6 +57,9 @@ trait LiveDriver: Send {
     fn mode(&self) -> Mode;
     /// To `t_end` or past it, by whole steps ([`Driver::advance_past`]).
     fn advance(&mut self, t_end: f64, obs: &mut dyn Observer<Mode, EventRecord, N>) -> Result<Advance, ModelError>;
+    /// Exactly onto `t_end` ([`Driver::advance`]).
+    fn advance_onto(&mut self, t_end: f64, obs: &mut dyn Observer<Mode, EventRecord, N>)
+    -> Result<Advance, ModelError>;
     /// Largest |Θ| the model found at its rocking peaks (between samples).
     fn peak_theta(&self) -> f64;
 }
@@ -75,6 +91,13 @@ impl<S: Stepper<N> + Send> LiveDriver for Driver<S, BlockSystem, N> {
     }
     fn advance(&mut self, t_end: f64, obs: &mut dyn Observer<Mode, EventRecord, N>) -> Result<Advance, ModelError> {
         self.advance_past(t_end, &mut Forward(obs))
+    }
+    fn advance_onto(
+        &mut self,
+        t_end: f64,
+        obs: &mut dyn Observer<Mode, EventRecord, N>,
+    ) -> Result<Advance, ModelError> {
+        Driver::advance(self, t_end, &mut Forward(obs))
     }
     fn peak_theta(&self) -> f64 {
         self.system().tally.max_abs_theta
@@ -220,26 +243,62 @@ impl Observer<Mode, EventRecord, N> for GhostSink<'_> {
     fn event(&mut self, _t: f64, _before: Mode, _y_before: &[f64; N], _record: EventRecord) {}
 }
 
-/// The τ grid of chunk ends: each forcing period split into `parts`.
-/// Period boundaries are computed as `k · period`, exactly as the driver
-/// computes section times, so they coincide bit for bit.
+/// The τ grid of chunk ends: each forcing period split into `parts`,
+/// the periods starting at the section times. With no phase offset,
+/// period boundaries are computed as `k · period`, exactly as the driver
+/// computes section times, so they coincide bit for bit; with an offset
+/// φ/Ω_h, as `offset + (k − 1) · period` (the first period, k = 0, starts
+/// before τ = 0, so that no chunk exceeds [`MAX_CHUNK`]).
 #[derive(Clone, Copy, Debug)]
 struct ChunkGrid {
     period: f64,
     parts: u64,
+    /// φ/Ω_h, in [0, period).
+    offset: f64,
 }
 
 impl ChunkGrid {
+    /// Start of the grid's `k`-th period.
+    fn period_start(&self, k: u64) -> f64 {
+        if self.offset == 0.0 {
+            k as f64 * self.period
+        } else {
+            self.offset + (k as f64 - 1.0) * self.period
+        }
+    }
+
     /// The `j`-th chunk end.
     fn end(&self, j: u64) -> f64 {
         let (k, i) = (j / self.parts, j % self.parts);
-        let start = k as f64 * self.period;
+        let start = self.period_start(k);
         if i == 0 {
             start
         } else {
             start + i as f64 * (self.period / self.parts as f64)
         }
     }
+
+    /// The section index k of chunk end `j`, if it is a section time
+    /// (τ_k = offset + k · period).
+    fn section_index(&self, j: u64) -> Option<u64> {
+        let (k, i) = (j / self.parts, j % self.parts);
+        match (i, self.offset == 0.0) {
+            (0, true) => Some(k),
+            (0, false) => k.checked_sub(1),
+            _ => None,
+        }
+    }
+}
+
+/// `phase` taken into [0, 2π); non-finite phases are 0.
+pub fn normalise_phase(phase: f64) -> f64 {
+    let two_pi = std::f64::consts::TAU;
+    if !phase.is_finite() {
+        return 0.0;
+    }
+    let p = phase.rem_euclid(two_pi);
+    // rem_euclid can round up to 2π itself for tiny negative phases.
+    if p >= two_pi { 0.0 } else { p }
 }
 
 /// Where a run starts.
@@ -315,14 +374,38 @@ pub struct Session {
     peaks: Peaks,
     /// τ up to which output has been released.
     released: f64,
+    /// Whether section points come from landing on chunk ends (a section
+    /// phase other than 0) rather than from the driver.
+    exact_sections: bool,
+    /// Where the run started: τ, mode, state (the state shown until a
+    /// sample is released).
+    start: (f64, Mode, [f64; N]),
 }
 
 impl Session {
-    /// Starts run `run` of `scenario` from `start`. Errors (a record file that
-    /// cannot be read, an inadmissible start) are one-line messages.
+    /// Starts run `run` of `scenario` from `start`, with the section at
+    /// phase 0. Errors (a record file that cannot be read, an inadmissible
+    /// start) are one-line messages.
     pub fn new(run: RunId, scenario: &Scenario, start: Start) -> Result<Self, String> {
+        Self::with_phase(run, scenario, start, 0.0)
+    }
+
+    /// As [`Session::new`], with stroboscopic section points at forcing
+    /// phase `phase` (rad, taken modulo 2π): τ_k = (2πk + φ)/Ω_h.
+    pub fn with_phase(run: RunId, scenario: &Scenario, start: Start, phase: f64) -> Result<Self, String> {
         let model = scenario.model().map_err(|e| e.to_string())?;
         let section_period = model.excitation.forcing_period();
+        let phase = normalise_phase(phase);
+        let omega_h = match &model.excitation {
+            crate::model::Excitation::Harmonic(h) => Some(h.omega_h),
+            _ => None,
+        };
+        // The offset is only meaningful with a section (harmonic forcing).
+        let offset = match (section_period, omega_h) {
+            (Some(period), Some(w)) if phase > 0.0 => (phase / w).min(period),
+            _ => 0.0,
+        };
+        let exact_sections = offset > 0.0;
         let mut system = BlockSystem::new(model);
         let (tau0, mode0, y0) = match start {
             Start::Initial => {
@@ -339,10 +422,12 @@ impl Session {
             Some(period) => ChunkGrid {
                 period,
                 parts: (period / MAX_CHUNK).ceil().max(1.0) as u64,
+                offset,
             },
             None => ChunkGrid {
                 period: MAX_CHUNK,
                 parts: 1,
+                offset: 0.0,
             },
         };
         let mut next_chunk = 0;
@@ -353,7 +438,7 @@ impl Session {
         let base = BaseMotion::new(&system.model.excitation, tau0);
         let outputs = Outputs {
             sample_dt: Some(LIVE_SAMPLE_DT),
-            section_period,
+            section_period: if exact_sections { None } else { section_period },
         };
         let geometry = system.model.geo;
         let mut peaks = Peaks::default();
@@ -365,6 +450,7 @@ impl Session {
                 scenario: scenario.clone(),
                 geometry,
                 section_period,
+                section_phase: if exact_sections { phase } else { 0.0 },
                 tau0,
                 sample_dt: LIVE_SAMPLE_DT,
             },
@@ -381,6 +467,8 @@ impl Session {
             rest_after: scenario.record_end_tau(),
             peaks,
             released: tau0,
+            exact_sections,
+            start: (tau0, mode0, y0),
         })
     }
 
@@ -433,7 +521,8 @@ impl Session {
                 y[X_DOT] = s.x_dot;
                 (s.tau, s.mode, y)
             }
-            None => (self.driver.t(), self.driver.mode(), self.driver.y()),
+            // Nothing released yet: the user still sees the start.
+            None => self.start,
         }
     }
 
@@ -460,9 +549,21 @@ impl Session {
             queue: &mut self.queue,
             peaks: &mut self.peaks,
         };
-        match self.driver.advance(t_end, &mut sink) {
+        let advanced = if self.exact_sections {
+            self.driver.advance_onto(t_end, &mut sink)
+        } else {
+            self.driver.advance(t_end, &mut sink)
+        };
+        match advanced {
             Ok(Advance::Reached) => {
                 let t = self.driver.t();
+                if self.exact_sections
+                    && t == t_end
+                    && let Some(k) = self.grid.section_index(self.next_chunk)
+                {
+                    let (mode, y) = (self.driver.mode(), self.driver.y());
+                    self.queue.section.push_back(SectionRow::of_state(k, t, mode, &y));
+                }
                 if self.rest_after.is_some_and(|end| t >= end) && self.driver.mode() == Mode::Rest {
                     self.ended = Some(RunEnd::Rest {
                         tau: t,
@@ -580,10 +681,33 @@ impl Session {
     }
 
     /// A new run of the same scenario from the state shown at the playhead,
-    /// with Θ + `eps`.
+    /// with Θ + `eps`, keeping this run's section phase.
     pub fn perturbed(&self, run: RunId, eps: f64, last_sample: Option<&Sample>) -> Result<Session, String> {
         let (tau, mode, y) = self.shown_state(last_sample);
-        Session::new(run, &self.info.scenario, Start::Perturbed { tau, y, mode, eps })
+        Session::with_phase(
+            run,
+            &self.info.scenario,
+            Start::Perturbed { tau, y, mode, eps },
+            self.info.section_phase,
+        )
+    }
+
+    /// A new run of `scenario` (new parameters) from the state shown at the
+    /// playhead, τ running on, with the section at `phase`. Refused (with
+    /// the reason) if the state shown is terminal or not admissible under
+    /// the new parameters (e.g. past the new tumble angle).
+    pub fn continued(
+        &self,
+        run: RunId,
+        scenario: &Scenario,
+        phase: f64,
+        last_sample: Option<&Sample>,
+    ) -> Result<Session, String> {
+        let (tau, mode, y) = self.shown_state(last_sample);
+        if mode.is_terminal() {
+            return Err(format!("the run has ended ({mode:?}): nothing to continue"));
+        }
+        Session::with_phase(run, scenario, Start::Perturbed { tau, y, mode, eps: 0.0 }, phase)
     }
 }
 
@@ -650,6 +774,108 @@ mod tests {
             ),
             "{end:?}"
         );
+    }
+
+    /// Everything `scenario` produces live to `tau` with the section at `phase`.
+    fn live_batch(scenario: &Scenario, phase: f64, tau: f64) -> Batch {
+        let mut s = Session::with_phase(RunId(1), scenario, Start::Initial, phase).expect("starts");
+        s.fill_to(tau);
+        let mut batch = Batch::default();
+        s.release(tau, &mut batch);
+        batch
+    }
+
+    #[test]
+    fn section_points_at_a_phase_lie_on_the_shifted_grid() {
+        let sc = preset("default");
+        let crate::model::Excitation::Harmonic(h) = sc.model().expect("model").excitation else {
+            panic!("the default scene is harmonic");
+        };
+        let phi = 1.3;
+        let batch = live_batch(&sc, phi, 50.0);
+        // 50 τ at Ω_h = 8: 63 or 64 points.
+        assert!(batch.section.len() >= 63, "{} points", batch.section.len());
+        for (i, p) in batch.section.iter().enumerate() {
+            assert_eq!(p.k, i as u64, "k counts from 0 at the first section time after τ = 0");
+            let miss = h.omega_h * p.tau - phi - std::f64::consts::TAU * p.k as f64;
+            assert!(miss.abs() <= 1e-12, "Ω τ_k − φ − 2πk = {miss:e} at k = {}", p.k);
+        }
+    }
+
+    #[test]
+    fn section_points_at_a_phase_are_the_trajectorys_states_there() {
+        // The section point at τ_k is the state the run passes through at
+        // τ_k: compared with the cubic Hermite interpolant (Θ and Θ') of the
+        // phase-0 run's samples around it, away from events.
+        let sc = preset("default");
+        let at_zero = live_batch(&sc, 0.0, 20.0);
+        let shifted = live_batch(&sc, 2.0, 20.0);
+        let dt = LIVE_SAMPLE_DT;
+        let mut checked = 0;
+        for p in &shifted.section {
+            let near_event = at_zero.events.iter().any(|e| (e.tau - p.tau).abs() < 2.0 * dt);
+            let j = at_zero.samples.partition_point(|s| s.tau <= p.tau);
+            if near_event || j == 0 || j >= at_zero.samples.len() {
+                continue;
+            }
+            let (a, b) = (&at_zero.samples[j - 1], &at_zero.samples[j]);
+            if a.mode != b.mode {
+                continue;
+            }
+            let h = b.tau - a.tau;
+            let s = (p.tau - a.tau) / h;
+            let (h00, h10) = (2.0 * s.powi(3) - 3.0 * s * s + 1.0, s.powi(3) - 2.0 * s * s + s);
+            let (h01, h11) = (-2.0 * s.powi(3) + 3.0 * s * s, s.powi(3) - s * s);
+            let theta = h00 * a.theta + h10 * h * a.theta_dot + h01 * b.theta + h11 * h * b.theta_dot;
+            assert!(
+                (theta - p.theta).abs() < 1e-7,
+                "Θ at τ = {}: section {} vs trajectory {theta}",
+                p.tau,
+                p.theta
+            );
+            checked += 1;
+        }
+        assert!(checked > 10, "only {checked} points away from events");
+    }
+
+    #[test]
+    fn at_phase_zero_or_two_pi_the_section_is_the_batch_runs_bit_for_bit() {
+        let sc = preset("default");
+        let tau_end = 30.0;
+        let opts = crate::sim::RunOptions {
+            tau_end,
+            ..sc.run_options()
+        };
+        let batch = simulate(sc.model().expect("model"), &sc.initial, &opts).expect("batch run");
+        for phase in [0.0, std::f64::consts::TAU] {
+            let live = live_batch(&sc, phase, tau_end - 1.0);
+            assert!(live.section.len() > 30);
+            for (a, b) in batch.section.iter().zip(&live.section) {
+                assert_eq!(a.k, b.k);
+                assert_eq!(a.tau.to_bits(), b.tau.to_bits());
+                assert_eq!(a.theta.to_bits(), b.theta.to_bits(), "Θ at k = {}", a.k);
+                assert_eq!(a.theta_dot.to_bits(), b.theta_dot.to_bits(), "Θ' at k = {}", a.k);
+            }
+        }
+    }
+
+    #[test]
+    fn a_run_continued_with_new_parameters_starts_at_the_shown_state() {
+        let sc = preset("default");
+        let mut s = Session::new(RunId(1), &sc, Start::Initial).expect("starts");
+        s.fill_to(10.0);
+        let mut batch = Batch::default();
+        s.release(7.0, &mut batch);
+        let last = *batch.samples.last().expect("samples");
+        let mut next_sc = sc.clone();
+        next_sc.excitation.a_v += 0.1;
+        let next = s.continued(RunId(2), &next_sc, 0.0, Some(&last)).expect("continues");
+        assert_eq!(next.info().tau0, last.tau, "τ runs on");
+        assert_eq!(next.info().scenario, next_sc);
+        let (mode, y) = next.state();
+        assert_eq!(mode, last.mode);
+        assert_eq!(y[THETA], last.theta);
+        assert_eq!(y[THETA_DOT], last.theta_dot);
     }
 
     #[test]

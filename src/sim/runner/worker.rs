@@ -9,7 +9,7 @@ use super::outbox::Outbox;
 use super::session::{Session, Start};
 use crate::sim::Scenario;
 use crate::sim::job::{Link, Stopped};
-use crate::sim::protocol::{Batch, MAX_GHOSTS, RunEnd, RunId, Sample, SimCommand, SimUpdate, Speed};
+use crate::sim::protocol::{Batch, MAX_GHOSTS, RunEnd, RunId, Sample, SimCommand, SimUpdate, Speed, StartFrom};
 
 /// Wall-clock time the thread integrates before it releases output at
 /// [`Speed::Max`] (and the most it lets a paced tick overrun).
@@ -37,6 +37,8 @@ pub(super) struct Worker {
     /// The configuration last asked for (what `Reset` restarts, even when
     /// it failed to start).
     scenario: Scenario,
+    /// Forcing phase of the stroboscopic section, rad, for every new run.
+    section_phase: f64,
 }
 
 enum Flow {
@@ -57,13 +59,15 @@ impl Worker {
             ghosts: (0, 0.0),
             deferred_finish: false,
             scenario,
+            section_phase: 0.0,
         }
     }
 
     /// Runs until `Shutdown`, or until the handle is dropped.
     pub(super) fn run(mut self, run: RunId) {
         let scenario = self.scenario.clone();
-        self.start(run, |r| Session::new(r, &scenario, Start::Initial));
+        let phase = self.section_phase;
+        self.start(run, |r| Session::with_phase(r, &scenario, Start::Initial, phase));
         loop {
             let flow = match self.wait() {
                 Ok(Some(cmd)) => self.handle(cmd),
@@ -117,14 +121,16 @@ impl Worker {
     fn handle(&mut self, cmd: SimCommand) -> Flow {
         match cmd {
             SimCommand::Shutdown => return Flow::Stop,
-            SimCommand::SetParams { run, scenario } => {
+            SimCommand::SetParams { run, scenario, from } => {
                 self.scenario = *scenario;
-                let scenario = self.scenario.clone();
-                self.start(run, |r| Session::new(r, &scenario, Start::Initial));
+                self.restart(run, from);
+            }
+            SimCommand::SetSectionPhase { run, phase } => {
+                self.section_phase = super::session::normalise_phase(phase);
+                self.restart(run, StartFrom::Current);
             }
             SimCommand::Reset { run } => {
-                let scenario = self.scenario.clone();
-                self.start(run, |r| Session::new(r, &scenario, Start::Initial));
+                self.restart(run, StartFrom::Initial);
             }
             SimCommand::ResetPerturbed { run, eps } => {
                 let last = self.last_sample;
@@ -167,6 +173,25 @@ impl Worker {
             }
         }
         Flow::Continue
+    }
+
+    /// Starts run `run` of the configuration last asked for, at the
+    /// current section phase, from `from`. A run that cannot continue from
+    /// the current state (none shown, terminal, or not admissible under the
+    /// new parameters) starts from the initial state instead: a drag across
+    /// a value where the state is not admissible must not leave the user
+    /// with a failed run.
+    fn restart(&mut self, run: RunId, from: StartFrom) {
+        let scenario = self.scenario.clone();
+        let phase = self.section_phase;
+        let continued = match (from, &self.session) {
+            (StartFrom::Current, Some(s)) => s.continued(run, &scenario, phase, self.last_sample.as_ref()).ok(),
+            _ => None,
+        };
+        self.start(run, |r| match continued {
+            Some(s) => Ok(s),
+            None => Session::with_phase(r, &scenario, Start::Initial, phase),
+        });
     }
 
     /// Replaces the session with `make(run)`; a failure is reported as the
