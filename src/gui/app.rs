@@ -2,7 +2,8 @@
 //! takes. The rest, by job: `receive` (the message loop with the
 //! simulation thread), `controls` (top bar, menus, keyboard), `layout`
 //! (where the panels go, and the frame), `status` (the status bar),
-//! `record_open` (opening a record, and asking what its file leaves out).
+//! `record_open` (opening a record, and asking what its file leaves out),
+//! `share` (the window title, and the window as a GIF or PNG).
 //!
 //! Contract: the app does no mechanics. Everything it shows comes from the
 //! simulation thread's updates ([`crate::sim::protocol`]), filtered by run
@@ -31,9 +32,11 @@ mod controls;
 mod layout;
 mod receive;
 mod record_open;
+mod share;
 mod status;
 
 pub use record_open::RecordQuestion;
+pub use share::window_title;
 
 /// Where the app's data comes from.
 enum Link {
@@ -132,6 +135,8 @@ pub struct RockingApp {
     record_label: Option<RecordLabel>,
     ground: GroundView,
     record_question: Option<RecordQuestion>,
+    /// The window title, GIF recording and PNG export ([`share`]).
+    share: share::Share,
 }
 
 impl RockingApp {
@@ -147,6 +152,7 @@ impl RockingApp {
         let ctx = cc.egui_ctx.clone();
         let waker = Box::new(move || ctx.request_repaint());
         let mut message = None;
+        let mut end = None;
         let link = match SimHandle::spawn(config.clone(), speed, paused, waker) {
             Ok(h) => Link::Live(h),
             Err(e) => {
@@ -154,6 +160,8 @@ impl RockingApp {
                     text: e.to_string(),
                     error: true,
                 });
+                // Shown in the scene's place too (there will be no run).
+                end = Some(RunEnd::Failed(e.to_string()));
                 Link::Fixed {
                     pending: VecDeque::new(),
                     run: RunId(1),
@@ -167,6 +175,7 @@ impl RockingApp {
             Speed::Max => app.max_speed = true,
         }
         app.message = message;
+        app.end = end;
         app
     }
 
@@ -231,6 +240,7 @@ impl RockingApp {
             record_label: None,
             ground: GroundView::default(),
             record_question: None,
+            share: share::Share::default(),
         }
     }
 

@@ -60,7 +60,7 @@ impl RockingApp {
     fn scene_panel(&mut self, ui: &mut egui::Ui) {
         let full = ui.available_rect_before_wrap();
         let (Some(info), Some(sample)) = (self.info.as_ref(), self.hist.samples.last()) else {
-            ui.centered_and_justified(|ui| ui.label("waiting for the simulation…"));
+            self.no_run_label(ui);
             return;
         };
         let verdict = self.end.as_ref().and_then(|e| Verdict::of(e, info.geometry));
