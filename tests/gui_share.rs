@@ -117,7 +117,7 @@ fn an_edit_marks_the_scene_unsaved_until_it_is_saved_or_another_is_loaded() {
     h.step();
     assert!(path.exists(), "{:?}", h.state().message());
     assert_eq!(h.state().title(), "rocking — talk.toml");
-    assert!(h.state_mut().set_key("block.mu_s", "0.5"));
+    assert!(h.state_mut().set_key("excitation.a_h", "2.1"));
     h.step();
     assert_eq!(h.state().title(), "rocking — talk.toml •");
 
@@ -125,7 +125,7 @@ fn an_edit_marks_the_scene_unsaved_until_it_is_saved_or_another_is_loaded() {
     h.state_mut().load_preset("fig16");
     h.step();
     assert_eq!(h.state().title(), "rocking — fig16");
-    assert!(h.state_mut().set_key("block.mu_s", "0.5"));
+    assert!(h.state_mut().set_key("excitation.a_h", "2.1"));
     h.step();
     assert!(h.state().scene_dirty());
     h.state_mut().open_scene(&path);
@@ -200,7 +200,14 @@ fn a_gif_that_cannot_be_written_leaves_nothing_and_says_why() {
 
 #[test]
 fn recording_a_gif_of_the_app_writes_its_frames_and_says_so() {
-    let mut h = rendered("default", 30.0);
+    let (s, c) = scene("default", &[]);
+    let updates = record(rocking::sim::protocol::RunId(1), &c, 30.0);
+    // Steps of 1/60 s of egui time (the harness's default is 1/4 s).
+    let mut h = Harness::builder()
+        .with_size(SIZE)
+        .with_step_dt(1.0 / 60.0)
+        .wgpu()
+        .build_eframe(move |cc| RockingApp::with_stream(cc, s, c, updates));
     h.step();
     let dir = temp_dir("record");
     let path = dir.join("app.gif");
@@ -295,7 +302,7 @@ fn the_gif_size_fits_the_width_asked() {
 fn a_run_that_cannot_start_says_why_in_the_status_bar_and_the_scene() {
     // Resolves (every value is valid on its own) but cannot start: a flat
     // block that slides, with friction that forbids sliding.
-    let sets = ["block.mu_s=\"inf\"", "initial.x_dot=0.1"];
+    let sets = ["friction.static=\"inf\"", "initial.x_dot=0.1"];
     let (s, c) = scene("default", &sets);
     let mut h = Harness::builder()
         .with_size(SIZE)
@@ -343,4 +350,44 @@ fn a_record_path_that_does_not_exist_is_refused_in_the_status_bar() {
     let msg = h.state().message().expect("a message").clone();
     assert!(msg.error && msg.text.contains("record.AT2"), "{msg:?}");
     let _ = h.get_by_label_contains("record.AT2");
+}
+
+/// The time to encode a 5 s, 15 fps GIF of the 1280 × 800 app at 960 px,
+/// and its size. A measurement, not a check:
+/// `cargo test --test gui_share -- --ignored --nocapture gif_encoding_time`.
+#[test]
+#[ignore = "a measurement; run by hand"]
+fn gif_encoding_time() {
+    // 75 frames of the live app rendered as it plays (fig7, 4× speed).
+    let (s, c) = scene("fig7", &[]);
+    let mut h = Harness::builder()
+        .with_size(SIZE)
+        .wgpu()
+        .build_eframe(move |cc| RockingApp::live(cc, s, c, Speed::RealTime(4.0), false));
+    assert!(pump(&mut h, Duration::from_secs(20), |a| a.tau() > 20.0));
+    let mut frames = Vec::new();
+    for _ in 0..75 {
+        h.step();
+        let img = h.render().expect("rendered");
+        let size = [img.width() as usize, img.height() as usize];
+        frames.push(Arc::new(ColorImage::from_rgba_unmultiplied(size, img.as_raw())));
+        std::thread::sleep(Duration::from_millis(66));
+    }
+    let start = Instant::now();
+    let mut gif = GifBuilder::new(15.0, 960);
+    for (i, f) in frames.iter().enumerate() {
+        gif.push(i as f64 / 15.0, f.clone()).expect("push");
+    }
+    let (bytes, n, size) = gif.finish().expect("encoded");
+    println!(
+        "{n} frames of {:?} -> {size:?}: encoded in {:.2} s on {} threads, {:.2} MB",
+        frames[0].size,
+        start.elapsed().as_secs_f64(),
+        rayon::current_num_threads(),
+        bytes.len() as f64 / 1e6
+    );
+    // To look at it: GIF_OUT=/tmp/app.gif.
+    if let Some(out) = std::env::var_os("GIF_OUT") {
+        std::fs::write(out, &bytes).expect("written");
+    }
 }

@@ -9,11 +9,17 @@
 //! it is done.
 //!
 //! GIF encoding: each frame is downscaled (area average) to the first
-//! frame's output size, quantised to its own 256-colour palette by the gif
-//! crate's NeuQuant ([`gif::Frame::from_rgba_speed`]) and LZW-compressed;
-//! frames are processed in parallel (rayon) in small batches as they
-//! arrive, so the file is ready soon after the recording ends and only the
-//! compressed frames stay in memory.
+//! frame's output size, mapped to one fixed 256-colour palette
+//! ([`palette`]) and LZW-compressed; frames are processed in parallel
+//! (rayon) in small batches as they arrive, so the file is ready soon after
+//! the recording ends and only the compressed frames stay in memory.
+//!
+//! Why a fixed palette and not an adaptive one (the gif crate's NeuQuant,
+//! `Frame::from_rgba_speed`): NeuQuant spends its 256 colours where the
+//! pixels are, so the small swatches that matter (the mode legend, a
+//! Poincaré dot) came out grey or in the wrong hue; a fixed palette keeps
+//! every hue within a step of the colour cube, the greys of the panels
+//! within 3 levels, and is several times faster (no search).
 
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -24,10 +30,62 @@ use rayon::prelude::*;
 
 use crate::gui::export::write_atomic;
 
-/// NeuQuant's sampling factor (1 = best, 30 = fastest). 10 is the gif
-/// crate's own recommendation: on the app's flat panels and thin lines it
-/// looks the same as 1 and quantises a 960 × 600 frame several times faster.
-pub const GIF_QUANT_SPEED: i32 = 10;
+/// Levels per channel of the palette's colour cube (6³ = 216 colours,
+/// steps of 51: hues stay recognisable, the web-safe cube).
+const CUBE: usize = 6;
+
+/// Greys in the palette besides the cube's six: the app's panels, text
+/// and grid lines are greys, which the cube alone would band badly.
+const GREYS: usize = 40;
+
+/// The `i`-th extra grey (0-based), spread evenly between black and white.
+fn grey(i: usize) -> u8 {
+    ((i + 1) * 255 / (GREYS + 1)) as u8
+}
+
+/// The GIF palette, RGB bytes: the 6 × 6 × 6 colour cube, then 40 greys.
+pub fn palette() -> Vec<u8> {
+    let mut p = Vec::with_capacity(3 * (CUBE * CUBE * CUBE + GREYS));
+    for r in 0..CUBE {
+        for g in 0..CUBE {
+            for b in 0..CUBE {
+                p.extend([r, g, b].map(|c| (c * 51) as u8));
+            }
+        }
+    }
+    for i in 0..GREYS {
+        p.extend([grey(i); 3]);
+    }
+    p
+}
+
+/// The index in [`palette`] of the colour nearest (r, g, b): the nearer
+/// of the nearest cube colour and the nearest grey.
+pub fn nearest(r: u8, g: u8, b: u8) -> u8 {
+    let level = |c: u8| (usize::from(c) + 25) / 51;
+    let (ri, gi, bi) = (level(r), level(g), level(b));
+    let d2 = |c: u8, q: u8| {
+        let d = i32::from(c) - i32::from(q);
+        d * d
+    };
+    let cube_d = d2(r, (ri * 51) as u8) + d2(g, (gi * 51) as u8) + d2(b, (bi * 51) as u8);
+    // The nearest grey is the one nearest the mean; grey(i) ≈ (i + 1)·255/41,
+    // so the guess is off by one at most after the rounding: try around it.
+    let mean = (usize::from(r) + usize::from(g) + usize::from(b)) / 3;
+    let guess = (mean * (GREYS + 1) / 255).clamp(1, GREYS) - 1;
+    let (gi_extra, grey_d) = (guess.saturating_sub(1)..=(guess + 1).min(GREYS - 1))
+        .map(|i| {
+            let q = grey(i);
+            (i, d2(r, q) + d2(g, q) + d2(b, q))
+        })
+        .min_by_key(|&(_, d)| d)
+        .expect("at least one grey");
+    if grey_d < cube_d {
+        (CUBE * CUBE * CUBE + gi_extra) as u8
+    } else {
+        (ri * CUBE * CUBE + gi * CUBE + bi) as u8
+    }
+}
 
 /// How many frames are quantised together (in parallel) before they are
 /// written: enough to keep every core busy, few enough that uncompressed
@@ -100,14 +158,14 @@ pub fn fit_width(size: [usize; 2], max_width: usize) -> [usize; 2] {
     [max_width.max(1), height.max(1)]
 }
 
-/// `img` resampled to `size` as RGBA bytes, each output pixel the average
+/// `img` resampled to `size` as RGB bytes, each output pixel the average
 /// of the source pixels it covers (a box filter: sharp text stays legible
 /// when shrinking by less than 2, where nearest-neighbour would drop whole
-/// rows of a line). Alpha is written opaque: a window has no transparency.
+/// rows of a line). A window is opaque: alpha is dropped.
 pub fn resample(img: &ColorImage, size: [usize; 2]) -> Vec<u8> {
     let [sw, sh] = img.size;
     let [w, h] = size;
-    let mut out = vec![255u8; w * h * 4];
+    let mut out = vec![0u8; w * h * 3];
     if sw == 0 || sh == 0 {
         return out;
     }
@@ -130,7 +188,7 @@ pub fn resample(img: &ColorImage, size: [usize; 2]) -> Vec<u8> {
                 }
             }
             let n = ((y1 - y0) * (x1 - x0)) as u32;
-            let o = (y * w + x) * 4;
+            let o = (y * w + x) * 3;
             for k in 0..3 {
                 out[o + k] = ((sum[k] + n / 2) / n) as u8;
             }
@@ -215,15 +273,16 @@ impl GifBuilder {
             .par_iter()
             .zip(delays.par_iter())
             .map(|((_, img), delay)| {
-                let mut rgba = resample(img, size);
-                let mut f = gif::Frame::from_rgba_speed(w, h, &mut rgba, GIF_QUANT_SPEED);
+                let rgb = resample(img, size);
+                let indices: Vec<u8> = rgb.chunks_exact(3).map(|c| nearest(c[0], c[1], c[2])).collect();
+                let mut f = gif::Frame::from_indexed_pixels(w, h, indices, None);
                 f.delay = *delay;
                 f.make_lzw_pre_encoded();
                 f
             })
             .collect();
         if self.encoder.is_none() {
-            let mut e = gif::Encoder::new(Vec::new(), w, h, &[]).map_err(|e| e.to_string())?;
+            let mut e = gif::Encoder::new(Vec::new(), w, h, &palette()).map_err(|e| e.to_string())?;
             e.set_repeat(gif::Repeat::Infinite).map_err(|e| e.to_string())?;
             self.encoder = Some(e);
         }
@@ -361,9 +420,35 @@ mod tests {
     fn resample_averages_the_pixels_each_output_pixel_covers() {
         // 2 × 1 black and white → 1 × 1 mid grey.
         let img = ColorImage::new([2, 1], vec![egui::Color32::BLACK, egui::Color32::WHITE]);
-        assert_eq!(resample(&img, [1, 1]), vec![128, 128, 128, 255]);
+        assert_eq!(resample(&img, [1, 1]), vec![128, 128, 128]);
         // Same size: unchanged.
         let img = ColorImage::new([1, 2], vec![egui::Color32::RED, egui::Color32::BLUE]);
-        assert_eq!(resample(&img, [1, 2]), vec![255, 0, 0, 255, 0, 0, 255, 255]);
+        assert_eq!(resample(&img, [1, 2]), vec![255, 0, 0, 0, 0, 255]);
+    }
+
+    #[test]
+    fn every_colour_maps_to_the_nearest_palette_entry() {
+        let p = palette();
+        assert_eq!(p.len(), 3 * 256);
+        let dist =
+            |i: usize, c: [u8; 3]| -> i32 { (0..3).map(|k| (i32::from(p[3 * i + k]) - i32::from(c[k])).pow(2)).sum() };
+        // A sparse grid of colours and every grey: the index found is as
+        // near as the best of all 256 entries.
+        let mut colours: Vec<[u8; 3]> = (0..=255u8).map(|v| [v; 3]).collect();
+        for r in (0..=255u8).step_by(17) {
+            for g in (0..=255u8).step_by(15) {
+                for b in (0..=255u8).step_by(13) {
+                    colours.push([r, g, b]);
+                }
+            }
+        }
+        for c in colours {
+            let found = usize::from(nearest(c[0], c[1], c[2]));
+            let best = (0..256).map(|i| dist(i, c)).min().expect("256 entries");
+            assert_eq!(dist(found, c), best, "{c:?} -> entry {found}");
+        }
+        // The app's dark panel grey is kept within 3 levels.
+        let i = usize::from(nearest(27, 27, 27));
+        assert!((i32::from(p[3 * i]) - 27).abs() <= 3, "{:?}", &p[3 * i..3 * i + 3]);
     }
 }
