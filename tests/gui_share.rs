@@ -164,6 +164,15 @@ fn a_gif_of_synthetic_frames_decodes_to_the_same_frames_downscaled() {
     while let Some(f) = dec.read_next_frame().expect("a frame") {
         assert_eq!((f.width, f.height), (960, 600));
         delays.push(f.delay);
+        // After the first frame, what did not change is left transparent
+        // (the corner is never under the bar).
+        let corner = f.buffer[(599 * 960 + 959) * 4 + 3];
+        assert_eq!(
+            corner,
+            if delays.len() == 1 { 255 } else { 0 },
+            "frame {}",
+            delays.len()
+        );
         // Where the bright bar is on row 300.
         let row = &f.buffer[300 * 960 * 4..301 * 960 * 4];
         let xs: Vec<usize> = (0..960)

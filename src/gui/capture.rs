@@ -19,7 +19,7 @@
 //! pixels are, so the small swatches that matter (the mode legend, a
 //! Poincaré dot) came out grey or in the wrong hue; a fixed palette keeps
 //! every hue within a step of the colour cube, the greys of the panels
-//! within 3 levels, and is several times faster (no search).
+//! within 4 levels, and is several times faster (no search).
 
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -36,16 +36,22 @@ const CUBE: usize = 6;
 
 /// Greys in the palette besides the cube's six: the app's panels, text
 /// and grid lines are greys, which the cube alone would band badly.
-const GREYS: usize = 40;
+const GREYS: usize = 39;
+
+/// The palette index that stands for "as in the frame before": the
+/// unchanged pixels of every frame after the first (most of the window)
+/// become one long run, which LZW packs to almost nothing.
+const UNCHANGED: u8 = 255;
 
 /// The `i`-th extra grey (0-based), spread evenly between black and white.
 fn grey(i: usize) -> u8 {
     ((i + 1) * 255 / (GREYS + 1)) as u8
 }
 
-/// The GIF palette, RGB bytes: the 6 × 6 × 6 colour cube, then 40 greys.
+/// The GIF palette, RGB bytes: the 6 × 6 × 6 colour cube, then 39 greys,
+/// then black at [`UNCHANGED`] (the transparent index; never drawn).
 pub fn palette() -> Vec<u8> {
-    let mut p = Vec::with_capacity(3 * (CUBE * CUBE * CUBE + GREYS));
+    let mut p = Vec::with_capacity(3 * 256);
     for r in 0..CUBE {
         for g in 0..CUBE {
             for b in 0..CUBE {
@@ -56,6 +62,7 @@ pub fn palette() -> Vec<u8> {
     for i in 0..GREYS {
         p.extend([grey(i); 3]);
     }
+    p.extend([0; 3]);
     p
 }
 
@@ -69,7 +76,7 @@ pub fn nearest(r: u8, g: u8, b: u8) -> u8 {
         d * d
     };
     let cube_d = d2(r, (ri * 51) as u8) + d2(g, (gi * 51) as u8) + d2(b, (bi * 51) as u8);
-    // The nearest grey is the one nearest the mean; grey(i) ≈ (i + 1)·255/41,
+    // The nearest grey is the one nearest the mean; grey(i) ≈ (i + 1)·255/40,
     // so the guess is off by one at most after the rounding: try around it.
     let mean = (usize::from(r) + usize::from(g) + usize::from(b)) / 3;
     let guess = (mean * (GREYS + 1) / 255).clamp(1, GREYS) - 1;
@@ -209,6 +216,8 @@ pub struct GifBuilder {
     pending: Vec<(f64, Arc<ColorImage>)>,
     encoder: Option<gif::Encoder<Vec<u8>>>,
     frames: usize,
+    /// The last frame written, whole (palette indices).
+    prev: Option<Vec<u8>>,
 }
 
 impl GifBuilder {
@@ -221,6 +230,7 @@ impl GifBuilder {
             pending: Vec::new(),
             encoder: None,
             frames: 0,
+            prev: None,
         }
     }
 
@@ -269,14 +279,33 @@ impl GifBuilder {
                 cs.round().clamp(2.0, 6000.0) as u16
             })
             .collect();
-        let frames: Vec<gif::Frame<'static>> = batch
+        let mut indexed: Vec<Vec<u8>> = batch
             .par_iter()
-            .zip(delays.par_iter())
-            .map(|((_, img), delay)| {
+            .map(|(_, img)| {
                 let rgb = resample(img, size);
-                let indices: Vec<u8> = rgb.chunks_exact(3).map(|c| nearest(c[0], c[1], c[2])).collect();
-                let mut f = gif::Frame::from_indexed_pixels(w, h, indices, None);
+                rgb.chunks_exact(3).map(|c| nearest(c[0], c[1], c[2])).collect()
+            })
+            .collect();
+        // Each frame after the first keeps only what changed; the others
+        // show the frame before through (Keep disposal).
+        for full in &mut indexed {
+            let next = full.clone();
+            if let Some(prev) = &self.prev {
+                for (p, q) in full.iter_mut().zip(prev) {
+                    if p == q {
+                        *p = UNCHANGED;
+                    }
+                }
+            }
+            self.prev = Some(next);
+        }
+        let frames: Vec<gif::Frame<'static>> = indexed
+            .into_par_iter()
+            .zip(delays.par_iter())
+            .map(|(indices, delay)| {
+                let mut f = gif::Frame::from_indexed_pixels(w, h, indices, Some(UNCHANGED));
                 f.delay = *delay;
+                f.dispose = gif::DisposalMethod::Keep;
                 f.make_lzw_pre_encoded();
                 f
             })
