@@ -171,7 +171,9 @@ impl RockingApp {
     /// [`PRESENTATION_WIDTH`] × [`PRESENTATION_HEIGHT`] physical pixels:
     /// a smaller window is enlarged with the zoom raised by the same factor
     /// (the same layout, drawn with more pixels) for the frames the picture
-    /// takes, then put back.
+    /// takes, then put back. If the window manager keeps the window's size,
+    /// the zoom is put back and the window is taken as it is; the status
+    /// line says the size written.
     pub fn export_view(&mut self, ctx: &egui::Context, path: PathBuf) {
         if self.sharing_busy() {
             self.message = Some(Message {
@@ -272,8 +274,15 @@ impl RockingApp {
                 let size = ctx.content_rect().size();
                 let fits = (size - view.size).abs().max_elem() < 1.0;
                 // Two frames at least: the menu that asked is gone from the picture.
-                if (fits && *frames >= 2) || *frames >= RESIZE_FRAMES {
+                if (fits && *frames >= 2) || (*frames >= RESIZE_FRAMES && !view.scaled) {
                     view.stage = Snap::Shooting(shoot(ctx));
+                } else if *frames >= RESIZE_FRAMES {
+                    // The window manager kept the window's size: the raised
+                    // zoom would only enlarge the layout. Take the window as
+                    // it is (the status line says its size).
+                    ctx.set_zoom_factor(view.zoom);
+                    view.scaled = false;
+                    view.stage = Snap::Resizing(0);
                 } else {
                     *frames += 1;
                 }
