@@ -2,7 +2,8 @@
 //! takes. The rest, by job: `receive` (the message loop with the
 //! simulation thread), `controls` (top bar, menus, keyboard), `layout`
 //! (where the panels go, and the frame), `status` (the status bar),
-//! `record_open` (opening a record, and asking what its file leaves out).
+//! `record_open` (opening a record, and asking what its file leaves out),
+//! `share` (the window title, and the window as a GIF or PNG).
 //!
 //! Contract: the app does no mechanics. Everything it shows comes from the
 //! simulation thread's updates ([`crate::sim::protocol`]), filtered by run
@@ -34,9 +35,11 @@ pub mod lecture;
 mod map_panel;
 mod receive;
 mod record_open;
+mod share;
 mod status;
 
 pub use record_open::RecordQuestion;
+pub use share::window_title;
 
 /// Where the app's data comes from.
 enum Link {
@@ -142,6 +145,8 @@ pub struct RockingApp {
     record_question: Option<RecordQuestion>,
     /// The note, the side panel's tab, the presentation scale, the fall.
     lecture: lecture::Lecture,
+    /// The window title, GIF recording and PNG export ([`share`]).
+    share: share::Share,
 }
 
 impl RockingApp {
@@ -157,6 +162,7 @@ impl RockingApp {
         let ctx = cc.egui_ctx.clone();
         let waker = Box::new(move || ctx.request_repaint());
         let mut message = None;
+        let mut end = None;
         let link = match SimHandle::spawn(config.clone(), speed, paused, waker) {
             Ok(h) => Link::Live(h),
             Err(e) => {
@@ -164,6 +170,8 @@ impl RockingApp {
                     text: e.to_string(),
                     error: true,
                 });
+                // Shown in the scene's place too (there will be no run).
+                end = Some(RunEnd::Failed(e.to_string()));
                 Link::Fixed {
                     pending: VecDeque::new(),
                     run: RunId(1),
@@ -182,6 +190,7 @@ impl RockingApp {
             .origin
             .strip_prefix("preset ")
             .and_then(crate::gui::lessons::Note::of_preset);
+        app.end = end;
         app
     }
 
@@ -248,6 +257,7 @@ impl RockingApp {
             ground: GroundView::default(),
             record_question: None,
             lecture: lecture::Lecture::default(),
+            share: share::Share::default(),
         }
     }
 

@@ -9,6 +9,7 @@
 
 pub mod app;
 pub mod block_view;
+pub mod capture;
 pub mod export;
 pub mod glossary;
 pub mod history;
@@ -28,17 +29,20 @@ use crate::sim::protocol::Speed;
 /// is closed. The block starts moving at once, in real time, unless
 /// `paused`.
 pub fn run(settings: Settings, config: Scenario, paused: bool) -> Result<(), String> {
-    let title = format!("rocking — {}", settings.origin);
+    let title = app::window_title(&settings.origin, false);
     let options = eframe::NativeOptions {
         viewport: egui::ViewportBuilder::default()
-            .with_title(title.clone())
+            .with_title(title)
             .with_inner_size([1280.0, 800.0])
             .with_min_inner_size([640.0, 420.0]),
         renderer: eframe::Renderer::Wgpu,
         ..Default::default()
     };
+    // The app's name, not its title: eframe makes it the Wayland app id
+    // (what the desktop groups windows and finds the icon by), which a
+    // scene's name would change from run to run.
     eframe::run_native(
-        &title,
+        "rocking",
         options,
         Box::new(move |cc| {
             let mut app = RockingApp::live(cc, settings, config, Speed::default(), paused);

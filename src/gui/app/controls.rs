@@ -220,10 +220,7 @@ impl RockingApp {
                 .add_filter("scene", &["toml", "json"])
                 .pick_file()
             {
-                match Settings::open(&path) {
-                    Ok((s, c)) => self.apply(s, c),
-                    Err(e) => self.message = Some(Message { text: e, error: true }),
-                }
+                self.open_scene(&path);
             }
         }
         if ui.button("Open record…").clicked() {
@@ -239,11 +236,7 @@ impl RockingApp {
         if ui.button("Save scene…").clicked() {
             ui.close();
             if let Some(path) = save_dialog("scene", "toml", "scene.toml") {
-                let r = self
-                    .settings
-                    .to_toml()
-                    .and_then(|t| export::write_atomic(&path, t.as_bytes()));
-                self.message = Some(written(r, || format!("saved {}", path.display())));
+                self.save_scene(&path);
             }
         }
         if ui.button("Export plots (PNG)…").clicked() {
@@ -270,12 +263,58 @@ impl RockingApp {
                 }));
             }
         }
+        ui.separator();
+        if ui
+            .button("Export view (PNG)…")
+            .on_hover_text("The window as it is, at least 1920 × 1080 pixels (a small window is drawn enlarged)")
+            .clicked()
+        {
+            ui.close();
+            if let Some(path) = save_dialog("PNG", "png", "rocking.png") {
+                self.export_view(ui.ctx(), path);
+            }
+        }
+        let busy = self.sharing_busy();
+        if ui
+            .add_enabled(!busy, egui::Button::new("Record GIF…"))
+            .on_hover_text("A few seconds of the window, as it plays, as an animated GIF for slides")
+            .clicked()
+        {
+            ui.close();
+            self.open_gif_dialog();
+        }
+    }
+
+    /// Makes the scene in `path` (TOML or summary.json) the scene, or says
+    /// why not; the scene loaded has no unsaved changes.
+    pub fn open_scene(&mut self, path: &std::path::Path) {
+        match Settings::open(path) {
+            Ok((s, c)) => {
+                self.apply(s, c);
+                self.mark_clean();
+            }
+            Err(e) => self.message = Some(Message { text: e, error: true }),
+        }
+    }
+
+    /// Saves the scene's explicit keys to `path` (TOML); once saved, the
+    /// scene is that file's, with no unsaved changes.
+    pub fn save_scene(&mut self, path: &std::path::Path) {
+        let r = self
+            .settings
+            .to_toml()
+            .and_then(|t| export::write_atomic(path, t.as_bytes()));
+        if r.is_ok() {
+            self.settings.origin = path.display().to_string();
+            self.mark_clean();
+        }
+        self.message = Some(written(r, || format!("saved {}", path.display())));
     }
 }
 
 /// Asks where to save a `filter` file (extension `ext`), proposing `name`;
 /// `None` if the user cancelled.
-fn save_dialog(filter: &str, ext: &str, name: &str) -> Option<std::path::PathBuf> {
+pub(super) fn save_dialog(filter: &str, ext: &str, name: &str) -> Option<std::path::PathBuf> {
     rfd::FileDialog::new()
         .add_filter(filter, &[ext])
         .set_file_name(name)

@@ -106,7 +106,7 @@ impl RockingApp {
             .rect;
         full.min.y = used.max.y + 2.0;
         let (Some(info), Some(sample)) = (self.info.as_ref(), self.hist.samples.last()) else {
-            ui.centered_and_justified(|ui| ui.label("waiting for the simulation…"));
+            self.no_run_label(ui);
             return;
         };
         let verdict = self.end.as_ref().and_then(|e| Verdict::of(e, info.geometry));

@@ -186,7 +186,7 @@ impl RockingApp {
     /// Picks up a scale changed by egui's own Ctrl +/−/0 and stores it.
     pub(super) fn follow_scale(&mut self, ctx: &egui::Context) {
         let z = ctx.zoom_factor();
-        if z == self.lecture.scale {
+        if z == self.lecture.scale || self.exporting_view() {
             return;
         }
         let clamped = Prefs::clamp_scale(z);

@@ -57,8 +57,15 @@ impl RockingApp {
             }
             SimUpdate::Finished { end, .. } => {
                 if let RunEnd::Failed(msg) = &end {
+                    // A run with no sample did not start (e.g. its record
+                    // file is gone): say so, not that it stopped.
+                    let what = if self.hist.samples.is_empty() {
+                        "the run could not start"
+                    } else {
+                        "run stopped"
+                    };
                     self.message = Some(Message {
-                        text: format!("run stopped: {msg}"),
+                        text: format!("{what}: {msg}"),
                         error: true,
                     });
                 }

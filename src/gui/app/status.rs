@@ -1,12 +1,20 @@
 //! The status bar: playhead, mode, counts, speed, how the run ended, frame
-//! times (live app only) and the last message.
+//! times (live app only), a GIF recording's progress and the last message;
+//! and what the scene shows when there is no run to draw.
 
 use super::{Link, RockingApp};
 use crate::gui::panels::scene;
 use crate::sim::protocol::RunEnd;
 
+/// The colour of errors (and of the recording mark): a red that reads on
+/// the dark and the light theme.
+const ERROR_RED: egui::Color32 = egui::Color32::from_rgb(235, 90, 90);
+
 impl RockingApp {
     pub(super) fn status(&mut self, ui: &mut egui::Ui) {
+        // The bar is drawn every frame: the title and the pictures being
+        // taken advance with it.
+        self.share_tick(ui.ctx());
         ui.horizontal_wrapped(|ui| {
             let p = self.info.as_ref().map_or(self.config.geometry().p, |i| i.geometry.p);
             ui.label(format!("τ = {:.2}", self.tau));
@@ -76,13 +84,33 @@ impl RockingApp {
                     "CPU time of the app's own code per frame, and the interval between frames (rendering included)",
                 );
             }
+            if let Some(text) = self.recording_label(ui.input(|i| i.time)) {
+                ui.colored_label(ERROR_RED, text);
+            }
             if let Some(m) = &self.message {
                 let color = if m.error {
-                    egui::Color32::from_rgb(235, 90, 90)
+                    ERROR_RED
                 } else {
                     ui.visuals().weak_text_color()
                 };
                 ui.colored_label(color, &m.text);
+            }
+        });
+    }
+
+    /// What the scene shows while it has nothing to draw: why the run did
+    /// not start, in red, if it failed to; else that it is coming.
+    pub(super) fn no_run_label(&self, ui: &mut egui::Ui) {
+        let failed = match &self.end {
+            Some(RunEnd::Failed(msg)) => Some(msg),
+            Some(RunEnd::Terminal { .. } | RunEnd::Rest { .. }) | None => None,
+        };
+        ui.centered_and_justified(|ui| match failed {
+            Some(msg) => {
+                ui.colored_label(ERROR_RED, format!("The run could not start: {msg}"));
+            }
+            None => {
+                ui.label("waiting for the simulation…");
             }
         });
     }

@@ -1,0 +1,431 @@
+//! Sharing what the app shows: the window title (the scene's name and an
+//! unsaved-changes mark), recording an animated GIF of the window, and one
+//! PNG of it at presentation resolution. The pictures come from egui's
+//! screenshots ([`egui::Context::request_screenshot`]); the files are
+//! encoded and written by [`crate::gui::capture`] on background threads.
+//!
+//! Everything here advances once a frame, in [`RockingApp::share_tick`]:
+//! the status bar calls it, so it runs in every frame the app draws.
+
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use crossbeam_channel::{Receiver, Sender};
+use egui::ColorImage;
+
+use super::{Message, RockingApp};
+use crate::gui::capture::{self, GifOptions, Shot, Written};
+
+/// The width a PNG of the view has at least, physical pixels: a 1080p
+/// projector's.
+pub const PRESENTATION_WIDTH: f32 = 1920.0;
+
+/// The height it has at least, physical pixels.
+pub const PRESENTATION_HEIGHT: f32 = 1080.0;
+
+/// Frames the PNG export waits for the enlarged window before it takes
+/// the picture anyway (a window manager may refuse the size).
+const RESIZE_FRAMES: u32 = 30;
+
+/// The window title for a scene from `origin` (a preset, `preset NAME`, or
+/// a file path), with `•` after it while it has unsaved changes:
+/// `rocking — fig7`, `rocking — scene.toml •`. A path is shortened to its
+/// file name: the title bar has no room for directories.
+pub fn window_title(origin: &str, dirty: bool) -> String {
+    let name = match origin.strip_prefix("preset ") {
+        Some(preset) => preset.to_string(),
+        None => Path::new(origin)
+            .file_name()
+            .map_or_else(|| origin.to_string(), |n| n.to_string_lossy().into_owned()),
+    };
+    let name = if name.is_empty() { "untitled".to_string() } else { name };
+    if dirty {
+        format!("rocking — {name} •")
+    } else {
+        format!("rocking — {name}")
+    }
+}
+
+/// A GIF being recorded.
+struct Recording {
+    path: PathBuf,
+    options: GifOptions,
+    /// When it started, s of egui time.
+    start: f64,
+    /// When the next frame is due, s of egui time.
+    next: f64,
+    /// Frames asked for so far.
+    asked: usize,
+    tx: Sender<Shot>,
+    done: Receiver<Result<Written, String>>,
+}
+
+/// Where the PNG export of the view is.
+enum Snap {
+    /// The zoom was raised; next frame the window is enlarged to keep the
+    /// layout.
+    Zoomed,
+    /// Waiting for the enlarged window, or for the menu to close (frames
+    /// waited so far).
+    Resizing(u32),
+    /// The screenshot was asked for.
+    Shooting(Receiver<Arc<ColorImage>>),
+    /// The zoom was restored; next frame the window gets its size back.
+    Restoring,
+}
+
+/// A PNG export of the view.
+struct ViewExport {
+    path: PathBuf,
+    /// Zoom factor and window size (points) before the export.
+    zoom: f32,
+    size: egui::Vec2,
+    /// Whether the zoom (and window size) were changed for it.
+    scaled: bool,
+    stage: Snap,
+}
+
+/// The sharing state of the app.
+#[derive(Default)]
+pub struct Share {
+    /// The title last sent to the window.
+    title_sent: Option<String>,
+    /// The scene as last loaded or saved: its origin and explicit keys.
+    clean: Option<(String, toml::Table)>,
+    /// The GIF options window, while open.
+    gif_dialog: Option<GifOptions>,
+    recording: Option<Recording>,
+    /// GIFs whose writer is finishing.
+    encoding: Vec<Receiver<Result<Written, String>>>,
+    view: Option<ViewExport>,
+    /// PNGs being written.
+    writing: Vec<Receiver<Result<Written, String>>>,
+}
+
+impl RockingApp {
+    /// Whether the scene has changes not saved since it was loaded or saved.
+    pub fn scene_dirty(&self) -> bool {
+        match &self.share.clean {
+            Some((origin, table)) if *origin == self.settings.origin => *table != self.settings.table,
+            // A scene loaded since the last frame is clean.
+            Some(_) | None => false,
+        }
+    }
+
+    /// The window title for the scene now.
+    pub fn title(&self) -> String {
+        window_title(&self.settings.origin, self.scene_dirty())
+    }
+
+    /// Whether a PNG export of the view has the zoom raised for now (the
+    /// presentation scale is then not the user's).
+    pub(super) fn exporting_view(&self) -> bool {
+        self.share.view.is_some()
+    }
+
+    /// Takes the settings now as the clean state (after a load or a save).
+    pub(super) fn mark_clean(&mut self) {
+        self.share.clean = Some((self.settings.origin.clone(), self.settings.table.clone()));
+    }
+
+    /// Whether a GIF is being recorded.
+    pub fn recording(&self) -> bool {
+        self.share.recording.is_some()
+    }
+
+    /// Whether a picture is being taken or written.
+    pub fn sharing_busy(&self) -> bool {
+        self.share.recording.is_some()
+            || !self.share.encoding.is_empty()
+            || self.share.view.is_some()
+            || !self.share.writing.is_empty()
+    }
+
+    /// Opens the GIF options window (File ▸ Record GIF…).
+    pub(super) fn open_gif_dialog(&mut self) {
+        if self.share.gif_dialog.is_none() {
+            self.share.gif_dialog = Some(GifOptions::default());
+        }
+    }
+
+    /// Starts recording `options.seconds` of the window into a GIF at
+    /// `path`, written when the recording ends.
+    pub fn record_gif(&mut self, ctx: &egui::Context, path: PathBuf, options: GifOptions) {
+        if self.sharing_busy() {
+            self.message = Some(Message {
+                text: "a picture is already being taken".into(),
+                error: true,
+            });
+            return;
+        }
+        let waker = ctx.clone();
+        let (tx, done) = capture::spawn_gif_writer(path.clone(), options, move || waker.request_repaint());
+        let now = ctx.input(|i| i.time);
+        self.share.recording = Some(Recording {
+            path,
+            options,
+            start: now,
+            next: now,
+            asked: 0,
+            tx,
+            done,
+        });
+        ctx.request_repaint();
+    }
+
+    /// Takes a PNG of the window at `path`, at least
+    /// [`PRESENTATION_WIDTH`] × [`PRESENTATION_HEIGHT`] physical pixels:
+    /// a smaller window is enlarged with the zoom raised by the same factor
+    /// (the same layout, drawn with more pixels) for the frames the picture
+    /// takes, then put back. If the window manager keeps the window's size,
+    /// the zoom is put back and the window is taken as it is; the status
+    /// line says the size written.
+    pub fn export_view(&mut self, ctx: &egui::Context, path: PathBuf) {
+        if self.sharing_busy() {
+            self.message = Some(Message {
+                text: "a picture is already being taken".into(),
+                error: true,
+            });
+            return;
+        }
+        let ppp = ctx.pixels_per_point();
+        let size = ctx.content_rect().size();
+        let k = (PRESENTATION_WIDTH / (size.x * ppp))
+            .max(PRESENTATION_HEIGHT / (size.y * ppp))
+            .max(1.0);
+        let zoom = ctx.zoom_factor();
+        let scaled = k > 1.0 + 1e-3;
+        let stage = if scaled {
+            ctx.set_zoom_factor(zoom * k);
+            Snap::Zoomed
+        } else {
+            Snap::Resizing(0)
+        };
+        self.share.view = Some(ViewExport {
+            path,
+            zoom,
+            size,
+            scaled,
+            stage,
+        });
+        ctx.request_repaint();
+    }
+
+    /// One frame of sharing: the title, the recording, the view export and
+    /// the writers' results.
+    pub(super) fn share_tick(&mut self, ctx: &egui::Context) {
+        if self
+            .share
+            .clean
+            .as_ref()
+            .is_none_or(|(origin, _)| *origin != self.settings.origin)
+        {
+            self.mark_clean();
+        }
+        let title = self.title();
+        if self.share.title_sent.as_ref() != Some(&title) {
+            ctx.send_viewport_cmd(egui::ViewportCommand::Title(title.clone()));
+            self.share.title_sent = Some(title);
+        }
+        self.gif_window(ctx);
+        self.tick_recording(ctx);
+        self.tick_view(ctx);
+        self.collect_written();
+    }
+
+    fn tick_recording(&mut self, ctx: &egui::Context) {
+        let Some(rec) = self.share.recording.as_mut() else {
+            return;
+        };
+        let now = ctx.input(|i| i.time);
+        let end = rec.start + f64::from(rec.options.seconds);
+        if now >= end {
+            let _ = rec.tx.send(Shot::End);
+            let rec = self.share.recording.take().expect("checked above");
+            self.share.encoding.push(rec.done);
+            self.message = Some(Message {
+                text: format!("encoding {} ({} frames)…", file_name(&rec.path), rec.asked),
+                error: false,
+            });
+            return;
+        }
+        let dt = 1.0 / f64::from(rec.options.fps.max(0.1));
+        if now >= rec.next {
+            let tx = rec.tx.clone();
+            let t = now;
+            ctx.request_screenshot(move |img| {
+                // The writer has gone only after a cancel: nothing to do.
+                let _ = tx.send(Shot::Frame(t, img));
+            });
+            rec.asked += 1;
+            // On schedule, but never a burst to catch up after a slow frame.
+            rec.next = (rec.next + dt).max(now + 0.5 * dt);
+        }
+        ctx.request_repaint_after(std::time::Duration::from_secs_f64((rec.next - now).max(0.0)));
+    }
+
+    fn tick_view(&mut self, ctx: &egui::Context) {
+        let Some(view) = self.share.view.as_mut() else {
+            return;
+        };
+        ctx.request_repaint();
+        match &mut view.stage {
+            Snap::Zoomed => {
+                // The raised zoom is in effect: the same size in points is
+                // now k times the pixels.
+                ctx.send_viewport_cmd(egui::ViewportCommand::InnerSize(view.size));
+                view.stage = Snap::Resizing(0);
+            }
+            Snap::Resizing(frames) => {
+                let size = ctx.content_rect().size();
+                let fits = (size - view.size).abs().max_elem() < 1.0;
+                // Two frames at least: the menu that asked is gone from the picture.
+                if (fits && *frames >= 2) || (*frames >= RESIZE_FRAMES && !view.scaled) {
+                    view.stage = Snap::Shooting(shoot(ctx));
+                } else if *frames >= RESIZE_FRAMES {
+                    // The window manager kept the window's size: the raised
+                    // zoom would only enlarge the layout. Take the window as
+                    // it is (the status line says its size).
+                    ctx.set_zoom_factor(view.zoom);
+                    view.scaled = false;
+                    view.stage = Snap::Resizing(0);
+                } else {
+                    *frames += 1;
+                }
+            }
+            Snap::Shooting(rx) => match rx.try_recv() {
+                Ok(img) => {
+                    let waker = ctx.clone();
+                    let path = view.path.clone();
+                    self.share
+                        .writing
+                        .push(capture::spawn_png_writer(path, img, move || waker.request_repaint()));
+                    if view.scaled {
+                        ctx.set_zoom_factor(view.zoom);
+                        view.stage = Snap::Restoring;
+                    } else {
+                        self.share.view = None;
+                    }
+                }
+                Err(crossbeam_channel::TryRecvError::Empty) => {}
+                Err(crossbeam_channel::TryRecvError::Disconnected) => {
+                    // The integration dropped the request (no renderer).
+                    let path = view.path.clone();
+                    if view.scaled {
+                        ctx.set_zoom_factor(view.zoom);
+                        view.stage = Snap::Restoring;
+                    } else {
+                        self.share.view = None;
+                    }
+                    self.message = Some(Message {
+                        text: format!("{}: the window could not be captured", path.display()),
+                        error: true,
+                    });
+                }
+            },
+            Snap::Restoring => {
+                ctx.send_viewport_cmd(egui::ViewportCommand::InnerSize(view.size));
+                self.share.view = None;
+            }
+        }
+    }
+
+    /// Reports the writers that have finished.
+    fn collect_written(&mut self) {
+        let share = &mut self.share;
+        let mut done = Vec::new();
+        for list in [&mut share.encoding, &mut share.writing] {
+            list.retain(|rx| match rx.try_recv() {
+                Ok(r) => {
+                    done.push(r);
+                    false
+                }
+                Err(crossbeam_channel::TryRecvError::Empty) => true,
+                Err(crossbeam_channel::TryRecvError::Disconnected) => {
+                    done.push(Err("the writer stopped without a word".into()));
+                    false
+                }
+            });
+        }
+        for r in done {
+            self.message = Some(match r {
+                Ok(w) => Message {
+                    text: w.line(),
+                    error: false,
+                },
+                Err(e) => Message { text: e, error: true },
+            });
+        }
+    }
+
+    /// The status-bar text while recording: `recording… 3.2 s of 5 s`.
+    pub(super) fn recording_label(&self, now: f64) -> Option<String> {
+        let rec = self.share.recording.as_ref()?;
+        Some(format!(
+            "recording… {:.1} s of {} s",
+            (now - rec.start).max(0.0),
+            rec.options.seconds
+        ))
+    }
+
+    /// The GIF options window, while open.
+    fn gif_window(&mut self, ctx: &egui::Context) {
+        let Some(opts) = self.share.gif_dialog.as_mut() else {
+            return;
+        };
+        let mut start = false;
+        let mut close = false;
+        egui::Window::new("Record GIF")
+            .collapsible(false)
+            .resizable(false)
+            .anchor(egui::Align2::CENTER_CENTER, egui::vec2(0.0, 0.0))
+            .show(ctx, |ui| {
+                ui.label("Records the whole window, as it plays, into an animated GIF.");
+                egui::Grid::new("gif options").num_columns(2).show(ui, |ui| {
+                    let l = ui.label("Duration");
+                    ui.add(egui::Slider::new(&mut opts.seconds, 1.0..=30.0).suffix(" s"))
+                        .labelled_by(l.id);
+                    ui.end_row();
+                    let l = ui.label("Frames per second");
+                    ui.add(egui::Slider::new(&mut opts.fps, 5.0..=30.0).step_by(1.0))
+                        .labelled_by(l.id);
+                    ui.end_row();
+                    let l = ui.label("Width at most");
+                    ui.add(egui::Slider::new(&mut opts.max_width, 320..=1920).suffix(" px"))
+                        .labelled_by(l.id);
+                    ui.end_row();
+                });
+                ui.horizontal(|ui| {
+                    start = ui.button("Record…").clicked();
+                    close = ui.button("Cancel").clicked();
+                });
+            });
+        if close {
+            self.share.gif_dialog = None;
+        } else if start {
+            let options = *opts;
+            // The dialog leaves the screen before the first frame is taken.
+            self.share.gif_dialog = None;
+            if let Some(path) = super::controls::save_dialog("GIF", "gif", "rocking.gif") {
+                self.record_gif(ctx, path, options);
+            }
+        }
+    }
+}
+
+/// Asks for a screenshot of the frame being drawn; it comes on the
+/// returned receiver.
+fn shoot(ctx: &egui::Context) -> Receiver<Arc<ColorImage>> {
+    let (tx, rx) = crossbeam_channel::bounded(1);
+    let waker = ctx.clone();
+    ctx.request_screenshot(move |img| {
+        let _ = tx.send(img);
+        waker.request_repaint();
+    });
+    rx
+}
+
+fn file_name(path: &Path) -> String {
+    path.file_name()
+        .map_or_else(|| path.display().to_string(), |n| n.to_string_lossy().into_owned())
+}
