@@ -86,6 +86,13 @@ impl RockingApp {
             .labelled_by(eps_label.id)
             .on_hover_text("Perturbation of Θ for Reset perturbed, units of ψ");
             ui.separator();
+            // The speed slider draws its number beside it in a layout of
+            // its own, which cannot wrap: start a new row unless label,
+            // slider and number all fit (else the bar grows past the
+            // window and pushes the right-hand panels off screen).
+            if ui.available_size_before_wrap().x < 190.0 {
+                ui.end_row();
+            }
             let speed_label = ui.label("Speed");
             // Narrower than egui's 100 pt: the whole bar fits one line of a
             // 1280-pixel window.

@@ -294,7 +294,16 @@ impl eframe::App for RockingApp {
         // the presentation scale leaves): the block scene keeps at least
         // a third of the width with every panel open, at 1280 × 800 and
         // on a 1920 × 1080 projector alike.
+        // Before the window reports its size (eframe's first pass runs on
+        // egui's 10,000-pixel placeholder), lay nothing out: panel sizes
+        // are remembered, and defaults taken from a placeholder would stick
+        // (a side panel half off screen at a presentation scale).
         let screen = ui.ctx().content_rect();
+        let zoom = ui.ctx().zoom_factor();
+        if screen.width() * zoom >= 9_999.0 && screen.height() * zoom >= 9_999.0 {
+            ui.ctx().request_repaint();
+            return;
+        }
         let (w, h) = (screen.width(), screen.height());
         // Panels remember the size the user gave them, per presentation
         // scale: a new scale starts from its own proportional defaults
