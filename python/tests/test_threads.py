@@ -70,7 +70,7 @@ import sys, time, rocking
 print("started", flush=True)
 t = time.perf_counter()
 try:
-    rocking.sweep("fig3", "excitation.a_v", 0.5, 40.0, 0.01, threads=2)
+    rocking.sweep("fig3", "excitation.a_v", 0.5, 2.2, 0.0002, threads=2)
     print("finished", flush=True)
 except KeyboardInterrupt:
     print(f"interrupted {time.perf_counter() - t:.2f}", flush=True)
@@ -91,6 +91,8 @@ def test_ctrl_c_stops_a_long_sweep_between_chunks(tmp_path) -> None:
     waited = time.perf_counter() - sent
     assert out.startswith("interrupted"), out
     assert p.returncode == 0
-    # A chunk is a few values of ~0.02 s each; the call ends well before
-    # the ~4000 values would.
+    # A chunk is a few values of a few ms each; the call ends well before
+    # the 8,500 values would (tens of seconds). Below A_v = 2.2 no value
+    # tumbles: above it (the old range, to 40) nearly all did within a few
+    # τ, and the whole sweep could end in the 1.5 s before the Ctrl-C.
     assert waited < 10, waited
