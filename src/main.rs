@@ -13,8 +13,7 @@ fn main() {
     }
     if cli.list_presets {
         for (name, text) in rocking::io::presets::PRESETS {
-            let title = text.lines().next().unwrap_or("").trim_start_matches('#').trim();
-            rocking::say!("{name:16} {}", title.split_once(": ").map_or(title, |(_, t)| t));
+            rocking::say!("{name:16} {}", rocking::io::presets::title(text));
         }
         return;
     }

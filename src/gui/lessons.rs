@@ -199,9 +199,8 @@ pub fn figure_title(name: &str) -> &'static str {
     let Some(text) = crate::io::presets::get(name) else {
         return "";
     };
-    let first = text.lines().next().unwrap_or("").trim_start_matches('#').trim();
-    let after = first.split_once(": ").map_or(first, |(_, t)| t);
-    after.split(',').next().unwrap_or(after).trim()
+    let title = crate::io::presets::title(text);
+    title.split(',').next().unwrap_or(title).trim()
 }
 
 #[cfg(test)]

@@ -40,6 +40,13 @@ pub fn get(name: &str) -> Option<&'static str> {
     PRESETS.iter().find(|(n, _)| *n == name).map(|(_, t)| *t)
 }
 
+/// What preset `text` is, in words: its header's first line without the
+/// leading `# name: ` (`Chaotic rocking without sliding, Ω_h = …`).
+pub fn title(text: &str) -> &str {
+    let first = text.lines().next().unwrap_or("").trim_start_matches('#').trim();
+    first.split_once(": ").map_or(first, |(_, t)| t)
+}
+
 /// All preset names.
 pub fn names() -> Vec<&'static str> {
     PRESETS.iter().map(|(n, _)| *n).collect()

@@ -262,8 +262,7 @@ mod tests {
     use super::*;
     use crate::sim::HistoryRow;
 
-    fn at_tumble(geo: &Geometry) -> Sample {
-        let _ = geo;
+    fn at_tumble() -> Sample {
         Sample {
             state: HistoryRow {
                 tau: 10.0,
@@ -286,7 +285,7 @@ mod tests {
     #[test]
     fn the_drawn_fall_ends_on_the_side_about_a_fixed_corner() {
         let geo = Geometry::new(1.0, 4.0);
-        let end = at_tumble(&geo);
+        let end = at_tumble();
         let corner = |s: &Sample| {
             crate::sim::protocol::pose(&geo, s.theta, s.x, s.mode, 0.0)
                 .pivot
