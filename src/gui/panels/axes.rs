@@ -11,13 +11,21 @@
 
 use std::ops::RangeInclusive;
 
-use egui_plot::{GridInput, GridMark, Plot};
+use egui_plot::{AxisHints, GridInput, GridMark, Plot};
 
 /// Smallest distance between numbered ticks, points, per axis: x numbers
 /// are wide ("−0.125"), so they need more room than y numbers (one line
 /// high). Both are above egui_plot's own label thresholds (60 and 20
 /// points), below which it fades numbers out.
 pub const MIN_LABEL_GAP: [f64; 2] = [72.0, 34.0];
+
+/// Smallest distance between numbered ticks that an axis too short for
+/// two ticks [`MIN_LABEL_GAP`] apart may fall back to, points per axis: an
+/// x number ("−0.05") is about 32 points wide, a y number 16 high (egui_plot
+/// still leaves out a number wider than its gap). A short
+/// axis (a plot squeezed by a large presentation scale) then still shows
+/// two numbers rather than one.
+pub const FLOOR_LABEL_GAP: [f64; 2] = [36.0, 17.0];
 
 /// egui_plot's smallest grid spacing (points), which it turns into
 /// [`GridInput::base_step_size`]; set explicitly so the conversion from
@@ -42,19 +50,37 @@ pub fn nice_step(raw: f64) -> f64 {
 
 /// Grid marks for one axis: numbered ticks `major` apart and thin lines a
 /// fifth (or half, for a 2 step) of that. `points_per_unit` is the axis's
-/// scale, `min_gap` the smallest gap between numbered ticks in points.
-pub fn marks(bounds: (f64, f64), points_per_unit: f64, min_gap: f64) -> Vec<GridMark> {
+/// scale, `min_gap` the smallest gap between numbered ticks in points, and
+/// `floor_gap` the smaller gap allowed where `min_gap` leaves fewer than two
+/// numbered ticks on the axis.
+pub fn marks(bounds: (f64, f64), points_per_unit: f64, min_gap: f64, floor_gap: f64) -> Vec<GridMark> {
     let (lo, hi) = (bounds.0.min(bounds.1), bounds.0.max(bounds.1));
     if !(lo.is_finite() && hi.is_finite() && points_per_unit.is_finite() && points_per_unit > 0.0) {
         return Vec::new();
     }
-    let major = nice_step(min_gap / points_per_unit);
+    let mut major = nice_step(min_gap / points_per_unit);
+    // Step down the ladder while fewer than two numbered ticks fall inside
+    // the axis, as long as neighbours stay `floor_gap` apart.
+    let majors_inside = |step: f64| (hi / step).floor() - (lo / step).ceil() + 1.0;
+    while majors_inside(major) < 2.0 {
+        let smaller = step_below(major);
+        if smaller * points_per_unit < floor_gap.min(min_gap) {
+            break;
+        }
+        major = smaller;
+    }
     let mantissa = major / 10f64.powf(major.log10().floor());
-    let minor = if (mantissa - 2.0).abs() < 1e-6 {
+    let mut minor = if (mantissa - 2.0).abs() < 1e-6 {
         major / 2.0
     } else {
         major / 5.0
     };
+    // Thin lines stay closer than any numbered pair, so egui_plot (told
+    // by [`readable`] to number marks from `floor_gap` apart) numbers the
+    // major marks only.
+    while minor * points_per_unit >= 0.95 * floor_gap.min(min_gap) {
+        minor = step_below(minor);
+    }
     let mut out = Vec::new();
     // Index from the step, not by accumulating, so 0 is exactly 0.
     // Only marks inside the axis: a number just outside it is drawn
@@ -73,6 +99,19 @@ pub fn marks(bounds: (f64, f64), points_per_unit: f64, min_gap: f64) -> Vec<Grid
     out
 }
 
+/// The next 1–2–5 step below `step` (1 → 0.5, 5 → 2, 2 → 1).
+fn step_below(step: f64) -> f64 {
+    let base = 10f64.powf(step.log10().floor());
+    let mantissa = step / base;
+    if mantissa > 4.0 {
+        2.0 * base
+    } else if mantissa > 1.5 {
+        base
+    } else {
+        0.5 * base
+    }
+}
+
 /// A tick's number: as many decimals as its step needs (a 0.05 step gives
 /// two, a 0.2 step one, a 5 step none), in scientific notation for very
 /// large or very small steps so a deep zoom still reads.
@@ -87,6 +126,10 @@ pub fn format_tick(mark: GridMark, _range: &RangeInclusive<f64>) -> String {
         return format!("{v}");
     }
     if !(1e-4..1e5).contains(&step) {
+        if v == 0.0 {
+            // "0", not "0e0".
+            return "0".to_owned();
+        }
         // Significant digits enough to tell neighbouring ticks apart.
         let digits = ((v.abs().max(step)).log10().floor() - step.log10().floor()).clamp(0.0, 12.0) as usize;
         return format!("{v:.digits$e}");
@@ -97,19 +140,91 @@ pub fn format_tick(mark: GridMark, _range: &RangeInclusive<f64>) -> String {
 
 /// `plot` with readable axes: 1–2–5 ticks numbered on both axes at any
 /// zoom ([`marks`]) and their numbers ([`format_tick`]).
-pub fn readable(plot: Plot<'_>) -> Plot<'_> {
+pub fn readable<'a>(plot: Plot<'a>) -> Plot<'a> {
     let spacer = |axis: usize| {
         move |input: GridInput| {
             // base_step_size is the plot-unit length of GRID_MIN points.
             let ppu = f64::from(GRID_MIN) / input.base_step_size;
-            marks(input.bounds, ppu, MIN_LABEL_GAP[axis])
+            marks(input.bounds, ppu, MIN_LABEL_GAP[axis], FLOOR_LABEL_GAP[axis])
         }
+    };
+    // egui_plot hides numbers closer than its label spacing (60 points on
+    // x, 20 on y by default) and fades them up to a larger one; [`marks`]
+    // already keeps numbered marks at least the floor apart and thin ones
+    // closer, so number exactly the marks at or beyond the floor, at full
+    // strength.
+    let hints = |hints: AxisHints<'a>, axis: usize| -> AxisHints<'a> {
+        let floor = FLOOR_LABEL_GAP[axis] as f32;
+        hints
+            .formatter(format_tick)
+            .label_spacing(egui::Rangef::new(floor * 0.96, floor * 0.97))
     };
     plot.grid_spacing(egui::Rangef::new(GRID_MIN, 300.0))
         .x_grid_spacer(spacer(0))
         .y_grid_spacer(spacer(1))
-        .x_axis_formatter(format_tick)
-        .y_axis_formatter(format_tick)
+        .custom_x_axes(vec![hints(AxisHints::new_x(), 0)])
+        .custom_y_axes(vec![hints(AxisHints::new_y(), 1)])
+}
+
+/// Room the axes themselves take from a plot's rectangle, points: the
+/// numbers and the title beside the y axis, and under the x axis.
+const AXIS_ROOM: egui::Vec2 = egui::vec2(56.0, 44.0);
+
+/// `plot` titled `x` and `y`, each shortened to fit the length of its axis
+/// in `ui`'s remaining room ([`fit_title`]): a title longer than its axis
+/// is painted past the plot, over whatever is beside it.
+pub fn titled<'a>(plot: Plot<'a>, ui: &egui::Ui, x: &str, y: &str) -> Plot<'a> {
+    let room = ui.available_size() - AXIS_ROOM;
+    plot.x_axis_label(fit_title(ui, x, room.x))
+        .y_axis_label(fit_title(ui, y, room.y))
+}
+
+/// The longest form of `title` that fits `length` points in the body font
+/// (egui_plot's for axis titles): the whole title, then without its
+/// " at …" qualifier ("Θ' = dΘ/dτ at τ_k = 2πk/Ω_h" → "Θ' = dΘ/dτ"), then
+/// without the definition after " = " ("Θ'"), then cut with "…".
+pub fn fit_title(ui: &egui::Ui, title: &str, length: f32) -> String {
+    let font = egui::TextStyle::Body.resolve(ui.style());
+    let fits = |text: &str| {
+        ui.painter()
+            .layout_no_wrap(text.to_owned(), font.clone(), egui::Color32::WHITE)
+            .size()
+            .x
+            <= length
+    };
+    for candidate in title_forms(title) {
+        if fits(&candidate) {
+            return candidate;
+        }
+    }
+    // The shortest form, cut a character at a time.
+    let shortest = title_forms(title).pop().unwrap_or_default();
+    let chars: Vec<char> = shortest.chars().collect();
+    for n in (1..chars.len()).rev() {
+        let cut: String = chars[..n].iter().collect::<String>() + "…";
+        if fits(&cut) {
+            return cut;
+        }
+    }
+    String::new()
+}
+
+/// The forms of an axis title from longest to shortest (see [`fit_title`]).
+fn title_forms(title: &str) -> Vec<String> {
+    let mut forms = vec![title.to_owned()];
+    let mut current = title.to_owned();
+    if let Some(i) = current.find(" at ") {
+        current.truncate(i);
+        forms.push(current.clone());
+    }
+    if let Some(i) = current.find(" = ") {
+        // The definition is the word after " = "; what follows it stays.
+        let rest = &current[i + 3..];
+        let after = rest.find(' ').map_or("", |j| &rest[j..]);
+        current = format!("{}{after}", &current[..i]);
+        forms.push(current);
+    }
+    forms
 }
 
 #[cfg(test)]
@@ -134,7 +249,7 @@ mod tests {
     #[test]
     fn a_short_axis_gets_several_numbered_ticks() {
         let ppu = 230.0 / 1.3;
-        let m = marks((-0.4, 0.9), ppu, MIN_LABEL_GAP[1]);
+        let m = marks((-0.4, 0.9), ppu, MIN_LABEL_GAP[1], FLOOR_LABEL_GAP[1]);
         let major: Vec<_> = m.iter().filter(|g| g.step_size > 0.15).collect();
         assert!(major.len() >= 3, "{major:?}");
         assert!(major[0].step_size * ppu >= MIN_LABEL_GAP[1]);
@@ -150,7 +265,7 @@ mod tests {
                 let width = 10f64.powi(e);
                 let bounds = (centre - width / 2.0, centre + width / 2.0);
                 let ppu = 300.0 / width;
-                let m = marks(bounds, ppu, MIN_LABEL_GAP[0]);
+                let m = marks(bounds, ppu, MIN_LABEL_GAP[0], FLOOR_LABEL_GAP[0]);
                 let top = m.iter().map(|g| g.step_size).fold(0.0, f64::max);
                 let labelled: Vec<_> = m
                     .iter()
@@ -166,6 +281,40 @@ mod tests {
     }
 
     #[test]
+    fn a_title_sheds_its_qualifier_then_its_definition() {
+        assert_eq!(
+            title_forms("Θ' = dΘ/dτ at τ_k = 2πk/Ω_h"),
+            ["Θ' = dΘ/dτ at τ_k = 2πk/Ω_h", "Θ' = dΘ/dτ", "Θ'"]
+        );
+        assert_eq!(
+            title_forms("Θ' = dΘ/dτ before impact"),
+            ["Θ' = dΘ/dτ before impact", "Θ' before impact"]
+        );
+        assert_eq!(title_forms("log10 S/S_max"), ["log10 S/S_max"]);
+    }
+
+    /// A short axis (a plot squeezed at a large presentation scale: 60
+    /// points for −0.6 … 0.6) gets two numbers where the normal gap would
+    /// leave one, and its thin lines are closer than the numbered ones.
+    #[test]
+    fn an_axis_too_short_for_the_normal_gap_still_gets_two_numbers() {
+        for (axis, length) in [(1, 45.0), (1, 60.0), (0, 100.0), (0, 130.0)] {
+            let bounds = (-0.06, 0.06);
+            let ppu = length / 0.12;
+            let m = marks(bounds, ppu, MIN_LABEL_GAP[axis], FLOOR_LABEL_GAP[axis]);
+            let top = m.iter().map(|g| g.step_size).fold(0.0, f64::max);
+            let numbered: Vec<_> = m.iter().filter(|g| g.step_size == top).collect();
+            assert!(numbered.len() >= 2, "axis {axis}, {length} pt: {m:?}");
+            assert!(top * ppu >= FLOOR_LABEL_GAP[axis]);
+            let thin = m.iter().map(|g| g.step_size).fold(f64::INFINITY, f64::min);
+            assert!(
+                thin == top || thin * ppu < 0.96 * FLOOR_LABEL_GAP[axis],
+                "axis {axis}: {m:?}"
+            );
+        }
+    }
+
+    #[test]
     fn tick_numbers_have_the_decimals_their_step_needs() {
         let t = |value, step_size| format_tick(GridMark { value, step_size }, &(0.0..=1.0));
         assert_eq!(t(0.05, 0.05), "0.05");
@@ -174,5 +323,6 @@ mod tests {
         assert_eq!(t(-1e-17, 0.1), "0.0");
         assert_eq!(t(2e-6, 1e-6), "2e-6");
         assert_eq!(t(3e6, 1e6), "3e6");
+        assert_eq!(t(0.0, 2e-5), "0");
     }
 }

@@ -514,95 +514,98 @@ impl BifurcationView {
             .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &t| {
                 (lo.min(t), hi.max(t))
             });
-        let resp = axes::readable(Plot::new("bifurcation"))
-            .x_axis_label(self.param.as_str())
-            .y_axis_label("Θ(τ_k)")
-            .legend(Legend::default())
-            .allow_drag(false)
-            .allow_zoom(false)
-            .allow_scroll(false)
-            .allow_boxed_zoom(false)
-            .allow_double_click_reset(false)
-            .show(ui, |plot_ui| {
-                let pad = 0.02 * (to - from);
-                let [y0, y1] = y_zoom.unwrap_or(if lo <= hi {
-                    let d = (hi - lo).max(1e-3);
-                    [lo - 0.05 * d, hi + 0.05 * d]
-                } else {
-                    [-1.0, 1.0]
-                });
-                plot_ui.set_plot_bounds(PlotBounds::from_min_max([from - pad, y0], [to + pad, y1]));
-                let t = *plot_ui.transform();
-                let rows = (t.frame().height() * plot_ui.ctx().pixels_per_point()).max(1.0) as f64;
-                let mut by_class: [Vec<[f64; 2]>; 4] = Default::default();
-                let mut pixels: Vec<i64> = Vec::new();
-                for c in columns {
-                    pixels.clear();
-                    pixels.extend(
-                        c.thetas
-                            .iter()
-                            .filter(|&&t| t >= y0 && t <= y1)
-                            .map(|&t| ((t - y0) / (y1 - y0) * rows) as i64),
-                    );
-                    pixels.sort_unstable();
-                    pixels.dedup();
-                    let slot = &mut by_class[class_slot(c.response)];
-                    slot.extend(
-                        pixels
-                            .iter()
-                            .map(|&p| [c.value, y0 + (p as f64 + 0.5) / rows * (y1 - y0)]),
-                    );
-                }
-                let mut drawn = 0;
-                for (i, pts) in by_class.into_iter().enumerate() {
-                    if pts.is_empty() {
-                        continue;
-                    }
-                    drawn += pts.len();
-                    let color = class_color(match i {
-                        0 => Response::Periodic { period: 1 },
-                        1 => Response::Quasiperiodic,
-                        2 => Response::Chaotic,
-                        _ => Response::Rest,
-                    });
-                    plot_ui.points(
-                        Points::new(CLASSES[i], PlotPoints::new(pts))
-                            .radius(1.0)
-                            .color(color)
-                            .allow_hover(false),
-                    );
-                }
-                if let Some(v) = current {
-                    let marker = Color32::from_rgb(255, 230, 60);
-                    plot_ui.vline(VLine::new("current run", v).color(marker).width(1.5));
-                    // Labelled at the foot of the line, inside the plot (the
-                    // legend holds the top corner); unnamed, so that the
-                    // legend lists the line once.
-                    plot_ui.text(
-                        Text::new(
-                            "",
-                            PlotPoint::new(v, y0 + 0.02 * (y1 - y0)),
-                            egui::RichText::new(format!(" current run: {} = {} ", short_name(param), marker_text(v)))
-                                .size(14.0)
-                                .color(marker)
-                                .background_color(Color32::from_black_alpha(180)),
-                        )
-                        .anchor(marker_anchor(v, from, to))
-                        .allow_hover(false),
-                    );
-                }
-                let pointer = plot_ui.pointer_coordinate();
-                if let (Some(a), Some(b)) = (drag_from, pointer) {
-                    let rect = vec![[a.x, a.y], [b.x, a.y], [b.x, b.y], [a.x, b.y]];
-                    plot_ui.polygon(
-                        Polygon::new("zoom", PlotPoints::new(rect))
-                            .fill_color(Color32::from_rgba_unmultiplied(255, 255, 255, 24))
-                            .stroke(egui::Stroke::new(1.0, Color32::WHITE))
-                            .allow_hover(false),
-                    );
-                }
-                (drawn, pointer)
+        let resp = axes::titled(
+            axes::readable(Plot::new("bifurcation")),
+            ui,
+            self.param.as_str(),
+            "Θ(τ_k)",
+        )
+        .legend(Legend::default())
+        .allow_drag(false)
+        .allow_zoom(false)
+        .allow_scroll(false)
+        .allow_boxed_zoom(false)
+        .allow_double_click_reset(false)
+        .show(ui, |plot_ui| {
+            let pad = 0.02 * (to - from);
+            let [y0, y1] = y_zoom.unwrap_or(if lo <= hi {
+                let d = (hi - lo).max(1e-3);
+                [lo - 0.05 * d, hi + 0.05 * d]
+            } else {
+                [-1.0, 1.0]
             });
+            plot_ui.set_plot_bounds(PlotBounds::from_min_max([from - pad, y0], [to + pad, y1]));
+            let t = *plot_ui.transform();
+            let rows = (t.frame().height() * plot_ui.ctx().pixels_per_point()).max(1.0) as f64;
+            let mut by_class: [Vec<[f64; 2]>; 4] = Default::default();
+            let mut pixels: Vec<i64> = Vec::new();
+            for c in columns {
+                pixels.clear();
+                pixels.extend(
+                    c.thetas
+                        .iter()
+                        .filter(|&&t| t >= y0 && t <= y1)
+                        .map(|&t| ((t - y0) / (y1 - y0) * rows) as i64),
+                );
+                pixels.sort_unstable();
+                pixels.dedup();
+                let slot = &mut by_class[class_slot(c.response)];
+                slot.extend(
+                    pixels
+                        .iter()
+                        .map(|&p| [c.value, y0 + (p as f64 + 0.5) / rows * (y1 - y0)]),
+                );
+            }
+            let mut drawn = 0;
+            for (i, pts) in by_class.into_iter().enumerate() {
+                if pts.is_empty() {
+                    continue;
+                }
+                drawn += pts.len();
+                let color = class_color(match i {
+                    0 => Response::Periodic { period: 1 },
+                    1 => Response::Quasiperiodic,
+                    2 => Response::Chaotic,
+                    _ => Response::Rest,
+                });
+                plot_ui.points(
+                    Points::new(CLASSES[i], PlotPoints::new(pts))
+                        .radius(1.0)
+                        .color(color)
+                        .allow_hover(false),
+                );
+            }
+            if let Some(v) = current {
+                let marker = Color32::from_rgb(255, 230, 60);
+                plot_ui.vline(VLine::new("current run", v).color(marker).width(1.5));
+                // Labelled at the foot of the line, inside the plot (the
+                // legend holds the top corner); unnamed, so that the
+                // legend lists the line once.
+                plot_ui.text(
+                    Text::new(
+                        "",
+                        PlotPoint::new(v, y0 + 0.02 * (y1 - y0)),
+                        egui::RichText::new(format!(" current run: {} = {} ", short_name(param), marker_text(v)))
+                            .size(14.0)
+                            .color(marker)
+                            .background_color(Color32::from_black_alpha(180)),
+                    )
+                    .anchor(marker_anchor(v, from, to))
+                    .allow_hover(false),
+                );
+            }
+            let pointer = plot_ui.pointer_coordinate();
+            if let (Some(a), Some(b)) = (drag_from, pointer) {
+                let rect = vec![[a.x, a.y], [b.x, a.y], [b.x, b.y], [a.x, b.y]];
+                plot_ui.polygon(
+                    Polygon::new("zoom", PlotPoints::new(rect))
+                        .fill_color(Color32::from_rgba_unmultiplied(255, 255, 255, 24))
+                        .stroke(egui::Stroke::new(1.0, Color32::WHITE))
+                        .allow_hover(false),
+                );
+            }
+            (drawn, pointer)
+        });
         let (drawn, pointer) = resp.inner;
         self.drawn = drawn;
         let r = &resp.response;

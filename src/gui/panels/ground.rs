@@ -94,9 +94,7 @@ pub fn ground_plot(
     view.work += view.scratch.len() as u64;
     let pts = view.scratch.clone();
     let pga = label.pga_g;
-    axes::readable(Plot::new("ground"))
-        .x_axis_label(scales.time_label())
-        .y_axis_label("a_h [g]")
+    axes::titled(axes::readable(Plot::new("ground")), ui, scales.time_label(), "a_h [g]")
         .include_x(0.0)
         .include_x(t1)
         .include_y(-pga)

@@ -206,9 +206,7 @@ impl LyapunovView {
                 .on_hover_text("Tangent dynamics with saltation matrices; ± is the standard error of batch means");
                 let stride = r.convergence.len().div_ceil(CURVE_POINTS).max(1);
                 let pts: Vec<[f64; 2]> = r.convergence.iter().step_by(stride).map(|&(t, l)| [t, l]).collect();
-                axes::readable(Plot::new("lyapunov"))
-                    .x_axis_label("τ")
-                    .y_axis_label("λ₁ running, per τ")
+                axes::titled(axes::readable(Plot::new("lyapunov")), ui, "τ", "λ₁ running, per τ")
                     .allow_double_click_reset(true)
                     .show(ui, |plot_ui| {
                         plot_ui.line(

@@ -77,37 +77,40 @@ pub fn phase_plot(
     };
     view.work += recent.len() as u64;
     let tip = scales.tip_angle();
-    let resp = axes::readable(Plot::new("phase"))
-        .x_axis_label(scales.theta_label())
-        .y_axis_label(scales.theta_dot_label())
-        .include_x(-tip)
-        .include_x(tip)
-        .include_y(0.0)
-        .allow_double_click_reset(true)
-        .show(ui, |plot_ui| {
-            let n = recent.len();
-            if n >= 2 {
-                let per = n.div_ceil(TRAIL_SEGMENTS);
-                for (i, chunk_start) in (0..n).step_by(per).enumerate() {
-                    let end = (chunk_start + per + 1).min(n);
-                    let alpha = 0.12 + 0.88 * (i as f32 + 1.0) / TRAIL_SEGMENTS as f32;
-                    plot_ui.line(
-                        Line::new("", PlotPoints::new(recent[chunk_start..end].to_vec()))
-                            .color(Color32::from_rgb(110, 170, 255).gamma_multiply(alpha))
-                            .width(1.5)
-                            .allow_hover(false),
-                    );
-                }
-            }
-            if let Some(last) = recent.last() {
-                plot_ui.points(
-                    Points::new("now", vec![*last])
-                        .radius(4.0)
-                        .color(Color32::from_rgb(255, 230, 60)),
+    let resp = axes::titled(
+        axes::readable(Plot::new("phase")),
+        ui,
+        scales.theta_label(),
+        scales.theta_dot_label(),
+    )
+    .include_x(-tip)
+    .include_x(tip)
+    .include_y(0.0)
+    .allow_double_click_reset(true)
+    .show(ui, |plot_ui| {
+        let n = recent.len();
+        if n >= 2 {
+            let per = n.div_ceil(TRAIL_SEGMENTS);
+            for (i, chunk_start) in (0..n).step_by(per).enumerate() {
+                let end = (chunk_start + per + 1).min(n);
+                let alpha = 0.12 + 0.88 * (i as f32 + 1.0) / TRAIL_SEGMENTS as f32;
+                plot_ui.line(
+                    Line::new("", PlotPoints::new(recent[chunk_start..end].to_vec()))
+                        .color(Color32::from_rgb(110, 170, 255).gamma_multiply(alpha))
+                        .width(1.5)
+                        .allow_hover(false),
                 );
             }
-            plot_ui.pointer_coordinate()
-        });
+        }
+        if let Some(last) = recent.last() {
+            plot_ui.points(
+                Points::new("now", vec![*last])
+                    .radius(4.0)
+                    .color(Color32::from_rgb(255, 230, 60)),
+            );
+        }
+        plot_ui.pointer_coordinate()
+    });
     if resp.response.clicked() {
         resp.inner.map(|p| scales.state_of(p.x, p.y))
     } else {
@@ -270,9 +273,7 @@ pub fn poincare_plot(ui: &mut egui::Ui, hist: &RunHistory, view: &mut PoincareVi
     let ppp = ui.ctx().pixels_per_point();
     let auto_fit = view.auto_fit;
     let PoincareView { grid, texture, .. } = view;
-    let resp = axes::readable(Plot::new("poincare"))
-        .x_axis_label(x_label)
-        .y_axis_label(y_label)
+    let resp = axes::titled(axes::readable(Plot::new("poincare")), ui, &x_label, &y_label)
         .auto_bounds(false)
         .allow_double_click_reset(false)
         .show(ui, |plot_ui| {
@@ -456,30 +457,33 @@ pub fn history_plot(ui: &mut egui::Ui, hist: &RunHistory, view: &mut HistoryView
         lines.push((name, color, view.scratch.clone()));
     }
     let tip = scales.tip_angle();
-    axes::readable(Plot::new("history"))
-        .x_axis_label(scales.time_label())
-        .y_axis_label(scales.theta_label())
-        .legend(egui_plot::Legend::default())
-        .auto_bounds([false, true])
-        .include_y(-tip)
-        .include_y(tip)
-        .allow_drag([false, true])
-        .allow_zoom([false, true])
-        .allow_scroll([false, true])
-        .show(ui, |plot_ui| {
-            plot_ui.set_plot_bounds_x(scales.time(t0)..=scales.time(t1));
-            for y in [-tip, tip] {
-                plot_ui.hline(
-                    egui_plot::HLine::new("±α", y)
-                        .color(Color32::from_rgb(230, 80, 80).gamma_multiply(0.6))
-                        .style(egui_plot::LineStyle::dashed_loose())
-                        .allow_hover(false),
-                );
-            }
-            for (name, color, pts) in lines {
-                plot_ui.line(Line::new(name, PlotPoints::Owned(pts)).color(color).width(1.2));
-            }
-        });
+    axes::titled(
+        axes::readable(Plot::new("history")),
+        ui,
+        scales.time_label(),
+        scales.theta_label(),
+    )
+    .legend(egui_plot::Legend::default())
+    .auto_bounds([false, true])
+    .include_y(-tip)
+    .include_y(tip)
+    .allow_drag([false, true])
+    .allow_zoom([false, true])
+    .allow_scroll([false, true])
+    .show(ui, |plot_ui| {
+        plot_ui.set_plot_bounds_x(scales.time(t0)..=scales.time(t1));
+        for y in [-tip, tip] {
+            plot_ui.hline(
+                egui_plot::HLine::new("±α", y)
+                    .color(Color32::from_rgb(230, 80, 80).gamma_multiply(0.6))
+                    .style(egui_plot::LineStyle::dashed_loose())
+                    .allow_hover(false),
+            );
+        }
+        for (name, color, pts) in lines {
+            plot_ui.line(Line::new(name, PlotPoints::Owned(pts)).color(color).width(1.2));
+        }
+    });
 }
 
 /// Samples of the last stretch of Θ the spectrum is taken from: 2¹³ at the
@@ -563,21 +567,24 @@ pub fn spectrum_plot(
         ui.label(egui::RichText::new(note).weak());
     }
     let pts: Vec<[f64; 2]> = view.points.iter().map(|p| [scales.frequency(p[0]), p[1]]).collect();
-    axes::readable(Plot::new("spectrum"))
-        .x_axis_label(scales.frequency_label())
-        .y_axis_label("log10 S/S_max")
-        .include_y(0.0)
-        .include_y(-8.0)
-        .show(ui, |plot_ui| {
-            plot_ui.line(
-                Line::new("S(ω)", PlotPoints::new(pts))
-                    .color(Color32::from_rgb(110, 170, 255))
-                    .width(1.2),
-            );
-            plot_ui.vline(
-                egui_plot::VLine::new("Ω_h", scales.frequency(omega_h))
-                    .color(Color32::from_rgb(240, 150, 50).gamma_multiply(0.7))
-                    .width(1.0),
-            );
-        });
+    axes::titled(
+        axes::readable(Plot::new("spectrum")),
+        ui,
+        scales.frequency_label(),
+        "log10 S/S_max",
+    )
+    .include_y(0.0)
+    .include_y(-8.0)
+    .show(ui, |plot_ui| {
+        plot_ui.line(
+            Line::new("S(ω)", PlotPoints::new(pts))
+                .color(Color32::from_rgb(110, 170, 255))
+                .width(1.2),
+        );
+        plot_ui.vline(
+            egui_plot::VLine::new("Ω_h", scales.frequency(omega_h))
+                .color(Color32::from_rgb(240, 150, 50).gamma_multiply(0.7))
+                .width(1.0),
+        );
+    });
 }

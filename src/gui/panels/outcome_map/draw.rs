@@ -183,41 +183,44 @@ impl OutcomeMapView {
             let j = ((p.y - y.from) / cell_h).round();
             (i >= 0.0 && j >= 0.0 && i < x.n as f64 && j < y.n as f64).then_some((i as usize, j as usize))
         };
-        let resp = axes::readable(Plot::new("outcome map"))
-            .x_axis_label(x.key.as_str())
-            .y_axis_label(y.key.as_str())
-            .allow_drag(false)
-            .allow_zoom(false)
-            .allow_scroll(false)
-            .allow_boxed_zoom(false)
-            .allow_double_click_reset(false)
-            .show_grid(false)
-            .show(ui, |plot_ui| {
-                plot_ui.set_plot_bounds(PlotBounds::from_min_max([x0, y0], [x1, y1]));
-                if let Some(t) = texture {
-                    plot_ui.image(
-                        PlotImage::new(
-                            "map",
-                            t,
-                            PlotPoint::new(0.5 * (x0 + x1), 0.5 * (y0 + y1)),
-                            egui::vec2((x1 - x0) as f32, (y1 - y0) as f32),
-                        )
-                        .allow_hover(false),
-                    );
+        let resp = axes::titled(
+            axes::readable(Plot::new("outcome map")),
+            ui,
+            x.key.as_str(),
+            y.key.as_str(),
+        )
+        .allow_drag(false)
+        .allow_zoom(false)
+        .allow_scroll(false)
+        .allow_boxed_zoom(false)
+        .allow_double_click_reset(false)
+        .show_grid(false)
+        .show(ui, |plot_ui| {
+            plot_ui.set_plot_bounds(PlotBounds::from_min_max([x0, y0], [x1, y1]));
+            if let Some(t) = texture {
+                plot_ui.image(
+                    PlotImage::new(
+                        "map",
+                        t,
+                        PlotPoint::new(0.5 * (x0 + x1), 0.5 * (y0 + y1)),
+                        egui::vec2((x1 - x0) as f32, (y1 - y0) as f32),
+                    )
+                    .allow_hover(false),
+                );
+            }
+            let mark = Color32::from_rgb(255, 230, 60);
+            // A dark line under the yellow one: the crosshair stays
+            // visible over every class colour.
+            for (color, width) in [(Color32::BLACK, 3.5), (mark, 1.5)] {
+                if let Some(v) = current.0 {
+                    plot_ui.vline(VLine::new("scene", v).color(color).width(width));
                 }
-                let mark = Color32::from_rgb(255, 230, 60);
-                // A dark line under the yellow one: the crosshair stays
-                // visible over every class colour.
-                for (color, width) in [(Color32::BLACK, 3.5), (mark, 1.5)] {
-                    if let Some(v) = current.0 {
-                        plot_ui.vline(VLine::new("scene", v).color(color).width(width));
-                    }
-                    if let Some(v) = current.1 {
-                        plot_ui.hline(HLine::new("scene", v).color(color).width(width));
-                    }
+                if let Some(v) = current.1 {
+                    plot_ui.hline(HLine::new("scene", v).color(color).width(width));
                 }
-                plot_ui.pointer_coordinate()
-            });
+            }
+            plot_ui.pointer_coordinate()
+        });
         self.transform = Some(resp.transform);
         let hovered = resp.inner.and_then(index);
         let clicked = resp.response.clicked();
