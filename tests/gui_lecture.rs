@@ -92,6 +92,19 @@ fn every_phenomenon_loads_from_the_presets_menu_and_says_what_to_look_at() {
     assert!(h.state().note().is_none());
 }
 
+/// `rocking --preset sliding` shows the sliding phenomenon's note, which
+/// points at the red contact-force arrow: the arrow is on with it.
+#[test]
+fn a_phenomenon_preset_from_the_command_line_shows_its_note_and_what_it_points_at() {
+    let h = live_at(egui::vec2(1280.0, 800.0), "sliding", &[]);
+    let sliding = PHENOMENA.iter().find(|l| l.preset == "sliding").unwrap();
+    assert_eq!(h.state().note().map(|n| n.title.as_str()), Some(sliding.title));
+    assert!(sliding.look.contains("red arrow"));
+    assert!(h.state().forces_shown(), "the note's arrow is drawn");
+    let h = live_at(egui::vec2(1280.0, 800.0), "period-one", &[]);
+    assert!(!h.state().forces_shown());
+}
+
 #[test]
 fn a_figure_preset_says_what_the_paper_claims_and_what_this_model_shows() {
     let mut h = live_at(egui::vec2(1280.0, 800.0), "default", &[]);

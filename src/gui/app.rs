@@ -185,11 +185,10 @@ impl RockingApp {
             Speed::Max => app.max_speed = true,
         }
         app.message = message;
-        app.lecture.note = app
-            .settings
-            .origin
-            .strip_prefix("preset ")
-            .and_then(crate::gui::lessons::Note::of_preset);
+        let preset = app.settings.origin.strip_prefix("preset ").map(str::to_owned);
+        if let Some(name) = preset {
+            app.show_note_of_preset(&name);
+        }
         app.end = end;
         app
     }
@@ -539,8 +538,7 @@ impl RockingApp {
         match Settings::preset(name).and_then(|s| s.resolve().map(|c| (s, c))) {
             Ok((s, c)) => {
                 self.apply(s, c);
-                self.lecture.note = crate::gui::lessons::Note::of_preset(name);
-                self.lecture.note_hidden = false;
+                self.show_note_of_preset(name);
                 self.message = Some(Message {
                     text: format!("preset {name}"),
                     error: false,

@@ -182,7 +182,7 @@ impl Note {
     /// its phenomenon's (the first that uses it) or its figure's; `None`
     /// for a preset with nothing to say.
     pub fn of_preset(name: &str) -> Option<Self> {
-        if let Some(l) = PHENOMENA.iter().find(|l| l.preset == name) {
+        if let Some(l) = lesson_of_preset(name) {
             return Some(Self::of_lesson(l));
         }
         FIGURES.iter().find(|(n, _)| *n == name).map(|(n, text)| Self {
@@ -190,6 +190,12 @@ impl Note {
             text: (*text).to_string(),
         })
     }
+}
+
+/// The phenomenon whose note preset `name` shows when loaded by name: the
+/// first that uses it.
+pub fn lesson_of_preset(name: &str) -> Option<&'static Lesson> {
+    PHENOMENA.iter().find(|l| l.preset == name)
 }
 
 /// A preset's title: its header's first line without the name, cut before

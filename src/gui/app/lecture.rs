@@ -201,6 +201,18 @@ impl RockingApp {
         }
     }
 
+    /// Shows the note of preset `name` (loaded by name: command line,
+    /// menu, file). A phenomenon's note may point at an overlay ("the red
+    /// arrow is the contact force"), so that overlay is turned on with it;
+    /// speed and ghosts stay as the user set them.
+    pub(super) fn show_note_of_preset(&mut self, name: &str) {
+        self.lecture.note = Note::of_preset(name);
+        self.lecture.note_hidden = false;
+        if crate::gui::lessons::lesson_of_preset(name).is_some_and(|l| l.forces) {
+            self.forces = true;
+        }
+    }
+
     /// Loads phenomenon `lesson`: its preset, its note, and how the app
     /// shows it (ghosts, speed, forces).
     pub fn load_lesson(&mut self, lesson: &Lesson) {
