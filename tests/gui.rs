@@ -5,49 +5,33 @@
 //! (lavapipe), including the scene's own pipeline.
 #![cfg(feature = "gui")]
 
+mod gui_common;
+
 use std::time::{Duration, Instant};
 
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable as _;
+use gui_common::{henon, pump, scene};
 use rocking::analysis::classify::ClassifyOptions;
 use rocking::analysis::lyapunov::{LyapunovOptions, Method, lyapunov};
 use rocking::analysis::orbit_diagram::{BlockSweep, Continuation, Grid, Plan, block_sweep};
 use rocking::analysis::steady::Window;
+use rocking::gui::RockingApp;
 use rocking::gui::panels::lyapunov::TRANSIENT_TAU;
 use rocking::gui::units::Units;
-use rocking::gui::{RockingApp, Settings};
 use rocking::model::units::AccelUnit;
 use rocking::sim::Param;
-use rocking::sim::protocol::{Batch, GhostState, RunId, SectionPoint, SimUpdate, Speed};
+use rocking::sim::protocol::{Batch, GhostState, RunId, SimUpdate, Speed};
 use rocking::sim::runner::record;
 use rocking::sim::scenario::ExcitationKind;
 
 const SIZE: egui::Vec2 = egui::vec2(1280.0, 800.0);
-
-fn scene(preset: &str, sets: &[&str]) -> (Settings, rocking::sim::Scenario) {
-    let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
-    Settings::from_cli(Some(preset), None, &sets).expect("valid scene")
-}
 
 fn live(paused: bool, speed: Speed) -> Harness<'static, RockingApp> {
     Harness::builder().with_size(SIZE).build_eframe(move |cc| {
         let (s, c) = scene("default", &[]);
         RockingApp::live(cc, s, c, speed, paused)
     })
-}
-
-/// Steps the harness (letting the simulation thread work between frames)
-/// until `done` holds or `timeout` passes. Returns whether it held.
-fn pump(h: &mut Harness<'static, RockingApp>, timeout: Duration, done: impl Fn(&RockingApp) -> bool) -> bool {
-    let start = Instant::now();
-    while start.elapsed() < timeout {
-        h.step();
-        if done(h.state()) {
-            return true;
-        }
-        std::thread::sleep(Duration::from_millis(10));
-    }
-    false
 }
 
 #[test]
@@ -285,31 +269,6 @@ fn snapshot_of_a_squat_block() {
     h.snapshot("squat_block");
 }
 
-fn hénon(n: usize) -> Vec<SectionPoint> {
-    // A strange attractor's worth of points (the Hénon map, scaled to the
-    // ranges of Θ, Θ'): the plot's cost depends on how many points and how
-    // many pixels they cover, not on where they came from.
-    let (mut x, mut y) = (0.1_f64, 0.1_f64);
-    (0..n)
-        .map(|k| {
-            let (nx, ny) = (1.0 - 1.4 * x * x + y, 0.3 * x);
-            x = nx;
-            y = ny;
-            SectionPoint {
-                k: k as u64,
-                tau: k as f64,
-                theta: 0.6 * x,
-                theta_dot: 2.0 * y,
-                x: 0.0,
-                x_dot: 0.0,
-                mode: rocking::model::Mode::Rock {
-                    pivot: rocking::model::Sign::Pos,
-                },
-            }
-        })
-        .collect()
-}
-
 /// Frame time with 10⁶ Poincaré points and 100 ghost blocks, rendered on the
 /// software adapter. A measurement, not a check: run with
 /// `cargo test --release --test gui -- --ignored --nocapture measure`.
@@ -341,7 +300,7 @@ fn measure_frame_time_with_a_million_points_and_100_ghosts() {
         .with_size(SIZE)
         .wgpu()
         .build_eframe(move |cc| RockingApp::with_stream(cc, s, c, updates));
-    h.state_mut().push_section_points(hénon(1_000_000));
+    h.state_mut().push_section_points(henon(1_000_000));
     h.run();
     let _ = h.render();
     let frames = 30;

@@ -6,10 +6,13 @@
 //! their accessible labels.
 #![cfg(feature = "gui")]
 
+mod gui_common;
+
 use std::time::{Duration, Instant};
 
 use egui_kittest::Harness;
 use egui_kittest::kittest::{NodeT as _, Queryable as _};
+use gui_common::{henon, pump};
 use rocking::gui::panels::plots::SectionKind;
 use rocking::gui::{RockingApp, Settings};
 use rocking::sim::protocol::{RunId, SectionPoint, Speed, StartFrom};
@@ -24,20 +27,6 @@ fn live(speed: Speed) -> Harness<'static, RockingApp> {
             let (s, c) = Settings::from_cli(Some("default"), None, &[]).expect("valid scene");
             RockingApp::live(cc, s, c, speed, false)
         })
-}
-
-/// Steps the harness (letting the simulation thread work between frames)
-/// until `done` holds or `timeout` passes. Returns whether it held.
-fn pump(h: &mut Harness<'static, RockingApp>, timeout: Duration, done: impl Fn(&RockingApp) -> bool) -> bool {
-    let start = Instant::now();
-    while start.elapsed() < timeout {
-        h.step();
-        if done(h.state()) {
-            return true;
-        }
-        std::thread::sleep(Duration::from_millis(5));
-    }
-    false
 }
 
 fn pointer(h: &mut Harness<'static, RockingApp>, pos: egui::Pos2, pressed: Option<bool>) {
@@ -249,31 +238,6 @@ fn a_new_section_phase_keeps_the_motion_and_takes_points_at_that_phase() {
         assert!(miss.abs() < 1e-9, "Ω τ_k − φ − 2πk = {miss:e} at k = {}", p.k);
     }
     assert!(h.state().run_id() > RunId(1));
-}
-
-/// A strange attractor's worth of section points (the Hénon map scaled to
-/// the ranges of Θ and Θ', as tests/gui.rs measures with): the plot's cost
-/// depends on how many points and pixels, not on where they came from.
-fn henon(n: usize) -> Vec<SectionPoint> {
-    let (mut x, mut y) = (0.1_f64, 0.1_f64);
-    (0..n)
-        .map(|k| {
-            let (nx, ny) = (1.0 - 1.4 * x * x + y, 0.3 * x);
-            x = nx;
-            y = ny;
-            SectionPoint {
-                k: k as u64,
-                tau: k as f64,
-                theta: 0.6 * x,
-                theta_dot: 2.0 * y,
-                x: 0.0,
-                x_dot: 0.0,
-                mode: rocking::model::Mode::Rock {
-                    pivot: rocking::model::Sign::Pos,
-                },
-            }
-        })
-        .collect()
 }
 
 /// Frame times with 10⁶ Poincaré points while a slider is dragged, and the

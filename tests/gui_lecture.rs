@@ -5,39 +5,25 @@
 //! after a tumble. Driven headless through egui_kittest.
 #![cfg(feature = "gui")]
 
-use std::time::{Duration, Instant};
+mod gui_common;
+
+use std::time::Duration;
 
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable as _;
+use gui_common::{pump, scene};
+use rocking::gui::RockingApp;
 use rocking::gui::app::lecture::SideTab;
 use rocking::gui::lessons::{self, Note, PHENOMENA};
-use rocking::gui::{RockingApp, Settings};
 use rocking::model::Mode;
 use rocking::sim::protocol::{RunEnd, RunId, Speed};
 use rocking::sim::runner::record;
-
-fn scene(preset: &str, sets: &[&str]) -> (Settings, rocking::sim::Scenario) {
-    let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
-    Settings::from_cli(Some(preset), None, &sets).expect("valid scene")
-}
 
 fn live_at(size: egui::Vec2, preset: &'static str, sets: &'static [&'static str]) -> Harness<'static, RockingApp> {
     Harness::builder().with_size(size).build_eframe(move |cc| {
         let (s, c) = scene(preset, sets);
         RockingApp::live(cc, s, c, Speed::Max, false)
     })
-}
-
-fn pump(h: &mut Harness<'static, RockingApp>, timeout: Duration, done: impl Fn(&RockingApp) -> bool) -> bool {
-    let start = Instant::now();
-    while start.elapsed() < timeout {
-        h.step();
-        if done(h.state()) {
-            return true;
-        }
-        std::thread::sleep(Duration::from_millis(10));
-    }
-    false
 }
 
 /// Opens Presets, then its submenu `group`, until `item` shows.

@@ -4,10 +4,13 @@
 //! cell where it computed, and a click on a cell loads that scene.
 #![cfg(feature = "gui")]
 
+mod gui_common;
+
 use std::time::{Duration, Instant};
 
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable as _;
+use gui_common::pump;
 use rocking::analysis::classify::ClassifyOptions;
 use rocking::analysis::map_refine::Source;
 use rocking::analysis::outcome_map::{Axis, BlockMap, block_map};
@@ -52,18 +55,6 @@ fn small_map(app: &mut RockingApp, n: usize, window: Window) {
     m.resolution = n;
     m.coarse = 4;
     m.window = window;
-}
-
-fn pump(h: &mut Harness<'static, RockingApp>, timeout: Duration, done: impl Fn(&RockingApp) -> bool) -> bool {
-    let start = Instant::now();
-    while start.elapsed() < timeout {
-        h.step();
-        if done(h.state()) {
-            return true;
-        }
-        std::thread::sleep(Duration::from_millis(10));
-    }
-    false
 }
 
 /// Toggles the map from the View menu, starting with every menu closed.

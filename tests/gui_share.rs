@@ -4,6 +4,8 @@
 //! real screenshots through egui_kittest's wgpu renderer (lavapipe).
 #![cfg(feature = "gui")]
 
+mod gui_common;
+
 use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
@@ -11,18 +13,14 @@ use std::time::{Duration, Instant};
 use egui::{Color32, ColorImage};
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable as _;
+use gui_common::{pump, scene};
+use rocking::gui::RockingApp;
 use rocking::gui::app::window_title;
 use rocking::gui::capture::{GifBuilder, GifOptions, encode_png, fit_width, write_gif};
-use rocking::gui::{RockingApp, Settings};
 use rocking::sim::protocol::{RunEnd, Speed};
 use rocking::sim::runner::record;
 
 const SIZE: egui::Vec2 = egui::vec2(1280.0, 800.0);
-
-fn scene(preset: &str, sets: &[&str]) -> (Settings, rocking::sim::Scenario) {
-    let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
-    Settings::from_cli(Some(preset), None, &sets).expect("valid scene")
-}
 
 /// A folder in the temporary folder, unique to this test.
 fn temp_dir(name: &str) -> PathBuf {
@@ -49,20 +47,6 @@ fn rendered(preset: &str, tau: f64) -> Harness<'static, RockingApp> {
         .with_size(SIZE)
         .wgpu()
         .build_eframe(move |cc| RockingApp::with_stream(cc, s, c, updates))
-}
-
-/// Steps until `done` holds or `timeout` passes (sleeping a little between
-/// frames for background threads). Returns whether it held.
-fn pump(h: &mut Harness<'static, RockingApp>, timeout: Duration, done: impl Fn(&RockingApp) -> bool) -> bool {
-    let start = Instant::now();
-    while start.elapsed() < timeout {
-        h.step();
-        if done(h.state()) {
-            return true;
-        }
-        std::thread::sleep(Duration::from_millis(10));
-    }
-    false
 }
 
 /// A synthetic 1280 × 800 frame: a gradient with a bright bar at `x`.
