@@ -11,7 +11,7 @@ use std::time::{Duration, Instant};
 
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable as _;
-use gui_common::{henon, pump, scene};
+use gui_common::{henon, open_menu, open_preset, pointer, pump, scene};
 use rocking::analysis::classify::ClassifyOptions;
 use rocking::analysis::lyapunov::{LyapunovOptions, Method, lyapunov};
 use rocking::analysis::orbit_diagram::{BlockSweep, Continuation, Grid, Plan, block_sweep};
@@ -44,31 +44,6 @@ fn the_app_opens_on_the_default_preset_and_sets_the_block_moving() {
     assert_eq!(info.scenario.excitation.a_h, 2.0);
     assert_eq!(info.scenario.block.mu_s, 0.4);
     let _ = h.get_by_label("Pause");
-}
-
-/// Clicks menu `menu` and steps until its item `item` is shown.
-fn open_menu(h: &mut Harness<'static, RockingApp>, menu: &str, item: &str) {
-    h.get_by_label(menu).click();
-    for _ in 0..10 {
-        h.step();
-        if h.query_by_label(item).is_some() {
-            return;
-        }
-    }
-    panic!("menu {menu} did not show {item}");
-}
-
-/// Opens Presets, then its submenu `group`, until `item` shows.
-fn open_preset(h: &mut Harness<'static, RockingApp>, group: &str, item: &str) {
-    open_menu(h, "Presets", group);
-    h.get_by_label(group).click();
-    for _ in 0..10 {
-        h.step();
-        if h.query_by_label(item).is_some() {
-            return;
-        }
-    }
-    panic!("Presets > {group} did not show {item}");
 }
 
 /// Toggles a panel from the View menu, starting with every menu closed.
@@ -447,19 +422,6 @@ fn a_hidden_bifurcation_view_does_no_work() {
     toggle_view(&mut h, "Bifurcation diagram");
     assert_eq!(h.state().bifurcation().sweeps, 2);
     assert!(h.state().bifurcation().threads() > 0);
-}
-
-fn pointer(h: &mut Harness<'static, RockingApp>, pos: egui::Pos2, pressed: Option<bool>) {
-    h.event(egui::Event::PointerMoved(pos));
-    if let Some(pressed) = pressed {
-        h.event(egui::Event::PointerButton {
-            pos,
-            button: egui::PointerButton::Primary,
-            pressed,
-            modifiers: egui::Modifiers::NONE,
-        });
-    }
-    h.step();
 }
 
 #[test]

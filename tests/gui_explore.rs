@@ -12,7 +12,7 @@ use std::time::{Duration, Instant};
 
 use egui_kittest::Harness;
 use egui_kittest::kittest::{NodeT as _, Queryable as _};
-use gui_common::{henon, pump};
+use gui_common::{henon, pointer, pump};
 use rocking::gui::panels::plots::SectionKind;
 use rocking::gui::{RockingApp, Settings};
 use rocking::sim::protocol::{RunId, SectionPoint, Speed, StartFrom};
@@ -27,19 +27,6 @@ fn live(speed: Speed) -> Harness<'static, RockingApp> {
             let (s, c) = Settings::from_cli(Some("default"), None, &[]).expect("valid scene");
             RockingApp::live(cc, s, c, speed, false)
         })
-}
-
-fn pointer(h: &mut Harness<'static, RockingApp>, pos: egui::Pos2, pressed: Option<bool>) {
-    h.event(egui::Event::PointerMoved(pos));
-    if let Some(pressed) = pressed {
-        h.event(egui::Event::PointerButton {
-            pos,
-            button: egui::PointerButton::Primary,
-            pressed,
-            modifiers: egui::Modifiers::NONE,
-        });
-    }
-    h.step();
 }
 
 /// The horizontal position of `value` on a slider of `range` drawn in `rect`

@@ -11,7 +11,7 @@ use std::time::Duration;
 
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable as _;
-use gui_common::{pump, scene};
+use gui_common::{open_preset, pump, scene};
 use rocking::gui::RockingApp;
 use rocking::gui::app::lecture::SideTab;
 use rocking::gui::lessons::{self, Note, PHENOMENA};
@@ -24,23 +24,6 @@ fn live_at(size: egui::Vec2, preset: &'static str, sets: &'static [&'static str]
         let (s, c) = scene(preset, sets);
         RockingApp::live(cc, s, c, Speed::Max, false)
     })
-}
-
-/// Opens Presets, then its submenu `group`, until `item` shows.
-fn open_preset(h: &mut Harness<'static, RockingApp>, group: &str, item: &str) {
-    h.key_press(egui::Key::Escape);
-    h.step();
-    h.get_by_label("Presets").click();
-    h.step();
-    h.step();
-    h.get_by_label(group).click();
-    for _ in 0..10 {
-        h.step();
-        if h.query_by_label(item).is_some() {
-            return;
-        }
-    }
-    panic!("Presets > {group} did not show {item}");
 }
 
 #[test]

@@ -5,6 +5,7 @@
 use std::time::{Duration, Instant};
 
 use egui_kittest::Harness;
+use egui_kittest::kittest::Queryable as _;
 use rocking::gui::{RockingApp, Settings};
 use rocking::sim::protocol::SectionPoint;
 
@@ -53,4 +54,47 @@ pub fn henon(n: usize) -> Vec<SectionPoint> {
             }
         })
         .collect()
+}
+
+/// Clicks menu `menu` and steps until its item `item` is shown.
+pub fn open_menu(h: &mut Harness<'static, RockingApp>, menu: &str, item: &str) {
+    h.get_by_label(menu).click();
+    for _ in 0..10 {
+        h.step();
+        if h.query_by_label(item).is_some() {
+            return;
+        }
+    }
+    panic!("menu {menu} did not show {item}");
+}
+
+/// Closes any open menu, opens Presets, then its submenu `group`, until
+/// `item` shows.
+pub fn open_preset(h: &mut Harness<'static, RockingApp>, group: &str, item: &str) {
+    h.key_press(egui::Key::Escape);
+    h.step();
+    open_menu(h, "Presets", group);
+    h.get_by_label(group).click();
+    for _ in 0..10 {
+        h.step();
+        if h.query_by_label(item).is_some() {
+            return;
+        }
+    }
+    panic!("Presets > {group} did not show {item}");
+}
+
+/// Moves the pointer to `pos` and, if `pressed` says so, presses or
+/// releases the primary button there; then one frame.
+pub fn pointer(h: &mut Harness<'static, RockingApp>, pos: egui::Pos2, pressed: Option<bool>) {
+    h.event(egui::Event::PointerMoved(pos));
+    if let Some(pressed) = pressed {
+        h.event(egui::Event::PointerButton {
+            pos,
+            button: egui::PointerButton::Primary,
+            pressed,
+            modifiers: egui::Modifiers::NONE,
+        });
+    }
+    h.step();
 }
