@@ -6,7 +6,7 @@ use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::time::{Duration, Instant};
 
 use rocking::io::config::load;
-use rocking::sim::protocol::{Batch, RunEnd, RunId, SimUpdate, Speed, StartFrom};
+use rocking::sim::protocol::{Batch, RunEnd, RunId, RunInfo, Sample, SimUpdate, Speed, StartFrom};
 use rocking::sim::runner::{LIVE_SAMPLE_DT, SimHandle, record};
 use rocking::sim::{RunOptions, Scenario, simulate};
 
@@ -42,6 +42,34 @@ fn batches(updates: &[SimUpdate], run: RunId) -> Vec<&Batch> {
             _ => None,
         })
         .collect()
+}
+
+/// A paused thread on the default scene stepped `tau` forward, and the
+/// last sample it sent (the state the app shows).
+fn paused_after(tau: f64) -> (SimHandle, Sample) {
+    let h = SimHandle::spawn(preset("default", &[]), Speed::RealTime(1.0), true, no_waker()).expect("thread starts");
+    h.step(tau);
+    let got = collect(&h, Duration::from_secs(5), |u| {
+        u.iter()
+            .any(|x| matches!(x, SimUpdate::Paused { tau, .. } if *tau > 0.0))
+    });
+    let last = *batches(&got, RunId(1))
+        .iter()
+        .rev()
+        .find_map(|b| b.samples.last())
+        .expect("samples");
+    (h, last)
+}
+
+/// The start message of run `run` among `updates`.
+fn started(updates: &[SimUpdate], run: RunId) -> &RunInfo {
+    updates
+        .iter()
+        .find_map(|u| match u {
+            SimUpdate::Started { run: r, info } if *r == run => Some(info),
+            _ => None,
+        })
+        .expect("the run started")
 }
 
 fn sample_index(tau: f64) -> i64 {
@@ -237,29 +265,12 @@ fn real_time_playback_advances_p_tau_per_second() {
 
 #[test]
 fn a_perturbed_reset_continues_from_the_shown_state_with_theta_plus_eps() {
-    let mut h =
-        SimHandle::spawn(preset("default", &[]), Speed::RealTime(1.0), true, no_waker()).expect("thread starts");
-    h.step(5.0);
-    let got = collect(&h, Duration::from_secs(5), |u| {
-        u.iter()
-            .any(|x| matches!(x, SimUpdate::Paused { tau, .. } if *tau > 0.0))
-    });
-    let last = *batches(&got, RunId(1))
-        .iter()
-        .rev()
-        .find_map(|b| b.samples.last())
-        .expect("samples");
+    let (mut h, last) = paused_after(5.0);
     let eps = 1e-3;
     let run = h.reset_perturbed(eps);
     h.step(0.1);
     let got = collect(&h, Duration::from_secs(5), |u| !batches(u, run).is_empty());
-    let info = got
-        .iter()
-        .find_map(|u| match u {
-            SimUpdate::Started { run: r, info } if *r == run => Some(info),
-            _ => None,
-        })
-        .expect("perturbed run started");
+    let info = started(&got, run);
     assert_eq!(info.tau0, last.tau, "continues from the shown τ");
     let first = batches(&got, run)[0].samples[0];
     assert_eq!(first.tau, last.tau);
@@ -268,28 +279,11 @@ fn a_perturbed_reset_continues_from_the_shown_state_with_theta_plus_eps() {
 
 #[test]
 fn new_parameters_from_the_current_state_continue_at_the_shown_tau_and_state() {
-    let mut h =
-        SimHandle::spawn(preset("default", &[]), Speed::RealTime(1.0), true, no_waker()).expect("thread starts");
-    h.step(5.0);
-    let got = collect(&h, Duration::from_secs(5), |u| {
-        u.iter()
-            .any(|x| matches!(x, SimUpdate::Paused { tau, .. } if *tau > 0.0))
-    });
-    let last = *batches(&got, RunId(1))
-        .iter()
-        .rev()
-        .find_map(|b| b.samples.last())
-        .expect("samples");
+    let (mut h, last) = paused_after(5.0);
     let run = h.set_params_from(preset("default", &["excitation.a_v=2.0"]), StartFrom::Current);
     h.step(0.1);
     let got = collect(&h, Duration::from_secs(5), |u| !batches(u, run).is_empty());
-    let info = got
-        .iter()
-        .find_map(|u| match u {
-            SimUpdate::Started { run: r, info } if *r == run => Some(info),
-            _ => None,
-        })
-        .expect("continued run started");
+    let info = started(&got, run);
     assert_eq!(info.tau0, last.tau, "τ runs on from the shown τ");
     assert_eq!(info.scenario.excitation.a_v, 2.0);
     let first = batches(&got, run)[0].samples[0];
@@ -320,13 +314,7 @@ fn a_section_phase_puts_the_points_at_that_forcing_phase_and_the_motion_goes_on(
         u.iter()
             .any(|x| matches!(x, SimUpdate::Paused { run: r, tau, .. } if *r == run && *tau > 12.0))
     });
-    let info = got
-        .iter()
-        .find_map(|u| match u {
-            SimUpdate::Started { run: r, info } if *r == run => Some(info),
-            _ => None,
-        })
-        .expect("run started");
+    let info = started(&got, run);
     assert_eq!(info.section_phase, phi);
     assert!(info.tau0 > 2.5, "the motion goes on from τ = {}", info.tau0);
     let omega = info.scenario.excitation.omega_h;
