@@ -227,7 +227,9 @@ impl RockingApp {
                     |i| (i.sample_dt, i.scenario.excitation.omega_h),
                 );
                 ui.vertical(|ui| {
-                    ui.label("Power spectrum of Θ (last 41 τ)");
+                    // One line, cut with "…" in a narrow column (egui shows it whole on
+                    // hover), so the plot keeps its height at a large presentation scale.
+                    ui.add(egui::Label::new("Power spectrum of Θ (last 41 τ)").truncate());
                     plots::spectrum_plot(ui, &self.hist, &mut self.spectrum, dt, omega_h, &scales);
                 });
             }

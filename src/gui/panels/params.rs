@@ -444,6 +444,9 @@ impl Default for Edits {
     }
 }
 
+/// The hover text of the "Drag restarts from" choice.
+const DRAG_FROM_HELP: &str = "Where the run restarts when a slider is dragged. A typed value always starts the scene over from its initial state.";
+
 /// Draws the panel: the restart toggle, then the keys that apply to the
 /// scene's excitation kind ([`applies`]). `explicit` gives a key's value as
 /// the scene states it (`None`: the key is left at its default). Returns
@@ -456,9 +459,33 @@ pub fn show(
     edits: &mut Edits,
 ) -> Option<Commit> {
     let mut commit = None;
-    ui.horizontal_wrapped(|ui| {
-        ui.label("Drag restarts from")
-            .on_hover_text("Where the run restarts when a slider is dragged. A typed value always starts the scene over from its initial state.");
+    // The label, then the two choices kept together on one line: in a
+    // narrow panel (a large presentation scale) the choices go to a line
+    // of their own rather than one of them alone under the label.
+    let label = "Drag restarts from";
+    let needed = {
+        let font = egui::TextStyle::Body.resolve(ui.style());
+        let width = |t: &str| {
+            ui.painter()
+                .layout_no_wrap(t.to_owned(), font.clone(), egui::Color32::WHITE)
+                .size()
+                .x
+        };
+        let spacing = ui.spacing();
+        width(label)
+            + width("current")
+            + width("initial")
+            + 4.0 * spacing.button_padding.x
+            + 2.0 * spacing.item_spacing.x
+    };
+    if ui.available_width() < needed {
+        ui.label(label).on_hover_text(DRAG_FROM_HELP);
+    }
+    ui.horizontal(|ui| {
+        if ui.available_width() >= needed {
+            ui.label(label)
+                .on_hover_text("Where the run restarts when a slider is dragged. A typed value always starts the scene over from its initial state.");
+        }
         for (from, text, help) in [
             (
                 StartFrom::Current,
