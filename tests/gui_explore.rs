@@ -110,6 +110,40 @@ fn dragging_the_a_v_slider_changes_the_run_live_and_the_section_points_follow() 
     );
 }
 
+/// Holding Shift, a drag moves the value a twentieth as far as a plain
+/// drag: the same 30-point pointer motion that takes A_v from 2.5 to
+/// about 0.6 without Shift moves it by about 0.1 with it, stepping in
+/// four-digit values (period doubling's windows are 0.02 wide).
+#[test]
+fn a_shift_drag_moves_the_slider_a_twentieth_as_far() {
+    let mut h = live(Speed::RealTime(8.0));
+    assert!(pump(&mut h, Duration::from_secs(20), |a| a.tau() > 0.5));
+    let rect = h.get_by_label("A_v slider").rect();
+    let y = rect.center().y;
+    let a = egui::pos2(slider_x(rect, (0.0, 5.0), 2.5), y);
+    pointer(&mut h, a, None);
+    pointer(&mut h, a, Some(true));
+    h.event(egui::Event::ModifiersChanged(egui::Modifiers::SHIFT));
+    let mut seen = Vec::new();
+    for k in 1..=6 {
+        pointer(&mut h, a - egui::vec2(5.0 * k as f32, 0.0), None);
+        seen.push(h.state().config().excitation.a_v);
+    }
+    pointer(&mut h, a - egui::vec2(30.0, 0.0), Some(false));
+    h.event(egui::Event::ModifiersChanged(egui::Modifiers::NONE));
+    h.step();
+    let fine = 2.5 - h.state().config().excitation.a_v;
+    let plain = 30.0 / rect.width() as f64 * 5.0;
+    assert!(
+        (fine - plain / 20.0).abs() < 0.25 * plain / 20.0,
+        "a Shift-drag of 30 points moved A_v by {fine} (plain: {plain}): {seen:?}"
+    );
+    assert!(
+        seen.windows(2).all(|w| w[1] < w[0]),
+        "each frame of the fine drag moves it a little further: {seen:?}"
+    );
+}
+
 #[test]
 fn restart_from_current_keeps_tau_running_and_from_initial_starts_at_zero() {
     let mut h = live(Speed::RealTime(8.0));

@@ -52,7 +52,7 @@ pub const PHENOMENA: &[Lesson] = &[
     lesson(
         "Period doubling",
         "period-doubling",
-        "Drag A_v slowly from 1.6 to 2.3 (in the Parameters panel, under Excitation): the single Poincaré dot splits into 2 at A_v ≈ 1.72, into 4 at ≈ 2.28 and into 8 at ≈ 2.32, the period-doubling road to chaos of the paper's Fig. 4.",
+        "Drag A_v slowly from 1.6 to 2.3 (Parameters panel, under Excitation; hold Shift to drag finely): the single Poincaré dot splits into 2 at A_v ≈ 1.72, into 4 at ≈ 2.28 and into 8 at ≈ 2.32, the period-doubling road to chaos of the paper's Fig. 4.",
     ),
     Lesson {
         speed: 20.0,

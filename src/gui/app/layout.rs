@@ -167,13 +167,19 @@ impl RockingApp {
         scene::paint(ui, rect, shapes, view, self.gpu);
         if falling.is_some() {
             let text = "after the tumble: drawn, not simulated (the model stops when the centre of mass passes over the corner)";
-            ui.painter().text(
-                egui::pos2(rect.center().x, rect.max.y - 8.0),
-                egui::Align2::CENTER_BOTTOM,
-                text,
+            // Wrapped to the scene's width: one line is wider than a narrow
+            // scene and was cut at both ends.
+            let mut job = egui::text::LayoutJob::simple(
+                text.to_owned(),
                 egui::FontId::proportional(14.0),
                 egui::Color32::from_rgb(255, 170, 150),
+                rect.width() - 16.0,
             );
+            job.halign = egui::Align::Center;
+            let galley = ui.painter().layout_job(job);
+            let top = rect.max.y - 8.0 - galley.size().y;
+            ui.painter()
+                .galley(egui::pos2(rect.center().x, top), galley, egui::Color32::WHITE);
         }
         if self.record_label.is_none()
             && let Some(v) = &verdict
