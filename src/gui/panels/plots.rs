@@ -217,8 +217,13 @@ fn section_selector(ui: &mut egui::Ui, view: &mut PoincareView) -> Option<f64> {
     // What the points are, in words: the plot's axis titles are painted
     // small, and this line is what a screen reader (and a test) reads.
     let caption = match view.section {
-        SectionKind::Stroboscopic => format!("(Θ, Θ') once a forcing period, at Ω_h τ = 2πk + {:.2}", view.phase),
-        SectionKind::Impact => "Θ' just before each impact, against the forcing phase at that impact".to_string(),
+        SectionKind::Stroboscopic => format!(
+            "(Θ, Θ') once a forcing period, at Ω_h τ = 2πk + {:.2}; the latest {LATEST_SECTION_POINTS} enlarged",
+            view.phase
+        ),
+        SectionKind::Impact => format!(
+            "Θ' just before each impact, against the forcing phase at that impact; the latest {LATEST_SECTION_POINTS} enlarged"
+        ),
     };
     // One line, cut with "…" when narrow (the hover has it whole), so the
     // plot below keeps its height at a large presentation scale.
@@ -226,6 +231,11 @@ fn section_selector(ui: &mut egui::Ui, view: &mut PoincareView) -> Option<f64> {
         .on_hover_text(caption);
     new_phase
 }
+
+/// How many of the latest section points are drawn enlarged: 16 shows
+/// every dot of a period-8 orbit (the end of the paper's Fig. 4 cascade)
+/// twice over.
+pub const LATEST_SECTION_POINTS: usize = 16;
 
 /// Draws the section selector and the Poincaré points of the section
 /// chosen as a per-pixel density image, in the units of `scales` (both are
@@ -322,6 +332,28 @@ pub fn poincare_plot(ui: &mut egui::Ui, hist: &RunHistory, view: &mut PoincareVi
                         egui::vec2((shown[1] - shown[0]) as f32, (shown[3] - shown[2]) as f32),
                     )
                     .allow_hover(false),
+                );
+            }
+            // Where the motion is now: the latest points enlarged, so a
+            // period-k orbit shows k large dots that a lecture hall can
+            // see (the density image's cells are two pixels) and a
+            // dragged parameter's new orbit stands out from its transient.
+            let latest: Vec<[f64; 2]> = store
+                .points()
+                .iter()
+                .rev()
+                .take(LATEST_SECTION_POINTS)
+                .map(|p| {
+                    let (x, y) = to_shown(p[0], p[1]);
+                    [x, y]
+                })
+                .collect();
+            if !latest.is_empty() {
+                plot_ui.points(
+                    Points::new("latest", latest)
+                        .radius(3.5)
+                        .color(Color32::from_rgb(255, 150, 60))
+                        .allow_hover(false),
                 );
             }
         });
