@@ -368,13 +368,22 @@ pub struct SliderRange {
 pub const FINE_DRAG: f64 = 20.0;
 
 impl SliderRange {
-    /// `value` moved by `fraction` of the rail (negative: to the left), on
-    /// the rail's own scale (linear, or logarithmic for a positive value).
-    pub fn nudged(&self, value: f64, fraction: f64) -> f64 {
-        if self.log && value > 0.0 && self.min > 0.0 {
-            (value.ln() + fraction * (self.max / self.min).ln()).exp()
-        } else {
-            value + fraction * (self.max - self.min)
+    /// This range shrunk by `factor` about `value`, on the rail's own
+    /// scale (linear, or logarithmic), so that `value` keeps its place
+    /// along the rail: a zoomed rail for a fine drag. A value outside the
+    /// range zooms about the nearer end's place.
+    pub fn zoomed(&self, value: f64, factor: f64) -> Self {
+        let log = self.log && self.min > 0.0 && value > 0.0;
+        // To the rail's linear coordinate, and back.
+        type Map = fn(f64) -> f64;
+        let (to, from): (Map, Map) = if log { (f64::ln, f64::exp) } else { (|x| x, |x| x) };
+        let (lo, hi, at) = (to(self.min), to(self.max), to(value));
+        let place = ((at - lo) / (hi - lo)).clamp(0.0, 1.0);
+        let width = (hi - lo) * factor;
+        Self {
+            min: from(at - place * width),
+            max: from(at + (1.0 - place) * width),
+            log,
         }
     }
 }
@@ -609,13 +618,20 @@ fn slider(ui: &mut egui::Ui, k: &Key, shown: &str) -> Option<Commit> {
     let range = slider_range(k.key)?;
     let value = shown.trim().parse::<f64>().ok().filter(|v| v.is_finite())?;
     let mut v = value;
+    // A fine drag (begun or joined with Shift) lasts until the button is
+    // released: the rail then spans a FINE_DRAG-th of the range, zoomed
+    // about the value where it began (which keeps its place on the rail),
+    // so the handle follows the pointer at that finer rate.
+    let fine_id = egui::Id::unique(("fine drag", k.key));
+    let anchor: Option<f64> = ui.data(|d| d.get_temp(fine_id));
+    let rail = anchor.map_or(range, |v0| range.zoomed(v0, 1.0 / FINE_DRAG));
     // With the 60-point field beside it, the row fits the panel's
     // default 300 points.
     ui.spacing_mut().slider_width = 72.0;
     let r = ui
         .add(
-            egui::Slider::new(&mut v, range.min..=range.max)
-                .logarithmic(range.log)
+            egui::Slider::new(&mut v, rail.min..=rail.max)
+                .logarithmic(rail.log)
                 .show_value(false)
                 // A value beyond the range stays as it is until dragged.
                 .clamping(egui::SliderClamping::Never),
@@ -630,18 +646,15 @@ fn slider(ui: &mut egui::Ui, k: &Key, shown: &str) -> Option<Commit> {
     // Its own accessible name: the field beside is the one named by the label.
     let name = format!("{} slider", k.label);
     ui.ctx().accesskit_node_builder(r.id, |node| node.set_label(name));
-    // Shift-drag: the value follows the pointer's motion this frame at a
-    // FINE_DRAG-th of the rail's rate, from where it was, instead of
-    // jumping to the pointer (egui's slider has no fine mode).
-    // On the frame of the release too, or the handle would jump to the
-    // pointer as it lets go.
-    if (r.dragged() || r.drag_stopped()) && ui.input(|i| i.modifiers.shift) {
-        let dx = f64::from(r.drag_delta().x / r.rect.width().max(1.0));
-        if dx == 0.0 {
-            return None;
-        }
-        v = range.nudged(value, dx / FINE_DRAG);
-    } else if !r.changed() {
+    if !r.dragged() {
+        ui.data_mut(|d| d.remove::<f64>(fine_id));
+    } else if anchor.is_none() && ui.input(|i| i.modifiers.shift) {
+        // Shift held while dragging: the fine rail from the next frame on;
+        // this frame's move, on the full rail, is dropped.
+        ui.data_mut(|d| d.insert_temp(fine_id, value));
+        return None;
+    }
+    if !r.changed() {
         return None;
     }
     let raw = slider_text(v);
@@ -697,25 +710,31 @@ fn text_field(
 mod tests {
     use super::*;
 
-    /// A fine step moves a linear rail by the fraction of its span, and a
-    /// logarithmic one by the fraction of its decades, both ways.
+    /// A zoomed rail is a FINE_DRAG-th of the range (of its span, or of
+    /// its decades) with the value at the same place along it.
     #[test]
-    fn a_nudge_moves_by_a_fraction_of_the_rail_on_its_own_scale() {
+    fn a_zoomed_rail_keeps_the_value_in_its_place() {
         let lin = SliderRange {
             min: 0.0,
             max: 5.0,
             log: false,
         };
-        assert!((lin.nudged(2.3, 0.01) - 2.35).abs() < 1e-12);
-        assert!((lin.nudged(2.3, -0.01) - 2.25).abs() < 1e-12);
+        let z = lin.zoomed(2.0, 0.05);
+        assert!((z.max - z.min - 0.25).abs() < 1e-12);
+        assert!(((2.0 - z.min) / (z.max - z.min) - 0.4).abs() < 1e-12);
         let log = SliderRange {
             min: 0.5,
             max: 30.0,
             log: true,
         };
-        let up = log.nudged(8.0, 0.1);
-        assert!((up / 8.0 - 60f64.powf(0.1)).abs() < 1e-12);
-        assert!((log.nudged(up, -0.1) - 8.0).abs() < 1e-12);
+        let z = log.zoomed(8.0, 0.05);
+        assert!(z.log);
+        assert!(((z.max / z.min).ln() - 0.05 * 60f64.ln()).abs() < 1e-12);
+        let place = |r: SliderRange, v: f64| (v / r.min).ln() / (r.max / r.min).ln();
+        assert!((place(z, 8.0) - place(log, 8.0)).abs() < 1e-12);
+        // A value beyond the range: the rail hangs off the nearer end.
+        let z = lin.zoomed(7.0, 0.05);
+        assert!((z.max - 7.0).abs() < 1e-12 && (z.min - 6.75).abs() < 1e-12);
     }
 
     #[test]
