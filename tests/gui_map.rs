@@ -10,7 +10,7 @@ use std::time::{Duration, Instant};
 
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable as _;
-use gui_common::pump;
+use gui_common::{pointer, pump};
 use rocking::analysis::classify::ClassifyOptions;
 use rocking::analysis::map_refine::Source;
 use rocking::analysis::outcome_map::{Axis, BlockMap, block_map};
@@ -80,18 +80,11 @@ fn toggle_map(h: &mut Harness<'static, RockingApp>) {
     h.step();
 }
 
+/// A click at `pos`: the pointer there, pressed, released, a frame each.
 fn click(h: &mut Harness<'static, RockingApp>, pos: egui::Pos2) {
-    h.event(egui::Event::PointerMoved(pos));
-    h.step();
-    for pressed in [true, false] {
-        h.event(egui::Event::PointerButton {
-            pos,
-            button: egui::PointerButton::Primary,
-            pressed,
-            modifiers: egui::Modifiers::NONE,
-        });
-        h.step();
-    }
+    pointer(h, pos, None);
+    pointer(h, pos, Some(true));
+    pointer(h, pos, Some(false));
 }
 
 #[test]
