@@ -183,7 +183,7 @@ pub fn titled<'a>(plot: Plot<'a>, ui: &egui::Ui, x: &str, y: &str) -> Plot<'a> {
 /// (egui_plot's for axis titles): the whole title, then without its
 /// " at …" qualifier ("Θ' = dΘ/dτ at τ_k = 2πk/Ω_h" → "Θ' = dΘ/dτ"), then
 /// without the definition after " = " ("Θ'"), then cut with "…".
-pub fn fit_title(ui: &egui::Ui, title: &str, length: f32) -> String {
+fn fit_title(ui: &egui::Ui, title: &str, length: f32) -> String {
     let font = egui::TextStyle::Body.resolve(ui.style());
     let fits = |text: &str| {
         ui.painter()
@@ -192,13 +192,12 @@ pub fn fit_title(ui: &egui::Ui, title: &str, length: f32) -> String {
             .x
             <= length
     };
-    for candidate in title_forms(title) {
-        if fits(&candidate) {
-            return candidate;
-        }
+    let mut forms = title_forms(title);
+    if let Some(i) = forms.iter().position(|f| fits(f)) {
+        return forms.swap_remove(i);
     }
     // The shortest form, cut a character at a time.
-    let shortest = title_forms(title).pop().unwrap_or_default();
+    let shortest = forms.pop().unwrap_or_default();
     let chars: Vec<char> = shortest.chars().collect();
     for n in (1..chars.len()).rev() {
         let cut: String = chars[..n].iter().collect::<String>() + "…";
@@ -293,8 +292,8 @@ mod tests {
         assert_eq!(title_forms("log10 S/S_max"), ["log10 S/S_max"]);
     }
 
-    /// A short axis (a plot squeezed at a large presentation scale: 60
-    /// points for −0.6 … 0.6) gets two numbers where the normal gap would
+    /// A short axis (a plot squeezed at a large presentation scale: 45 to
+    /// 130 points for −0.06 … 0.06) gets two numbers where the normal gap would
     /// leave one, and its thin lines are closer than the numbered ones.
     #[test]
     fn an_axis_too_short_for_the_normal_gap_still_gets_two_numbers() {
