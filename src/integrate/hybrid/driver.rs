@@ -222,24 +222,24 @@ where
     }
 
     /// Like [`advance`](Self::advance), except that a method with a dense
-    /// output does not shorten a step to land on `t_end`: the step that
-    /// reaches it is taken whole, with its outputs (samples, section points,
-    /// its event), so the driver may stand past `t_end` afterwards. A run
-    /// advanced so, in pieces of any size, takes the same steps as one
-    /// advanced in a single call: the live session's chunks follow the batch
-    /// run bit for bit up to its last step (the batch run's last step is the
-    /// one shortened to end on its `τ_end`). The paper's fixed-step method
-    /// steps onto `t_end`, as in `advance` (it stops on the section times
-    /// too, which the live session's chunk ends are).
-    pub fn advance_past<O>(&mut self, t_end: f64, obs: &mut O) -> Result<Advance, Sys::Error>
+    /// output does not shorten a step to land on `t_end` but on `horizon`
+    /// (when it is later; once past `horizon`, on `t_end` again): the step
+    /// that reaches `t_end` is taken whole,
+    /// with its outputs (samples, section points, its event), so the driver
+    /// may stand past `t_end` afterwards. A run advanced so, in pieces of
+    /// any size with one horizon, takes the same steps as one advanced to
+    /// the horizon in a single call: the live session's chunks, with the
+    /// batch run's end as horizon, follow the batch run bit for bit. The
+    /// horizon must be finite: a step that no dynamics limits (a block at
+    /// rest on a still base, whose Taylor series is its constant state)
+    /// runs to it in one step. The paper's fixed-step method steps onto
+    /// `t_end`, as in `advance` (it stops on the section times too, which
+    /// the live session's chunk ends are).
+    pub fn advance_past<O>(&mut self, t_end: f64, horizon: f64, obs: &mut O) -> Result<Advance, Sys::Error>
     where
         O: Observer<Sys::Mode, Sys::Record, N>,
     {
-        let horizon = if self.stepper.locates_by_root() {
-            f64::INFINITY
-        } else {
-            t_end
-        };
+        let horizon = if self.stepper.locates_by_root() { horizon } else { t_end };
         self.advance_towards(t_end, horizon, obs)
     }
 
@@ -265,7 +265,9 @@ where
                 }
                 .into());
             }
-            let t_stop = self.next_stop(t, horizon);
+            // Past the horizon (a chunk that ends after it), steps end on
+            // `t_end` again.
+            let t_stop = self.next_stop(t, if horizon > t { horizon } else { t_end });
             if self.stepper.locates_by_root() {
                 self.root_step(t_stop, obs)?;
             } else {

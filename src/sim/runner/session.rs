@@ -55,8 +55,14 @@ trait LiveDriver: Send {
     fn t(&self) -> f64;
     fn y(&self) -> [f64; N];
     fn mode(&self) -> Mode;
-    /// To `t_end` or past it, by whole steps ([`Driver::advance_past`]).
-    fn advance(&mut self, t_end: f64, obs: &mut dyn Observer<Mode, EventRecord, N>) -> Result<Advance, ModelError>;
+    /// To `t_end` or past it, by whole steps that end on `horizon` at the
+    /// latest ([`Driver::advance_past`]).
+    fn advance(
+        &mut self,
+        t_end: f64,
+        horizon: f64,
+        obs: &mut dyn Observer<Mode, EventRecord, N>,
+    ) -> Result<Advance, ModelError>;
     /// Exactly onto `t_end` ([`Driver::advance`]).
     fn advance_onto(&mut self, t_end: f64, obs: &mut dyn Observer<Mode, EventRecord, N>)
     -> Result<Advance, ModelError>;
@@ -89,8 +95,13 @@ impl<S: Stepper<N> + Send> LiveDriver for Driver<S, BlockSystem, N> {
     fn mode(&self) -> Mode {
         Driver::mode(self)
     }
-    fn advance(&mut self, t_end: f64, obs: &mut dyn Observer<Mode, EventRecord, N>) -> Result<Advance, ModelError> {
-        self.advance_past(t_end, &mut Forward(obs))
+    fn advance(
+        &mut self,
+        t_end: f64,
+        horizon: f64,
+        obs: &mut dyn Observer<Mode, EventRecord, N>,
+    ) -> Result<Advance, ModelError> {
+        self.advance_past(t_end, horizon, &mut Forward(obs))
     }
     fn advance_onto(
         &mut self,
@@ -380,6 +391,12 @@ pub struct Session {
     /// Where the run started: τ, mode, state (the state shown until a
     /// sample is released).
     start: (f64, Mode, [f64; N]),
+    /// Where the batch run of the same scenario ends its first advance, τ:
+    /// `run.tau_end`, or a record's end. Steps end there at the latest, as
+    /// the batch run's do, so the live run follows it bit for bit; past it,
+    /// steps end on chunk ends. Never infinite: a block at rest on a still
+    /// base has nothing that limits its step.
+    batch_end: f64,
 }
 
 impl Session {
@@ -469,6 +486,9 @@ impl Session {
             released: tau0,
             exact_sections,
             start: (tau0, mode0, y0),
+            batch_end: scenario
+                .record_end_tau()
+                .map_or(scenario.tau_end(), |end| end.min(scenario.tau_end())),
         })
     }
 
@@ -533,6 +553,12 @@ impl Session {
         }
     }
 
+    /// Where the steps of a chunk from `t` to `t_end` end at the latest:
+    /// the batch run's end while the run is before it, else the chunk's end.
+    fn horizon(&self, t: f64, t_end: f64) -> f64 {
+        if t < self.batch_end { self.batch_end } else { t_end }
+    }
+
     /// Integrates one chunk (to the next point of the chunk grid).
     pub fn advance_chunk(&mut self) {
         if self.ended.is_some() {
@@ -543,6 +569,7 @@ impl Session {
             self.next_chunk += 1;
         }
         let t_end = self.grid.end(self.next_chunk);
+        let horizon = self.horizon(t, t_end);
         let mut sink = MainSink {
             probe: &self.probe,
             base: &mut self.base,
@@ -552,7 +579,7 @@ impl Session {
         let advanced = if self.exact_sections {
             self.driver.advance_onto(t_end, &mut sink)
         } else {
-            self.driver.advance(t_end, &mut sink)
+            self.driver.advance(t_end, horizon, &mut sink)
         };
         match advanced {
             Ok(Advance::Reached) => {
@@ -582,7 +609,8 @@ impl Session {
         }
         let t_ghost = self.driver.t();
         for g in self.ghosts.iter_mut().filter(|g| !g.done) {
-            match g.driver.advance(t_ghost, &mut GhostSink(&mut g.states)) {
+            let horizon = self.batch_end.max(t_ghost);
+            match g.driver.advance(t_ghost, horizon, &mut GhostSink(&mut g.states)) {
                 Ok(Advance::Reached) => {}
                 Ok(Advance::Terminal) | Err(_) => {
                     // A ghost that tumbles or fails freezes where it is: it
@@ -664,7 +692,11 @@ impl Session {
             let mut states = VecDeque::new();
             // Bring the ghost level with the main trajectory's computed τ.
             let done = !matches!(
-                driver.advance(self.driver.t(), &mut GhostSink(&mut states)),
+                driver.advance(
+                    self.driver.t(),
+                    self.batch_end.max(self.driver.t()),
+                    &mut GhostSink(&mut states),
+                ),
                 Ok(Advance::Reached)
             );
             self.ghosts.push(Ghost {
@@ -714,7 +746,7 @@ impl Session {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::sim::simulate;
+    use crate::sim::{Method, Outcome, simulate};
 
     fn preset(name: &str) -> Scenario {
         crate::io::config::load(Some(name), None, &[]).expect("preset loads")
@@ -758,6 +790,78 @@ mod tests {
             "live {max_abs_sliding} vs batch {}",
             batch.max_abs_sliding
         );
+    }
+
+    /// Every preset's live run, with every method, reaches the batch run's
+    /// end: the same tumble or flight at the same τ; for a record, the same
+    /// survival; else the same events at the same τ, bit for bit (the live
+    /// steps end on the batch run's end, as its do), and the same mode at
+    /// the end. Free rocking failed here with a NaN at its impact
+    /// accumulation (τ = 21.2): at rest on a still base, where nothing
+    /// limits a Taylor step, the live run's step had no end.
+    #[test]
+    fn every_preset_live_ends_as_its_batch_run_with_every_method() {
+        for name in crate::io::presets::names() {
+            let base = preset(name);
+            for method in [Method::Taylor, Method::Dop853, Method::Dopri5, Method::Ralston] {
+                let mut sc = base.clone();
+                sc.run.method = Some(method);
+                if sc.validate().is_err() {
+                    continue;
+                }
+                let what = format!("{name} with {method:?}");
+                let opts = sc.run_options();
+                let batch = simulate(sc.model().expect("model"), &sc.initial, &opts).expect("batch run");
+                let mut live = Session::new(RunId(1), &sc, Start::Initial).expect("starts");
+                // A record run stops at rest at a chunk end, the batch run
+                // at the end of a leg of REST_CHECK_TAU: within a chunk.
+                let slack = if opts.rest_after.is_some() {
+                    2.0 * MAX_CHUNK
+                } else {
+                    0.0
+                };
+                live.fill_to(batch.tau_end + slack);
+                let mut out = Batch::default();
+                live.release(batch.tau_end + slack, &mut out);
+                match (batch.outcome, live.end()) {
+                    (Outcome::Tumbled | Outcome::Flight, Some(RunEnd::Terminal { mode, tau })) => {
+                        assert_eq!(*mode, batch.final_mode, "{what}");
+                        assert_eq!(*tau, batch.tau_end, "{what}");
+                    }
+                    (Outcome::Rest, Some(RunEnd::Rest { tau, max_abs_theta, .. })) if opts.rest_after.is_some() => {
+                        assert!(
+                            (tau - batch.tau_end).abs() <= MAX_CHUNK + 1e-9,
+                            "{what}: live rest at {tau}"
+                        );
+                        let peak = batch.max_abs_theta;
+                        assert!(
+                            (max_abs_theta - peak).abs() <= 1e-9 * peak,
+                            "{what}: {max_abs_theta} vs {peak}"
+                        );
+                    }
+                    (Outcome::Rest | Outcome::Running, None) => {
+                        let last = out.samples.last().expect("samples");
+                        if method == Method::Ralston {
+                            // The paper's fixed step stops on chunk ends,
+                            // which are its section stops only when a
+                            // forcing period is one chunk: the same end (at
+                            // rest, or its fixed step chattering through
+                            // an impact accumulation), by other steps.
+                            let at_rest = last.state.mode == Mode::Rest;
+                            assert_eq!(at_rest, batch.outcome == Outcome::Rest, "{what}");
+                            continue;
+                        }
+                        assert_eq!(last.state.mode, batch.final_mode, "{what}");
+                        let (n_live, n_batch) = (out.events.len(), batch.events.len());
+                        assert_eq!(n_live, n_batch, "{what}: events live vs batch");
+                        for (a, b) in out.events.iter().zip(&batch.events) {
+                            assert!(a.tau == b.tau && a.kind == b.kind, "{what}: live {a:?}, batch {b:?}");
+                        }
+                    }
+                    (outcome, end) => panic!("{what}: batch {outcome:?} at τ {}, live {end:?}", batch.tau_end),
+                }
+            }
+        }
     }
 
     #[test]
