@@ -5,10 +5,11 @@
 //! The run is integrated in *chunks* whose ends lie on a fixed τ grid (the
 //! forcing period, split so that no chunk exceeds [`MAX_CHUNK`]). A chunk
 //! ends with the step that reaches its end, taken whole
-//! ([`Driver::advance_past`]), so chunk ends put no stops in the step
+//! ([`Driver::advance_past`]), and steps end on the batch run's end at the
+//! latest, as the batch run's do, so chunk ends put no stops in the step
 //! sequence: a live run with the same scenario follows the batch trajectory
-//! bit for bit (up to the batch run's last step, shortened to end on its
-//! τ_end), whatever the playback speed or pauses. (The paper's fixed-step
+//! bit for bit to the batch run's end, whatever the playback speed or
+//! pauses. (The paper's fixed-step
 //! method stops on chunk ends, which are its section-time stops.) What a
 //! chunk produces is queued here and *released* up to a τ chosen by the
 //! caller (the playhead), which is how the thread paces output in real
