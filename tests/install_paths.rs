@@ -89,6 +89,21 @@ fn kobe_rack_runs_the_shipped_record_from_any_folder() {
         .output()
         .unwrap());
     assert_eq!(again.lines().next(), stdout.lines().next());
+    // The CRC names the shipped bytes: other bytes under the name are refused.
+    let o = rocking(&there)
+        .arg("--batch")
+        .arg("--config")
+        .arg(out.join("summary.json"))
+        .args(["--set", "excitation.crc32_h=00000000", "--out", "changed"])
+        .output()
+        .unwrap();
+    refused(
+        &o,
+        &[
+            "excitation.crc32_h: shipped:kobe-1995.dat is not the record this config was written with",
+            &crc,
+        ],
+    );
     for f in ["events.csv", "history.csv", "poincare.csv"] {
         assert_eq!(
             std::fs::read(out.join(f)).unwrap(),

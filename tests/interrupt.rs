@@ -46,7 +46,8 @@ fn interrupt(name: &str, signal: &str) -> (std::process::ExitStatus, Vec<String>
         .unwrap();
     let partial = dir.join(format!(".out.partial-{}", child.id()));
     let start = Instant::now();
-    while !(partial.is_dir() && !entries(&partial).is_empty()) {
+    // Until the staging folder holds data.
+    while !partial.is_dir() || entries(&partial).is_empty() {
         assert!(start.elapsed() < Duration::from_secs(60), "no {}", partial.display());
         assert!(
             child.try_wait().unwrap().is_none(),

@@ -281,10 +281,15 @@ fn read_record(keys: &RecordKeys<'_>, source: &Source) -> Result<Option<Record>,
     if let Some(expected) = keys.crc32 {
         let found = format!("{:08x}", loaded.crc32);
         if !expected.eq_ignore_ascii_case(&found) {
+            let what = if shipped::name_of(p).is_some() {
+                "is not the record this config was written with: this program ships other bytes under that name"
+            } else {
+                "has changed since this config was written"
+            };
             return Err(ConfigError::key(
                 &keys.key("crc32"),
                 format!(
-                    "{} has changed since this config was written (CRC-32 {found}, expected {expected}); remove {} to run the file as it is now",
+                    "{} {what} (CRC-32 {found}, expected {expected}); remove {} to run the file as it is now",
                     path.display(),
                     keys.key("crc32")
                 ),
