@@ -4,7 +4,7 @@
 //! it for the next run to find. The process then ends by the signal it
 //! got, as if it had not caught it, so a shell sees 130 (SIGINT) or 143
 //! (SIGTERM) and a script's loop stops on Ctrl-C. SIGKILL cannot be
-//! caught: what it leaves the next run into the same folder removes
+//! caught: the next run into the same folder removes what it leaves
 //! (`io::staging`).
 
 /// Installs the handler for SIGINT and SIGTERM: a named thread that waits
