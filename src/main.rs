@@ -6,6 +6,7 @@ use rocking::cli::{self, Cli, EXIT_BAD_INPUT, EXIT_RUN_FAILED, batch::BatchError
 fn main() {
     let cli = Cli::parse();
     if let Some(command) = &cli.command {
+        cli::interrupt::install();
         match command.run() {
             Ok(()) => return,
             Err(e) => std::process::exit(cli::report(&e)),
@@ -20,6 +21,7 @@ fn main() {
     if !cli.batch {
         open_window(&cli);
     }
+    cli::interrupt::install();
     match cli::batch::run(&cli) {
         Ok(()) => {}
         Err(BatchError::Input(e)) => {

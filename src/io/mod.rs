@@ -13,6 +13,7 @@ pub mod engineering_files;
 pub mod output;
 pub mod presets;
 pub mod record;
+pub mod shipped;
 pub mod staging;
 pub mod sweep_files;
 

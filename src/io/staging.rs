@@ -11,16 +11,31 @@
 //! call.
 
 use std::path::{Path, PathBuf};
+use std::sync::{Mutex, MutexGuard};
 
 use super::output::OutputError;
 
-/// The folder `dir` is made in (`.` for a bare name): where its staging
-/// directory goes, so the final rename stays on one file system.
+/// The folder `dir` is made in (`.` for a bare name), as written.
 pub fn parent_of(dir: &Path) -> PathBuf {
     match dir.parent() {
         Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
         _ => PathBuf::from("."),
     }
+}
+
+/// The folder the staging directory of output folder `dir` goes in, so
+/// that moving the files into place is a rename on one file system: `dir`
+/// itself, with its symlinks resolved, when it exists (it may be a mount
+/// point, a Docker volume or a symlink to another disk, whose parent is on
+/// another file system); else `dir`'s parent with its symlinks resolved,
+/// where `dir` will be made. The parent is created if missing.
+pub fn staging_home(dir: &Path) -> Result<PathBuf, OutputError> {
+    if dir.is_dir() {
+        return dir.canonicalize().map_err(io_err(dir));
+    }
+    let parent = parent_of(dir);
+    std::fs::create_dir_all(&parent).map_err(io_err(&parent))?;
+    parent.canonicalize().map_err(io_err(&parent))
 }
 
 /// Removes the staging folders `.{base}.partial-PID` in `parent` left by
@@ -50,6 +65,59 @@ fn remove_stale(parent: &Path, base: &str) {
     }
 }
 
+/// The staging folders of this process not yet committed or dropped: what
+/// [`remove_live_then`] removes when the process is interrupted. A commit
+/// holds the lock while it moves files, so an interrupt never lands
+/// between two of its renames.
+static LIVE: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
+
+/// [`LIVE`], also after a panic in another thread (the list stays valid:
+/// every change to it is one push or one retain).
+fn live() -> MutexGuard<'static, Vec<PathBuf>> {
+    LIVE.lock().unwrap_or_else(std::sync::PoisonError::into_inner)
+}
+
+/// Removes every staging folder of this process, then calls `then` with
+/// no commit able to start: for a signal handler that removes the partial
+/// output of an interrupted command before the process ends (a `then`
+/// that ends the process). A commit under way finishes first, so the
+/// output is whole or absent.
+pub fn remove_live_then<R>(then: impl FnOnce() -> R) -> R {
+    let live = live();
+    for dir in live.iter() {
+        // Threads may still be writing into it: a file made between the
+        // listing and the removal makes one pass fail, the next one sees it.
+        for _ in 0..20 {
+            if std::fs::remove_dir_all(dir).is_ok() || !dir.exists() {
+                break;
+            }
+        }
+    }
+    then()
+}
+
+/// Moves file `from` to `to`: a rename, or where the two are on different
+/// file systems (EXDEV, which a rename cannot cross), a copy to a hidden
+/// file beside `to` and a rename of that, so that `to` is never seen half
+/// written; `from` is removed after.
+pub fn move_file(from: &Path, to: &Path) -> std::io::Result<()> {
+    match std::fs::rename(from, to) {
+        Err(e) if e.kind() == std::io::ErrorKind::CrossesDevices => {
+            let name = to
+                .file_name()
+                .map_or_else(|| "out".into(), |n| n.to_string_lossy().into_owned());
+            let tmp = parent_of(to).join(format!(".{name}.copy-{}", std::process::id()));
+            let copied = std::fs::copy(from, &tmp).and_then(|_| std::fs::rename(&tmp, to));
+            if copied.is_err() {
+                let _ = std::fs::remove_file(&tmp);
+            }
+            copied?;
+            std::fs::remove_file(from)
+        }
+        other => other,
+    }
+}
+
 /// A staging directory for the files of one output directory.
 #[derive(Debug)]
 pub struct Staging {
@@ -68,28 +136,36 @@ fn io_err(path: &Path) -> impl FnOnce(std::io::Error) -> OutputError + '_ {
 
 impl Staging {
     /// Starts staging the files of `dir` (which may exist; files of the same
-    /// name are replaced at commit, others are left alone).
+    /// name are replaced at commit, others are left alone). The staging
+    /// folder goes where [`staging_home`] says.
     pub fn new(dir: &Path) -> Result<Self, OutputError> {
         if dir.exists() && !dir.is_dir() {
             return Err(OutputError::NotADirectory(dir.display().to_string()));
         }
-        let parent = parent_of(dir);
-        std::fs::create_dir_all(&parent).map_err(io_err(&parent))?;
+        let home = staging_home(dir)?;
         let base = dir
             .file_name()
             .map_or_else(|| "out".into(), |n| n.to_string_lossy().into_owned());
-        remove_stale(&parent, &base);
-        let staging = parent.join(format!(".{base}.partial-{}", std::process::id()));
+        remove_stale(&home, &base);
+        // A run killed before `dir` existed left its folder in the parent.
+        remove_stale(&parent_of(dir), &base);
+        let staging = home.join(format!(".{base}.partial-{}", std::process::id()));
         if staging.exists() {
             std::fs::remove_dir_all(&staging).map_err(io_err(&staging))?;
         }
         std::fs::create_dir_all(&staging).map_err(io_err(&staging))?;
+        live().push(staging.clone());
         Ok(Self {
             dir: dir.to_path_buf(),
             staging,
             names: Vec::new(),
             committed: false,
         })
+    }
+
+    /// The staging folder (for tests and messages).
+    pub fn folder(&self) -> &Path {
+        &self.staging
     }
 
     /// The staging path of file `name`, registered for the commit.
@@ -122,15 +198,18 @@ impl Staging {
                 });
             }
         }
-        if !self.dir.exists() {
-            std::fs::rename(&self.staging, &self.dir).map_err(io_err(&self.dir))?;
-        } else {
+        // Held until the files are in place: an interrupt waits for them.
+        let mut live = live();
+        let whole = !self.dir.exists() && std::fs::rename(&self.staging, &self.dir).is_ok();
+        if !whole {
+            std::fs::create_dir_all(&self.dir).map_err(io_err(&self.dir))?;
             for name in &self.names {
                 let (from, to) = (self.staging.join(name), self.dir.join(name));
-                std::fs::rename(&from, &to).map_err(io_err(&to))?;
+                move_file(&from, &to).map_err(io_err(&to))?;
             }
             std::fs::remove_dir(&self.staging).map_err(io_err(&self.staging))?;
         }
+        live.retain(|d| *d != self.staging);
         self.committed = true;
         Ok(())
     }
@@ -142,6 +221,7 @@ impl Drop for Staging {
             // Best effort: an error here leaves only a hidden staging
             // directory, never a half-written output.
             let _ = std::fs::remove_dir_all(&self.staging);
+            live().retain(|d| *d != self.staging);
         }
     }
 }

@@ -200,9 +200,7 @@ impl Physical {
     fn outcome_line(&self) -> String {
         let input = match &self.record_h {
             Some(r) => {
-                let name = std::path::Path::new(&r.file)
-                    .file_name()
-                    .map_or_else(|| r.file.clone(), |n| n.to_string_lossy().into_owned());
+                let name = super::scenario::record_file_name(&r.file);
                 format!(" ({name}, PGA {:.2} g)", r.peaks.pga_g)
             }
             None => String::new(),

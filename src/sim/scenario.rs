@@ -193,12 +193,17 @@ impl ShapeKind {
     }
 }
 
+/// How a record shipped inside the program is named in place of a path
+/// (`shipped:kobe-1995.dat`): see `io::shipped`.
+pub const SHIPPED_PREFIX: &str = "shipped:";
+
 /// A ground-motion record read by the config layer, with where it came from
 /// (for `summary.json`).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Record {
     /// The file, as the config named it (resolved against the config's
-    /// folder).
+    /// folder), or `shipped:NAME` for a record shipped inside the program
+    /// ([`SHIPPED_PREFIX`]).
     pub path: PathBuf,
     /// Its samples, accelerations converted to g.
     pub series: Series,
@@ -211,6 +216,23 @@ pub struct Record {
     /// CRC-32 of the file's bytes (`excitation.crc32_h`, written to
     /// `summary.json` so that a rerun notices a changed file).
     pub crc32: u32,
+}
+
+impl Record {
+    /// The record's file name, for answers and labels: `kobe-1995.dat` for
+    /// `/data/kobe-1995.dat` and for the shipped `shipped:kobe-1995.dat`.
+    pub fn file_name(&self) -> String {
+        record_file_name(&self.path.display().to_string())
+    }
+}
+
+/// The file name in a record's path or `shipped:NAME` reference (the text
+/// itself when it has none).
+pub fn record_file_name(path: &str) -> String {
+    let path = path.strip_prefix(SHIPPED_PREFIX).unwrap_or(path);
+    std::path::Path::new(path)
+        .file_name()
+        .map_or_else(|| path.to_string(), |n| n.to_string_lossy().into_owned())
 }
 
 /// The base motion.

@@ -36,10 +36,7 @@ impl RecordLabel {
             return None;
         }
         let r = x.record_h.as_ref()?;
-        let name = r
-            .path
-            .file_name()
-            .map_or_else(|| r.path.display().to_string(), |n| n.to_string_lossy().into_owned());
+        let name = r.file_name();
         Some(Self {
             name,
             pga_g: r.series.peaks(x.scale_h).pga_g,

@@ -22,9 +22,10 @@ mod raw;
 mod set;
 
 pub use error::ConfigError;
-pub use set::{line_of, set_dotted};
+pub use set::{line_of, set_dotted, set_dotted_from};
 
 use crate::io::record::{self, RecordError, RecordSpec};
+use crate::io::shipped;
 use crate::model::units::AccelUnit;
 use crate::model::{FlightPolicy, Geometry};
 use crate::sim::scenario::{Analyses, Block, ExcitationSpec, Impact, Record, RunSpec};
@@ -72,21 +73,20 @@ pub const KNOWN_KEYS: &[(&str, &[&str])] = &[
 /// Where a config came from, for resolving relative record paths.
 #[derive(Clone, Debug, Default)]
 pub struct Source {
-    /// Directory that relative paths are relative to.
+    /// Directory that relative paths written in the config are relative
+    /// to: the config file's folder (empty: the current folder). Paths
+    /// given with `--set` are made absolute when set ([`set_dotted`]), so
+    /// this never applies to them.
     pub base_dir: PathBuf,
 }
 
-/// The folder of the shipped presets, in the source tree the binary was
-/// built from: a preset's record path (`../records/kobe-1995.dat`) is
-/// relative to it, so `--preset kobe-rack` runs from any working directory.
-pub const PRESETS_DIR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/assets/presets");
-
 impl Source {
-    /// The source of a shipped preset ([`PRESETS_DIR`]).
+    /// The source of a shipped preset. A preset names its records as
+    /// shipped ones (`shipped:kobe-1995.dat`, compiled into the program),
+    /// so it needs no folder: it runs the same from a copied binary, after
+    /// `cargo install` or from any folder (tested for every preset).
     pub fn preset() -> Self {
-        Self {
-            base_dir: PathBuf::from(PRESETS_DIR),
-        }
+        Self::default()
     }
 }
 
@@ -179,7 +179,8 @@ fn json_to_table(v: &Json) -> Result<Table, String> {
     Ok(t)
 }
 
-/// Applies `--set KEY=VALUE` assignments.
+/// Applies `--set KEY=VALUE` assignments; a relative record path among
+/// them is relative to the current folder ([`set_dotted`]).
 pub fn apply_sets(table: &mut Table, sets: &[String]) -> Result<(), ConfigError> {
     for s in sets {
         set_dotted(table, s)?;
@@ -238,9 +239,28 @@ fn read_record(keys: &RecordKeys<'_>, source: &Source) -> Result<Option<Record>,
         }
         return Ok(None);
     };
-    let p = PathBuf::from(p);
-    let path = if p.is_absolute() { p } else { source.base_dir.join(p) };
-    let loaded = record::read_record_as(&path, &RecordSpec { unit, dt }).map_err(|e| {
+    let spec = RecordSpec { unit, dt };
+    let (path, loaded) = match shipped::name_of(p) {
+        Some(name) => {
+            let bytes = shipped::get(name).ok_or_else(|| {
+                ConfigError::key(
+                    &keys.key("file"),
+                    format!(
+                        "{p}: no such shipped record (shipped: {})",
+                        shipped::references().join(", ")
+                    ),
+                )
+            })?;
+            (PathBuf::from(p), record::read_record_bytes(p, bytes, &spec))
+        }
+        None => {
+            let p = PathBuf::from(p);
+            let path = if p.is_absolute() { p } else { source.base_dir.join(p) };
+            let loaded = record::read_record_as(&path, &spec);
+            (path, loaded)
+        }
+    };
+    let loaded = loaded.map_err(|e| {
         let key = match e {
             RecordError::NoUnit { .. } | RecordError::HeaderNoUnit { .. } | RecordError::UnitConflict { .. } => {
                 keys.key("unit")
@@ -261,18 +281,28 @@ fn read_record(keys: &RecordKeys<'_>, source: &Source) -> Result<Option<Record>,
     if let Some(expected) = keys.crc32 {
         let found = format!("{:08x}", loaded.crc32);
         if !expected.eq_ignore_ascii_case(&found) {
+            let what = if shipped::name_of(p).is_some() {
+                "is not the record this config was written with: this program ships other bytes under that name"
+            } else {
+                "has changed since this config was written"
+            };
             return Err(ConfigError::key(
                 &keys.key("crc32"),
                 format!(
-                    "{} has changed since this config was written (CRC-32 {found}, expected {expected}); remove {} to run the file as it is now",
+                    "{} {what} (CRC-32 {found}, expected {expected}); remove {} to run the file as it is now",
                     path.display(),
                     keys.key("crc32")
                 ),
             ));
         }
     }
-    // Absolute, so that summary.json repeats the run from any folder.
-    let path = path.canonicalize().unwrap_or(path);
+    // Absolute, so that summary.json repeats the run from any folder (a
+    // shipped record's name is the same from any folder).
+    let path = if shipped::name_of(p).is_some() {
+        path
+    } else {
+        path.canonicalize().unwrap_or(path)
+    };
     Ok(Some(Record {
         path,
         series: loaded.series,

@@ -1,12 +1,38 @@
 //! `--set KEY=VALUE` overrides and line numbers for errors.
 
+use std::path::{Path, PathBuf};
+
 use toml::{Table, Value};
 
 use super::ConfigError;
+use crate::sim::scenario::SHIPPED_PREFIX;
 
 /// Sets `section.key = value` in `table`, parsing `value` as a TOML value
 /// (`1.5`, `inf`, `"text"`) and falling back to a bare string (`ratio`).
+///
+/// A record path (`excitation.file_h`, `file_v`) typed here is relative to
+/// the current folder, as any path typed on a command line or passed from
+/// Python is: it is made absolute now, so that the folder of a preset or
+/// config the table came from (against which the paths written inside
+/// that file resolve) never applies to it.
 pub fn set_dotted(table: &mut Table, assignment: &str) -> Result<(), ConfigError> {
+    let cwd = std::env::current_dir();
+    set_dotted_from(table, assignment, || {
+        cwd.map_err(|e| {
+            ConfigError::Usage(format!(
+                "--set {assignment}: the current folder cannot be read ({e}), so a relative path cannot be resolved; give an absolute path"
+            ))
+        })
+    })
+}
+
+/// [`set_dotted`] with relative record paths resolved against the folder
+/// `base` returns (asked only for such a path).
+pub fn set_dotted_from(
+    table: &mut Table,
+    assignment: &str,
+    base: impl FnOnce() -> Result<PathBuf, ConfigError>,
+) -> Result<(), ConfigError> {
     let Some((key, raw)) = assignment.split_once('=') else {
         return Err(ConfigError::Usage(format!(
             "--set {assignment}: expected KEY=VALUE, e.g. excitation.a_v=2.5"
@@ -24,10 +50,26 @@ pub fn set_dotted(table: &mut Table, assignment: &str) -> Result<(), ConfigError
             "--set {assignment}: the key must be SECTION.KEY, e.g. excitation.a_v"
         )));
     }
-    let value = match format!("v = {raw}").parse::<Table>() {
+    let mut value = match format!("v = {raw}").parse::<Table>() {
         Ok(mut t) => t.remove("v").unwrap_or_else(|| Value::String(raw.to_string())),
         Err(_) => Value::String(raw.to_string()),
     };
+    if let Value::String(path) = &value
+        && section == "excitation"
+        && matches!(name, "file_h" | "file_v")
+        && !path.is_empty()
+        && !path.starts_with(SHIPPED_PREFIX)
+        && Path::new(path).is_relative()
+    {
+        let joined = base()?.join(path);
+        let Some(text) = joined.to_str() else {
+            return Err(ConfigError::Usage(format!(
+                "--set {assignment}: the path {} is not UTF-8, which a config cannot hold",
+                joined.display()
+            )));
+        };
+        value = Value::String(text.to_string());
+    }
     let sec = table
         .entry(section.to_string())
         .or_insert_with(|| Value::Table(Table::new()));

@@ -362,10 +362,28 @@ pub fn read_record_as(path: &Path, spec: &RecordSpec) -> Result<LoadedRecord, Re
         });
     }
     let bytes = std::fs::read(path).map_err(io_error)?;
-    let crc32 = crc32fast::hash(&bytes);
+    read_record_bytes(&file, &bytes, spec)
+}
+
+/// Reads a record from its bytes, as [`read_record_as`] reads a file's:
+/// `name` is the name errors give and whose extension (`.at2`) chooses the
+/// format, as a file's path does. For the records shipped in the binary
+/// (`io::shipped`).
+///
+/// # Errors
+/// As [`read_record_as`], less the file system's.
+pub fn read_record_bytes(name: &str, bytes: &[u8], spec: &RecordSpec) -> Result<LoadedRecord, RecordError> {
+    let file = name.to_string();
+    if let Some(dt) = spec.dt
+        && !(dt.is_finite() && dt > 0.0)
+    {
+        return Err(RecordError::StatedStep { file, dt });
+    }
+    let path = Path::new(name);
+    let crc32 = crc32fast::hash(bytes);
     // Lossy: station names in old headers or comments may be Latin-1; a
     // replacement character in a data field fails as "not a number".
-    let text = String::from_utf8_lossy(&bytes);
+    let text = String::from_utf8_lossy(bytes);
     let lines: Vec<&str> = text
         .split('\n')
         .map(|line| line.strip_suffix('\r').unwrap_or(line))
