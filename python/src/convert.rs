@@ -3,7 +3,7 @@
 //! Python objects.
 
 use pyo3::prelude::*;
-use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString};
+use pyo3::types::{PyBool, PyDict, PyFloat, PyList, PyString};
 use serde_json::Value as Json;
 
 use crate::errors::key_error;
@@ -31,8 +31,9 @@ fn number(key: &str, value: &Bound<'_, PyAny>) -> PyResult<Option<Number>> {
     if is_numpy_bool(value)? {
         return Ok(None);
     }
-    if value.is_instance_of::<PyInt>() || value.hasattr("__index__")? {
-        let index = value.call_method0("__index__")?;
+    // __index__ of an array that is not an integer scalar raises: then it
+    // is not an integer.
+    if let Ok(index) = value.call_method0("__index__") {
         let n: i64 = index
             .extract()
             .map_err(|_| key_error(key, format!("{key}: integer {value} is out of range")))?;

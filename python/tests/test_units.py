@@ -68,3 +68,10 @@ def test_help_lists_every_key_with_its_unit() -> None:
             assert f"    {key}: " in text, key
     assert "a_h_norm: units of psi*g" in text
     assert "block width B: m" in text
+
+
+def test_an_array_where_a_number_belongs_is_one_clear_error() -> None:
+    np = pytest.importorskip("numpy")
+    with pytest.raises(rocking.ConfigError, match="expected a number") as e:
+        rocking.Scene("fig3", width=np.array([0.5, 0.6]))
+    assert e.value.key == "block.width"
