@@ -214,7 +214,8 @@ fn the_answer_reads_like_an_engineers() {
     assert!(o.status.success(), "{}", stderr(&o));
     let first = stdout(&o).lines().next().unwrap_or_default().to_string();
     assert!(
-        first.starts_with("overturned at t = ") && first.ends_with(" s (kobe-1995.dat, PGA 0.69 g)"),
+        first.starts_with("overturned at t = ")
+            && first.ends_with(" s (kobe-1995.dat, PGA 0.69 g); corner-momentum impact r = 0.876, friction μ = 0.5"),
         "{first}"
     );
     let o = rocking(&[
@@ -227,7 +228,9 @@ fn the_answer_reads_like_an_engineers() {
     let first = stdout(&o).lines().next().unwrap_or_default().to_string();
     assert!(first.starts_with("survived: peak rotation "), "{first}");
     assert!(
-        first.contains("; at rest from t = ") && first.ends_with("(elcentro-1940-ns.dat, PGA 0.35 g)"),
+        first.contains("; at rest from t = ")
+            && first
+                .ends_with("(elcentro-1940-ns.dat, PGA 0.35 g); corner-momentum impact r = 0.929, friction μ = 0.6"),
         "{first}"
     );
 }

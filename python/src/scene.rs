@@ -19,7 +19,9 @@ use crate::memory::{Memory, RecordArgs};
 /// validated exactly as the CLI resolves `--preset`/`--config` and `--set`.
 ///
 /// `Scene(preset=None, *, file=None, config=None, **keys)`: the preset (or
-/// the file; neither means the `default` preset), then the assignments of
+/// the file; with neither, keys build on the literature's base of
+/// `Scene.defaults()`: Housner impact, no sliding, no vertical motion; no
+/// key at all is the app's `default` preset), then the assignments of
 /// `config` (a dict of `"section.key": value` or `"section": {key: value}`),
 /// then the keyword arguments: `a_h="0.35 g"` (a key unique to one section),
 /// `friction={"static": 0.7}` (a section). Quantities take the CLI's unit
@@ -189,6 +191,7 @@ impl Scene {
         let mut origin = match (&file, preset) {
             (Some(f), _) => format!("file {}", f.display()),
             (None, Some(p)) => format!("preset {p}"),
+            (None, None) if !sets.is_empty() => "defaults".to_string(),
             (None, None) => "preset default".to_string(),
         };
         if !sets.is_empty() {
@@ -206,13 +209,12 @@ impl Scene {
     #[pyo3(signature = (config=None, **keys))]
     fn defaults(config: Option<&Bound<'_, PyDict>>, keys: Option<&Bound<'_, PyDict>>) -> PyResult<Self> {
         let sets = assignments(config, keys)?;
-        let mut table = Table::new();
-        config::apply_sets(&mut table, &sets).map_err(from_config)?;
+        let (table, source) = config::base_table(&sets).map_err(from_config)?;
         let mut origin = "defaults".to_string();
         if !sets.is_empty() {
             origin = format!("{origin}, {}", sets.join(", "));
         }
-        Self::resolve(table, Source::default(), origin, Memory::default())
+        Self::resolve(table, source, origin, Memory::default())
     }
 
     /// A copy with more assignments (a `config` dict, records given as

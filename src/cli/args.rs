@@ -12,8 +12,9 @@ use crate::sim::Scenario;
 /// (`--batch`, `sweep`, `map` and the app).
 #[derive(Debug, Clone, Default, clap::Args)]
 pub struct SceneArgs {
-    /// A preset (default, phenomena such as period-doubling, fig3 … fig19; `--list-presets` shows them); the
-    /// default preset if neither this nor --config is given.
+    /// A preset (default, phenomena such as period-doubling, fig3 … fig19; `--list-presets` shows them).
+    /// Without this or --config, --set keys build on the literature's base (Housner impact, no sliding,
+    /// no vertical motion); with no key at all the scene is the default preset.
     #[arg(long, value_name = "NAME")]
     pub preset: Option<String>,
     /// A config file: TOML, or a summary.json / sweep.json to repeat its

@@ -39,9 +39,8 @@ impl BaseArgs {
     /// The base scenario, validated.
     pub fn load(&self) -> Result<Scenario, BatchError> {
         let mut base = if self.scene.preset.is_none() && self.scene.config.is_none() {
-            let mut table = toml::Table::new();
-            config::apply_sets(&mut table, &self.scene.sets).map_err(input)?;
-            config::from_table(&table, &config::Source::default()).map_err(input)?
+            let (table, source) = config::base_table(&self.scene.sets).map_err(input)?;
+            config::from_table(&table, &source).map_err(input)?
         } else {
             self.scene.load().map_err(input)?
         };

@@ -7,7 +7,7 @@
 use serde::Serialize;
 
 use super::run::{Outcome, RunResult};
-use super::scenario::{ExcitationKind, Scenario};
+use super::scenario::{ExcitationKind, LawKind, Scenario};
 use crate::model::excitation::record::GroundPeaks;
 
 /// How a run ended, in the words an engineer uses.
@@ -107,6 +107,16 @@ pub struct Physical {
     pub record_h: Option<RecordPeaks>,
     /// The vertical record, if any.
     pub record_v: Option<RecordPeaks>,
+    /// The impact law used (`impact.law`'s name), so that an answer never
+    /// hides which law produced it.
+    pub impact_law: &'static str,
+    /// Its angular-velocity ratio r for the laws that have one (`housner`,
+    /// `corner-momentum` without slip, `ratio`); `None` for `impulse`.
+    pub impact_r: Option<f64>,
+    /// Static friction coefficient at the base; `None`: no sliding (μ = ∞).
+    pub friction_static: Option<f64>,
+    /// Kinetic friction coefficient at the base; `None`: no sliding.
+    pub friction_kinetic: Option<f64>,
 }
 
 impl Physical {
@@ -155,13 +165,39 @@ impl Physical {
             record_complete: s.record_complete(),
             record_h: peaks(&s.excitation.record_h, s.excitation.scale_h),
             record_v: peaks(&s.excitation.record_v, s.excitation.scale_v),
+            impact_law: s.impact.law.name(),
+            impact_r: (s.impact.law != LawKind::Impulse).then(|| s.impact_r()),
+            friction_static: s.block.mu_s.is_finite().then_some(s.block.mu_s),
+            friction_kinetic: s.block.mu_s.is_finite().then(|| s.block.kinetic()),
         }
     }
 
-    /// The answer in one line, as an engineer would say it:
-    /// `overturned at t = 4.78 s (kobe-1995.dat, PGA 0.69 g)` or
-    /// `survived: peak rotation 12.3° (0.71 α), sliding 17 mm, at rest at t = 31.2 s`.
+    /// The contact the answer holds for, in words:
+    /// `Housner impact r = 0.899, friction μ = 0.5`.
+    pub fn contact(&self) -> String {
+        let law = match (self.impact_law, self.impact_r) {
+            ("housner", Some(r)) => format!("Housner impact r = {r:.3}"),
+            (law, Some(r)) => format!("{law} impact r = {r:.3}"),
+            (law, None) => format!("{law} impact"),
+        };
+        let friction = match (self.friction_static, self.friction_kinetic) {
+            (Some(s), Some(k)) if s == k => format!("friction μ = {s}"),
+            (Some(s), Some(k)) => format!("friction μ_s = {s}, μ_k = {k}"),
+            _ => "no friction limit (cannot slide)".to_string(),
+        };
+        format!("{law}, {friction}")
+    }
+
+    /// The answer in one line, as an engineer would say it, then the
+    /// contact it holds for ([`Physical::contact`]):
+    /// `overturned at t = 6.42 s (kobe-1995.dat, PGA 0.55 g); Housner impact r = 0.893, no friction limit (cannot slide)` or
+    /// `survived: peak rotation 12.3° (0.71 α), sliding 17 mm, at rest at t = 31.2 s; …`.
     pub fn line(&self) -> String {
+        format!("{}; {}", self.outcome_line(), self.contact())
+    }
+
+    /// The answer without the contact.
+    fn outcome_line(&self) -> String {
         let input = match &self.record_h {
             Some(r) => {
                 let name = std::path::Path::new(&r.file)

@@ -617,14 +617,31 @@ pub fn to_json(s: &Scenario) -> Json {
     })
 }
 
-/// Reads a preset or a config file (or the `default` preset) and applies
-/// `--set` overrides, as the CLI does, into a table not yet resolved.
+/// The literature's base scene with `sets` applied: every key not given
+/// takes the scenario's own default ([`Scenario::default`]: Housner's
+/// impact law, no sliding, no vertical motion, a record run as long as the
+/// record plus `run.tail_s`). A scene built from keys alone starts here,
+/// and so do the engineering commands without `--preset`/`--config`: one
+/// definition, so that an engineer's cabinet never inherits the app's demo
+/// (whose ratio law and friction answer another question). Relative paths
+/// are relative to the current folder.
+pub fn base_table(sets: &[String]) -> Result<(Table, Source), ConfigError> {
+    let mut table = Table::new();
+    apply_sets(&mut table, sets)?;
+    Ok((table, Source::default()))
+}
+
+/// Reads a preset or a config file and applies `--set` overrides, as the
+/// CLI does, into a table not yet resolved. With neither, keys alone build
+/// on the literature's base ([`base_table`]); no keys at all is the app's
+/// scene, the `default` preset.
 pub fn load_table(preset: Option<&str>, file: Option<&Path>, sets: &[String]) -> Result<(Table, Source), ConfigError> {
     let (mut table, source) = match (preset, file) {
         (Some(_), Some(_)) => {
             return Err(ConfigError::Usage("give either --preset or --config, not both".into()));
         }
         (_, Some(path)) => read_file(path)?,
+        (None, None) if !sets.is_empty() => return base_table(sets),
         (name, None) => {
             let name = name.unwrap_or("default");
             let text = preset_text(name)?;
@@ -635,8 +652,8 @@ pub fn load_table(preset: Option<&str>, file: Option<&Path>, sets: &[String]) ->
     Ok((table, source))
 }
 
-/// Loads a scenario the way the CLI does: a preset or a file (or the
-/// `default` preset), then `--set` overrides, then validation.
+/// Loads a scenario the way the CLI does: a preset or a file, then `--set`
+/// overrides, then validation ([`load_table`] says which base).
 pub fn load(preset: Option<&str>, file: Option<&Path>, sets: &[String]) -> Result<Scenario, ConfigError> {
     let (table, source) = load_table(preset, file, sets)?;
     from_table(&table, &source)
