@@ -17,8 +17,6 @@ import argparse
 import statistics
 import time
 
-import numpy as np
-
 import rocking
 import rocking.dask
 
@@ -45,11 +43,11 @@ def main() -> None:
     # Overhead per task: 200 one-row tasks of 2 cells each.
     rows = 200
     x, y = ("excitation.a_h", 0.5, 1.0, 2), ("excitation.omega_h", 6.0, 10.0, rows)
-    local_time, local = timed(lambda: rocking.outcome_map(scene, x, y, threads=1, **window), args.repeats)
+    local_time, local = timed(lambda: rocking.outcome_map(scene, x, y, threads=1, progress=False, **window), args.repeats)
     with LocalCluster(n_workers=1, threads_per_worker=1, host="127.0.0.1", dashboard_address=None) as cluster, Client(cluster) as client:
         rocking.dask.outcome_map(client, scene, x, y, chunks=2, **window)  # warm the worker (imports)
         dask_time, remote = timed(lambda: rocking.dask.outcome_map(client, scene, x, y, chunks=rows, **window), args.repeats)
-    assert np.array_equal(remote.cells, local.cells)
+    assert remote.cells.equals(local.cells)
     print(f"overhead: {rows} tasks in {dask_time:.3f} s on 1 worker vs {local_time:.3f} s locally on 1 thread: "
           f"{1e3 * (dask_time - local_time) / rows:.2f} ms per task")
 
@@ -62,7 +60,7 @@ def main() -> None:
         with LocalCluster(n_workers=workers, threads_per_worker=1, host="127.0.0.1", dashboard_address=None) as cluster, Client(cluster) as client:
             rocking.dask.outcome_map(client, scene, x, ("excitation.omega_h", 6.0, 12.0, 2), chunks=2, **window)  # warm up
             times[workers], results[workers] = timed(lambda: rocking.dask.outcome_map(client, scene, x, y, **window), args.repeats)
-    assert np.array_equal(results[1].cells, results[2].cells)
+    assert results[1].cells.equals(results[2].cells)
     print(f"{n} x {n} map: 1 worker {times[1]:.2f} s, 2 workers {times[2]:.2f} s (medians of {args.repeats}): "
           f"speedup {times[1] / times[2]:.2f}")
 

@@ -70,5 +70,5 @@ else:
     with LocalCluster(n_workers=2, threads_per_worker=1, processes=False, dashboard_address=None) as cluster:
         with Client(cluster) as client:
             remote = rocking.dask.sweep(client, scene, "excitation.a_v", 1.5, 2.5, 0.1, transient=200, tau_end=400)
-    assert np.array_equal(remote.classes, sweep.classes) and np.array_equal(remote.points, sweep.points)
+    assert remote.classes.equals(sweep.classes) and remote.points.equals(sweep.points)
     print("the cluster's sweep is identical to the local one:", len(remote.points), "points")

@@ -139,3 +139,108 @@ pub fn from_config(e: CoreConfigError) -> PyErr {
         CoreConfigError::Usage(_) => config_error(message, Origin::default()),
     }
 }
+
+/// The Python arguments of `rocking.sweep`, by the CLI flag that
+/// `rocking sweep` checks the same value under.
+pub const SWEEP_ARGS: &[(&str, &str)] = &[
+    ("--param", "param"),
+    ("--from", "start"),
+    ("--to", "stop"),
+    ("--step", "step"),
+    ("--transient", "transient"),
+    ("--tau-end", "tau_end"),
+    ("--continuation", "continuation"),
+    ("--shard", "shard"),
+    ("--threads", "threads"),
+];
+
+/// The Python arguments of `rocking.outcome_map`, by CLI flag.
+pub const MAP_ARGS: &[(&str, &str)] = &[
+    ("--x", "x"),
+    ("--y", "y"),
+    ("--transient", "transient"),
+    ("--tau-end", "tau_end"),
+    ("--threads", "threads"),
+];
+
+/// The Python arguments of `rocking.fragility`, by CLI flag.
+pub const FRAGILITY_ARGS: &[(&str, &str)] = &[
+    ("--im", "im"),
+    ("--unit", "unit"),
+    ("--levels", "levels"),
+    ("--block", "blocks"),
+    ("--records", "records"),
+    ("--threshold", "threshold"),
+    ("--threads", "threads"),
+];
+
+/// The Python arguments of `rocking.spectrum`, by CLI flag.
+pub const SPECTRUM_ARGS: &[(&str, &str)] = &[
+    ("--record", "record"),
+    ("--unit", "unit"),
+    ("--size", "size"),
+    ("--from", "sizes[0]"),
+    ("--to", "sizes[1]"),
+    ("--count", "sizes[2]"),
+    ("--b-over-h", "b_over_h"),
+    ("--scale", "scale"),
+    ("--pga", "pga"),
+    ("--search-step", "search_step"),
+    ("--search-max", "search_max"),
+    ("--rel-tol", "rel_tol"),
+    ("--threads", "threads"),
+];
+
+/// `message` with each CLI flag of `args` written as the Python argument
+/// that gave the value: `--threads 0: …` → `threads=0: …`, a flag not
+/// followed by its value (`… below --from 3`, `--levels and --block: …`)
+/// → the argument's name.
+pub fn python_args(message: &str, args: &[(&str, &str)]) -> String {
+    let mut out = String::with_capacity(message.len());
+    let mut rest = message;
+    'scan: while let Some(at) = rest.find("--") {
+        out.push_str(&rest[..at]);
+        let tail = &rest[at..];
+        for (flag, name) in args {
+            let Some(after) = tail.strip_prefix(flag) else { continue };
+            // The whole flag, not a prefix of a longer one (--record of --records).
+            if after.starts_with(|c: char| c.is_ascii_alphanumeric() || c == '-') {
+                continue;
+            }
+            // A value: a number, or a word that ends in a colon (`--param
+            // excitation.a_q: …`), not prose (`--shard cannot be …`).
+            let word = after.strip_prefix(' ').map(|w| w.split(' ').next().unwrap_or(""));
+            let valued = word.is_some_and(|w| {
+                w.starts_with(|c: char| c.is_ascii_digit() || c == '-' || c == '.') || (w.len() > 1 && w.ends_with(':'))
+            });
+            if valued {
+                out.push_str(name);
+                out.push('=');
+                rest = &after[1..];
+            } else {
+                out.push_str(name);
+                rest = after;
+            }
+            continue 'scan;
+        }
+        out.push_str("--");
+        rest = &tail[2..];
+    }
+    out.push_str(rest);
+    out
+}
+
+/// `e` with its message's CLI flags written as Python arguments
+/// ([`python_args`]); other exceptions (KeyboardInterrupt) unchanged.
+pub fn with_python_args(e: PyErr, args: &[(&str, &str)]) -> PyErr {
+    Python::attach(|py| {
+        let value = e.value(py);
+        if let Ok(message) = value.str().and_then(|s| s.extract::<String>()) {
+            let renamed = python_args(&message, args);
+            if renamed != message {
+                let _ = value.setattr("args", (renamed,));
+            }
+        }
+    });
+    e
+}

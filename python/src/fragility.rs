@@ -25,9 +25,9 @@ use rocking::sim::scenario::Record;
 use serde_json::json;
 
 use crate::convert::json_to_py;
-use crate::errors::{Origin, config_error, record_error, run_error};
+use crate::errors::{FRAGILITY_ARGS, Origin, config_error, record_error, run_error, with_python_args};
 use crate::scene::Scene;
-use crate::study::{Workers, interrupted};
+use crate::study::{Workers, checkpoint};
 
 /// Bad input without a key.
 fn input(message: impl std::fmt::Display) -> PyErr {
@@ -91,7 +91,7 @@ fn suite(records: Vec<(PathBuf, Option<String>)>, im: Intensity) -> PyResult<Vec
 /// `levels` of `im` ("pga" in g, "pgv" in m/s), on the scene's friction,
 /// impact law and tolerances: runs.csv's columns.
 #[pyfunction]
-#[pyo3(signature = (scene, records, levels, blocks, *, im="pga", threads=None, indices=None, check_only=false))]
+#[pyo3(signature = (scene, records, levels, blocks, *, im="pga", threads=None, indices=None, check_only=false, progress=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn _fragility_runs<'py>(
     py: Python<'py>,
@@ -103,6 +103,26 @@ pub fn _fragility_runs<'py>(
     threads: Option<usize>,
     indices: Option<Vec<usize>>,
     check_only: bool,
+    progress: Option<Py<PyAny>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    fragility_runs(
+        py, scene, records, levels, blocks, im, threads, indices, check_only, progress,
+    )
+    .map_err(|e| with_python_args(e, FRAGILITY_ARGS))
+}
+
+#[allow(clippy::too_many_arguments)]
+fn fragility_runs<'py>(
+    py: Python<'py>,
+    scene: &Scene,
+    records: Vec<(PathBuf, Option<String>)>,
+    levels: Vec<f64>,
+    blocks: Vec<(f64, f64)>,
+    im: &str,
+    threads: Option<usize>,
+    indices: Option<Vec<usize>>,
+    check_only: bool,
+    progress: Option<Py<PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let base = scene.scenario();
     let im = intensity(im)?;
@@ -154,9 +174,7 @@ pub fn _fragility_runs<'py>(
                     .run(|| run_fragility(&spec, part, &silent))
                     .map_err(|e| run_error(&anyhow!(e)))?;
                 runs.extend(done);
-                if let Some(e) = interrupted() {
-                    return Err(e);
-                }
+                checkpoint(progress.as_ref(), runs.len(), indices.len())?;
             }
             Ok(runs)
         })?
@@ -169,14 +187,14 @@ pub fn _fragility_runs<'py>(
         "run",
         indices[..runs.len()]
             .iter()
-            .map(|&i| i as u64)
+            .map(|&i| i as i64)
             .collect::<Vec<_>>()
             .into_pyarray(py),
     )?;
     out.set_item(
         "block",
         runs.iter()
-            .map(|r| r.at.block as u64)
+            .map(|r| r.at.block as i64)
             .collect::<Vec<_>>()
             .into_pyarray(py),
     )?;
@@ -200,7 +218,7 @@ pub fn _fragility_runs<'py>(
     )?;
     out.set_item(
         "t_end_s",
-        col(&|r| r.response.t_end_event_s.unwrap_or(0.0)).into_pyarray(py),
+        col(&|r| r.response.t_end_event_s.unwrap_or(f64::NAN)).into_pyarray(py),
     )?;
     out.set_item(
         "has_t_end",
@@ -236,7 +254,7 @@ pub fn _fragility_fits<'py>(
     peak: Vec<f64>,
 ) -> PyResult<Bound<'py, PyAny>> {
     if !(threshold > 0.0 && threshold.is_finite()) {
-        return Err(input(format!("--threshold {threshold}: must be a θ/α > 0")));
+        return Err(input(format!("threshold={threshold}: must be a θ/α > 0")));
     }
     let (nl, nr) = (levels.len(), records.max(1));
     let mut rows = Vec::with_capacity(run.len());

@@ -12,6 +12,9 @@ use pyo3::prelude::*;
 mod convert;
 mod errors;
 mod fragility;
+mod interrupt;
+mod keys;
+mod memory;
 mod scene;
 mod simulate;
 mod spectrum;
@@ -20,6 +23,10 @@ mod study;
 #[pymodule]
 fn _rocking(m: &Bound<'_, PyModule>) -> PyResult<()> {
     let py = m.py();
+    // numpy's C API now, not on the first array a call returns: loaded
+    // lazily, a Ctrl-C pending at that moment made its import fail inside
+    // a call, which surfaced as a PanicException.
+    let _ = numpy::PyArray1::<f64>::zeros(py, [0], false);
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add("ConfigError", py.get_type::<errors::ConfigError>())?;
     m.add("RecordError", py.get_type::<errors::RecordError>())?;
@@ -27,6 +34,8 @@ fn _rocking(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<scene::Scene>()?;
     m.add_function(wrap_pyfunction!(scene::_scene_from_state, m)?)?;
     m.add_function(wrap_pyfunction!(scene::presets, m)?)?;
+    m.add_function(wrap_pyfunction!(scene::_keys_help, m)?)?;
+    m.add_function(wrap_pyfunction!(scene::_undocumented_keys, m)?)?;
     m.add_function(wrap_pyfunction!(simulate::_simulate, m)?)?;
     m.add_function(wrap_pyfunction!(simulate::_lyapunov, m)?)?;
     m.add_function(wrap_pyfunction!(study::_sweep, m)?)?;

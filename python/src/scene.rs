@@ -10,8 +10,10 @@ use rocking::io::config::{self, KNOWN_KEYS, Source};
 use rocking::sim::Scenario;
 use toml::Table;
 
-use crate::convert::{json_to_py, toml_literal};
+use crate::convert::{assignment, json_to_py};
 use crate::errors::{from_config, key_error};
+use crate::keys::strip_norm;
+use crate::memory::{Memory, RecordArgs};
 
 /// A block, its excitation, initial state and run settings, resolved and
 /// validated exactly as the CLI resolves `--preset`/`--config` and `--set`.
@@ -23,7 +25,12 @@ use crate::errors::{from_config, key_error};
 /// `config` (a dict of `"section.key": value` or `"section": {key: value}`),
 /// then the keyword arguments: `a_h="0.35 g"` (a key unique to one section),
 /// `friction={"static": 0.7}` (a section). Quantities take the CLI's unit
-/// strings; plain numbers are in the model's normalised units.
+/// strings; a bare number only where it is SI, dimensionless or under a
+/// normalised name (`tau_end`, `a_h_norm`): the key list below.
+///
+/// Ground motion from memory: `record_h=values` with `dt=` (s) or
+/// `record_h=(times, values)`, and `unit=` ("g", "m/s2", "cm/s2"); the same
+/// for `record_v`. The scene pickles with its samples.
 #[pyclass(frozen, module = "rocking._rocking", name = "Scene")]
 pub struct Scene {
     /// The unresolved config: what `with_` modifies.
@@ -34,6 +41,8 @@ pub struct Scene {
     scenario: Scenario,
     /// What the scene was made from, for `repr`.
     origin: String,
+    /// Records given as samples.
+    memory: Memory,
 }
 
 impl Scene {
@@ -42,19 +51,22 @@ impl Scene {
         &self.scenario
     }
 
-    fn resolve(table: Table, source: Source, origin: String) -> PyResult<Self> {
-        let scenario = config::from_table(&table, &source).map_err(from_config)?;
+    fn resolve(table: Table, source: Source, origin: String, memory: Memory) -> PyResult<Self> {
+        let scenario = config::from_table_with(&table, &source, memory.records()).map_err(from_config)?;
         Ok(Self {
             table,
             source,
             scenario,
             origin,
+            memory,
         })
     }
 }
 
-/// The section of an undotted keyword: the one section that has the key.
-fn section_of(name: &str) -> PyResult<&'static str> {
+/// The section of an undotted keyword: the one section that has the key
+/// (`_norm` spellings stripped).
+fn section_of(typed: &str) -> PyResult<&'static str> {
+    let (name, _) = strip_norm(None, typed);
     let sections: Vec<&'static str> = KNOWN_KEYS
         .iter()
         .filter(|(_, keys)| keys.contains(&name))
@@ -65,19 +77,39 @@ fn section_of(name: &str) -> PyResult<&'static str> {
         [] => {
             let names: Vec<&str> = KNOWN_KEYS.iter().map(|(s, _)| *s).collect();
             Err(key_error(
-                name,
+                typed,
                 format!(
-                    "{name}: unknown key (a keyword is a key of one section, e.g. a_h=\"0.35 g\", or a section with a dict, e.g. friction={{\"static\": 0.7}}; sections: {})",
+                    "{typed}: unknown key (a keyword is a key of one section, e.g. a_h=\"0.35 g\", or a section with a dict, e.g. friction={{\"static\": 0.7}}; sections: {})",
                     names.join(", ")
                 ),
             ))
         }
         several => Err(key_error(
-            name,
+            typed,
             format!(
-                "{name}: the key is in several sections ({}); give the section, e.g. {}={{\"{name}\": …}}",
+                "{typed}: the key is in several sections ({}); give the section, e.g. {}={{\"{typed}\": …}}",
                 several.join(", "),
                 several[0]
+            ),
+        )),
+    }
+}
+
+/// The assignment of `value` to `name` of `section`, typed as `typed`
+/// (a `_norm` spelling is the normalised value of its key).
+fn section_assignment(typed: &str, section: &str, name: &str, value: &Bound<'_, PyAny>) -> PyResult<String> {
+    let (key, norm) = strip_norm(Some(section), name);
+    assignment(typed, section, key, norm, value)
+}
+
+/// A dotted key as typed (`"excitation.a_h"`), split at its first dot.
+fn dotted_assignment(typed: &str, value: &Bound<'_, PyAny>) -> PyResult<String> {
+    match typed.split_once('.') {
+        Some((section, name)) => section_assignment(typed, section, name, value),
+        None => Err(key_error(
+            typed,
+            format!(
+                "{typed}: expected \"section.key\" or a section with a dict, e.g. \"friction\": {{\"static\": 0.7}}"
             ),
         )),
     }
@@ -91,11 +123,10 @@ fn dict_assignments(dict: &Bound<'_, PyDict>, out: &mut Vec<String>) -> PyResult
         if let Ok(inner) = v.cast::<PyDict>() {
             for (ik, iv) in inner.iter() {
                 let name: String = ik.extract()?;
-                let dotted = format!("{key}.{name}");
-                out.push(format!("{dotted}={}", toml_literal(&dotted, &iv)?));
+                out.push(section_assignment(&format!("{key}.{name}"), &key, &name, &iv)?);
             }
         } else {
-            out.push(format!("{key}={}", toml_literal(&key, &v)?));
+            out.push(dotted_assignment(&key, &v)?);
         }
     }
     Ok(())
@@ -111,13 +142,12 @@ fn keyword_assignments(kwargs: &Bound<'_, PyDict>, out: &mut Vec<String>) -> PyR
         {
             for (ik, iv) in inner.iter() {
                 let key: String = ik.extract()?;
-                let dotted = format!("{name}.{key}");
-                out.push(format!("{dotted}={}", toml_literal(&dotted, &iv)?));
+                out.push(section_assignment(&format!("{name}.{key}"), &name, &key, &iv)?);
             }
             continue;
         }
-        let dotted = format!("{}.{name}", section_of(&name)?);
-        out.push(format!("{dotted}={}", toml_literal(&dotted, &v)?));
+        let section = section_of(&name)?;
+        out.push(section_assignment(&name, section, &name, &v)?);
     }
     Ok(())
 }
@@ -137,14 +167,26 @@ fn assignments(config: Option<&Bound<'_, PyDict>>, kwargs: Option<&Bound<'_, PyD
 #[pymethods]
 impl Scene {
     #[new]
-    #[pyo3(signature = (preset=None, *, file=None, config=None, **keys))]
+    #[pyo3(signature = (preset=None, *, file=None, config=None, record_h=None, record_v=None, dt=None, unit=None, **keys))]
+    #[allow(clippy::too_many_arguments)]
     fn new(
         preset: Option<&str>,
         file: Option<PathBuf>,
         config: Option<&Bound<'_, PyDict>>,
+        record_h: Option<&Bound<'_, PyAny>>,
+        record_v: Option<&Bound<'_, PyAny>>,
+        dt: Option<&Bound<'_, PyAny>>,
+        unit: Option<&str>,
         keys: Option<&Bound<'_, PyDict>>,
     ) -> PyResult<Self> {
-        let sets = assignments(config, keys)?;
+        let records = RecordArgs {
+            h: record_h,
+            v: record_v,
+            dt,
+            unit,
+        };
+        let mut sets = assignments(config, keys)?;
+        let memory = records.read(&Memory::default(), &mut sets)?;
         let (table, source) = config::load_table(preset, file.as_deref(), &sets).map_err(from_config)?;
         let mut origin = match (&file, preset) {
             (Some(f), _) => format!("file {}", f.display()),
@@ -155,7 +197,8 @@ impl Scene {
         if !sets.is_empty() {
             origin = format!("{origin}, {}", sets.join(", "));
         }
-        Self::resolve(table, source, origin)
+        origin.push_str(&records.describe());
+        Self::resolve(table, source, origin, memory)
     }
 
     /// The scenario's own defaults with `config` and keyword assignments,
@@ -171,22 +214,39 @@ impl Scene {
         if !sets.is_empty() {
             origin = format!("{origin}, {}", sets.join(", "));
         }
-        Self::resolve(table, source, origin)
+        Self::resolve(table, source, origin, Memory::default())
     }
 
-    /// A copy with more assignments (a `config` dict and/or keywords, as
-    /// for `Scene(...)`); the scene itself is unchanged.
-    #[pyo3(signature = (config=None, **keys))]
-    fn with_(&self, config: Option<&Bound<'_, PyDict>>, keys: Option<&Bound<'_, PyDict>>) -> PyResult<Self> {
-        let sets = assignments(config, keys)?;
+    /// A copy with more assignments (a `config` dict, records given as
+    /// samples and/or keywords, as for `Scene(...)`); the scene itself is
+    /// unchanged.
+    #[pyo3(signature = (config=None, *, record_h=None, record_v=None, dt=None, unit=None, **keys))]
+    fn with_(
+        &self,
+        config: Option<&Bound<'_, PyDict>>,
+        record_h: Option<&Bound<'_, PyAny>>,
+        record_v: Option<&Bound<'_, PyAny>>,
+        dt: Option<&Bound<'_, PyAny>>,
+        unit: Option<&str>,
+        keys: Option<&Bound<'_, PyDict>>,
+    ) -> PyResult<Self> {
+        let records = RecordArgs {
+            h: record_h,
+            v: record_v,
+            dt,
+            unit,
+        };
+        let mut sets = assignments(config, keys)?;
+        let memory = records.read(&self.memory, &mut sets)?;
         let mut table = self.table.clone();
         config::apply_sets(&mut table, &sets).map_err(from_config)?;
-        let origin = if sets.is_empty() {
+        let mut origin = if sets.is_empty() {
             self.origin.clone()
         } else {
             format!("{}, {}", self.origin, sets.join(", "))
         };
-        Self::resolve(table, self.source.clone(), origin)
+        origin.push_str(&records.describe());
+        Self::resolve(table, self.source.clone(), origin, memory)
     }
 
     /// The resolved configuration as a dict in the config's sections and
@@ -235,29 +295,55 @@ impl Scene {
         format!("rocking.Scene({})", self.origin)
     }
 
-    /// Pickles as the unresolved config and its folder, re-resolved (and
-    /// records re-read) where it is unpickled: a Dask worker needs the
-    /// record files at the same paths.
+    /// Pickles as the unresolved config, its folder and the samples of
+    /// records given in memory, re-resolved where it is unpickled: a Dask
+    /// worker needs record files at the same paths, but no file for a
+    /// record given as samples.
     fn __reduce__<'py>(&self, py: Python<'py>) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyTuple>)> {
         let text =
             toml::to_string(&self.table).map_err(|e| key_error("", format!("cannot serialise the scene: {e}")))?;
         let rebuild = py.import("rocking._rocking")?.getattr("_scene_from_state")?;
-        let args = PyTuple::new(
-            py,
-            [text, self.source.base_dir.display().to_string(), self.origin.clone()],
-        )?;
+        let args = (
+            text,
+            self.source.base_dir.display().to_string(),
+            self.origin.clone(),
+            self.memory.state(py)?,
+        )
+            .into_pyobject(py)?;
         Ok((rebuild, args))
     }
 }
 
 /// Rebuilds a pickled [`Scene`].
 #[pyfunction]
-pub fn _scene_from_state(text: &str, base_dir: &str, origin: String) -> PyResult<Scene> {
+#[pyo3(signature = (text, base_dir, origin, memory=None))]
+pub fn _scene_from_state(
+    text: &str,
+    base_dir: &str,
+    origin: String,
+    memory: Option<&Bound<'_, PyAny>>,
+) -> PyResult<Scene> {
     let table = config::parse_toml(text, "pickled scene").map_err(from_config)?;
     let source = Source {
         base_dir: Path::new(base_dir).to_path_buf(),
     };
-    Scene::resolve(table, source, origin)
+    let memory = match memory {
+        Some(m) if !m.is_none() => Memory::from_state(m)?,
+        _ => Memory::default(),
+    };
+    Scene::resolve(table, source, origin, memory)
+}
+
+/// The text of `help(rocking.Scene)`'s key list (every key with its units).
+#[pyfunction]
+pub fn _keys_help() -> String {
+    crate::keys::keys_help()
+}
+
+/// The config keys [`crate::keys::KEY_DOCS`] does not document (none).
+#[pyfunction]
+pub fn _undocumented_keys() -> Vec<String> {
+    crate::keys::undocumented()
 }
 
 /// The names of the presets shipped with the CLI.

@@ -9,12 +9,14 @@ use rocking::analysis::lyapunov::{self, Lyapunov, LyapunovError, LyapunovOptions
 use rocking::analysis::spectrum::{SpectrumOptions, SpectrumWindow, theta_spectrum};
 use rocking::io::output;
 use rocking::model::Geometry;
+use rocking::model::system::EventRecord;
 use rocking::sim::scenario::{LyapunovChoice, SpectrumRange};
-use rocking::sim::{self, RunResult, Scenario};
+use rocking::sim::{self, HistoryRow, Keep, RunResult, Scenario, SectionRow, Sink};
 use serde_json::Value as Json;
 
 use crate::convert::json_to_py;
 use crate::errors::{key_error, run_error};
+use crate::interrupt::{self, Cancel};
 use crate::scene::Scene;
 
 /// Why a run of a scene failed: bad input, or the run itself.
@@ -91,16 +93,49 @@ pub struct Simulated {
     pub summary: Json,
 }
 
+/// The sink of a run that can be cancelled: keeps everything, and stops
+/// the run at its next output once the call is cancelled (Ctrl-C).
+struct Cancellable<'a> {
+    keep: Keep,
+    cancel: &'a Cancel,
+}
+
+impl Sink for Cancellable<'_> {
+    fn sample(&mut self, row: &HistoryRow) {
+        self.cancel.check();
+        self.keep.sample(row);
+    }
+
+    fn section(&mut self, row: &SectionRow) {
+        self.cancel.check();
+        self.keep.section(row);
+    }
+
+    fn event(&mut self, record: &EventRecord) {
+        self.cancel.check();
+        self.keep.event(record);
+    }
+}
+
 /// Runs `cfg` as `rocking --batch` does (run, then the configured
-/// analyses) without touching the GIL.
-pub fn run_scene(cfg: &Scenario) -> Result<Simulated, Failure> {
+/// analyses) without touching the GIL, stopping at its next output once
+/// `cancel` is set.
+pub fn run_scene(cfg: &Scenario, cancel: &Cancel) -> Result<Simulated, Failure> {
     let model = cfg.model().map_err(|e| Failure::Input {
         key: e.key.clone(),
         message: e.to_string(),
     })?;
-    let result = sim::simulate(model, &cfg.initial, &cfg.run_options())
+    let mut sink = Cancellable {
+        keep: Keep::default(),
+        cancel,
+    };
+    // As `sim::simulate`, through a sink that can stop the run.
+    let mut result = sim::simulate_into(model, &cfg.initial, &cfg.run_options(), &mut sink)
         .context("simulation failed")
         .map_err(Failure::Run)?;
+    result.events = sink.keep.events;
+    result.section = sink.keep.section;
+    result.history = sink.keep.history;
     let mut summary = output::summary_json(cfg, &result);
     if cfg.analyses.lyapunov {
         let l = scenario_lyapunov(cfg, method_of(cfg.analyses.lyapunov_method))?;
@@ -171,7 +206,7 @@ fn columns<'py>(py: Python<'py>, s: &Simulated, geo: &Geometry) -> PyResult<Boun
 
     let p = &res.section;
     let poincare = PyDict::new(py);
-    poincare.set_item("k", p.iter().map(|r| r.k).collect::<Vec<u64>>().into_pyarray(py))?;
+    poincare.set_item("k", p.iter().map(|r| r.k as i64).collect::<Vec<i64>>().into_pyarray(py))?;
     poincare.set_item("tau", column(py, p, |r| r.tau))?;
     poincare.set_item("theta", column(py, p, |r| r.theta))?;
     poincare.set_item("theta_dot", column(py, p, |r| r.theta_dot))?;
@@ -187,13 +222,15 @@ fn columns<'py>(py: Python<'py>, s: &Simulated, geo: &Geometry) -> PyResult<Boun
     Ok(out)
 }
 
-/// Runs `scene` as `rocking --batch` does, without the GIL, and returns
+/// Runs `scene` as `rocking --batch` does, without the GIL, Ctrl-C
+/// stopping it within a few hundredths of a second, and returns
 /// its columns and summary (the Python `simulate` wraps them in a `Run`).
 #[pyfunction]
 pub fn _simulate<'py>(py: Python<'py>, scene: &Scene) -> PyResult<Bound<'py, PyDict>> {
     let cfg = scene.scenario();
     warn(py, cfg)?;
-    let done = py.detach(|| run_scene(cfg)).map_err(Failure::into_py)?;
+    let owned = cfg.clone();
+    let done = interrupt::run(py, move |cancel| run_scene(&owned, cancel))?.map_err(Failure::into_py)?;
     columns(py, &done, &cfg.geometry())
 }
 
@@ -206,7 +243,10 @@ pub fn _lyapunov<'py>(py: Python<'py>, scene: &Scene) -> PyResult<Bound<'py, PyA
     let cfg = scene.scenario();
     warn(py, cfg)?;
     let method = method_of(cfg.analyses.lyapunov_method);
-    let l = py.detach(|| scenario_lyapunov(cfg, method)).map_err(Failure::into_py)?;
+    let owned = cfg.clone();
+    // The Lyapunov run offers no place to stop: after Ctrl-C it finishes
+    // on its own thread, its result dropped.
+    let l = interrupt::run(py, move |_| scenario_lyapunov(&owned, method))?.map_err(Failure::into_py)?;
     let full = serde_json::to_value(&l).map_err(|e| run_error(&anyhow::Error::new(e)))?;
     let out = PyDict::new(py);
     out.set_item("result", json_to_py(py, &full)?)?;

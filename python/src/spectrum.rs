@@ -20,9 +20,9 @@ use rocking::io::record::{RecordSpec, read_record_as};
 use rocking::model::units::AccelUnit;
 use rocking::sim::scenario::Record;
 
-use crate::errors::{Origin, config_error, record_error, run_error};
+use crate::errors::{Origin, SPECTRUM_ARGS, config_error, record_error, run_error, with_python_args};
 use crate::scene::Scene;
-use crate::study::{Workers, interrupted};
+use crate::study::{Workers, checkpoint};
 
 fn input(message: impl std::fmt::Display) -> PyErr {
     config_error(message.to_string(), Origin::default())
@@ -36,7 +36,7 @@ fn input(message: impl std::fmt::Display) -> PyErr {
 /// `search_step … search_max` and refined to `rel_tol`. Checked with the
 /// CLI's messages; Ctrl-C is checked between B/H ratios.
 #[pyfunction]
-#[pyo3(signature = (scene, record, sizes, *, unit=None, size="r", b_over_h=vec![0.25], scale=None, pga=None, overturn_scale=false, search_step=0.1, search_max=5.0, rel_tol=1e-3, threads=None))]
+#[pyo3(signature = (scene, record, sizes, *, unit=None, size="r", b_over_h=vec![0.25], scale=None, pga=None, overturn_scale=false, search_step=0.1, search_max=5.0, rel_tol=1e-3, threads=None, progress=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn _spectrum<'py>(
     py: Python<'py>,
@@ -53,6 +53,45 @@ pub fn _spectrum<'py>(
     search_max: f64,
     rel_tol: f64,
     threads: Option<usize>,
+    progress: Option<Py<PyAny>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    spectrum(
+        py,
+        scene,
+        record,
+        sizes,
+        unit,
+        size,
+        b_over_h,
+        scale,
+        pga,
+        overturn_scale,
+        search_step,
+        search_max,
+        rel_tol,
+        threads,
+        progress,
+    )
+    .map_err(|e| with_python_args(e, SPECTRUM_ARGS))
+}
+
+#[allow(clippy::too_many_arguments)]
+fn spectrum<'py>(
+    py: Python<'py>,
+    scene: &Scene,
+    record: PathBuf,
+    sizes: (f64, f64, usize),
+    unit: Option<&str>,
+    size: &str,
+    b_over_h: Vec<f64>,
+    scale: Option<f64>,
+    pga: Option<f64>,
+    overturn_scale: bool,
+    search_step: f64,
+    search_max: f64,
+    rel_tol: f64,
+    threads: Option<usize>,
+    progress: Option<Py<PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let base = scene.scenario();
     let unit = match unit {
@@ -103,7 +142,8 @@ pub fn _spectrum<'py>(
     if b_over_h.is_empty() || b_over_h.windows(2).any(|w| w[0] >= w[1]) {
         return Err(input("--b-over-h: give increasing ratios"));
     }
-    if range.count * b_over_h.len() > MAX_BLOCKS {
+    let total = range.count * b_over_h.len();
+    if total > MAX_BLOCKS {
         return Err(input("--count × --b-over-h: at most 1000000 blocks"));
     }
     let overturn = if overturn_scale {
@@ -141,9 +181,7 @@ pub fn _spectrum<'py>(
                 .run(|| rocking_spectrum(&one, &silent))
                 .map_err(|e| run_error(&anyhow!(e)))?;
             all.extend(done);
-            if let Some(e) = interrupted() {
-                return Err(e);
-            }
+            checkpoint(progress.as_ref(), all.len(), total)?;
         }
         Ok(all)
     })?;
@@ -164,7 +202,7 @@ pub fn _spectrum<'py>(
     out.set_item("pga_g", f(&|_| scale * pga_g))?;
     out.set_item("end", points.iter().map(|p| p.response.end.name()).collect::<Vec<_>>())?;
     out.set_item("peak_theta_over_alpha", f(&|p| p.response.peak_theta_over_alpha))?;
-    out.set_item("t_end_s", f(&|p| p.response.t_end_event_s.unwrap_or(0.0)))?;
+    out.set_item("t_end_s", f(&|p| p.response.t_end_event_s.unwrap_or(f64::NAN)))?;
     out.set_item(
         "has_t_end",
         points
@@ -173,8 +211,8 @@ pub fn _spectrum<'py>(
             .collect::<Vec<_>>()
             .into_pyarray(py),
     )?;
-    out.set_item("overturn_scale", f(&|p| first(p).map_or(0.0, |(a, _)| a)))?;
-    out.set_item("overturn_pga_g", f(&|p| first(p).map_or(0.0, |(a, _)| a * pga_g)))?;
+    out.set_item("overturn_scale", f(&|p| first(p).map_or(f64::NAN, |(a, _)| a)))?;
+    out.set_item("overturn_pga_g", f(&|p| first(p).map_or(f64::NAN, |(a, _)| a * pga_g)))?;
     out.set_item(
         "overturn_end",
         points

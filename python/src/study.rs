@@ -23,7 +23,7 @@ use rocking::analysis::steady::{LyapunovFn, SteadyError, Window, steady_response
 use rocking::io::config;
 use rocking::sim::{InitialState, Param, Scenario};
 
-use crate::errors::{config_error, key_error, run_error};
+use crate::errors::{MAP_ARGS, SWEEP_ARGS, config_error, key_error, run_error, with_python_args};
 use crate::scene::Scene;
 
 /// Most worker threads per core, as the CLI allows (`--threads`).
@@ -34,10 +34,18 @@ fn input(message: impl std::fmt::Display) -> PyErr {
     config_error(message.to_string(), crate::errors::Origin::default())
 }
 
-/// Ctrl-C: the pending KeyboardInterrupt (or other signal handler error),
-/// checked with the GIL taken back for a moment.
-pub fn interrupted() -> Option<PyErr> {
-    Python::attach(|py| py.check_signals().err())
+/// Between two chunks of a long call, with the GIL taken back for a
+/// moment: Ctrl-C (the pending KeyboardInterrupt, or another signal
+/// handler's error), then `progress(done, total)` if given (an error it
+/// raises stops the call too).
+pub fn checkpoint(progress: Option<&Py<PyAny>>, done: usize, total: usize) -> Result<(), PyErr> {
+    Python::attach(|py| {
+        py.check_signals()?;
+        if let Some(f) = progress {
+            f.call1(py, (done, total))?;
+        }
+        Ok(())
+    })
 }
 
 /// Where the parallel parts of a computation run: rayon's global pool
@@ -57,9 +65,9 @@ impl Workers {
         let most = MAX_THREADS_PER_CORE * cores;
         match threads {
             None => Ok(Workers::Global),
-            Some(0) => Err(input("--threads 0: must be >= 1")),
+            Some(0) => Err(input("threads=0: must be >= 1")),
             Some(n) if n > most => Err(input(format!(
-                "--threads {n}: at most {most} ({MAX_THREADS_PER_CORE} per core on {cores} cores); more only adds switching"
+                "threads={n}: at most {most} ({MAX_THREADS_PER_CORE} per core on {cores} cores); more only adds switching"
             ))),
             Some(n) => rayon::ThreadPoolBuilder::new()
                 .num_threads(n)
@@ -208,10 +216,11 @@ fn compute_sweep(
     sp: &SweepPlan<'_>,
     workers: &Workers,
     interruptible: bool,
+    progress: Option<&Py<PyAny>>,
 ) -> Result<Vec<(usize, BifurcationValue)>, Stop> {
     let SweepPlan { spec, plan } = sp;
     if plan.continuation != Continuation::None {
-        return compute_continuation(spec, plan, interruptible);
+        return compute_continuation(spec, plan, interruptible, progress);
     }
     if let Some(s) = plan.shard {
         let values = workers
@@ -223,13 +232,17 @@ fn compute_sweep(
     let shards = count.div_ceil(chunk_len(workers)).max(1);
     let mut parts: Vec<Vec<BifurcationValue>> = Vec::with_capacity(shards);
     let mut first_failure: Option<SweepError<SteadyError>> = None;
+    let mut done = 0;
     for index in 0..shards {
         let shard = Plan {
             shard: Some(Shard { index, count: shards }),
             ..*plan
         };
         match workers.run(|| block_sweep(spec, &shard, &silent)) {
-            Ok(values) => parts.push(values),
+            Ok(values) => {
+                done += values.len();
+                parts.push(values);
+            }
             Err(e) => {
                 if first_failure.as_ref().is_none_or(|f| e.index < f.index) {
                     first_failure = Some(e);
@@ -237,7 +250,7 @@ fn compute_sweep(
                 parts.push(Vec::new());
             }
         }
-        if interruptible && let Some(e) = interrupted() {
+        if interruptible && let Err(e) = checkpoint(progress, done, count) {
             return Err(Stop::Interrupted(e));
         }
     }
@@ -268,7 +281,9 @@ fn compute_continuation(
     spec: &BlockSweep<'_>,
     plan: &Plan,
     interruptible: bool,
+    progress: Option<&Py<PyAny>>,
 ) -> Result<Vec<(usize, BifurcationValue)>, Stop> {
+    let total = plan.indices().len();
     let mut order = plan.indices();
     if plan.continuation == Continuation::Down {
         order.reverse();
@@ -295,7 +310,7 @@ fn compute_continuation(
                 points: s.points,
             },
         ));
-        if interruptible && let Some(e) = interrupted() {
+        if interruptible && let Err(e) = checkpoint(progress, out.len(), total) {
             return Err(Stop::Interrupted(e));
         }
     }
@@ -304,7 +319,7 @@ fn compute_continuation(
 }
 
 /// Response columns shared by sweeps and maps: `outcome`, `period` (0
-/// where not periodic), `max_abs_theta`, `lyapunov` (0 where none) and
+/// where not periodic), `max_abs_theta`, `lyapunov` (NaN where none) and
 /// `has_lyapunov`.
 fn response_columns(
     py: Python<'_>,
@@ -317,7 +332,7 @@ fn response_columns(
         outcome.push(r.name());
         period.push(r.period().unwrap_or(0));
         max_abs.push(m);
-        lyap.push(l.unwrap_or(0.0));
+        lyap.push(l.unwrap_or(f64::NAN));
         has.push(l.is_some());
     }
     out.set_item("outcome", outcome)?;
@@ -340,7 +355,7 @@ fn sweep_columns<'py>(
         "index",
         values
             .iter()
-            .map(|(i, _)| *i as u64)
+            .map(|(i, _)| *i as i64)
             .collect::<Vec<_>>()
             .into_pyarray(py),
     )?;
@@ -362,10 +377,13 @@ fn sweep_columns<'py>(
     let f = |g: &dyn Fn(&rocking::sim::SectionRow) -> f64| all().map(|(_, _, p)| g(p)).collect::<Vec<f64>>();
     points.set_item(
         "index",
-        all().map(|(i, _, _)| i as u64).collect::<Vec<_>>().into_pyarray(py),
+        all().map(|(i, _, _)| i as i64).collect::<Vec<_>>().into_pyarray(py),
     )?;
     points.set_item("value", all().map(|(_, v, _)| v).collect::<Vec<_>>().into_pyarray(py))?;
-    points.set_item("k", all().map(|(_, _, p)| p.k).collect::<Vec<_>>().into_pyarray(py))?;
+    points.set_item(
+        "k",
+        all().map(|(_, _, p)| p.k as i64).collect::<Vec<_>>().into_pyarray(py),
+    )?;
     points.set_item("tau", f(&|p| p.tau).into_pyarray(py))?;
     points.set_item("theta", f(&|p| p.theta).into_pyarray(py))?;
     points.set_item("theta_dot", f(&|p| p.theta_dot).into_pyarray(py))?;
@@ -380,7 +398,7 @@ fn sweep_columns<'py>(
 /// over `start … stop` by `step`. `shard=(K, N)` computes only the values
 /// with index ≡ K (mod N), as `--shard K/N` does (for `rocking.dask`).
 #[pyfunction]
-#[pyo3(signature = (scene, param, start, stop, step, *, transient=600.0, tau_end=None, continuation="none", lyapunov=false, threads=None, shard=None, check_only=false))]
+#[pyo3(signature = (scene, param, start, stop, step, *, transient=600.0, tau_end=None, continuation="none", lyapunov=false, threads=None, shard=None, check_only=false, progress=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn _sweep<'py>(
     py: Python<'py>,
@@ -396,29 +414,34 @@ pub fn _sweep<'py>(
     threads: Option<usize>,
     shard: Option<(usize, usize)>,
     check_only: bool,
+    progress: Option<Py<PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let base = scene.scenario();
-    let sp = sweep_plan(
-        base,
-        param,
-        start,
-        stop,
-        step,
-        transient,
-        tau_end,
-        continuation,
-        lyapunov,
-        shard,
-    )?;
-    if check_only {
-        return sweep_columns(py, &sp.plan.grid, &[]);
-    }
-    let workers = Workers::new(threads)?;
-    let interruptible = shard.is_none();
-    let values = py
-        .detach(|| compute_sweep(&sp, &workers, interruptible))
-        .map_err(Stop::into_py)?;
-    sweep_columns(py, &sp.plan.grid, &values)
+    let computed = (|| {
+        let sp = sweep_plan(
+            base,
+            param,
+            start,
+            stop,
+            step,
+            transient,
+            tau_end,
+            continuation,
+            lyapunov,
+            shard,
+        )?;
+        if check_only {
+            return Ok((sp.plan.grid, Vec::new()));
+        }
+        let workers = Workers::new(threads)?;
+        let interruptible = shard.is_none();
+        let values = py
+            .detach(|| compute_sweep(&sp, &workers, interruptible, progress.as_ref()))
+            .map_err(Stop::into_py)?;
+        Ok((sp.plan.grid, values))
+    })();
+    let (grid, values) = computed.map_err(|e| with_python_args(e, SWEEP_ARGS))?;
+    sweep_columns(py, &grid, &values)
 }
 
 /// One axis from its key, first and last value and count, checked as
@@ -506,8 +529,10 @@ fn compute_rows(
     rows: std::ops::Range<usize>,
     lyapunov: bool,
     interruptible: bool,
+    progress: Option<&Py<PyAny>>,
 ) -> Result<Vec<Cell>, Stop> {
-    let mut cells = Vec::with_capacity(rows.len() * plan.x.n);
+    let total = rows.len() * plan.x.n;
+    let mut cells = Vec::with_capacity(total);
     for j in rows {
         let yv = plan.y.value(j);
         let row = Axis::new("--y", &plan.y.key, yv, yv, 1).map_err(|e| Stop::Failed(anyhow!("row {j}: {e}")))?;
@@ -523,7 +548,7 @@ fn compute_rows(
             ))
         })?;
         cells.extend(done);
-        if interruptible && let Some(e) = interrupted() {
+        if interruptible && let Err(e) = checkpoint(progress, cells.len(), total) {
             return Err(Stop::Interrupted(e));
         }
     }
@@ -534,7 +559,7 @@ fn compute_rows(
 /// and `y = (key, A, B, N)`, cells in map.csv's order (y outer, x inner).
 /// `rows=(j0, j1)` computes only rows j0 ≤ j < j1 (for `rocking.dask`).
 #[pyfunction]
-#[pyo3(signature = (scene, x, y, *, transient=600.0, tau_end=None, lyapunov=false, threads=None, rows=None, check_only=false))]
+#[pyo3(signature = (scene, x, y, *, transient=600.0, tau_end=None, lyapunov=false, threads=None, rows=None, check_only=false, progress=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn _outcome_map<'py>(
     py: Python<'py>,
@@ -547,24 +572,39 @@ pub fn _outcome_map<'py>(
     threads: Option<usize>,
     rows: Option<(usize, usize)>,
     check_only: bool,
+    progress: Option<Py<PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let base = scene.scenario();
-    let plan = map_plan(base, x, y, transient, tau_end, lyapunov)?;
-    let (j0, j1) = rows.unwrap_or((0, plan.y.n));
-    if j0 > j1 || j1 > plan.y.n {
-        return Err(input(format!(
-            "rows ({j0}, {j1}): must satisfy 0 <= j0 <= j1 <= {}",
-            plan.y.n
-        )));
-    }
-    let workers = Workers::new(threads)?;
-    let cells = if check_only {
-        Vec::new()
-    } else {
-        let interruptible = rows.is_none();
-        py.detach(|| compute_rows(base, &plan, &workers, j0..j1, lyapunov, interruptible))
+    let computed = (|| {
+        let plan = map_plan(base, x, y, transient, tau_end, lyapunov)?;
+        let (j0, j1) = rows.unwrap_or((0, plan.y.n));
+        if j0 > j1 || j1 > plan.y.n {
+            return Err(input(format!(
+                "rows ({j0}, {j1}): must satisfy 0 <= j0 <= j1 <= {}",
+                plan.y.n
+            )));
+        }
+        let workers = Workers::new(threads)?;
+        let cells = if check_only {
+            Vec::new()
+        } else {
+            let interruptible = rows.is_none();
+            py.detach(|| {
+                compute_rows(
+                    base,
+                    &plan,
+                    &workers,
+                    j0..j1,
+                    lyapunov,
+                    interruptible,
+                    progress.as_ref(),
+                )
+            })
             .map_err(Stop::into_py)?
-    };
+        };
+        Ok((plan, j0, j1, cells))
+    })();
+    let (plan, j0, j1, cells) = computed.map_err(|e| with_python_args(e, MAP_ARGS))?;
     let out = PyDict::new(py);
     out.set_item("x_key", &plan.x.key)?;
     out.set_item("y_key", &plan.y.key)?;

@@ -54,6 +54,29 @@ def cli() -> Cli:
     return Cli(cli_path())
 
 
+#: The Python argument of each CLI flag, per function: Python's messages
+#: are the CLI's with the flag written as the argument that gave the value
+#: (`--threads 0: …` → `threads=0: …`).
+SWEEP_ARGS = {"--param": "param", "--from": "start", "--to": "stop", "--step": "step", "--transient": "transient", "--tau-end": "tau_end", "--continuation": "continuation", "--threads": "threads"}
+MAP_ARGS = {"--x": "x", "--y": "y", "--transient": "transient", "--tau-end": "tau_end", "--threads": "threads"}
+SPECTRUM_ARGS = {"--record": "record", "--unit": "unit", "--from": "sizes[0]", "--to": "sizes[1]", "--count": "sizes[2]", "--b-over-h": "b_over_h", "--scale": "scale", "--pga": "pga"}
+
+
+def as_python(message: str, args: dict[str, str]) -> str:
+    """A CLI message with its flags written as Python arguments: `--flag
+    VALUE` (a number, or a word ending in a colon) as `name=VALUE`, a flag
+    alone as `name`."""
+    import re
+
+    def one(m: re.Match[str]) -> str:
+        flag, value = m.group(1), m.group(2)
+        if flag not in args:
+            return m.group(0)
+        return f"{args[flag]}={value}" if value else args[flag]
+
+    return re.sub(r"(--[a-z][a-z-]*)(?: ([-.0-9]\S*|\S+:(?=\s|$)))?", one, message)
+
+
 def read_csv(path: Path) -> list[dict[str, str]]:
     with open(path, newline="") as f:
         return list(csv.DictReader(f))

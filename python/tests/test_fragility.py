@@ -64,7 +64,7 @@ def test_a_fragility_on_the_cluster_is_the_local_one() -> None:
         with distributed.Client(cluster) as client:
             remote = rocking.dask.fragility(client, [(ELCENTRO, "g"), (KOBE, "m/s2")], LEVELS, BLOCKS, chunks=5)
     f = local()
-    np.testing.assert_array_equal(remote.runs, f.runs)
+    assert remote.runs.equals(f.runs)
     assert remote.fits == f.fits
 
 
@@ -85,3 +85,18 @@ def test_a_base_scene_sets_friction_as_the_clis_base_does(cli, tmp_path: Path) -
     rows = read_csv(out / "runs.csv")
     assert list(f.runs["end"]) == [r["end"] for r in rows]
     assert list(f.runs["peak_theta_over_alpha"]) == floats(rows, "peak_theta_over_alpha")
+
+
+def test_record_names_are_never_cut(tmp_path: Path) -> None:
+    # Two records whose names share their first 16 characters: a fixed
+    # 16-character field once made them one record in a groupby.
+    a = tmp_path / "RSN1063_NORTHR_RRS228.dat"
+    b = tmp_path / "RSN1063_NORTHR_RRS318.dat"
+    a.write_bytes(KOBE.read_bytes())
+    b.write_bytes(ELCENTRO.read_bytes())
+    f = rocking.fragility([(a, "m/s2"), (b, "g")], [0.2], [(0.3, 1.2)], progress=False)
+    assert list(f.runs["record"]) == ["RSN1063_NORTHR_RRS228", "RSN1063_NORTHR_RRS318"]
+    assert f.record_names == ["RSN1063_NORTHR_RRS228", "RSN1063_NORTHR_RRS318"]
+    pd = pytest.importorskip("pandas")
+    assert isinstance(f.to_pandas(), pd.DataFrame)
+    assert f.to_pandas().groupby("record").size().to_dict() == {"RSN1063_NORTHR_RRS228": 1, "RSN1063_NORTHR_RRS318": 1}

@@ -42,7 +42,7 @@ def test_a_scene_from_a_file_and_from_summary_json(tmp_path: Path, cli) -> None:
 
 def test_with_returns_a_modified_copy() -> None:
     base = rocking.Scene("fig3")
-    changed = base.with_(a_v=2.3)
+    changed = base.with_(a_v_norm=2.3)
     assert changed.to_dict()["excitation"]["a_v"] == 2.3
     assert base.to_dict()["excitation"]["a_v"] != 2.3
     # t_end replaces the preset's tau_end, as `--set run.t_end=…` does.

@@ -7,7 +7,7 @@ from pathlib import Path
 import pytest
 
 import rocking
-from conftest import REPO, floats, read_csv
+from conftest import REPO, SPECTRUM_ARGS, as_python, floats, read_csv
 
 KOBE = REPO / "assets" / "records" / "kobe-1995.dat"
 
@@ -33,8 +33,8 @@ def test_the_spectrum_is_the_clis(cli, tmp_path: Path) -> None:
     assert any(b["has_overturn_scale"]) and not all(b["end"] == "overturned")
 
 
-def test_bad_sizes_are_refused_with_the_clis_message(cli, tmp_path: Path) -> None:
-    expected = cli.error("spectrum", "--record", str(KOBE), "--unit", "m/s2", "--from", "3", "--to", "0.2", "--out", str(tmp_path))
+def test_bad_sizes_are_refused_with_the_clis_message_naming_python_arguments(cli, tmp_path: Path) -> None:
+    expected = as_python(cli.error("spectrum", "--record", str(KOBE), "--unit", "m/s2", "--from", "3", "--to", "0.2", "--out", str(tmp_path)), SPECTRUM_ARGS)
     with pytest.raises(rocking.ConfigError) as e:
         rocking.spectrum(KOBE, (3.0, 0.2, 50), unit="m/s2")
     assert str(e.value) == expected

@@ -63,8 +63,8 @@ def test_a_sweep_with_lyapunov_exponents_is_the_clis(cli, tmp_path: Path) -> Non
 def test_results_do_not_depend_on_the_thread_count() -> None:
     one = rocking.sweep("fig3", "excitation.a_v", 1.5, 2.5, 0.1, transient=100, tau_end=200, threads=1)
     many = rocking.sweep("fig3", "excitation.a_v", 1.5, 2.5, 0.1, transient=100, tau_end=200, threads=3)
-    np.testing.assert_array_equal(one.classes, many.classes)
-    np.testing.assert_array_equal(one.points, many.points)
+    assert one.classes.equals(many.classes)
+    assert one.points.equals(many.points)
 
 
 def test_an_outcome_map_is_the_clis(cli, tmp_path: Path) -> None:

@@ -96,3 +96,37 @@ def test_ctrl_c_stops_a_long_sweep_between_chunks(tmp_path) -> None:
     # tumbles: above it (the old range, to 40) nearly all did within a few
     # τ, and the whole sweep could end in the 1.5 s before the Ctrl-C.
     assert waited < 10, waited
+
+
+CALL = """
+import time, rocking
+scene = rocking.Scene("fig3", tau_end=%s)
+print("started", flush=True)
+t = time.perf_counter()
+try:
+    rocking.%s(scene)
+    print("finished", flush=True)
+except KeyboardInterrupt:
+    print("interrupted", flush=True)
+"""
+
+
+def test_ctrl_c_stops_simulate_and_lyapunov_at_once_even_as_the_first_call(tmp_path) -> None:
+    # The first call of the process: numpy's API was once loaded lazily
+    # inside it, and a pending Ctrl-C then surfaced as a PanicException.
+    for name, tau_end in (("simulate", "1e6"), ("lyapunov", "1e6")):
+        p = subprocess.Popen([sys.executable, "-c", CALL % (tau_end, name)], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, cwd=tmp_path)
+        assert p.stdout is not None
+        assert p.stdout.readline().strip() == "started"
+        time.sleep(1.0)
+        sent = time.perf_counter()
+        p.send_signal(signal.SIGINT)
+        line = p.stdout.readline().strip()
+        answered = time.perf_counter() - sent
+        out, err = p.communicate(timeout=120)
+        assert line == "interrupted", (name, line, err)
+        assert p.returncode == 0, err
+        assert "PanicException" not in err
+        # About 0.02 s on an idle machine; the bound leaves room for a
+        # loaded one, far below the seconds a whole run takes.
+        assert answered < 0.5, (name, answered)

@@ -235,6 +235,40 @@ pub fn record_file_name(path: &str) -> String {
         .map_or_else(|| path.to_string(), |n| n.to_string_lossy().into_owned())
 }
 
+/// The [`Record::path`] of a record given as samples (from memory, not
+/// from a file): it names no file, so messages that show a record's path
+/// say where it came from.
+pub const IN_MEMORY: &str = "(samples in memory)";
+
+impl Record {
+    /// A record given as samples rather than read from a file (a caller
+    /// that holds them, such as the Python package): `unit` is the unit the
+    /// caller's accelerations were in (the series is in g), `dt` their time
+    /// step if they were given as one. Its CRC-32 is of the series' bytes
+    /// (times then accelerations, little-endian f64), so that two runs can
+    /// tell whether they had the same samples; no file can be checked
+    /// against it, and a config written from it names no file
+    /// ([`Record::is_in_memory`]).
+    pub fn in_memory(series: Series, unit: AccelUnit, dt: Option<f64>) -> Self {
+        let mut hasher = crc32fast::Hasher::new();
+        for x in series.times_s().iter().chain(series.accel_g()) {
+            hasher.update(&x.to_le_bytes());
+        }
+        Self {
+            path: PathBuf::from(IN_MEMORY),
+            series,
+            unit,
+            dt,
+            crc32: hasher.finalize(),
+        }
+    }
+
+    /// Whether the record was given as samples ([`Record::in_memory`]).
+    pub fn is_in_memory(&self) -> bool {
+        self.path.as_os_str() == IN_MEMORY
+    }
+}
+
 /// The base motion.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ExcitationSpec {

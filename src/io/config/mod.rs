@@ -312,6 +312,30 @@ fn read_record(keys: &RecordKeys<'_>, source: &Source) -> Result<Option<Record>,
     }))
 }
 
+/// The record given as samples, or else the file the keys name.
+fn given_or_read(
+    keys: &RecordKeys<'_>,
+    source: &Source,
+    given: Option<&Record>,
+) -> Result<Option<Record>, ConfigError> {
+    let Some(given) = given else {
+        return read_record(keys, source);
+    };
+    let named = [
+        ("file", keys.file.is_some()),
+        ("unit", keys.unit.is_some()),
+        ("dt", keys.dt.is_some()),
+        ("crc32", keys.crc32.is_some()),
+    ];
+    if let Some((name, _)) = named.iter().find(|(_, set)| *set) {
+        return Err(ConfigError::key(
+            &keys.key(name),
+            "the record is given as samples; a file's keys do not apply to it",
+        ));
+    }
+    Ok(Some(given.clone()))
+}
+
 /// The scale factor on a record: `excitation.scale_*`, or the one that
 /// makes its PGA `excitation.pga_*`; both at once is an error.
 fn record_scale(
@@ -395,6 +419,14 @@ fn raw(table: &Table) -> Result<RawConfig, ConfigError> {
 /// relative to `source.base_dir`; the records are read here, so a scenario
 /// never refers to a file it has not read.
 pub fn from_table(table: &Table, source: &Source) -> Result<Scenario, ConfigError> {
+    from_table_with(table, source, [None, None])
+}
+
+/// [`from_table`] with records given as samples ([`Record::in_memory`]),
+/// horizontal and vertical, for a caller that holds them (the Python
+/// package): each takes the place of a file the table does not name
+/// (naming one as well is an error naming `excitation.file_*`).
+pub fn from_table_with(table: &Table, source: &Source, memory: [Option<&Record>; 2]) -> Result<Scenario, ConfigError> {
     let raw = raw(table)?;
     let d = Scenario::default();
     let num = |x: Option<Finite>| x.map(|v| v.0);
@@ -447,8 +479,9 @@ pub fn from_table(table: &Table, source: &Source) -> Result<Scenario, ConfigErro
         dt: x.dt_v,
         crc32: x.crc32_v.as_deref(),
     };
-    let record_h = read_record(&keys_h, source)?;
-    let record_v = read_record(&keys_v, source)?;
+    let [memory_h, memory_v] = memory;
+    let record_h = given_or_read(&keys_h, source, memory_h)?;
+    let record_v = given_or_read(&keys_v, source, memory_v)?;
     let scale_h = record_scale(&keys_h, record_h.as_ref(), x.scale_h, x.pga_h, &geo, dx.scale_h)?;
     let scale_v = record_scale(&keys_v, record_v.as_ref(), x.scale_v, x.pga_v, &geo, dx.scale_v)?;
     let excitation = ExcitationSpec {
@@ -563,10 +596,16 @@ pub fn param(key: &str) -> Result<Param, ConfigError> {
 /// run.
 pub fn to_json(s: &Scenario) -> Json {
     let num = |x: f64| if x.is_finite() { json!(x) } else { json!("inf") };
-    let path = |r: &Option<Record>| r.as_ref().map(|r| r.path.display().to_string());
-    let unit = |r: &Option<Record>| r.as_ref().map(|r| r.unit.name());
-    let dt = |r: &Option<Record>| r.as_ref().and_then(|r| r.dt);
-    let crc = |r: &Option<Record>| r.as_ref().map(|r| format!("{:08x}", r.crc32));
+    // A record given as samples names no file: its keys are null, so a
+    // config written from it cannot claim to repeat the run (reading it
+    // back asks for excitation.file_h).
+    fn file(r: &Option<Record>) -> Option<&Record> {
+        r.as_ref().filter(|r| !r.is_in_memory())
+    }
+    let path = |r: &Option<Record>| file(r).map(|r| r.path.display().to_string());
+    let unit = |r: &Option<Record>| file(r).map(|r| r.unit.name());
+    let dt = |r: &Option<Record>| file(r).and_then(|r| r.dt);
+    let crc = |r: &Option<Record>| file(r).map(|r| format!("{:08x}", r.crc32));
     // A record that decides the run's length writes its tail and no end;
     // any other run writes its end (and no tail, which would conflict).
     let (tau_end, tail_s) = match (s.record_end_tau(), s.run.record_tail_s) {

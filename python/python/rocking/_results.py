@@ -2,8 +2,13 @@
 
 They only arrange what the extension computed: columns into numpy arrays
 and structured `Table`s (the CLI's CSV columns, same names and numbers),
-optional values into masked arrays (never NaN), and chunks computed apart
-(Dask) back into one result, identical to the single-machine one.
+and chunks computed apart (Dask) back into one result, identical to the
+single-machine one. A value that does not exist (no overturning, no
+exponent) is NaN in a float column and masked in the masked-array
+properties, never 0; a missing period (an int column) is masked. Each
+result keeps its inputs (`scene`, the grid, `transient`, `tau_end`,
+`records`, …) and converts to pandas (`to_pandas()`) and, where it is a
+grid, to xarray (`to_xarray()`) when those are installed.
 """
 
 from __future__ import annotations
@@ -13,7 +18,7 @@ from typing import Any, Mapping, Sequence
 
 import numpy as np
 
-from ._table import NAME_WIDTH, Table, concat, table
+from ._table import Table, concat, names, table
 
 HISTORY = ("tau", "theta", "theta_dot", "x", "x_dot", "mode", "t_s", "theta_rad", "sliding_m")
 EVENTS = (
@@ -114,14 +119,48 @@ class Run:
 
 
 def _masked(values: np.ndarray, present: np.ndarray) -> np.ma.MaskedArray:
-    """`values` masked where not `present` (the hidden entries are 0, never NaN)."""
+    """`values` masked where not `present`."""
     return np.ma.MaskedArray(values, mask=~np.asarray(present, dtype=bool))
+
+
+def _pandas() -> Any:
+    try:
+        import pandas as pd
+    except ImportError as e:  # pragma: no cover - depends on the environment
+        raise ImportError("to_pandas() needs pandas: pip install pandas") from e
+    return pd
+
+
+def _xarray() -> Any:
+    try:
+        import xarray as xr
+    except ImportError as e:  # pragma: no cover - depends on the environment
+        raise ImportError("to_xarray() needs xarray: pip install xarray") from e
+    return xr
+
+
+def _period_float(period: np.ndarray, outcome: np.ndarray) -> np.ndarray:
+    """Periods as floats, NaN where the response is not periodic (for xarray)."""
+    return np.where(np.asarray(outcome) == "periodic", np.asarray(period, dtype=float), np.nan)
+
+
+class _Inputs:
+    """What a result was computed from, kept on it."""
+
+    #: The inputs by name (scene, grid, transient, tau_end, records, …).
+    inputs: dict[str, Any]
+
+    def _keep(self, **inputs: Any) -> Any:
+        self.inputs = dict(inputs)
+        for k, v in inputs.items():
+            setattr(self, k, v)
+        return self
 
 
 def _responses(d: Mapping[str, Any]) -> dict[str, Any]:
     """The response columns of one chunk as arrays."""
     return {
-        "outcome": np.array(d["outcome"], dtype=f"U{NAME_WIDTH}"),
+        "outcome": names(d["outcome"]),
         "period": np.asarray(d["period"]),
         "max_abs_theta": np.asarray(d["max_abs_theta"]),
         "lyapunov": np.asarray(d["lyapunov"]),
@@ -129,7 +168,7 @@ def _responses(d: Mapping[str, Any]) -> dict[str, Any]:
     }
 
 
-class Sweep:
+class Sweep(_Inputs):
     """A bifurcation diagram, as `rocking sweep` computes it.
 
     `values` are the grid's values (increasing); `outcome`, `period`,
@@ -137,13 +176,15 @@ class Sweep:
     (`period` masked where the response is not periodic, `lyapunov` where
     none was computed); `points` are points.csv's rows (with `index`, the
     value's index, and the section state `x`, `x_dot`, `mode` besides).
+    Its inputs: `scene`, `param`, `start`, `stop`, `step`, `transient`,
+    `tau_end` (resolved), `continuation`, `lyapunov_asked`.
     """
 
     def __init__(self, param: str, classes: Table, points: Table) -> None:
         #: The config key swept.
         self.param = param
         #: One row per value: index, value, outcome, period (0 where not
-        #: periodic), max_abs_theta, lyapunov (0 where none), has_lyapunov.
+        #: periodic), max_abs_theta, lyapunov (NaN where none), has_lyapunov.
         self.classes = classes
         #: Every Poincaré point at τ_k ≥ transient, value by value.
         self.points = points
@@ -204,16 +245,46 @@ class Sweep:
             }
         )
 
+    def to_xarray(self) -> Any:
+        """The classes as an `xarray.Dataset` over the dimension `value`
+        (period and lyapunov NaN where missing), with the inputs as
+        attributes. Needs xarray."""
+        xr = _xarray()
+        c = self.classes
+        dims = ("value",)
+        return xr.Dataset(
+            {
+                "outcome": (dims, np.asarray(c["outcome"])),
+                "period": (dims, _period_float(c["period"], c["outcome"])),
+                "max_abs_theta": (dims, np.asarray(c["max_abs_theta"])),
+                "lyapunov": (dims, np.asarray(c["lyapunov"])),
+            },
+            coords={"value": np.asarray(c["value"])},
+            attrs=_attrs(getattr(self, "inputs", {})),
+        )
+
     def __repr__(self) -> str:
         return f"rocking.Sweep({self.param!r}, {len(self.classes)} values, {len(self.points)} points)"
 
 
-class OutcomeMap:
+def _attrs(inputs: Mapping[str, Any]) -> dict[str, Any]:
+    """Inputs as netCDF-safe attributes (numbers and strings; a scene by its repr)."""
+    out: dict[str, Any] = {}
+    for k, v in inputs.items():
+        if v is None:
+            continue
+        out[k] = v if isinstance(v, (int, float, str)) else repr(v)
+    return out
+
+
+class OutcomeMap(_Inputs):
     """An outcome map, as `rocking map` computes it.
 
     `x` and `y` are the axes' values; `outcome`, `period`, `max_abs_theta`
     and `lyapunov` are 2-D arrays indexed `[j, i]` (row j = y value, column
-    i = x value); `cells` are map.csv's rows (y outer, x inner).
+    i = x value); `cells` are map.csv's rows (y outer, x inner). Its
+    inputs: `scene`, `x_axis`, `y_axis` (key, first, last, count),
+    `transient`, `tau_end` (resolved), `lyapunov_asked`.
     """
 
     def __init__(self, x_key: str, y_key: str, x: np.ndarray, y: np.ndarray, cells: Table) -> None:
@@ -226,7 +297,7 @@ class OutcomeMap:
         #: Vertical axis values.
         self.y = y
         #: One row per cell in map.csv's order: x, y, outcome, period (0
-        #: where not periodic), max_abs_theta, lyapunov (0 where none),
+        #: where not periodic), max_abs_theta, lyapunov (NaN where none),
         #: has_lyapunov.
         self.cells = cells
 
@@ -280,6 +351,24 @@ class OutcomeMap:
             }
         )
 
+    def to_xarray(self) -> Any:
+        """The map as an `xarray.Dataset` over the dimensions (y key, x
+        key), e.g. ("excitation.omega_h", "excitation.a_h"), with outcome,
+        period and lyapunov (NaN where missing) and max_abs_theta, and the
+        inputs as attributes. Needs xarray."""
+        xr = _xarray()
+        dims = (self.y_key, self.x_key)
+        return xr.Dataset(
+            {
+                "outcome": (dims, self.outcome),
+                "period": (dims, _period_float(self._grid("period"), self._grid("outcome"))),
+                "max_abs_theta": (dims, self.max_abs_theta),
+                "lyapunov": (dims, self._grid("lyapunov")),
+            },
+            coords={self.y_key: self.y, self.x_key: self.x},
+            attrs=_attrs(getattr(self, "inputs", {})),
+        )
+
     def __repr__(self) -> str:
         return f"rocking.OutcomeMap({self.x_key!r} × {self.y_key!r}, {len(self.x)} × {len(self.y)} cells)"
 
@@ -312,9 +401,11 @@ class Lyapunov:
     summary: dict[str, Any]
     #: Every field the library returns.
     result: dict[str, Any]
+    #: The scene whose exponents these are.
+    scene: Any = None
 
     @classmethod
-    def _of(cls, d: Mapping[str, Any]) -> "Lyapunov":
+    def _of(cls, d: Mapping[str, Any], scene: Any = None) -> "Lyapunov":
         r = d["result"]
         conv = np.asarray(r.get("convergence", []), dtype=float).reshape(-1, 2)
         return cls(
@@ -327,22 +418,25 @@ class Lyapunov:
             convergence=conv,
             summary=d["summary"],
             result=r,
+            scene=scene,
         )
 
 
 RUNS = ("run", "block", "width_m", "height_m", "record", "level", "scale", "end", "peak_theta_over_alpha", "t_end_s", "has_t_end")
 
 
-class Fragility:
+class Fragility(_Inputs):
     """A fragility study, as `rocking fragility` computes it.
 
     `runs` has one row per run (block outer, level, record inner) with
     runs.csv's columns (`t_end_s` is the time of overturning or flight,
-    0 where `has_t_end` is false); `fits[b]` holds block b's counts per
-    level and both lognormal fits (P(overturning) and P(θ/α ≥ threshold
-    or overturning)): `median` in the unit of the intensity measure,
-    `beta`, their 95 % intervals, or `{"error": …}` when the data admit
-    no fit.
+    NaN where `has_t_end` is false: the block did not overturn); `fits[b]`
+    holds block b's counts per level and both lognormal fits
+    (P(overturning) and P(θ/α ≥ threshold or overturning)): `median` in
+    the unit of the intensity measure, `beta`, their 95 % intervals, or
+    `{"error": …}` when the data admit no fit. Its inputs: `base` (the
+    scene), `records` (as given), `record_names`, `blocks`, `levels`,
+    `im`, `threshold`.
     """
 
     def __init__(self, im: str, threshold: float, levels: Sequence[float], runs: Table, fits: list[dict[str, Any]]) -> None:
@@ -377,6 +471,59 @@ class Fragility:
         )
         return cls(str(parts[0]["im"]), threshold, levels, runs, fits)
 
+    def to_pandas(self) -> Any:
+        """runs.csv as a `pandas.DataFrame` (`t_end_s` NaN where the block
+        did not overturn or fly). Needs pandas."""
+        return self.runs.to_pandas()
+
+    def fits_to_pandas(self) -> Any:
+        """The fits as a `pandas.DataFrame`: one row per block and curve
+        ("overturning", "exceedance") with the block's size, the fit's
+        fields (median, beta, intervals, …) and `error` where the data
+        admit no fit (its fields then missing). Needs pandas."""
+        pd = _pandas()
+        blocks = getattr(self, "blocks", None)
+        rows = []
+        for b, fit in enumerate(self.fits):
+            for curve in ("overturning", "exceedance"):
+                row: dict[str, Any] = {"block": b, "curve": curve}
+                if blocks is not None:
+                    row["width_m"], row["height_m"] = blocks[b]
+                f = fit[curve]
+                row.update({k: v for k, v in f.items() if not isinstance(v, (list, dict))})
+                rows.append(row)
+        return pd.DataFrame(rows)
+
+    def fractions_to_pandas(self) -> Any:
+        """Counts and fractions per block and level (fractions.csv) as a
+        `pandas.DataFrame`. Needs pandas."""
+        pd = _pandas()
+        return pd.DataFrame([{"block": fit["block"], **lv} for fit in self.fits for lv in fit["levels"]])
+
+    def to_xarray(self) -> Any:
+        """The runs as an `xarray.Dataset` over (block, level, record):
+        end, peak_theta_over_alpha, scale and t_end_s (NaN where the block
+        did not overturn or fly). Needs xarray."""
+        xr = _xarray()
+        r = self.runs
+        nb, nl = int(r["block"].max()) + 1 if len(r) else 0, len(self.levels)
+        nr = len(getattr(self, "record_names", [])) or (len(r) // max(nb * nl, 1))
+        if len(r) != nb * nl * nr:
+            raise ValueError("to_xarray() needs every run of the study")
+        shape = (nb, nl, nr)
+        dims = ("block", "level", "record")
+        return xr.Dataset(
+            {name: (dims, np.asarray(r[name]).reshape(shape)) for name in ("end", "peak_theta_over_alpha", "scale", "t_end_s")},
+            coords={
+                "block": np.arange(nb),
+                "level": self.levels,
+                "record": list(getattr(self, "record_names", range(nr))),
+                "width_m": ("block", np.asarray(r["width_m"]).reshape(shape)[:, 0, 0]),
+                "height_m": ("block", np.asarray(r["height_m"]).reshape(shape)[:, 0, 0]),
+            },
+            attrs={"im": self.im, "threshold": self.threshold},
+        )
+
     def __repr__(self) -> str:
         return f"rocking.Fragility({len(self.runs)} runs, {len(self.fits)} blocks, im={self.im})"
 
@@ -388,14 +535,15 @@ SPECTRUM = (
 )
 
 
-class RockingSpectrum:
+class RockingSpectrum(_Inputs):
     """A rocking spectrum, as `rocking spectrum --record` computes it.
 
     `blocks` has one row per block (B/H outer, size increasing) with
     spectrum.csv's columns: `t_end_s` is the time of overturning or flight
-    (0 where `has_t_end` is false), `overturn_scale` the smallest scale
-    factor found to overturn the block (0 where `has_overturn_scale` is
-    false), `overturn_pga_g` the PGA at that scale.
+    (NaN where `has_t_end` is false), `overturn_scale` the smallest scale
+    factor found to overturn the block (NaN where `has_overturn_scale` is
+    false), `overturn_pga_g` the PGA at that scale. Its inputs: `base`
+    (the scene), `record`, `sizes`, `size`, `b_over_h`, `scale`, `pga`.
     """
 
     def __init__(self, blocks: Table, pga_g_record: float) -> None:
@@ -403,6 +551,30 @@ class RockingSpectrum:
         self.blocks = blocks
         #: The record's PGA as read (scale 1), g.
         self.pga_g_record = pga_g_record
+
+    def to_pandas(self) -> Any:
+        """spectrum.csv as a `pandas.DataFrame`. Needs pandas."""
+        return self.blocks.to_pandas()
+
+    def to_xarray(self) -> Any:
+        """The spectrum as an `xarray.Dataset` over (b_over_h, size), the
+        size being the half-diagonal `r_m` or the height `height_m` as
+        asked (`size`), with every float column of spectrum.csv and `end`.
+        Needs xarray."""
+        xr = _xarray()
+        b = self.blocks
+        ratios = np.unique(np.asarray(b["b_over_h"]))
+        n = len(b) // max(len(ratios), 1)
+        size = "height_m" if getattr(self, "size", "r") == "h" else "r_m"
+        shape = (len(ratios), n)
+        dims = ("b_over_h", size)
+        columns = ("width_m", "height_m", "r_m", "alpha_rad", "p_per_s", "peak_theta_over_alpha", "t_end_s", "overturn_scale", "overturn_pga_g", "end")
+        data = {c: (dims, np.asarray(b[c]).reshape(shape)) for c in columns if c != size}
+        return xr.Dataset(
+            data,
+            coords={"b_over_h": ratios, size: np.asarray(b[size]).reshape(shape)[0]},
+            attrs={"pga_g_record": self.pga_g_record},
+        )
 
     def __repr__(self) -> str:
         return f"rocking.RockingSpectrum({len(self.blocks)} blocks)"

@@ -35,6 +35,12 @@ def _scene(scene: Scene | str) -> Scene:
     return scene if isinstance(scene, Scene) else Scene(scene)
 
 
+def _tau_end(scene: Scene, tau_end: float | None) -> float:
+    from . import _tau_end as resolved
+
+    return resolved(scene, tau_end)
+
+
 def _worker_threads(client: Any) -> int:
     """Threads over all workers of the cluster (at least 1)."""
     return max(1, sum(client.nthreads().values()))
@@ -79,7 +85,16 @@ def sweep(
     futures = client.map(
         _sweep_task, [(k, n) for k in range(n)], scene=s, args=args, options=options, pure=False
     )
-    return Sweep._assemble(param, client.gather(futures))
+    return Sweep._assemble(param, client.gather(futures))._keep(
+        scene=s,
+        start=start,
+        stop=stop,
+        step=step,
+        transient=transient,
+        tau_end=_tau_end(s, tau_end),
+        continuation="none",
+        lyapunov_asked=lyapunov,
+    )
 
 
 def _row_chunks(rows: int, chunks: int) -> list[tuple[int, int]]:
@@ -112,7 +127,9 @@ def outcome_map(
     options["threads"] = threads_per_task
     futures = client.map(_map_task, _row_chunks(ny, int(n)), scene=s, x=x, y=y, options=options, pure=False)
     parts: Sequence[dict[str, Any]] = client.gather(futures)
-    return OutcomeMap._assemble(parts)
+    return OutcomeMap._assemble(parts)._keep(
+        scene=s, x_axis=x, y_axis=y, transient=transient, tau_end=_tau_end(s, tau_end), lyapunov_asked=lyapunov
+    )
 
 
 def _fragility_task(indices: list[int], scene: Scene, args: tuple[Any, ...], options: dict[str, Any]) -> dict[str, Any]:
@@ -137,14 +154,18 @@ def fragility(
     computed on the client from all rows."""
     from . import _records
 
+    given = list(records)
     s = base if base is not None else Scene.defaults()
     levels = [float(v) for v in levels]
     blocks = [(float(w), float(h)) for w, h in blocks]
-    args = (_records(records), levels, blocks)
+    args = (_records(given), levels, blocks)
     count = int(_rocking._fragility_runs(s, *args, im=im, check_only=True)["count"])
     n = chunks if chunks is not None else 4 * _worker_threads(client)
     n = max(1, min(int(n), count))
     options: dict[str, Any] = {"im": im, "threads": threads_per_task}
     parts = [list(range(k, count, n)) for k in range(n)]
     futures = client.map(_fragility_task, parts, scene=s, args=args, options=options, pure=False)
-    return Fragility._assemble(client.gather(futures), len(blocks), levels, threshold)
+    parts = client.gather(futures)
+    return Fragility._assemble(parts, len(blocks), levels, threshold)._keep(
+        base=s, records=given, record_names=list(parts[0]["records"]), blocks=blocks
+    )

@@ -1,7 +1,7 @@
 """Type stubs of the extension module `rocking._rocking` (PyO3)."""
 
 from os import PathLike
-from typing import Any, Mapping
+from typing import Any, Callable, Mapping
 
 __version__: str
 
@@ -19,6 +19,8 @@ class RunError(RuntimeError):
     """A run that failed after its input was accepted (the CLI's exit 1)."""
 
 Value = float | int | bool | str | PathLike[str]
+#: Samples of a ground motion: accelerations (with `dt`), or (times, accelerations).
+Samples = Any
 
 class Scene:
     """A resolved, validated scenario (the CLI's --preset/--config and --set)."""
@@ -29,6 +31,10 @@ class Scene:
         *,
         file: str | PathLike[str] | None = None,
         config: Mapping[str, Value | Mapping[str, Value]] | None = None,
+        record_h: Samples | None = None,
+        record_v: Samples | None = None,
+        dt: float | None = None,
+        unit: str | None = None,
         **keys: Value | Mapping[str, Value],
     ) -> None: ...
     @staticmethod
@@ -36,7 +42,14 @@ class Scene:
         config: Mapping[str, Value | Mapping[str, Value]] | None = None, **keys: Value | Mapping[str, Value]
     ) -> Scene: ...
     def with_(
-        self, config: Mapping[str, Value | Mapping[str, Value]] | None = None, **keys: Value | Mapping[str, Value]
+        self,
+        config: Mapping[str, Value | Mapping[str, Value]] | None = None,
+        *,
+        record_h: Samples | None = None,
+        record_v: Samples | None = None,
+        dt: float | None = None,
+        unit: str | None = None,
+        **keys: Value | Mapping[str, Value],
     ) -> Scene: ...
     def to_dict(self) -> dict[str, Any]: ...
     def resolved(self) -> dict[str, Any]: ...
@@ -48,10 +61,12 @@ class Scene:
     def p_per_s(self) -> float: ...
     @property
     def r_m(self) -> float: ...
-    def __reduce__(self) -> tuple[Any, tuple[str, str, str]]: ...
+    def __reduce__(self) -> tuple[Any, tuple[str, str, str, Any]]: ...
 
 def presets() -> list[str]: ...
-def _scene_from_state(text: str, base_dir: str, origin: str) -> Scene: ...
+def _keys_help() -> str: ...
+def _undocumented_keys() -> list[str]: ...
+def _scene_from_state(text: str, base_dir: str, origin: str, memory: Any = None) -> Scene: ...
 def _simulate(scene: Scene) -> dict[str, Any]: ...
 def _lyapunov(scene: Scene) -> dict[str, Any]: ...
 def _sweep(
@@ -68,6 +83,7 @@ def _sweep(
     threads: int | None = None,
     shard: tuple[int, int] | None = None,
     check_only: bool = False,
+    progress: Callable[[int, int], Any] | None = None,
 ) -> dict[str, Any]: ...
 def _outcome_map(
     scene: Scene,
@@ -80,6 +96,7 @@ def _outcome_map(
     threads: int | None = None,
     rows: tuple[int, int] | None = None,
     check_only: bool = False,
+    progress: Callable[[int, int], Any] | None = None,
 ) -> dict[str, Any]: ...
 def _fragility_runs(
     scene: Scene,
@@ -91,6 +108,7 @@ def _fragility_runs(
     threads: int | None = None,
     indices: list[int] | None = None,
     check_only: bool = False,
+    progress: Callable[[int, int], Any] | None = None,
 ) -> dict[str, Any]: ...
 def _fragility_fits(
     blocks: int, levels: list[float], records: int, threshold: float, run: list[int], end: list[str], peak: list[float]
@@ -110,4 +128,5 @@ def _spectrum(
     search_max: float = 5.0,
     rel_tol: float = 1e-3,
     threads: int | None = None,
+    progress: Callable[[int, int], Any] | None = None,
 ) -> dict[str, Any]: ...
