@@ -71,7 +71,13 @@ fn spectrum(out: &Path, extra: &[&str]) -> Output {
 fn pulse_spectrum(out: &Path, extra: &[&str]) -> Output {
     rocking()
         .args([
-            "spectrum", "--pulse", "one-sine", "--pulse-accel", "0.5", "--pulse-period", "0.5",
+            "spectrum",
+            "--pulse",
+            "one-sine",
+            "--pulse-accel",
+            "0.5",
+            "--pulse-period",
+            "0.5",
         ])
         .args(["--from", "0.5", "--to", "1", "--count", "2", "-q", "--out"])
         .arg(out)
@@ -103,7 +109,17 @@ fn fragility_suite(list: &Path, out: &Path, extra: &[&str]) -> Output {
 
 fn pulse_map(out: &Path, extra: &[&str]) -> Output {
     rocking()
-        .args(["pulse-map", "--pulse", "one-sine", "--omega", "2", "--amp-max", "1", "-q", "--out"])
+        .args([
+            "pulse-map",
+            "--pulse",
+            "one-sine",
+            "--omega",
+            "2",
+            "--amp-max",
+            "1",
+            "-q",
+            "--out",
+        ])
         .arg(out)
         .args(extra)
         .output()
@@ -119,7 +135,12 @@ fn spectrum_and_fragility_refuse_a_vertical_record() {
     refused(&o, &["--set excitation.file_v", "H + V", "not supported yet"], &out);
     let o = fragility(&out, &["--set", &file_v, "--set", "excitation.unit_v=m/s2"]);
     refused(&o, &["--set excitation.file_v", "H + V"], &out);
-    for key in ["excitation.scale_v=2", "excitation.pga_v=0.3 g", "excitation.a_v=0.5", "excitation.dt_v=0.02"] {
+    for key in [
+        "excitation.scale_v=2",
+        "excitation.pga_v=0.3 g",
+        "excitation.a_v=0.5",
+        "excitation.dt_v=0.02",
+    ] {
         let o = fragility(&out, &["--set", key]);
         let shown = key.split('=').next().unwrap_or_default();
         refused(&o, &[&format!("--set {shown}"), "H + V"], &out);
@@ -141,22 +162,46 @@ fn engineering_commands_refuse_keys_and_flags_they_ignore() {
     let dir = tmpdir("ignored");
     let out = dir.join("out");
     let cases: Vec<(Output, Vec<&str>)> = vec![
-        (spectrum(&out, &["--set", "run.tau_end=100"]), vec!["--set run.tau_end", "run.tail_s"]),
+        (
+            spectrum(&out, &["--set", "run.tau_end=100"]),
+            vec!["--set run.tau_end", "run.tail_s"],
+        ),
         (spectrum(&out, &["--set", "run.t_end=10 s"]), vec!["--set run.t_end"]),
         (
             spectrum(&out, &["--set", "block.width=0.5"]),
             vec!["--set block.width: spectrum sets every block's size itself (--from/--to/--count"],
         ),
-        (spectrum(&out, &["--set", "initial.theta=0.1"]), vec!["--set initial.theta", "at rest"]),
-        (spectrum(&out, &["--set", "run.output_dt=0.01 s"]), vec!["--set run.output_dt"]),
-        (spectrum(&out, &["--set", "analysis.lyapunov=true"]), vec!["--set analysis.lyapunov"]),
-        (spectrum(&out, &["--pulse-accel", "0.5"]), vec!["--pulse-accel", "--record"]),
+        (
+            spectrum(&out, &["--set", "initial.theta=0.1"]),
+            vec!["--set initial.theta", "at rest"],
+        ),
+        (
+            spectrum(&out, &["--set", "run.output_dt=0.01 s"]),
+            vec!["--set run.output_dt"],
+        ),
+        (
+            spectrum(&out, &["--set", "analysis.lyapunov=true"]),
+            vec!["--set analysis.lyapunov"],
+        ),
+        (
+            spectrum(&out, &["--pulse-accel", "0.5"]),
+            vec!["--pulse-accel", "--record"],
+        ),
         (spectrum(&out, &["--cycles", "2"]), vec!["--cycles"]),
-        (spectrum(&out, &["--search-max", "3"]), vec!["--search-max", "--overturn-scale"]),
-        (spectrum(&out, &["--rel-tol", "0.01"]), vec!["--rel-tol", "--overturn-scale"]),
+        (
+            spectrum(&out, &["--search-max", "3"]),
+            vec!["--search-max", "--overturn-scale"],
+        ),
+        (
+            spectrum(&out, &["--rel-tol", "0.01"]),
+            vec!["--rel-tol", "--overturn-scale"],
+        ),
         (pulse_spectrum(&out, &["--unit", "g"]), vec!["--unit", "--pulse"]),
         (pulse_spectrum(&out, &["--cycles", "3"]), vec!["--cycles 3", "type-c"]),
-        (pulse_spectrum(&out, &["--set", "run.tail_s=5 s"]), vec!["--set run.tail_s", "50 τ"]),
+        (
+            pulse_spectrum(&out, &["--set", "run.tail_s=5 s"]),
+            vec!["--set run.tail_s", "50 τ"],
+        ),
         (
             fragility(&out, &["--set", "excitation.kind=harmonic"]),
             vec!["--set excitation.kind: fragility sets the motion itself (--records/--suite"],
@@ -165,15 +210,24 @@ fn engineering_commands_refuse_keys_and_flags_they_ignore() {
             fragility(&out, &["--set", &format!("excitation.file_h={KOBE}")]),
             vec!["--set excitation.file_h"],
         ),
-        (fragility(&out, &["--set", "excitation.scale_h=2"]), vec!["--set excitation.scale_h"]),
-        (fragility(&out, &["--set", "block.height=2"]), vec!["--set block.height", "--block"]),
+        (
+            fragility(&out, &["--set", "excitation.scale_h=2"]),
+            vec!["--set excitation.scale_h"],
+        ),
+        (
+            fragility(&out, &["--set", "block.height=2"]),
+            vec!["--set block.height", "--block"],
+        ),
         (
             fragility(&out, &["--friction", "0.5", "--set", "friction.static=0.6"]),
             vec!["--friction 0.5", "--set friction.static"],
         ),
         (pulse_map(&out, &["--cycles", "2"]), vec!["--cycles 2", "type-c"]),
         (pulse_map(&out, &["--set", "run.tail_s=5 s"]), vec!["--set run.tail_s"]),
-        (pulse_map(&out, &["--set", "excitation.a_h=0.5"]), vec!["--set excitation.a_h", "--amp-max"]),
+        (
+            pulse_map(&out, &["--set", "excitation.a_h=0.5"]),
+            vec!["--set excitation.a_h", "--amp-max"],
+        ),
     ];
     for (o, needles) in &cases {
         refused(o, needles, &out);
@@ -182,7 +236,14 @@ fn engineering_commands_refuse_keys_and_flags_they_ignore() {
     // law, the friction from --set alone.
     let o = fragility(
         &out,
-        &["--set", "run.tail_s=5 s", "--set", "impact.law=housner", "--set", "friction.static=0.6"],
+        &[
+            "--set",
+            "run.tail_s=5 s",
+            "--set",
+            "impact.law=housner",
+            "--set",
+            "friction.static=0.6",
+        ],
     );
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let _ = std::fs::remove_dir_all(&dir);
@@ -201,19 +262,61 @@ fn two_sets_of_exclusive_keys_are_refused_and_one_set_overrides_the_presets_twin
             .output()
             .expect("runs")
     };
-    let o = batch(&["--preset", "default", "--set", "run.t_end=2 s", "--set", "run.tau_end=3"]);
+    let o = batch(&[
+        "--preset",
+        "default",
+        "--set",
+        "run.t_end=2 s",
+        "--set",
+        "run.tau_end=3",
+    ]);
     refused(&o, &["--set run.t_end=2 s", "--set run.tau_end=3", "give one"], &out);
-    let o = batch(&["--preset", "default", "--set", "run.tau_end=3", "--set", "run.t_end=2 s"]);
+    let o = batch(&[
+        "--preset",
+        "default",
+        "--set",
+        "run.tau_end=3",
+        "--set",
+        "run.t_end=2 s",
+    ]);
     refused(&o, &["--set run.tau_end=3", "--set run.t_end=2 s"], &out);
-    let o = batch(&["--preset", "kobe-rack", "--set", "excitation.scale_h=2", "--set", "excitation.pga_h=0.4 g"]);
-    refused(&o, &["--set excitation.scale_h=2", "--set excitation.pga_h=0.4 g"], &out);
-    let o = batch(&["--preset", "kobe-rack", "--set", "run.tail_s=5 s", "--set", "run.t_end=2 s"]);
+    let o = batch(&[
+        "--preset",
+        "kobe-rack",
+        "--set",
+        "excitation.scale_h=2",
+        "--set",
+        "excitation.pga_h=0.4 g",
+    ]);
+    refused(
+        &o,
+        &["--set excitation.scale_h=2", "--set excitation.pga_h=0.4 g"],
+        &out,
+    );
+    let o = batch(&[
+        "--preset",
+        "kobe-rack",
+        "--set",
+        "run.tail_s=5 s",
+        "--set",
+        "run.t_end=2 s",
+    ]);
     refused(&o, &["--set run.tail_s=5 s", "--set run.t_end=2 s"], &out);
     // Keys alone (no preset) and the other subcommands that take --set.
     let o = batch(&["--set", "run.t_end=2 s", "--set", "run.tau_end=3"]);
     refused(&o, &["--set run.t_end=2 s", "--set run.tau_end=3"], &out);
     let o = rocking()
-        .args(["sweep", "--param", "excitation.a_h", "--from", "1", "--to", "2", "--step", "1"])
+        .args([
+            "sweep",
+            "--param",
+            "excitation.a_h",
+            "--from",
+            "1",
+            "--to",
+            "2",
+            "--step",
+            "1",
+        ])
         .args(["--set", "run.t_end=2 s", "--set", "run.tau_end=3", "-q", "--out"])
         .arg(&out)
         .output()
@@ -261,7 +364,9 @@ fn duplicated_records_levels_blocks_and_sizes_are_refused_naming_both() {
     let o = fragility(&out, &["--block", "0.6x2"]);
     refused(&o, &["--block 0.6x2.0", "--block 0.6x2", "twice"], &out);
     let o = rocking()
-        .args(["spectrum", "--record", ELCENTRO, "--unit", "g", "--from", "1", "--to", "1"])
+        .args([
+            "spectrum", "--record", ELCENTRO, "--unit", "g", "--from", "1", "--to", "1",
+        ])
         .args(["--count", "5", "-q", "--out"])
         .arg(&out)
         .output()
@@ -334,7 +439,11 @@ fn a_records_folder_skips_files_that_are_not_records_and_says_which() {
         .arg(&none)
         .output()
         .expect("runs");
-    refused(&o, &["--records", "no file in the folder is a record", "README.md"], &none);
+    refused(
+        &o,
+        &["--records", "no file in the folder is a record", "README.md"],
+        &none,
+    );
     let _ = std::fs::remove_dir_all(&dir);
 }
 
@@ -343,8 +452,18 @@ fn messages_name_the_flag_typed_and_print_numbers_readably() {
     let dir = tmpdir("messages");
     let out = dir.join("out");
     let o = rocking()
-        .args(["spectrum", "--pulse", "type-c", "--pulse-accel", "0.5", "--pulse-period", "0.5"])
-        .args(["--cycles", "0", "--from", "0.5", "--to", "1", "--count", "2", "-q", "--out"])
+        .args([
+            "spectrum",
+            "--pulse",
+            "type-c",
+            "--pulse-accel",
+            "0.5",
+            "--pulse-period",
+            "0.5",
+        ])
+        .args([
+            "--cycles", "0", "--from", "0.5", "--to", "1", "--count", "2", "-q", "--out",
+        ])
         .arg(&out)
         .output()
         .expect("runs");
@@ -356,12 +475,17 @@ fn messages_name_the_flag_typed_and_print_numbers_readably() {
         assert!(o.stderr.len() < 200, "{}", String::from_utf8_lossy(&o.stderr));
     }
     let o = rocking()
-        .args(["spectrum", "--record", ELCENTRO, "--unit", "g", "--from", "1e-300", "--to", "1e-301"])
+        .args([
+            "spectrum", "--record", ELCENTRO, "--unit", "g", "--from", "1e-300", "--to", "1e-301",
+        ])
         .args(["-q", "--out"])
         .arg(&out)
         .output()
         .expect("runs");
     refused(&o, &["--to 1e-301", "--from 1e-300"], &out);
+    assert!(o.stderr.len() < 200, "{}", String::from_utf8_lossy(&o.stderr));
+    let o = pulse_map(&out, &["--amp-step", "1e-300"]);
+    refused(&o, &["--amp-step 1e-300", "--amp-max 1", "at most 100000"], &out);
     assert!(o.stderr.len() < 200, "{}", String::from_utf8_lossy(&o.stderr));
     // A pulse far shorter than any block's time scale: refused at once,
     // not an hour's silent run.
@@ -370,7 +494,15 @@ fn messages_name_the_flag_typed_and_print_numbers_readably() {
     let o = output_within(cmd, Duration::from_secs(20));
     refused(&o, &["--omega 1e6", "above 1000"], &out);
     let o = rocking()
-        .args(["spectrum", "--pulse", "one-sine", "--pulse-accel", "0.5", "--pulse-period", "1e-6"])
+        .args([
+            "spectrum",
+            "--pulse",
+            "one-sine",
+            "--pulse-accel",
+            "0.5",
+            "--pulse-period",
+            "1e-6",
+        ])
         .args(["--from", "0.5", "--to", "1", "--count", "2", "-q", "--out"])
         .arg(&out)
         .output()

@@ -9,11 +9,12 @@ use anyhow::anyhow;
 
 use super::args::SceneArgs;
 use super::batch::BatchError;
+use crate::analysis::engineering::overturn_scale::ladder;
 use crate::io::config;
 use crate::io::record::{RecordError, RecordSpec, read_record_as};
 use crate::model::units::AccelUnit;
-use crate::sim::{Scenario, ScenarioError};
 use crate::sim::scenario::Record;
+use crate::sim::{Scenario, ScenarioError};
 
 /// Most values of one list flag.
 pub const MAX_LIST: usize = 100_000;
@@ -215,15 +216,17 @@ pub fn positive_list(flag: &str, text: &str) -> Result<Vec<f64>, BatchError> {
                 "N = {n}: must be >= 2 (1 when FROM = TO) and at most {MAX_LIST}"
             )));
         }
-        Some((0..n)
-            .map(|i| {
-                if i + 1 == n {
-                    to
-                } else {
-                    from + (to - from) * i as f64 / (n - 1).max(1) as f64
-                }
-            })
-            .collect::<Vec<f64>>())
+        Some(
+            (0..n)
+                .map(|i| {
+                    if i + 1 == n {
+                        to
+                    } else {
+                        from + (to - from) * i as f64 / (n - 1).max(1) as f64
+                    }
+                })
+                .collect::<Vec<f64>>(),
+        )
     } else {
         None
     };
@@ -243,7 +246,10 @@ pub fn positive_list(flag: &str, text: &str) -> Result<Vec<f64>, BatchError> {
         return Err(bad(format!("needs 1 to {MAX_LIST} values")));
     }
     if let Some(v) = values.iter().find(|v| !(v.is_finite() && **v > 0.0)) {
-        return Err(bad(format!("{} is not > 0 (every value must be a finite number > 0)", show(*v))));
+        return Err(bad(format!(
+            "{} is not > 0 (every value must be a finite number > 0)",
+            show(*v)
+        )));
     }
     let mut order: Vec<usize> = (0..values.len()).collect();
     order.sort_by(|&a, &b| values[a].total_cmp(&values[b]).then(a.cmp(&b)));
@@ -257,7 +263,12 @@ pub fn positive_list(flag: &str, text: &str) -> Result<Vec<f64>, BatchError> {
                 show(values[i])
             )
         } else {
-            format!("{} is given twice (values {} and {}); give each once", show(values[i]), i + 1, j + 1)
+            format!(
+                "{} is given twice (values {} and {}); give each once",
+                show(values[i]),
+                i + 1,
+                j + 1
+            )
         }));
     }
     Ok(values)
@@ -273,6 +284,33 @@ pub fn increasing(flag: &str, values: &[f64]) -> Result<(), BatchError> {
         ))),
         None => Ok(()),
     }
+}
+
+/// The amplitudes or scales a search tries, `step`, 2·step, … `max`
+/// (`analysis::engineering::overturn_scale::ladder`), checked here so that
+/// errors name the flags and print the numbers as [`show`] does.
+pub fn search_ladder(step_flag: &str, step: f64, max_flag: &str, max: f64) -> Result<Vec<f64>, BatchError> {
+    if !(step > 0.0 && step.is_finite()) {
+        return Err(input(anyhow!(
+            "{step_flag} {}: must be a finite number > 0",
+            show(step)
+        )));
+    }
+    if !(max >= step && max.is_finite()) {
+        return Err(input(anyhow!(
+            "{max_flag} {}: must be finite and >= {step_flag} {}",
+            show(max),
+            show(step)
+        )));
+    }
+    ladder(step, max).map_err(|_| {
+        input(anyhow!(
+            "{step_flag} {} up to {max_flag} {}: {} steps; at most 100000",
+            show(step),
+            show(max),
+            show((max / step).floor())
+        ))
+    })
 }
 
 /// A block `BxH` in metres (`0.6x2.0`), both > 0.
@@ -325,7 +363,16 @@ mod tests {
     fn lists_ranges_and_blocks_parse_and_are_checked() {
         assert_eq!(positive_list("--levels", "0.1,0.2, 0.3").unwrap(), vec![0.1, 0.2, 0.3]);
         assert_eq!(positive_list("--levels", "0.5:1.5:3").unwrap(), vec![0.5, 1.0, 1.5]);
-        for bad in ["0,0.1", "-0.1", "0.1,x", "1:0.5:3", "0.1:1:0", ""] {
+        for bad in [
+            "0,0.1",
+            "-0.1",
+            "0.1,x",
+            "1:0.5:3",
+            "0.1:1:0",
+            "",
+            "0.1,0.2,0.1",
+            "0.1:0.1:3",
+        ] {
             let e = match positive_list("--levels", bad) {
                 Err(BatchError::Input(e)) => e.to_string(),
                 other => panic!("{bad}: {other:?}"),

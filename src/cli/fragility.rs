@@ -24,7 +24,9 @@ use anyhow::{Context as _, anyhow, bail};
 use serde_json::{Value as Json, json};
 
 use super::batch::BatchError;
-use super::eng_args::{BaseArgs, Owns, RecordUnitArgs, block, input, positive_list, read_record, show, suite, flag_error};
+use super::eng_args::{
+    BaseArgs, Owns, RecordUnitArgs, block, flag_error, input, positive_list, read_record, show, suite,
+};
 use super::merge::MergeArgs;
 use super::sweep::{progress_bar, progress_fn, thread_pool};
 use crate::analysis::engineering::fragility::{
@@ -162,7 +164,10 @@ pub fn run(args: &FragilityArgs) -> Result<(), BatchError> {
         }
     }
     if !(args.threshold > 0.0 && args.threshold.is_finite()) {
-        return Err(input(anyhow!("--threshold {}: must be a θ/α > 0", show(args.threshold))));
+        return Err(input(anyhow!(
+            "--threshold {}: must be a θ/α > 0",
+            show(args.threshold)
+        )));
     }
     let shard = args.shard.as_deref().map(Shard::parse).transpose().map_err(input)?;
     let spec_read = args.reading.spec()?;
@@ -216,15 +221,14 @@ pub fn run(args: &FragilityArgs) -> Result<(), BatchError> {
     for &b in &blocks {
         for r in &records {
             let scale = levels.iter().copied().fold(0.0, f64::max) / r.intensity;
-            scenario_for(&base, b, &r.drive, scale)
-                .map_err(|e| {
-                    input(anyhow!(
-                        "--block {}x{}: {}",
-                        show(b.width_m),
-                        show(b.height_m),
-                        flag_error(&e, &[("excitation.scale_h", "--levels")])
-                    ))
-                })?;
+            scenario_for(&base, b, &r.drive, scale).map_err(|e| {
+                input(anyhow!(
+                    "--block {}x{}: {}",
+                    show(b.width_m),
+                    show(b.height_m),
+                    flag_error(&e, &[("excitation.scale_h", "--levels")])
+                ))
+            })?;
         }
     }
     let pool = thread_pool(args.threads)?;

@@ -15,11 +15,10 @@ use anyhow::{Context as _, anyhow};
 use serde_json::json;
 
 use super::batch::BatchError;
-use super::eng_args::{BaseArgs, Owns, flag_error, increasing, input, positive_list, show};
+use super::eng_args::{BaseArgs, Owns, flag_error, increasing, input, positive_list, search_ladder, show};
 use super::sweep::{progress_bar, progress_fn, thread_pool};
 use crate::analysis::engineering::BlockSize;
 use crate::analysis::engineering::Drive;
-use crate::analysis::engineering::overturn_scale::ladder;
 use crate::analysis::engineering::pulse_map::{MAP_BLOCK_R_M, PulseKind, PulseMapSpec, pulse_map};
 use crate::analysis::engineering::response::scenario_for;
 use crate::io::config::to_json;
@@ -108,7 +107,9 @@ const FLAGS: &[(&str, &str)] = &[
 fn pulses(args: &PulseMapArgs) -> Result<Vec<PulseKind>, BatchError> {
     let n_cycles = args.cycles.unwrap_or(1);
     if !(1..=MAX_TYPE_C_CYCLES).contains(&n_cycles) {
-        return Err(input(anyhow!("--cycles {n_cycles}: must be in 1..={MAX_TYPE_C_CYCLES}")));
+        return Err(input(anyhow!(
+            "--cycles {n_cycles}: must be in 1..={MAX_TYPE_C_CYCLES}"
+        )));
     }
     let mut out: Vec<PulseKind> = Vec::new();
     for name in args.pulse.split(',').map(str::trim) {
@@ -156,7 +157,7 @@ pub fn run(args: &PulseMapArgs) -> Result<(), BatchError> {
             show(MAX_OMEGA_RATIO)
         )));
     }
-    let ladder = ladder(args.amp_step, args.amp_max).map_err(|e| input(anyhow!("--amp-step/--amp-max: {e}")))?;
+    let ladder = search_ladder("--amp-step", args.amp_step, "--amp-max", args.amp_max)?;
     if !(args.rel_tol > 0.0 && args.rel_tol < 1.0) {
         return Err(input(anyhow!("--rel-tol {}: must be in (0, 1)", show(args.rel_tol))));
     }
@@ -169,15 +170,14 @@ pub fn run(args: &PulseMapArgs) -> Result<(), BatchError> {
                     omega_ratio,
                 };
                 let block = BlockSize::from_half_diagonal(MAP_BLOCK_R_M, ratio);
-                scenario_for(&base, block, &drive, args.amp_max)
-                    .map_err(|e| {
-                        input(anyhow!(
-                            "--omega {}, --b-over-h {}: {}",
-                            show(omega_ratio),
-                            show(ratio),
-                            flag_error(&e, FLAGS)
-                        ))
-                    })?;
+                scenario_for(&base, block, &drive, args.amp_max).map_err(|e| {
+                    input(anyhow!(
+                        "--omega {}, --b-over-h {}: {}",
+                        show(omega_ratio),
+                        show(ratio),
+                        flag_error(&e, FLAGS)
+                    ))
+                })?;
             }
         }
     }

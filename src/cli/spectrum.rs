@@ -21,9 +21,12 @@ use anyhow::{Context as _, anyhow};
 use serde_json::{Value as Json, json};
 
 use super::batch::BatchError;
-use super::eng_args::{BaseArgs, Owns, RecordUnitArgs, increasing, input, positive_list, read_record, show, flag_error};
+use super::eng_args::{
+    BaseArgs, Owns, RecordUnitArgs, flag_error, increasing, input, positive_list, read_record, search_ladder, show,
+};
+use super::pulse_map::MAX_OMEGA_RATIO;
 use super::sweep::{progress_bar, progress_fn, thread_pool};
-use crate::analysis::engineering::overturn_scale::{Failing as _, ladder};
+use crate::analysis::engineering::overturn_scale::Failing as _;
 use crate::analysis::engineering::rocking_spectrum::{
     OverturnOptions, SizeAxis, SizeRange, SizeRangeError, SpectrumPoint, SpectrumSpec, rocking_spectrum,
 };
@@ -32,7 +35,6 @@ use crate::io::config::to_json;
 use crate::io::csv::{self, Num};
 use crate::io::engineering_files::{SpectrumRow, SpectrumWindowRow};
 use crate::io::output;
-use super::pulse_map::MAX_OMEGA_RATIO;
 use crate::model::excitation::pulse::MAX_TYPE_C_CYCLES;
 use crate::plot::labels::{friction_text, num};
 use crate::plot::rocking_spectrum::{OverturnScaleFigure, OverturnSeries, SpectrumFigure, SpectrumSeries};
@@ -204,7 +206,10 @@ fn owns(args: &SpectrumArgs) -> Owns {
 /// Refuses flags that the other flags make meaningless (each would be
 /// ignored without a word).
 fn refuse_ignored_flags(args: &SpectrumArgs) -> Result<(), BatchError> {
-    let record_flags = [("--unit", args.reading.unit.is_some()), ("--dt", args.reading.dt.is_some())];
+    let record_flags = [
+        ("--unit", args.reading.unit.is_some()),
+        ("--dt", args.reading.dt.is_some()),
+    ];
     let pulse_flags = [
         ("--pulse-accel", args.pulse_accel.is_some()),
         ("--pulse-period", args.pulse_period.is_some()),
@@ -232,7 +237,9 @@ fn refuse_ignored_flags(args: &SpectrumArgs) -> Result<(), BatchError> {
             ("--rel-tol", args.rel_tol.is_some()),
         ] {
             if given {
-                return Err(input(anyhow!("{flag}: only with --overturn-scale; add it or remove {flag}")));
+                return Err(input(anyhow!(
+                    "{flag}: only with --overturn-scale; add it or remove {flag}"
+                )));
             }
         }
     }
@@ -361,8 +368,11 @@ pub fn run(args: &SpectrumArgs) -> Result<(), BatchError> {
         return Err(input(anyhow!("--count × --b-over-h: at most 1000000 blocks")));
     }
     let overturn = if args.overturn_scale {
-        let (step, max) = (args.search_step.unwrap_or(SEARCH_STEP), args.search_max.unwrap_or(SEARCH_MAX));
-        let ladder = ladder(step, max).map_err(|e| input(anyhow!("--search-step/--search-max: {e}")))?;
+        let (step, max) = (
+            args.search_step.unwrap_or(SEARCH_STEP),
+            args.search_max.unwrap_or(SEARCH_MAX),
+        );
+        let ladder = search_ladder("--search-step", step, "--search-max", max)?;
         let rel_tol = args.rel_tol.unwrap_or(REL_TOL);
         if !(rel_tol > 0.0 && rel_tol < 1.0) {
             return Err(input(anyhow!("--rel-tol {}: must be in (0, 1)", show(rel_tol))));
@@ -382,7 +392,10 @@ pub fn run(args: &SpectrumArgs) -> Result<(), BatchError> {
     // A pulse far shorter than the block's time scale is refused as in
     // `pulse-map` (see MAX_OMEGA_RATIO).
     if let Drive::PhysicalPulse { omega_p, .. } = motion.drive
-        && let Some((_, _, b)) = spec.blocks().into_iter().find(|(_, _, b)| omega_p / b.p_per_s() > MAX_OMEGA_RATIO)
+        && let Some((_, _, b)) = spec
+            .blocks()
+            .into_iter()
+            .find(|(_, _, b)| omega_p / b.p_per_s() > MAX_OMEGA_RATIO)
     {
         return Err(input(anyhow!(
             "--pulse-period {}: ω_p/p = {} for the block R = {} m, above {} (see pulse-map --omega); give a longer period or larger blocks",
@@ -394,8 +407,16 @@ pub fn run(args: &SpectrumArgs) -> Result<(), BatchError> {
     }
     // Every block's scenario is checked before anything runs.
     for (_, _, block) in spec.blocks() {
-        crate::analysis::engineering::response::scenario_for(&base, block, &motion.drive, motion.scale)
-            .map_err(|e| input(anyhow!("block {} × {} m: {}", show(block.width_m), show(block.height_m), flag_error(&e, FLAGS))))?;
+        crate::analysis::engineering::response::scenario_for(&base, block, &motion.drive, motion.scale).map_err(
+            |e| {
+                input(anyhow!(
+                    "block {} × {} m: {}",
+                    show(block.width_m),
+                    show(block.height_m),
+                    flag_error(&e, FLAGS)
+                ))
+            },
+        )?;
     }
     let pool = thread_pool(args.threads)?;
     output::check_writable(&args.out)

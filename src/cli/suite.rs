@@ -113,7 +113,10 @@ fn folder(dir: &Path, spec: RecordSpec, out: &mut Vec<SuiteEntry>) -> Result<(),
     let (records, skipped): (Vec<PathBuf>, Vec<PathBuf>) = files.into_iter().partition(|p| looks_like_record(p));
     let names = |ps: &[PathBuf]| {
         ps.iter()
-            .map(|p| p.file_name().map_or_else(String::new, |n| n.to_string_lossy().into_owned()))
+            .map(|p| {
+                p.file_name()
+                    .map_or_else(String::new, |n| n.to_string_lossy().into_owned())
+            })
             .collect::<Vec<_>>()
             .join(", ")
     };
@@ -194,7 +197,11 @@ fn read_list(list: &Path, spec: RecordSpec, out: &mut Vec<SuiteEntry>) -> Result
     if !meta.is_file() {
         return Err(bad("not a regular file (a suite is read from a file)".into()));
     }
-    let too_big = |bytes: u64| bad(format!("{bytes} bytes; a suite list is at most {MAX_SUITE_BYTES} bytes (1 MiB)"));
+    let too_big = |bytes: u64| {
+        bad(format!(
+            "{bytes} bytes; a suite list is at most {MAX_SUITE_BYTES} bytes (1 MiB)"
+        ))
+    };
     if meta.len() > MAX_SUITE_BYTES {
         return Err(too_big(meta.len()));
     }
@@ -269,7 +276,10 @@ mod tests {
     fn suite_lines_take_quotes_tabs_and_trailing_comments() {
         assert_eq!(fields("a.dat g").unwrap(), Some(("a.dat", Some("g"))));
         assert_eq!(fields("  a.dat  ").unwrap(), Some(("a.dat", None)));
-        assert_eq!(fields("\"a b.dat\" m/s2 # Kobe").unwrap(), Some(("a b.dat", Some("m/s2"))));
+        assert_eq!(
+            fields("\"a b.dat\" m/s2 # Kobe").unwrap(),
+            Some(("a b.dat", Some("m/s2")))
+        );
         assert_eq!(fields("a b.dat\tg").unwrap(), Some(("a b.dat", Some("g"))));
         assert_eq!(fields("a b.dat\t# no unit").unwrap(), Some(("a b.dat", None)));
         assert_eq!(fields("a.dat # note").unwrap(), Some(("a.dat", None)));
