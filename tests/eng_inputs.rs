@@ -485,7 +485,11 @@ fn messages_name_the_flag_typed_and_print_numbers_readably() {
     refused(&o, &["--to 1e-301", "--from 1e-300"], &out);
     assert!(o.stderr.len() < 200, "{}", String::from_utf8_lossy(&o.stderr));
     let o = pulse_map(&out, &["--amp-step", "1e-300"]);
-    refused(&o, &["--amp-step 1e-300", "--amp-max 1", "at most 100000"], &out);
+    refused(
+        &o,
+        &["--amp-step 1e-300", "--amp-max 1", "more than 100000 steps"],
+        &out,
+    );
     assert!(o.stderr.len() < 200, "{}", String::from_utf8_lossy(&o.stderr));
     // A pulse far shorter than any block's time scale: refused at once,
     // not an hour's silent run.

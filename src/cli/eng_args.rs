@@ -305,10 +305,9 @@ pub fn search_ladder(step_flag: &str, step: f64, max_flag: &str, max: f64) -> Re
     }
     ladder(step, max).map_err(|_| {
         input(anyhow!(
-            "{step_flag} {} up to {max_flag} {}: {} steps; at most 100000",
+            "{step_flag} {} up to {max_flag} {}: more than 100000 steps; give a larger step",
             show(step),
-            show(max),
-            show((max / step).floor())
+            show(max)
         ))
     })
 }

@@ -151,7 +151,7 @@ pub fn run(args: &PulseMapArgs) -> Result<(), BatchError> {
     increasing("--omega", &omegas)?;
     if let Some(&w) = omegas.iter().find(|&&w| w > MAX_OMEGA_RATIO) {
         return Err(input(anyhow!(
-            "--omega {}: ω_p/p = {} is above {}, beyond any ground pulse (real pulses and blocks stay below 60) and about an hour a point at 1e6",
+            "--omega {}: ω_p/p = {} is above {}: ground pulses on real blocks stay below 60, and such a point runs for minutes to hours",
             args.omega,
             show(w),
             show(MAX_OMEGA_RATIO)
