@@ -3,17 +3,18 @@
 //! record with its unit, and number lists. Every error names the flag (or
 //! the file and line) and is bad input (exit 2).
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
-use anyhow::{Context as _, anyhow};
+use anyhow::anyhow;
 
 use super::args::SceneArgs;
 use super::batch::BatchError;
+use crate::analysis::engineering::overturn_scale::ladder;
 use crate::io::config;
 use crate::io::record::{RecordError, RecordSpec, read_record_as};
 use crate::model::units::AccelUnit;
-use crate::sim::Scenario;
 use crate::sim::scenario::Record;
+use crate::sim::{Scenario, ScenarioError};
 
 /// Most values of one list flag.
 pub const MAX_LIST: usize = 100_000;
@@ -35,15 +36,91 @@ pub struct BaseArgs {
     pub scene: SceneArgs,
 }
 
+/// What an engineering command sets itself on every run, so that a
+/// `--set` of a key it would replace or ignore is refused naming the flags
+/// that set it instead.
+#[derive(Clone, Copy, Debug)]
+pub struct Owns {
+    /// The command, as typed (`spectrum`).
+    pub command: &'static str,
+    /// The flags that set the blocks' sizes.
+    pub sizes: &'static str,
+    /// The flags that set the motion.
+    pub motion: &'static str,
+    /// Whether the motion is a record (a run lasts the record and
+    /// `run.tail_s`); otherwise a pulse (the pulse and 50 τ).
+    pub record: bool,
+}
+
+/// The vertical-motion keys: a suite or spectrum is of horizontal motions.
+const VERTICAL_KEYS: &[&str] = &[
+    "a_v", "omega_v", "phase_v", "file_v", "unit_v", "dt_v", "crc32_v", "scale_v", "pga_v",
+];
+
+impl Owns {
+    /// Why `--set key` is refused, if it is: the engineering runs replace
+    /// the block, the motion, the initial state, the run's end, its output
+    /// and analyses (see `response::scenario_for`); a vertical motion
+    /// would be applied unscaled and unnamed, so it is refused until paired
+    /// H + V suites exist.
+    pub fn refusal(&self, key: &str) -> Option<String> {
+        let (section, name) = key.split_once('.')?;
+        let cmd = self.command;
+        let why = match (section, name) {
+            ("block", _) => format!("{cmd} sets every block's size itself ({}); remove it", self.sizes),
+            ("excitation", n) if VERTICAL_KEYS.contains(&n) => format!(
+                "{cmd} runs horizontal motions only; paired horizontal + vertical (H + V) records are not supported yet; remove it"
+            ),
+            ("excitation", _) => format!("{cmd} sets the motion itself ({}); remove it", self.motion),
+            ("initial", _) => format!("{cmd} starts every run at rest; remove it"),
+            ("run", "tau_end" | "t_end") if self.record => format!(
+                "{cmd} runs each record to its end and run.tail_s after it (default 30 s); remove it (or set run.tail_s)"
+            ),
+            ("run", "tau_end" | "t_end" | "tail_s") if !self.record => {
+                format!("{cmd} runs each pulse and 50 τ after it; remove it")
+            }
+            ("run", "output_dt") => format!("{cmd} keeps no time history; remove it"),
+            ("analysis", _) => format!("{cmd} computes no Lyapunov exponent or spectrum of a history; remove it"),
+            _ => return None,
+        };
+        Some(format!("--set {key}: {why}"))
+    }
+}
+
 impl BaseArgs {
-    /// The base scenario, validated.
-    pub fn load(&self) -> Result<Scenario, BatchError> {
+    /// The base scenario for the command described by `owns`, validated;
+    /// a `--set` of a key the command sets itself, `--friction` with
+    /// `--set friction.*`, and a vertical record from any source are
+    /// refused.
+    pub fn load(&self, owns: &Owns) -> Result<Scenario, BatchError> {
+        for set in &self.scene.sets {
+            let key = set.split_once('=').map_or(set.as_str(), |(k, _)| k).trim();
+            if let Some(why) = owns.refusal(key) {
+                return Err(input(anyhow!(why)));
+            }
+            if let (Some(f), Some(("friction", _))) = (&self.friction, key.split_once('.')) {
+                return Err(input(anyhow!(
+                    "--friction {f} and --set {key}: both set the friction; give one"
+                )));
+            }
+        }
         let mut base = if self.scene.preset.is_none() && self.scene.config.is_none() {
             let (table, source) = config::base_table(&self.scene.sets).map_err(input)?;
             config::from_table(&table, &source).map_err(input)?
         } else {
             self.scene.load().map_err(input)?
         };
+        if base.excitation.record_v.is_some() {
+            let from = match (&self.scene.preset, &self.scene.config) {
+                (Some(p), _) => format!("--preset {p}"),
+                (_, Some(c)) => format!("--config {}", c.display()),
+                _ => "the base scene".into(),
+            };
+            return Err(input(anyhow!(
+                "{from}: excitation.file_v: {} runs horizontal motions only; paired horizontal + vertical (H + V) records are not supported yet; use a config without a vertical record",
+                owns.command
+            )));
+        }
         if let Some(text) = &self.friction {
             let mu = match text.trim() {
                 "none" | "inf" => f64::INFINITY,
@@ -110,10 +187,11 @@ pub fn read_record(path: &Path, spec: &RecordSpec) -> anyhow::Result<Record> {
 }
 
 /// A list flag's values: `a,b,c` or `FROM:TO:N` (N evenly spaced values,
-/// both ends included), each finite and > 0.
+/// both ends included), each finite and > 0, no value twice (a repeated
+/// level or ratio would count its runs twice or draw one block twice).
 pub fn positive_list(flag: &str, text: &str) -> Result<Vec<f64>, BatchError> {
     let bad = |what: String| input(anyhow!("{flag} {text}: {what}"));
-    let values: Vec<f64> = if let [from, to, n] = text.split(':').collect::<Vec<_>>()[..] {
+    let range = if let [from, to, n] = text.split(':').collect::<Vec<_>>()[..] {
         let (Ok(from), Ok(to), Ok(n)) = (
             from.trim().parse::<f64>(),
             to.trim().parse::<f64>(),
@@ -124,36 +202,73 @@ pub fn positive_list(flag: &str, text: &str) -> Result<Vec<f64>, BatchError> {
             ));
         };
         if to < from {
-            return Err(bad(format!("TO = {to} is below FROM = {from}")));
+            return Err(bad(format!("TO = {} is below FROM = {}", show(to), show(from))));
+        }
+        if from == to && n > 1 {
+            return Err(bad(format!(
+                "FROM = TO = {} gives the same value {n} times; give N = 1 or a TO above FROM",
+                show(from)
+            )));
         }
         if n == 0 || n > MAX_LIST || (n == 1 && from != to) {
             return Err(bad(format!(
                 "N = {n}: must be >= 2 (1 when FROM = TO) and at most {MAX_LIST}"
             )));
         }
-        (0..n)
-            .map(|i| {
-                if i + 1 == n {
-                    to
-                } else {
-                    from + (to - from) * i as f64 / (n - 1).max(1) as f64
-                }
-            })
-            .collect()
+        Some(
+            (0..n)
+                .map(|i| {
+                    if i + 1 == n {
+                        to
+                    } else {
+                        from + (to - from) * i as f64 / (n - 1).max(1) as f64
+                    }
+                })
+                .collect::<Vec<f64>>(),
+        )
     } else {
-        text.split(',')
+        None
+    };
+    let from_range = range.is_some();
+    let values: Vec<f64> = match range {
+        Some(values) => values,
+        None => text
+            .split(',')
             .map(|t| {
                 t.trim()
                     .parse::<f64>()
                     .map_err(|_| bad(format!("{t:?} is not a number")))
             })
-            .collect::<Result<_, _>>()?
+            .collect::<Result<_, _>>()?,
     };
     if values.is_empty() || values.len() > MAX_LIST {
         return Err(bad(format!("needs 1 to {MAX_LIST} values")));
     }
     if let Some(v) = values.iter().find(|v| !(v.is_finite() && **v > 0.0)) {
-        return Err(bad(format!("{v} is not > 0 (every value must be a finite number > 0)")));
+        return Err(bad(format!(
+            "{} is not > 0 (every value must be a finite number > 0)",
+            show(*v)
+        )));
+    }
+    let mut order: Vec<usize> = (0..values.len()).collect();
+    order.sort_by(|&a, &b| values[a].total_cmp(&values[b]).then(a.cmp(&b)));
+    if let Some(w) = order.windows(2).find(|w| values[w[0]] == values[w[1]]) {
+        let (i, j) = (w[0].min(w[1]), w[0].max(w[1]));
+        return Err(bad(if from_range {
+            format!(
+                "values {} and {} are both {} (the step is below the numbers' resolution); give a smaller N",
+                i + 1,
+                j + 1,
+                show(values[i])
+            )
+        } else {
+            format!(
+                "{} is given twice (values {} and {}); give each once",
+                show(values[i]),
+                i + 1,
+                j + 1
+            )
+        }));
     }
     Ok(values)
 }
@@ -161,9 +276,39 @@ pub fn positive_list(flag: &str, text: &str) -> Result<Vec<f64>, BatchError> {
 /// Checks that `values` increase strictly (for grids), naming `flag`.
 pub fn increasing(flag: &str, values: &[f64]) -> Result<(), BatchError> {
     match values.windows(2).find(|w| w[1] <= w[0]) {
-        Some(w) => Err(input(anyhow!("{flag}: values must increase ({} then {})", w[0], w[1]))),
+        Some(w) => Err(input(anyhow!(
+            "{flag}: values must increase ({} then {})",
+            show(w[0]),
+            show(w[1])
+        ))),
         None => Ok(()),
     }
+}
+
+/// The amplitudes or scales a search tries, `step`, 2·step, … `max`
+/// (`analysis::engineering::overturn_scale::ladder`), checked here so that
+/// errors name the flags and print the numbers as [`show`] does.
+pub fn search_ladder(step_flag: &str, step: f64, max_flag: &str, max: f64) -> Result<Vec<f64>, BatchError> {
+    if !(step > 0.0 && step.is_finite()) {
+        return Err(input(anyhow!(
+            "{step_flag} {}: must be a finite number > 0",
+            show(step)
+        )));
+    }
+    if !(max >= step && max.is_finite()) {
+        return Err(input(anyhow!(
+            "{max_flag} {}: must be finite and >= {step_flag} {}",
+            show(max),
+            show(step)
+        )));
+    }
+    ladder(step, max).map_err(|_| {
+        input(anyhow!(
+            "{step_flag} {} up to {max_flag} {}: more than 100000 steps; give a larger step",
+            show(step),
+            show(max)
+        ))
+    })
 }
 
 /// A block `BxH` in metres (`0.6x2.0`), both > 0.
@@ -179,77 +324,28 @@ pub fn block(flag: &str, text: &str) -> Result<(f64, f64), BatchError> {
     }
 }
 
-/// One record of a suite: its file, how to read it, and where it was
-/// named (`LIST:LINE` for a suite list, else `None`).
-pub type SuiteEntry = (PathBuf, RecordSpec, Option<String>);
+pub use super::suite::{SuiteEntry, suite};
 
-/// The record files named by `files` (each a file, or a folder whose
-/// regular files are taken in name order) and by the suite list `suite`
-/// (one record per line, `PATH [UNIT]`, `#` comments, paths relative to
-/// the list's folder), each with its reading spec; errors name the flag or
-/// the list's file and line.
-pub fn suite(files: &[PathBuf], suite: Option<&Path>, spec: RecordSpec) -> Result<Vec<SuiteEntry>, BatchError> {
-    let mut out = Vec::new();
-    for f in files {
-        if f.is_dir() {
-            let mut entries: Vec<PathBuf> = std::fs::read_dir(f)
-                .with_context(|| format!("--records {}", f.display()))
-                .map_err(input)?
-                .filter_map(Result::ok)
-                .map(|e| e.path())
-                .filter(|p| p.is_file() && !p.file_name().is_some_and(|n| n.to_string_lossy().starts_with('.')))
-                .collect();
-            entries.sort();
-            if entries.is_empty() {
-                return Err(input(anyhow!("--records {}: the folder holds no files", f.display())));
-            }
-            out.extend(entries.into_iter().map(|p| (p, spec, None)));
-        } else {
-            out.push((f.clone(), spec, None));
-        }
+/// A number for a message: as typed when it is of everyday size
+/// (`0.35`, `120`), else in scientific form (`1e-300`, `2.5e12`), so no
+/// message prints a 300-digit decimal.
+pub fn show(x: f64) -> String {
+    let a = x.abs();
+    if a == 0.0 || !a.is_finite() || (1e-4..1e9).contains(&a) {
+        format!("{x}")
+    } else {
+        format!("{x:e}")
     }
-    if let Some(list) = suite {
-        let text = std::fs::read_to_string(list)
-            .with_context(|| format!("--suite {}", list.display()))
-            .map_err(input)?;
-        let dir = list.parent().unwrap_or(Path::new("."));
-        for (i, line) in text.lines().enumerate() {
-            let line = line.trim();
-            if line.is_empty() || line.starts_with('#') {
-                continue;
-            }
-            let mut fields = line.split_whitespace();
-            let (Some(path), unit, None) = (fields.next(), fields.next(), fields.next()) else {
-                return Err(input(anyhow!(
-                    "{}:{}: expected `PATH [UNIT]`, found {line:?}",
-                    list.display(),
-                    i + 1
-                )));
-            };
-            let mut s = spec;
-            if let Some(u) = unit {
-                s.unit = Some(AccelUnit::parse(u).ok_or_else(|| {
-                    input(anyhow!(
-                        "{}:{}: unknown unit {u:?} (known: g, m/s2, cm/s2)",
-                        list.display(),
-                        i + 1
-                    ))
-                })?);
-            }
-            let p = PathBuf::from(path);
-            out.push((
-                if p.is_absolute() { p } else { dir.join(p) },
-                s,
-                Some(format!("{}:{}", list.display(), i + 1)),
-            ));
-        }
+}
+
+/// `e` with its config key replaced by the flag the user typed, from
+/// `flags` (`(key, flag)` pairs), the key kept in brackets:
+/// `--pulse-period (excitation.omega_h): …`. A key with no flag is kept.
+pub fn flag_error(e: &ScenarioError, flags: &[(&str, &str)]) -> String {
+    match flags.iter().find(|(key, _)| e.key.starts_with(key)) {
+        Some((_, flag)) => format!("{flag} ({}): {}", e.key, e.message),
+        None => e.to_string(),
     }
-    if out.is_empty() {
-        return Err(input(anyhow!(
-            "--records: give the records with --records FILE|DIR (repeatable) or --suite LIST"
-        )));
-    }
-    Ok(out)
 }
 
 /// Bad input.
@@ -265,7 +361,16 @@ mod tests {
     fn lists_ranges_and_blocks_parse_and_are_checked() {
         assert_eq!(positive_list("--levels", "0.1,0.2, 0.3").unwrap(), vec![0.1, 0.2, 0.3]);
         assert_eq!(positive_list("--levels", "0.5:1.5:3").unwrap(), vec![0.5, 1.0, 1.5]);
-        for bad in ["0,0.1", "-0.1", "0.1,x", "1:0.5:3", "0.1:1:0", ""] {
+        for bad in [
+            "0,0.1",
+            "-0.1",
+            "0.1,x",
+            "1:0.5:3",
+            "0.1:1:0",
+            "",
+            "0.1,0.2,0.1",
+            "0.1:0.1:3",
+        ] {
             let e = match positive_list("--levels", bad) {
                 Err(BatchError::Input(e)) => e.to_string(),
                 other => panic!("{bad}: {other:?}"),

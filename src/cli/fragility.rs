@@ -24,7 +24,9 @@ use anyhow::{Context as _, anyhow, bail};
 use serde_json::{Value as Json, json};
 
 use super::batch::BatchError;
-use super::eng_args::{BaseArgs, RecordUnitArgs, block, input, positive_list, read_record, suite};
+use super::eng_args::{
+    BaseArgs, Owns, RecordUnitArgs, block, flag_error, input, positive_list, read_record, show, suite,
+};
 use super::merge::MergeArgs;
 use super::sweep::{progress_bar, progress_fn, thread_pool};
 use crate::analysis::engineering::fragility::{
@@ -122,9 +124,18 @@ impl Layout {
     }
 }
 
+/// What `fragility` sets itself, for refusing `--set` keys it would
+/// ignore.
+const OWNS: Owns = Owns {
+    command: "fragility",
+    sizes: "--block",
+    motion: "--records/--suite, --unit, --dt, --im, --levels",
+    record: true,
+};
+
 /// Runs `rocking fragility`.
 pub fn run(args: &FragilityArgs) -> Result<(), BatchError> {
-    let base = args.base.load()?;
+    let base = args.base.load(&OWNS)?;
     let im = match args.im {
         ImArg::Pga => Intensity::Pga,
         ImArg::Pgv => Intensity::Pgv,
@@ -140,8 +151,23 @@ pub fn run(args: &FragilityArgs) -> Result<(), BatchError> {
             })
         })
         .collect::<Result<_, _>>()?;
+    // The same block twice would count its runs twice in every fraction.
+    for (j, b) in blocks.iter().enumerate() {
+        if let Some(i) = blocks[..j].iter().position(|a| a == b) {
+            return Err(input(anyhow!(
+                "--block {} and --block {}: the same {} x {} m block twice; give each block once",
+                args.blocks[i],
+                args.blocks[j],
+                show(b.width_m),
+                show(b.height_m)
+            )));
+        }
+    }
     if !(args.threshold > 0.0 && args.threshold.is_finite()) {
-        return Err(input(anyhow!("--threshold {}: must be a θ/α > 0", args.threshold)));
+        return Err(input(anyhow!(
+            "--threshold {}: must be a θ/α > 0",
+            show(args.threshold)
+        )));
     }
     let shard = args.shard.as_deref().map(Shard::parse).transpose().map_err(input)?;
     let spec_read = args.reading.spec()?;
@@ -195,8 +221,14 @@ pub fn run(args: &FragilityArgs) -> Result<(), BatchError> {
     for &b in &blocks {
         for r in &records {
             let scale = levels.iter().copied().fold(0.0, f64::max) / r.intensity;
-            scenario_for(&base, b, &r.drive, scale)
-                .map_err(|e| input(anyhow!("--block {}x{}: {e}", b.width_m, b.height_m)))?;
+            scenario_for(&base, b, &r.drive, scale).map_err(|e| {
+                input(anyhow!(
+                    "--block {}x{}: {}",
+                    show(b.width_m),
+                    show(b.height_m),
+                    flag_error(&e, &[("excitation.scale_h", "--levels")])
+                ))
+            })?;
         }
     }
     let pool = thread_pool(args.threads)?;

@@ -25,6 +25,7 @@ pub mod progress;
 pub mod pulse_map;
 pub mod reproduce;
 pub mod spectrum;
+pub mod suite;
 pub mod sweep;
 pub mod write;
 

@@ -15,11 +15,10 @@ use anyhow::{Context as _, anyhow};
 use serde_json::json;
 
 use super::batch::BatchError;
-use super::eng_args::{BaseArgs, increasing, input, positive_list};
+use super::eng_args::{BaseArgs, Owns, flag_error, increasing, input, positive_list, search_ladder, show};
 use super::sweep::{progress_bar, progress_fn, thread_pool};
 use crate::analysis::engineering::BlockSize;
 use crate::analysis::engineering::Drive;
-use crate::analysis::engineering::overturn_scale::ladder;
 use crate::analysis::engineering::pulse_map::{MAP_BLOCK_R_M, PulseKind, PulseMapSpec, pulse_map};
 use crate::analysis::engineering::response::scenario_for;
 use crate::io::config::to_json;
@@ -38,9 +37,10 @@ pub struct PulseMapArgs {
     /// (type B), type-c (type C_n, n = --cycles).
     #[arg(long, value_name = "LIST", default_value = "one-sine,one-cosine,type-c")]
     pub pulse: String,
-    /// Main cycles n of the type-C pulse.
-    #[arg(long, value_name = "N", default_value_t = 1)]
-    pub cycles: u32,
+    /// Main cycles n of the type-C pulse (default 1; only with type-c in
+    /// --pulse).
+    #[arg(long, value_name = "N")]
+    pub cycles: Option<u32>,
     /// Slenderness ratios B/H, comma-separated or FROM:TO:N.
     #[arg(
         long = "b-over-h",
@@ -77,11 +77,38 @@ pub struct PulseMapArgs {
     pub quiet: bool,
 }
 
+/// Largest pulse frequency ω_p/p a map (or a pulse spectrum) runs. Ground
+/// pulses have periods of about 0.2–10 s (ω_p up to about 31 rad/s) and
+/// blocks of R = 0.05–20 m have p = 0.6–12 1/s, so real cases stay below
+/// ω_p/p ≈ 60; 1000 leaves a factor of 15 for asymptotic studies. Beyond
+/// it the answer is known (the overturning amplitude grows as (ω_p/p)²:
+/// 15.5 at 10 for B/H = 0.2, so about 1.5e5 at 1000, far above any
+/// --amp-max) and a point costs time in proportion to ω_p/p (about 70 min
+/// at 1e6).
+pub const MAX_OMEGA_RATIO: f64 = 1000.0;
+
+/// What `pulse-map` sets itself, for refusing `--set` keys it would
+/// ignore.
+const OWNS: Owns = Owns {
+    command: "pulse-map",
+    sizes: "--b-over-h; the map depends on the block only through B/H",
+    motion: "--pulse, --omega, --cycles, --amp-step/--amp-max",
+    record: false,
+};
+
+/// The config keys a map's run takes from its flags, for errors.
+const FLAGS: &[(&str, &str)] = &[
+    ("excitation.a_h", "--amp-max"),
+    ("excitation.omega_h", "--omega"),
+    ("excitation.cycles", "--cycles"),
+    ("block.", "--b-over-h"),
+];
+
 fn pulses(args: &PulseMapArgs) -> Result<Vec<PulseKind>, BatchError> {
-    if !(1..=MAX_TYPE_C_CYCLES).contains(&args.cycles) {
+    let n_cycles = args.cycles.unwrap_or(1);
+    if !(1..=MAX_TYPE_C_CYCLES).contains(&n_cycles) {
         return Err(input(anyhow!(
-            "--cycles {}: must be in 1..={MAX_TYPE_C_CYCLES}",
-            args.cycles
+            "--cycles {n_cycles}: must be in 1..={MAX_TYPE_C_CYCLES}"
         )));
     }
     let mut out: Vec<PulseKind> = Vec::new();
@@ -96,27 +123,43 @@ fn pulses(args: &PulseMapArgs) -> Result<Vec<PulseKind>, BatchError> {
                 )));
             }
         };
-        let cycles = if shape == ShapeKind::TypeC { args.cycles } else { 1 };
+        let cycles = if shape == ShapeKind::TypeC { n_cycles } else { 1 };
         let kind = PulseKind { shape, cycles };
         if out.contains(&kind) {
             return Err(input(anyhow!("--pulse {}: {name} is listed twice", args.pulse)));
         }
         out.push(kind);
     }
+    if let Some(n) = args.cycles
+        && !out.iter().any(|k| k.shape == ShapeKind::TypeC)
+    {
+        return Err(input(anyhow!(
+            "--cycles {n}: only a type-c pulse has cycles, and --pulse {} has none; remove it",
+            args.pulse
+        )));
+    }
     Ok(out)
 }
 
 /// Runs `rocking pulse-map`.
 pub fn run(args: &PulseMapArgs) -> Result<(), BatchError> {
-    let base = args.base.load()?;
+    let base = args.base.load(&OWNS)?;
     let pulses = pulses(args)?;
     let ratios = positive_list("--b-over-h", &args.b_over_h)?;
     increasing("--b-over-h", &ratios)?;
     let omegas = positive_list("--omega", &args.omega)?;
     increasing("--omega", &omegas)?;
-    let ladder = ladder(args.amp_step, args.amp_max).map_err(|e| input(anyhow!("--amp-step/--amp-max: {e}")))?;
+    if let Some(&w) = omegas.iter().find(|&&w| w > MAX_OMEGA_RATIO) {
+        return Err(input(anyhow!(
+            "--omega {}: ω_p/p = {} is above {}: ground pulses on real blocks stay below 60, and such a point runs for minutes to hours",
+            args.omega,
+            show(w),
+            show(MAX_OMEGA_RATIO)
+        )));
+    }
+    let ladder = search_ladder("--amp-step", args.amp_step, "--amp-max", args.amp_max)?;
     if !(args.rel_tol > 0.0 && args.rel_tol < 1.0) {
-        return Err(input(anyhow!("--rel-tol {}: must be in (0, 1)", args.rel_tol)));
+        return Err(input(anyhow!("--rel-tol {}: must be in (0, 1)", show(args.rel_tol))));
     }
     for &pulse in &pulses {
         for &ratio in &ratios {
@@ -127,8 +170,14 @@ pub fn run(args: &PulseMapArgs) -> Result<(), BatchError> {
                     omega_ratio,
                 };
                 let block = BlockSize::from_half_diagonal(MAP_BLOCK_R_M, ratio);
-                scenario_for(&base, block, &drive, args.amp_max)
-                    .map_err(|e| input(anyhow!("--omega {omega_ratio}, --b-over-h {ratio}: {e}")))?;
+                scenario_for(&base, block, &drive, args.amp_max).map_err(|e| {
+                    input(anyhow!(
+                        "--omega {}, --b-over-h {}: {}",
+                        show(omega_ratio),
+                        show(ratio),
+                        flag_error(&e, FLAGS)
+                    ))
+                })?;
             }
         }
     }

@@ -21,9 +21,12 @@ use anyhow::{Context as _, anyhow};
 use serde_json::{Value as Json, json};
 
 use super::batch::BatchError;
-use super::eng_args::{BaseArgs, RecordUnitArgs, increasing, input, positive_list, read_record};
+use super::eng_args::{
+    BaseArgs, Owns, RecordUnitArgs, flag_error, increasing, input, positive_list, read_record, search_ladder, show,
+};
+use super::pulse_map::MAX_OMEGA_RATIO;
 use super::sweep::{progress_bar, progress_fn, thread_pool};
-use crate::analysis::engineering::overturn_scale::{Failing as _, ladder};
+use crate::analysis::engineering::overturn_scale::Failing as _;
 use crate::analysis::engineering::rocking_spectrum::{
     OverturnOptions, SizeAxis, SizeRange, SizeRangeError, SpectrumPoint, SpectrumSpec, rocking_spectrum,
 };
@@ -32,6 +35,7 @@ use crate::io::config::to_json;
 use crate::io::csv::{self, Num};
 use crate::io::engineering_files::{SpectrumRow, SpectrumWindowRow};
 use crate::io::output;
+use crate::model::excitation::pulse::MAX_TYPE_C_CYCLES;
 use crate::plot::labels::{friction_text, num};
 use crate::plot::rocking_spectrum::{OverturnScaleFigure, OverturnSeries, SpectrumFigure, SpectrumSeries};
 use crate::sim::scenario::ShapeKind;
@@ -86,9 +90,10 @@ pub struct SpectrumArgs {
     /// block to block); give --pulse-accel and --pulse-period.
     #[arg(long, value_enum, value_name = "SHAPE")]
     pub pulse: Option<PulseArg>,
-    /// Main cycles n of a type-C pulse.
-    #[arg(long, value_name = "N", default_value_t = 1)]
-    pub cycles: u32,
+    /// Main cycles n of a type-C pulse (default 1; only with --pulse
+    /// type-c).
+    #[arg(long, value_name = "N")]
+    pub cycles: Option<u32>,
     /// Peak acceleration a_p of the pulse, g.
     #[arg(long, value_name = "G", requires = "pulse")]
     pub pulse_accel: Option<f64>,
@@ -126,15 +131,18 @@ pub struct SpectrumArgs {
     /// bisection) and the safe windows above it.
     #[arg(long)]
     pub overturn_scale: bool,
-    /// Step of the scale factors the search tries.
-    #[arg(long, value_name = "F", default_value_t = 0.1)]
-    pub search_step: f64,
-    /// Largest scale factor the search tries.
-    #[arg(long, value_name = "F", default_value_t = 5.0)]
-    pub search_max: f64,
-    /// Relative width to which each overturning boundary is refined.
-    #[arg(long, value_name = "R", default_value_t = 1e-3)]
-    pub rel_tol: f64,
+    /// Step of the scale factors the search tries (default 0.1; only with
+    /// --overturn-scale).
+    #[arg(long, value_name = "F")]
+    pub search_step: Option<f64>,
+    /// Largest scale factor the search tries (default 5; only with
+    /// --overturn-scale).
+    #[arg(long, value_name = "F")]
+    pub search_max: Option<f64>,
+    /// Relative width to which each overturning boundary is refined
+    /// (default 1e-3; only with --overturn-scale).
+    #[arg(long, value_name = "R")]
+    pub rel_tol: Option<f64>,
     /// Friction and the base scene.
     #[command(flatten)]
     pub base: BaseArgs,
@@ -163,6 +171,81 @@ struct Motion {
     json: Json,
 }
 
+/// Default step of the overturning-scale search: a tenth of the motion as
+/// read resolves the scales engineers quote to one decimal.
+const SEARCH_STEP: f64 = 0.1;
+/// Default largest scale searched: five times the motion as read.
+const SEARCH_MAX: f64 = 5.0;
+/// Default relative width of a refined boundary.
+const REL_TOL: f64 = 1e-3;
+
+/// The config keys a spectrum's run takes from its flags, for errors.
+const FLAGS: &[(&str, &str)] = &[
+    ("excitation.a_h", "--pulse-accel × --scale/--pga"),
+    ("excitation.omega_h", "--pulse-period"),
+    ("excitation.cycles", "--cycles"),
+    ("excitation.scale_h", "--scale/--pga"),
+    ("block.", "--from/--to/--count, --b-over-h"),
+];
+
+/// What `spectrum` sets itself, for refusing `--set` keys it would ignore.
+fn owns(args: &SpectrumArgs) -> Owns {
+    let record = args.pulse.is_none();
+    Owns {
+        command: "spectrum",
+        sizes: "--from/--to/--count, --size, --b-over-h",
+        motion: if record {
+            "--record, --unit, --dt, --scale/--pga"
+        } else {
+            "--pulse, --pulse-accel, --pulse-period, --cycles, --scale/--pga"
+        },
+        record,
+    }
+}
+
+/// Refuses flags that the other flags make meaningless (each would be
+/// ignored without a word).
+fn refuse_ignored_flags(args: &SpectrumArgs) -> Result<(), BatchError> {
+    let record_flags = [
+        ("--unit", args.reading.unit.is_some()),
+        ("--dt", args.reading.dt.is_some()),
+    ];
+    let pulse_flags = [
+        ("--pulse-accel", args.pulse_accel.is_some()),
+        ("--pulse-period", args.pulse_period.is_some()),
+        ("--cycles", args.cycles.is_some()),
+    ];
+    if args.record.is_some() {
+        if let Some((flag, _)) = pulse_flags.iter().find(|(_, given)| *given) {
+            return Err(input(anyhow!("{flag}: describes a --pulse, not a --record; remove it")));
+        }
+    } else if let Some((flag, _)) = record_flags.iter().find(|(_, given)| *given) {
+        return Err(input(anyhow!("{flag}: reads a --record, not a --pulse; remove it")));
+    }
+    if let (Some(n), Some(shape)) = (args.cycles, args.pulse)
+        && shape != PulseArg::TypeC
+    {
+        return Err(input(anyhow!(
+            "--cycles {n}: only a type-c pulse has cycles (--pulse {}); remove it",
+            ShapeKind::from(shape).name()
+        )));
+    }
+    if !args.overturn_scale {
+        for (flag, given) in [
+            ("--search-step", args.search_step.is_some()),
+            ("--search-max", args.search_max.is_some()),
+            ("--rel-tol", args.rel_tol.is_some()),
+        ] {
+            if given {
+                return Err(input(anyhow!(
+                    "{flag}: only with --overturn-scale; add it or remove {flag}"
+                )));
+            }
+        }
+    }
+    Ok(())
+}
+
 fn motion(args: &SpectrumArgs) -> Result<Motion, BatchError> {
     let (drive, pga_g, json) = match (&args.record, args.pulse) {
         (Some(path), _) => {
@@ -184,21 +267,25 @@ fn motion(args: &SpectrumArgs) -> Result<Motion, BatchError> {
         (None, Some(shape)) => {
             let positive = |flag: &str, v: Option<f64>| match v {
                 Some(v) if v > 0.0 && v.is_finite() => Ok(v),
-                Some(v) => Err(input(anyhow!("{flag} {v}: must be a finite number > 0"))),
+                Some(v) => Err(input(anyhow!("{flag} {}: must be a finite number > 0", show(v)))),
                 None => Err(input(anyhow!("{flag}: required with --pulse"))),
             };
             let a_p_g = positive("--pulse-accel", args.pulse_accel)?;
             let period = positive("--pulse-period", args.pulse_period)?;
+            let cycles = args.cycles.unwrap_or(1);
+            if !(1..=MAX_TYPE_C_CYCLES).contains(&cycles) {
+                return Err(input(anyhow!("--cycles {cycles}: must be in 1..={MAX_TYPE_C_CYCLES}")));
+            }
             let drive = Drive::PhysicalPulse {
                 shape: shape.into(),
-                cycles: args.cycles,
+                cycles,
                 a_p_g,
                 omega_p: std::f64::consts::TAU / period,
             };
             let json = json!({
                 "kind": "pulse",
                 "shape": ShapeKind::from(shape).name(),
-                "cycles": args.cycles,
+                "cycles": cycles,
                 "a_p_g": a_p_g,
                 "period_s": period,
                 "pga_g": a_p_g,
@@ -211,9 +298,13 @@ fn motion(args: &SpectrumArgs) -> Result<Motion, BatchError> {
         return Err(input(anyhow!("--record: the record is all zeros (PGA 0 g)")));
     }
     let scale = match (args.scale, args.pga) {
-        (Some(s), _) if !(s > 0.0 && s.is_finite()) => return Err(input(anyhow!("--scale {s}: must be > 0"))),
+        (Some(s), _) if !(s > 0.0 && s.is_finite()) => {
+            return Err(input(anyhow!("--scale {}: must be > 0", show(s))));
+        }
         (Some(s), _) => s,
-        (None, Some(p)) if !(p > 0.0 && p.is_finite()) => return Err(input(anyhow!("--pga {p}: must be > 0 (g)"))),
+        (None, Some(p)) if !(p > 0.0 && p.is_finite()) => {
+            return Err(input(anyhow!("--pga {}: must be > 0 (g)", show(p))));
+        }
         (None, Some(p)) => p / pga_g,
         (None, None) => 1.0,
     };
@@ -232,18 +323,43 @@ fn size_range(args: &SpectrumArgs) -> Result<SizeRange, BatchError> {
         AxisArg::R => SizeAxis::HalfDiagonal,
         AxisArg::H => SizeAxis::Height,
     };
-    SizeRange::new(axis, args.from, args.to, args.count).map_err(|e| match e {
-        SizeRangeError::From(v) => input(anyhow!("--from {v}: must be a size > 0 (m)")),
-        SizeRangeError::Reversed { from, to } => input(anyhow!("--to {to}: below --from {from}; give from <= to")),
+    if args.from == args.to && args.count > 1 {
+        return Err(input(anyhow!(
+            "--count {}: --from = --to = {} m gives {} identical blocks; give --count 1 or a --to above --from",
+            args.count,
+            show(args.from),
+            args.count
+        )));
+    }
+    let range = SizeRange::new(axis, args.from, args.to, args.count).map_err(|e| match e {
+        SizeRangeError::From(v) => input(anyhow!("--from {}: must be a size > 0 (m)", show(v))),
+        SizeRangeError::Reversed { from, to } => input(anyhow!(
+            "--to {}: below --from {}; give from <= to",
+            show(to),
+            show(from)
+        )),
         SizeRangeError::Count(n) => input(anyhow!(
             "--count {n}: must be >= 2 (or 1 when --from = --to) and at most 1000000"
         )),
-    })
+    })?;
+    // Sizes so close that they round to one value are the same block twice.
+    if let Some(w) = range.values().windows(2).find(|w| w[1] <= w[0]) {
+        return Err(input(anyhow!(
+            "--count {}: --from {} to --to {} m are too close for {} distinct sizes ({} twice); give fewer",
+            args.count,
+            show(args.from),
+            show(args.to),
+            args.count,
+            show(w[0])
+        )));
+    }
+    Ok(range)
 }
 
 /// Runs `rocking spectrum`.
 pub fn run(args: &SpectrumArgs) -> Result<(), BatchError> {
-    let base = args.base.load()?;
+    refuse_ignored_flags(args)?;
+    let base = args.base.load(&owns(args))?;
     let motion = motion(args)?;
     let sizes = size_range(args)?;
     let ratios = positive_list("--b-over-h", &args.b_over_h)?;
@@ -252,15 +368,16 @@ pub fn run(args: &SpectrumArgs) -> Result<(), BatchError> {
         return Err(input(anyhow!("--count × --b-over-h: at most 1000000 blocks")));
     }
     let overturn = if args.overturn_scale {
-        let ladder =
-            ladder(args.search_step, args.search_max).map_err(|e| input(anyhow!("--search-step/--search-max: {e}")))?;
-        if !(args.rel_tol > 0.0 && args.rel_tol < 1.0) {
-            return Err(input(anyhow!("--rel-tol {}: must be in (0, 1)", args.rel_tol)));
+        let (step, max) = (
+            args.search_step.unwrap_or(SEARCH_STEP),
+            args.search_max.unwrap_or(SEARCH_MAX),
+        );
+        let ladder = search_ladder("--search-step", step, "--search-max", max)?;
+        let rel_tol = args.rel_tol.unwrap_or(REL_TOL);
+        if !(rel_tol > 0.0 && rel_tol < 1.0) {
+            return Err(input(anyhow!("--rel-tol {}: must be in (0, 1)", show(rel_tol))));
         }
-        Some(OverturnOptions {
-            ladder,
-            rel_tol: args.rel_tol,
-        })
+        Some(OverturnOptions { ladder, rel_tol })
     } else {
         None
     };
@@ -272,10 +389,34 @@ pub fn run(args: &SpectrumArgs) -> Result<(), BatchError> {
         b_over_h: ratios,
         overturn,
     };
+    // A pulse far shorter than the block's time scale is refused as in
+    // `pulse-map` (see MAX_OMEGA_RATIO).
+    if let Drive::PhysicalPulse { omega_p, .. } = motion.drive
+        && let Some((_, _, b)) = spec
+            .blocks()
+            .into_iter()
+            .find(|(_, _, b)| omega_p / b.p_per_s() > MAX_OMEGA_RATIO)
+    {
+        return Err(input(anyhow!(
+            "--pulse-period {}: ω_p/p = {} for the block R = {} m, above {} (see pulse-map --omega); give a longer period or larger blocks",
+            show(args.pulse_period.unwrap_or(f64::NAN)),
+            show(omega_p / b.p_per_s()),
+            show(b.half_diagonal_m()),
+            show(MAX_OMEGA_RATIO)
+        )));
+    }
     // Every block's scenario is checked before anything runs.
     for (_, _, block) in spec.blocks() {
-        crate::analysis::engineering::response::scenario_for(&base, block, &motion.drive, motion.scale)
-            .map_err(|e| input(anyhow!("block {} × {} m: {e}", block.width_m, block.height_m)))?;
+        crate::analysis::engineering::response::scenario_for(&base, block, &motion.drive, motion.scale).map_err(
+            |e| {
+                input(anyhow!(
+                    "block {} × {} m: {}",
+                    show(block.width_m),
+                    show(block.height_m),
+                    flag_error(&e, FLAGS)
+                ))
+            },
+        )?;
     }
     let pool = thread_pool(args.threads)?;
     output::check_writable(&args.out)
@@ -319,7 +460,7 @@ pub fn run(args: &SpectrumArgs) -> Result<(), BatchError> {
         "record_tail_s": base.run.record_tail_s.unwrap_or(crate::sim::scenario::RECORD_TAIL_S),
         "pulse_tail_tau": crate::analysis::engineering::response::PULSE_TAIL_TAU,
         "overturn_scale": spec.overturn.as_ref().map(|o| json!({
-            "step": args.search_step,
+            "step": args.search_step.unwrap_or(SEARCH_STEP),
             "max": o.ladder.last(),
             "rel_tol": o.rel_tol,
         })),
@@ -357,9 +498,9 @@ pub fn run(args: &SpectrumArgs) -> Result<(), BatchError> {
         subtitle: format!(
             "{}; scales {} … {} step {}, boundaries to {} relative",
             friction_text(&base),
-            num(args.search_step),
+            num(args.search_step.unwrap_or(SEARCH_STEP)),
             num(o.ladder.last().copied().unwrap_or(0.0)),
-            num(args.search_step),
+            num(args.search_step.unwrap_or(SEARCH_STEP)),
             num(o.rel_tol)
         ),
         y_label: "smallest overturning PGA (g)".into(),

@@ -56,9 +56,7 @@ impl Settings {
             (_, Some(path)) => Self::open(path)?.0,
             (name, None) => Self::preset(name.unwrap_or("default"))?,
         };
-        for set in sets {
-            set_dotted(&mut s.table, set).map_err(|e| e.to_string())?;
-        }
+        crate::io::config::apply_sets(&mut s.table, sets).map_err(|e| e.to_string())?;
         let cfg = s.resolve()?;
         Ok((s, cfg))
     }

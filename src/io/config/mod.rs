@@ -22,7 +22,7 @@ mod raw;
 mod set;
 
 pub use error::ConfigError;
-pub use set::{line_of, set_dotted, set_dotted_from};
+pub use set::{apply_sets, line_of, set_dotted, set_dotted_from};
 
 use crate::io::record::{self, RecordError, RecordSpec};
 use crate::io::shipped;
@@ -177,15 +177,6 @@ fn json_to_table(v: &Json) -> Result<Table, String> {
         t.insert(k.clone(), tv);
     }
     Ok(t)
-}
-
-/// Applies `--set KEY=VALUE` assignments; a relative record path among
-/// them is relative to the current folder ([`set_dotted`]).
-pub fn apply_sets(table: &mut Table, sets: &[String]) -> Result<(), ConfigError> {
-    for s in sets {
-        set_dotted(table, s)?;
-    }
-    Ok(())
 }
 
 fn file_error(file: &str, message: impl std::fmt::Display) -> ConfigError {

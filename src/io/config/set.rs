@@ -7,6 +7,52 @@ use toml::{Table, Value};
 use super::ConfigError;
 use crate::sim::scenario::SHIPPED_PREFIX;
 
+/// Applies `--set KEY=VALUE` assignments in order. One of a pair of
+/// exclusive keys (`run.t_end`/`run.tau_end`, `scale_h`/`pga_h`, …)
+/// replaces its twin from the file or preset underneath: that is an
+/// override of the same quantity. Two assignments of one pair are refused
+/// (nothing says which was meant), and so is a table that already holds
+/// both before any assignment (the file's conflict is not hidden by a
+/// `--set` that happens to remove one of them).
+pub fn apply_sets(table: &mut Table, sets: &[String]) -> Result<(), ConfigError> {
+    if !sets.is_empty() {
+        refuse_both_in_table(table)?;
+    }
+    let mut given: Vec<(String, String, &str)> = Vec::with_capacity(sets.len());
+    for assignment in sets {
+        let (section, name) = set_dotted_key(table, assignment, cwd(assignment))?;
+        if let Some((_, other, earlier)) = given
+            .iter()
+            .find(|(s, n, _)| *s == section && alternatives(&section, &name).contains(&n.as_str()))
+        {
+            return Err(ConfigError::Usage(format!(
+                "--set {} and --set {}: {section}.{other} and {section}.{name} are alternatives; give one",
+                earlier.trim(),
+                assignment.trim()
+            )));
+        }
+        given.push((section, name, assignment));
+    }
+    Ok(())
+}
+
+/// The first pair of exclusive keys that `table` holds both of, as the
+/// error the config gives for a file with both.
+fn refuse_both_in_table(table: &Table) -> Result<(), ConfigError> {
+    for (section, value) in table {
+        let Value::Table(sec) = value else { continue };
+        for name in sec.keys() {
+            if let Some(other) = alternatives(section, name).iter().find(|o| sec.contains_key(**o)) {
+                return Err(ConfigError::key(
+                    &format!("{section}.{name}"),
+                    format!("give either {section}.{other} or {section}.{name}, not both"),
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
 /// Sets `section.key = value` in `table`, parsing `value` as a TOML value
 /// (`1.5`, `inf`, `"text"`) and falling back to a bare string (`ratio`).
 ///
@@ -15,15 +61,20 @@ use crate::sim::scenario::SHIPPED_PREFIX;
 /// Python is: it is made absolute now, so that the folder of a preset or
 /// config the table came from (against which the paths written inside
 /// that file resolve) never applies to it.
+/// The keys it is an alternative to are removed (see [`apply_sets`]).
 pub fn set_dotted(table: &mut Table, assignment: &str) -> Result<(), ConfigError> {
-    let cwd = std::env::current_dir();
-    set_dotted_from(table, assignment, || {
-        cwd.map_err(|e| {
+    set_dotted_key(table, assignment, cwd(assignment)).map(|_| ())
+}
+
+/// The current folder, asked for only when a relative path needs it.
+fn cwd(assignment: &str) -> impl FnOnce() -> Result<PathBuf, ConfigError> + '_ {
+    move || {
+        std::env::current_dir().map_err(|e| {
             ConfigError::Usage(format!(
                 "--set {assignment}: the current folder cannot be read ({e}), so a relative path cannot be resolved; give an absolute path"
             ))
         })
-    })
+    }
 }
 
 /// [`set_dotted`] with relative record paths resolved against the folder
@@ -33,6 +84,15 @@ pub fn set_dotted_from(
     assignment: &str,
     base: impl FnOnce() -> Result<PathBuf, ConfigError>,
 ) -> Result<(), ConfigError> {
+    set_dotted_key(table, assignment, base).map(|_| ())
+}
+
+/// [`set_dotted_from`], returning the section and key it set.
+fn set_dotted_key(
+    table: &mut Table,
+    assignment: &str,
+    base: impl FnOnce() -> Result<PathBuf, ConfigError>,
+) -> Result<(String, String), ConfigError> {
     let Some((key, raw)) = assignment.split_once('=') else {
         return Err(ConfigError::Usage(format!(
             "--set {assignment}: expected KEY=VALUE, e.g. excitation.a_v=2.5"
@@ -83,10 +143,12 @@ pub fn set_dotted_from(
         sec.remove(*other);
     }
     sec.insert(name.to_string(), value);
-    Ok(())
+    Ok((section.to_string(), name.to_string()))
 }
 
-/// The keys that `section.name` replaces when set.
+/// The keys that `section.name` replaces when set: the pairs a config
+/// refuses together (`run.tail_s` only applies to a run whose record decides
+/// its length, so it is exclusive with both ends).
 fn alternatives(section: &str, name: &str) -> &'static [&'static str] {
     match (section, name) {
         ("run", "t_end") => &["tau_end", "tail_s"],

@@ -1,0 +1,293 @@
+//! The records of a fragility study: `--records FILE|DIR` and the suite
+//! list `--suite LIST`, each record with how to read it and where it was
+//! named. Errors name the flag, or the list's file and line; bad input is
+//! refused before any record is read.
+//!
+//! A suite list has one record per line: `PATH [UNIT]`. PATH is relative
+//! to the list's folder; a path with spaces is written in double quotes
+//! (`"my records/a b.dat" g`) or followed by a tab (`my records/a b.dat<TAB>g`).
+//! UNIT (g, m/s2, cm/s2) applies to that text record. Blank lines and
+//! lines starting with `#` are skipped, and `#` after a space or tab starts
+//! a comment. A UTF-8 byte-order mark at the start is ignored.
+
+use std::io::Read as _;
+use std::path::{Path, PathBuf};
+
+use anyhow::{Context as _, anyhow};
+
+use super::batch::BatchError;
+use super::eng_args::input;
+use crate::io::record::RecordSpec;
+use crate::model::units::AccelUnit;
+
+/// One record of a suite: its file, how to read it, and where it was
+/// named (`LIST:LINE` for a suite list, else `None`: `--records`).
+pub type SuiteEntry = (PathBuf, RecordSpec, Option<String>);
+
+/// Largest suite list read, bytes: a list holds one short line per record,
+/// so 1 MiB is some 10 000 records, more than a fragility study runs in a
+/// day; beyond it the file is not a suite (`/dev/zero` would be read
+/// without end).
+pub const MAX_SUITE_BYTES: u64 = 1 << 20;
+
+/// Bytes of a file in a `--records` folder read to tell a record from
+/// another file (a README, a suite list, a figure).
+const SNIFF_BYTES: u64 = 64 << 10;
+
+/// The record files named by `files` (each a file, or a folder whose
+/// records are taken in name order, other files skipped with a warning)
+/// and by the suite list `suite`, each with its reading spec. A record
+/// named twice (by any route) is refused, naming both places: it would
+/// count its runs twice and narrow every fit's band.
+pub fn suite(files: &[PathBuf], suite: Option<&Path>, spec: RecordSpec) -> Result<Vec<SuiteEntry>, BatchError> {
+    let mut out = Vec::new();
+    for f in files {
+        if f.is_dir() {
+            folder(f, spec, &mut out)?;
+        } else {
+            out.push((f.clone(), spec, None));
+        }
+    }
+    if let Some(list) = suite {
+        let before = out.len();
+        read_list(list, spec, &mut out)?;
+        if out.len() == before {
+            return Err(input(anyhow!(
+                "--suite {}: the suite {} lists no records",
+                list.display(),
+                list.display()
+            )));
+        }
+    }
+    if out.is_empty() {
+        return Err(input(anyhow!(
+            "--records: give the records with --records FILE|DIR (repeatable) or --suite LIST"
+        )));
+    }
+    refuse_twice(&out)?;
+    Ok(out)
+}
+
+/// Where an entry was named, for messages.
+fn origin(entry: &SuiteEntry) -> String {
+    entry
+        .2
+        .clone()
+        .unwrap_or_else(|| format!("--records {}", entry.0.display()))
+}
+
+/// Refuses a record named twice (the same file, however its path is
+/// written).
+fn refuse_twice(entries: &[SuiteEntry]) -> Result<(), BatchError> {
+    let ids: Vec<PathBuf> = entries
+        .iter()
+        .map(|(p, _, _)| p.canonicalize().unwrap_or_else(|_| p.clone()))
+        .collect();
+    for (j, id) in ids.iter().enumerate() {
+        if let Some(i) = ids[..j].iter().position(|other| other == id) {
+            return Err(input(anyhow!(
+                "{} and {}: the record {} is listed twice; list each record once",
+                origin(&entries[i]),
+                origin(&entries[j]),
+                entries[j].0.display()
+            )));
+        }
+    }
+    Ok(())
+}
+
+/// The records of the folder `dir` in name order; its other files (not
+/// records by their first lines) are skipped, named in one warning line.
+fn folder(dir: &Path, spec: RecordSpec, out: &mut Vec<SuiteEntry>) -> Result<(), BatchError> {
+    let mut files: Vec<PathBuf> = std::fs::read_dir(dir)
+        .with_context(|| format!("--records {}", dir.display()))
+        .map_err(input)?
+        .filter_map(Result::ok)
+        .map(|e| e.path())
+        .filter(|p| p.is_file() && !p.file_name().is_some_and(|n| n.to_string_lossy().starts_with('.')))
+        .collect();
+    files.sort();
+    if files.is_empty() {
+        return Err(input(anyhow!("--records {}: the folder holds no files", dir.display())));
+    }
+    let (records, skipped): (Vec<PathBuf>, Vec<PathBuf>) = files.into_iter().partition(|p| looks_like_record(p));
+    let names = |ps: &[PathBuf]| {
+        ps.iter()
+            .map(|p| {
+                p.file_name()
+                    .map_or_else(String::new, |n| n.to_string_lossy().into_owned())
+            })
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    if records.is_empty() {
+        return Err(input(anyhow!(
+            "--records {}: no file in the folder is a record ({})",
+            dir.display(),
+            names(&skipped)
+        )));
+    }
+    if !skipped.is_empty() {
+        eprintln!(
+            "warning: --records {}: skipped {} file(s) that are not records: {}",
+            dir.display(),
+            skipped.len(),
+            names(&skipped)
+        );
+    }
+    out.extend(records.into_iter().map(|p| (p, spec, None)));
+    Ok(())
+}
+
+/// Whether the file at `path` is a ground-motion record by the reader's
+/// grammar (`io::record::read_record_as`): a `.at2` file, a 4th line with
+/// `NPTS` (an AT2 header), or text whose first line that is not blank or a
+/// comment starts with a number, or whose second does (after a header
+/// line). A README or a suite list has words there; a broken record still
+/// looks like one and is refused by the reader, naming its line.
+fn looks_like_record(path: &Path) -> bool {
+    if path
+        .extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| e.eq_ignore_ascii_case("at2"))
+    {
+        return true;
+    }
+    let mut bytes = Vec::new();
+    let Ok(file) = std::fs::File::open(path) else {
+        // Unreadable: taken as a record so that the reader says why.
+        return true;
+    };
+    if file.take(SNIFF_BYTES).read_to_end(&mut bytes).is_err() {
+        return true;
+    }
+    let text = String::from_utf8_lossy(&bytes);
+    let lines: Vec<&str> = text.lines().collect();
+    if lines.get(3).is_some_and(|l| l.to_ascii_uppercase().contains("NPTS")) {
+        return true;
+    }
+    let comment = |l: &str| l.starts_with('#') || l.starts_with('%') || l.starts_with('!') || l.starts_with("//");
+    let numeric = |l: &str| {
+        l.split(|c: char| c.is_whitespace() || c == ',' || c == ';')
+            .find(|f| !f.is_empty())
+            .is_some_and(|f| f.replace(['D', 'd'], "e").parse::<f64>().is_ok())
+    };
+    let mut content = lines
+        .iter()
+        .map(|l| l.trim().trim_start_matches('\u{feff}'))
+        .filter(|l| !l.is_empty() && !comment(l));
+    let first = content.next();
+    let second = content.next();
+    first.is_some_and(numeric) || second.is_some_and(numeric)
+}
+
+/// Reads the suite list `list` (a regular file of at most
+/// [`MAX_SUITE_BYTES`]) into `out`.
+fn read_list(list: &Path, spec: RecordSpec, out: &mut Vec<SuiteEntry>) -> Result<(), BatchError> {
+    let name = list.display();
+    let bad = |what: String| input(anyhow!("--suite {name}: {what}"));
+    let meta = std::fs::metadata(list).map_err(|e| bad(e.to_string()))?;
+    if meta.is_dir() {
+        return Err(bad(format!(
+            "is a folder; a suite is a file listing records (for a folder of records use --records {name})"
+        )));
+    }
+    // Only a regular file of bounded size: a device would be read without
+    // end and a FIFO would block forever.
+    if !meta.is_file() {
+        return Err(bad("not a regular file (a suite is read from a file)".into()));
+    }
+    let too_big = |bytes: u64| {
+        bad(format!(
+            "{bytes} bytes; a suite list is at most {MAX_SUITE_BYTES} bytes (1 MiB)"
+        ))
+    };
+    if meta.len() > MAX_SUITE_BYTES {
+        return Err(too_big(meta.len()));
+    }
+    let mut bytes = Vec::new();
+    std::fs::File::open(list)
+        .and_then(|f| f.take(MAX_SUITE_BYTES + 1).read_to_end(&mut bytes))
+        .map_err(|e| bad(e.to_string()))?;
+    if bytes.len() as u64 > MAX_SUITE_BYTES {
+        return Err(too_big(bytes.len() as u64));
+    }
+    let text = String::from_utf8(bytes).map_err(|_| bad("not UTF-8 text".into()))?;
+    let text = text.strip_prefix('\u{feff}').unwrap_or(&text);
+    let dir = list.parent().unwrap_or(Path::new("."));
+    for (i, line) in text.lines().enumerate() {
+        let at = format!("{name}:{}", i + 1);
+        let Some((path, unit)) = fields(line).map_err(|e| input(anyhow!("{at}: {e}")))? else {
+            continue;
+        };
+        let mut s = spec;
+        if let Some(u) = unit {
+            s.unit = Some(AccelUnit::parse(u).ok_or_else(|| {
+                input(anyhow!(
+                    "{at}: unknown unit {u:?} (known: g, m/s2, cm/s2; a path with spaces goes in double quotes)"
+                ))
+            })?);
+        }
+        let p = PathBuf::from(path);
+        out.push((if p.is_absolute() { p } else { dir.join(p) }, s, Some(at)));
+    }
+    Ok(())
+}
+
+/// The PATH and UNIT of one suite line, `None` for a blank or comment line
+/// (grammar in the module docs).
+fn fields(line: &str) -> Result<Option<(&str, Option<&str>)>, String> {
+    let line = line.trim();
+    if line.is_empty() || line.starts_with('#') {
+        return Ok(None);
+    }
+    let (path, rest) = if let Some(quoted) = line.strip_prefix('"') {
+        let Some(end) = quoted.find('"') else {
+            return Err(format!("unclosed quote in {line:?}"));
+        };
+        let rest = &quoted[end + 1..];
+        if !rest.is_empty() && !rest.starts_with(char::is_whitespace) {
+            return Err(format!("expected a space or tab after the closing quote in {line:?}"));
+        }
+        (&quoted[..end], rest)
+    } else if let Some((path, rest)) = line.split_once('\t') {
+        (path.trim_end(), rest)
+    } else {
+        line.split_once(char::is_whitespace).unwrap_or((line, ""))
+    };
+    if path.is_empty() {
+        return Err(format!("empty path in {line:?}"));
+    }
+    let mut rest = rest.split_whitespace().take_while(|f| !f.starts_with('#'));
+    let unit = rest.next();
+    if rest.next().is_some() {
+        return Err(format!(
+            "expected `PATH [UNIT]`, found {line:?} (a path with spaces goes in double quotes or before a tab)"
+        ));
+    }
+    Ok(Some((path, unit)))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::fields;
+
+    #[test]
+    fn suite_lines_take_quotes_tabs_and_trailing_comments() {
+        assert_eq!(fields("a.dat g").unwrap(), Some(("a.dat", Some("g"))));
+        assert_eq!(fields("  a.dat  ").unwrap(), Some(("a.dat", None)));
+        assert_eq!(
+            fields("\"a b.dat\" m/s2 # Kobe").unwrap(),
+            Some(("a b.dat", Some("m/s2")))
+        );
+        assert_eq!(fields("a b.dat\tg").unwrap(), Some(("a b.dat", Some("g"))));
+        assert_eq!(fields("a b.dat\t# no unit").unwrap(), Some(("a b.dat", None)));
+        assert_eq!(fields("a.dat # note").unwrap(), Some(("a.dat", None)));
+        assert_eq!(fields("a#1.dat g").unwrap(), Some(("a#1.dat", Some("g"))));
+        assert_eq!(fields("# all comment").unwrap(), None);
+        assert_eq!(fields("   ").unwrap(), None);
+        assert!(fields("\"a b.dat g").unwrap_err().contains("unclosed quote"));
+        assert!(fields("a b.dat g").unwrap_err().contains("double quotes"));
+        assert!(fields("\"a\"g").is_err());
+    }
+}
