@@ -104,6 +104,9 @@ impl Figure for SpectrumFigure {
                 .filter(|p| p.0.is_finite() && p.1.is_finite())
                 .collect();
             pts.sort_by(|a, b| a.0.total_cmp(&b.0));
+            // Smaller marks on a dense series (a spectrum of 200 sizes),
+            // whose markers would otherwise merge into a band.
+            let r = if pts.len() > 60 { 3 } else { 4 };
             any_flight |= pts.iter().any(|p| p.2 == EndState::Flight);
             any_overturned |= pts.iter().any(|p| p.2 == EndState::Overturned);
             chart
@@ -115,12 +118,12 @@ impl Figure for SpectrumFigure {
                 .label(s.label.as_str())
                 .legend(move |at| legend_entry(i, at, true));
             chart
-                .draw_series(pts.iter().filter(|p| p.2.survived()).map(|p| marker(i, (p.0, p.1), 4)))
+                .draw_series(pts.iter().filter(|p| p.2.survived()).map(|p| marker(i, (p.0, p.1), r)))
                 .map_err(e)?;
             // In the series' own colour, earlier series larger: where blocks
             // of several B/H overturn at the same p (the same R), each cross
             // still shows around the later ones drawn over it.
-            let arm = 5 + 2 * (self.series.len() - 1 - i).min(4) as i32;
+            let arm = r + 1 + 2 * (self.series.len() - 1 - i).min(4) as i32;
             chart
                 .draw_series(
                     pts.iter()
