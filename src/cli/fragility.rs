@@ -42,6 +42,7 @@ use crate::io::engineering_files::{FractionRow, FragilityRunRow};
 use crate::io::output;
 use crate::plot::fragility::{FragilityCurve, FragilityFigure, FragilityPanel};
 use crate::plot::labels::{friction_text, num};
+use crate::sim::scenario::{IMPLAUSIBLE_PGA_G, IMPLAUSIBLY_SMALL_PGA_G, Record, readable_g};
 
 /// The intensity measure on the command line.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
@@ -133,6 +134,52 @@ const OWNS: Owns = Owns {
     record: true,
 };
 
+/// Scale factor above which a record's scaling is worth a warning: beyond
+/// about 10 a scaled record's duration and frequency content no longer
+/// match the intensity it is scaled to (a weak, short record stands in for
+/// a strong, long one), and the fit leans on motion no site produces.
+pub const LARGE_SCALE: f64 = 10.0;
+
+/// The warnings about one record of the suite, one line each: its PGA as
+/// read (in its unit) beyond what ground motion does, which suggests a wrong
+/// unit (above [`IMPLAUSIBLE_PGA_G`], below [`IMPLAUSIBLY_SMALL_PGA_G`]), and
+/// a scale factor above [`LARGE_SCALE`] to reach the highest level.
+fn record_warnings(name: &str, record: &Record, im: Intensity, intensity: f64, levels: &[f64]) -> Vec<String> {
+    let mut out = Vec::new();
+    let pga = record.series.peaks(1.0).pga_g;
+    let doubt = if pga > IMPLAUSIBLE_PGA_G {
+        Some(format!("implausible for ground motion (above {IMPLAUSIBLE_PGA_G} g)"))
+    } else if pga < IMPLAUSIBLY_SMALL_PGA_G {
+        Some(format!(
+            "implausibly small for ground motion (below {IMPLAUSIBLY_SMALL_PGA_G} g)"
+        ))
+    } else {
+        None
+    };
+    if let Some(doubt) = doubt {
+        out.push(format!(
+            "warning: record {name} ({}): PGA {} g as read in {} is {doubt}; check its unit",
+            record.path.display(),
+            readable_g(pga),
+            record.unit
+        ));
+    }
+    let top = levels.iter().copied().fold(0.0, f64::max);
+    let scale = top / intensity;
+    if scale > LARGE_SCALE {
+        let unit = match im {
+            Intensity::Pga => "g",
+            Intensity::Pgv => "m/s",
+        };
+        out.push(format!(
+            "warning: record {name} ({}): scaled by up to {scale:.1} to reach level {} {unit} (above {LARGE_SCALE}: a weak record stands in for a much stronger one)",
+            record.path.display(),
+            num(top)
+        ));
+    }
+    out
+}
+
 /// Runs `rocking fragility`.
 pub fn run(args: &FragilityArgs) -> Result<(), BatchError> {
     let base = args.base.load(&OWNS)?;
@@ -191,6 +238,9 @@ pub fn run(args: &FragilityArgs) -> Result<(), BatchError> {
                 path.display(),
                 im.column()
             )));
+        }
+        for warning in record_warnings(&Drive::Record(record.clone()).name(), &record, im, intensity, &levels) {
+            eprintln!("{warning}");
         }
         record_json.push(json!({
             "file": path.display().to_string(),
@@ -303,8 +353,12 @@ pub fn run(args: &FragilityArgs) -> Result<(), BatchError> {
         Some(s) => {
             let mut meta = common;
             meta["shard"] = json!(s);
+            let runs_csv = csv::to_string(rows);
+            // What makes a shard checkable by `merge`, as a sweep shard: the
+            // file's rows and CRC-32, so a cut or edited file is noticed.
+            meta["files"] = json!({ "runs.csv": super::sweep::file_check(&runs_csv) });
             super::write::staged(&args.out, |staging| {
-                staging.text("runs.csv", &csv::to_string(rows))?;
+                staging.text("runs.csv", &runs_csv)?;
                 staging.text("fragility.json", &(serde_json::to_string_pretty(&meta)? + "\n"))?;
                 Ok(())
             })?;
@@ -470,7 +524,7 @@ fn write_whole(
             layout.levels.len()
         ),
         subtitle: format!(
-            "{}; dots: fraction of records, lines: lognormal MLE, shaded: 95 % band (Fisher information, delta method)",
+            "{}; markers: fraction of records, lines: lognormal MLE, shaded: 95 % band (Fisher information, delta method)",
             layout.friction
         ),
         x_label: layout.im.label().to_string(),
@@ -506,8 +560,11 @@ pub fn are_fragility_shards(dirs: &[PathBuf]) -> bool {
 struct ShardDir {
     dir: PathBuf,
     shard: Shard,
+    /// `fragility.json` without its `shard` (left null) and `files`.
     common: Json,
     rows: Vec<(u64, FragilityRunRow)>,
+    /// `fragility.json`'s `files`: the rows and CRC-32 of `runs.csv`.
+    files: Json,
 }
 
 fn read_shard(dir: &Path) -> anyhow::Result<ShardDir> {
@@ -535,11 +592,20 @@ fn read_shard(dir: &Path) -> anyhow::Result<ShardDir> {
             shard.count
         );
     }
+    // Shards of versions before these checks have none: their runs cannot
+    // be told from edited ones, so they are not merged.
+    let files = common.as_object_mut().and_then(|o| o.remove("files")).ok_or_else(|| {
+        anyhow!(
+            "{}: no \"files\" entry (rows and CRC-32 of runs.csv), so an edited runs.csv cannot be noticed; recompute the shard with this version",
+            path.display()
+        )
+    })?;
     Ok(ShardDir {
         dir: dir.to_path_buf(),
         shard,
         common,
         rows: csv::read(&dir.join("runs.csv"))?,
+        files,
     })
 }
 
@@ -675,6 +741,11 @@ pub fn merge(args: &MergeArgs) -> Result<(), BatchError> {
                 s.dir.join("runs.csv").display()
             )));
         }
+    }
+    // After the rows (a wrong row is named by its line): the count and
+    // checksum, which catch a well-formed row edited by hand.
+    for s in &shards {
+        super::merge::check_file(&s.dir, "runs.csv", &s.files, &s.dir.join("fragility.json")).map_err(input)?;
     }
     output::check_writable(&args.out)
         .context("--out: cannot write the output directory")

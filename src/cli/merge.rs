@@ -106,7 +106,7 @@ fn read_shard(dir: &Path) -> anyhow::Result<ShardDir> {
 
 /// Checks shard file `name` in `dir` against its entry in `files` (from
 /// `sweep.json`): the same number of data rows and the same CRC-32.
-fn check_file(dir: &Path, name: &str, files: &Json, json_path: &Path) -> anyhow::Result<()> {
+pub(super) fn check_file(dir: &Path, name: &str, files: &Json, json_path: &Path) -> anyhow::Result<()> {
     let path = dir.join(name);
     let bytes = std::fs::read(&path).with_context(|| path.display().to_string())?;
     let entry = files.get(name);

@@ -16,10 +16,28 @@ use serde::{Deserialize, Deserializer, Serialize, Serializer};
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Num(pub f64);
 
+/// What a [`Num`] that is NaN or infinite writes: a cell no text cell can
+/// hold, so that [`has_non_finite`] finds non-finite numbers and nothing
+/// else. A NUL byte cannot occur in a path (record names are file stems)
+/// nor in the fixed words (end states, intensity measures) these files
+/// hold, whereas `inf` and `nan` occur in names (`elcentro-infill`).
+const NON_FINITE_CELL: &str = "\0non-finite";
+
 impl Serialize for Num {
     fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
-        s.collect_str(&format_args!("{:?}", self.0))
+        if self.0.is_finite() {
+            s.collect_str(&format_args!("{:?}", self.0))
+        } else {
+            s.serialize_str(NON_FINITE_CELL)
+        }
     }
+}
+
+/// Whether CSV text made by [`to_string`] holds a non-finite number (a
+/// [`Num`] that was NaN or infinite). Text cells never count, whatever
+/// they spell.
+pub fn has_non_finite(text: &str) -> bool {
+    text.contains(NON_FINITE_CELL)
 }
 
 impl<'de> Deserialize<'de> for Num {
@@ -155,6 +173,17 @@ mod tests {
         assert_eq!(back.iter().map(|(l, _)| *l).collect::<Vec<_>>(), vec![2, 3]);
         assert_eq!(back.into_iter().map(|(_, r)| r).collect::<Vec<_>>(), rows);
         let _ = std::fs::remove_file(p);
+    }
+
+    #[test]
+    fn only_a_non_finite_number_counts_as_non_finite_not_a_name_that_spells_one() {
+        let names = ["elcentro-infill", "inf", "NaN", "-inf", "nan", "Infinity"];
+        let text = to_string(names.iter().map(|n| pair(n, 1.5, Some(-2.0))));
+        assert!(!has_non_finite(&text), "{text}");
+        for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+            assert!(has_non_finite(&to_string([pair("a", bad, None)])), "{bad}");
+            assert!(has_non_finite(&to_string([pair("a", 1.0, Some(bad))])), "{bad}");
+        }
     }
 
     #[test]

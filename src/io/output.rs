@@ -422,10 +422,9 @@ pub fn check_writable(dir: &Path) -> Result<(), OutputError> {
 /// ever left ([`Staging`]). Every file is checked before anything is
 /// created.
 pub fn write_all(dir: &Path, files: &[(&str, String)]) -> Result<(), OutputError> {
-    // CSV cells are numbers and lower-case names, none of which contains
-    // "NaN" or "inf": finding either means a non-finite number.
+    // Numbers, not text: a record or scene name may spell "inf" or "nan".
     for (name, text) in files {
-        if name.ends_with(".csv") && (text.contains("NaN") || text.contains("inf")) {
+        if name.ends_with(".csv") && csv::has_non_finite(text) {
             return Err(OutputError::NonFinite(name.to_string()));
         }
     }

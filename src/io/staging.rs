@@ -13,6 +13,7 @@
 use std::path::{Path, PathBuf};
 use std::sync::{Mutex, MutexGuard};
 
+use super::csv;
 use super::output::OutputError;
 
 /// The folder `dir` is made in (`.` for a bare name), as written.
@@ -176,11 +177,10 @@ impl Staging {
         self.staging.join(name)
     }
 
-    /// Writes a text file. A `.csv` containing `NaN` or `inf` is refused
-    /// (CSV cells here are numbers and lower-case names, none of which
-    /// contains either).
+    /// Writes a text file. A `.csv` holding a non-finite number is refused
+    /// ([`csv::has_non_finite`]: numbers, not names that spell `inf`).
     pub fn text(&mut self, name: &str, text: &str) -> Result<(), OutputError> {
-        if name.ends_with(".csv") && (text.contains("NaN") || text.contains("inf")) {
+        if name.ends_with(".csv") && csv::has_non_finite(text) {
             return Err(OutputError::NonFinite(name.to_string()));
         }
         let p = self.path(name);

@@ -36,18 +36,40 @@ impl AccelUnit {
         }
     }
 
-    /// Reads a unit name: `g`, `m/s2` (or `m/s^2`, `m/s/s`, `m/s²`),
-    /// `cm/s2` (same spellings, or `gal`); any case, no spaces inside.
+    /// Reads a unit name, case-sensitive as SI symbols are (`g` is the
+    /// unit, `G` the gravitational constant; `Ms` would be megaseconds):
+    /// `g`; `m/s2` (or `m/s^2`, `m/s/s`, `m/s²`, `m/sec2`, ...); `cm/s2`
+    /// (the same spellings, or `Gal`, the SI-accepted symbol, or `gal`,
+    /// engineers' usual spelling, which names no other unit). No spaces
+    /// inside. Formats that define upper-case names (AT2 headers' `G`,
+    /// `CM/S/S`) read them with [`AccelUnit::parse_upper_case`].
     pub fn parse(text: &str) -> Option<AccelUnit> {
-        let t = text.trim().to_ascii_lowercase().replace('²', "2");
+        let t = text.trim().replace('²', "2");
         match t.as_str() {
             "g" => Some(AccelUnit::G),
             "m/s2" | "m/s^2" | "m/s/s" | "m/sec2" | "m/sec/sec" | "m/sec^2" => Some(AccelUnit::MetresPerSecond2),
-            "cm/s2" | "cm/s^2" | "cm/s/s" | "cm/sec2" | "cm/sec/sec" | "cm/sec^2" | "gal" => {
+            "cm/s2" | "cm/s^2" | "cm/s/s" | "cm/sec2" | "cm/sec/sec" | "cm/sec^2" | "Gal" | "gal" => {
                 Some(AccelUnit::CentimetresPerSecond2)
             }
             _ => None,
         }
+    }
+
+    /// Reads a unit name as a format that writes names in upper case
+    /// defines them (PEER AT2 headers: `UNITS OF G`, `CM/S/S`, `CM/SEC/SEC`):
+    /// any case, otherwise as [`AccelUnit::parse`]. Not for what users type.
+    pub fn parse_upper_case(text: &str) -> Option<AccelUnit> {
+        let lower = text.to_ascii_lowercase();
+        AccelUnit::parse(&lower)
+    }
+
+    /// The accepted spelling `text` differs from only in case (`G` → `g`),
+    /// for a message that says units are case-sensitive.
+    pub fn case_hint(text: &str) -> Option<&'static str> {
+        let t = text.trim().replace('²', "2");
+        ["g", "m/s2", "cm/s2"]
+            .into_iter()
+            .find(|name| name.eq_ignore_ascii_case(&t) && *name != t)
     }
 
     /// How many g one of this unit is: multiply a value in this unit by it
@@ -89,9 +111,26 @@ mod tests {
         }
         assert_eq!(AccelUnit::MetresPerSecond2.to_g(9.81), 1.0);
         assert_eq!(AccelUnit::CentimetresPerSecond2.to_g(981.0), 1.0);
-        assert_eq!(AccelUnit::parse("GAL"), Some(AccelUnit::CentimetresPerSecond2));
+        assert_eq!(AccelUnit::parse("gal"), Some(AccelUnit::CentimetresPerSecond2));
+        assert_eq!(AccelUnit::parse("Gal"), Some(AccelUnit::CentimetresPerSecond2));
         assert_eq!(AccelUnit::parse("m/s²"), Some(AccelUnit::MetresPerSecond2));
         assert_eq!(AccelUnit::parse("ft/s2"), None);
         assert_eq!(AccelUnit::parse(""), None);
+    }
+
+    #[test]
+    fn unit_names_are_case_sensitive_except_where_a_format_defines_upper_case() {
+        for text in ["G", "GAL", "M/S2", "Cm/s2", "M/s/s"] {
+            assert_eq!(AccelUnit::parse(text), None, "{text}");
+        }
+        assert_eq!(AccelUnit::case_hint("G"), Some("g"));
+        assert_eq!(AccelUnit::case_hint("M/S2"), Some("m/s2"));
+        assert_eq!(AccelUnit::case_hint("g"), None);
+        assert_eq!(AccelUnit::parse_upper_case("G"), Some(AccelUnit::G));
+        assert_eq!(
+            AccelUnit::parse_upper_case("CM/SEC/SEC"),
+            Some(AccelUnit::CentimetresPerSecond2)
+        );
+        assert_eq!(AccelUnit::parse_upper_case("M/S/S"), Some(AccelUnit::MetresPerSecond2));
     }
 }

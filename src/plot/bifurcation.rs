@@ -8,7 +8,7 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use super::labels::{legend_entries, response_colour, response_label};
-use super::{FONT, Figure, PlotError, padded_range, titled};
+use super::{FONT, Figure, PlotError, axis_titles, padded_range, titled};
 use crate::analysis::classify::Response;
 
 /// The data of a bifurcation diagram.
@@ -84,13 +84,17 @@ impl Figure for BifurcationFigure<'_> {
             .map_err(e)?;
         chart
             .configure_mesh()
-            .x_desc(self.x_label.as_str())
-            .y_desc("Θ = θ/ψ at τ_k = 2πk/Ω_h")
             .label_style((FONT, 16))
-            .axis_desc_style((FONT, 19))
             .light_line_style(RGBColor(238, 238, 238))
             .draw()
             .map_err(e)?;
+        axis_titles(
+            root,
+            chart.plotting_area().get_pixel_range(),
+            (self.x_label.as_str(), "Θ = θ/ψ at τ_k = 2πk/Ω_h"),
+            19.0,
+            (56, 80),
+        )?;
 
         for (band, colour, label) in [
             (Response::Tumbled, TUMBLED_BAND, "tumbled (blank)"),
@@ -145,5 +149,30 @@ impl Figure for BifurcationFigure<'_> {
             .draw()
             .map_err(e)?;
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_parameter_and_section_labels_show_subscripts_not_underscores() {
+        let values = [
+            (0.0, Response::Periodic { period: 1 }),
+            (1.0, Response::Periodic { period: 2 }),
+        ];
+        let points = [(0.0, 0.01), (1.0, 0.02), (1.0, -0.02)];
+        let fig = BifurcationFigure {
+            title: "Bifurcation diagram over A_v".into(),
+            subtitle: "Ω_h = Ω_v = 8".into(),
+            x_label: crate::plot::labels::param_label(crate::sim::Param::Av),
+            values: &values,
+            points: &points,
+            step: 1.0,
+        };
+        let svg = fig.to_svg().unwrap();
+        assert_eq!(crate::plot::svg_text::underscores(&svg), Vec::<String>::new());
+        crate::plot::svg_text::assert_numbered(&svg, "bifurcation");
     }
 }

@@ -1,13 +1,17 @@
 //! Fragility curves: two panels, P(overturning) and P(θ/α ≥ threshold)
-//! against the intensity measure; per block the observed fractions as
-//! dots, the fitted lognormal curve as a line and its pointwise 95 % band
-//! shaded.
+//! against the intensity measure; per block (a colour and a marker shape
+//! each) the observed fractions as markers, the fitted lognormal curve as a
+//! line and its pointwise 95 % band shaded.
 
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use super::rocking_spectrum::colour;
-use super::{FONT, Figure, PlotError, titled};
+use super::marks::{colour, legend_entry, marker};
+use super::{FONT, Figure, PlotError, axis_titles, titled};
+
+/// Pixels below and left of each panel's plotting area for numbers and
+/// titles.
+const LABEL_AREAS: (i32, i32) = (50, 64);
 use crate::analysis::engineering::lognormal::BandPoint;
 
 /// One block in one panel.
@@ -63,27 +67,36 @@ impl Figure for FragilityFigure {
             let mut chart = ChartBuilder::on(cell)
                 .caption(panel.caption.as_str(), (FONT, 20))
                 .margin(14)
-                .x_label_area_size(50)
-                .y_label_area_size(64)
+                .x_label_area_size(LABEL_AREAS.0)
+                .y_label_area_size(LABEL_AREAS.1)
                 .build_cartesian_2d(0.0..x1, 0.0..1.02)
                 .map_err(e)?;
             chart
                 .configure_mesh()
-                .x_desc(self.x_label.as_str())
-                .y_desc("probability")
                 .label_style((FONT, 15))
-                .axis_desc_style((FONT, 17))
                 .light_line_style(RGBColor(238, 238, 238))
                 .draw()
                 .map_err(e)?;
+            axis_titles(
+                root,
+                chart.plotting_area().get_pixel_range(),
+                (self.x_label.as_str(), "probability"),
+                17.0,
+                LABEL_AREAS,
+            )?;
             for (i, curve) in panel.curves.iter().enumerate() {
                 let c = colour(i);
+                // Earlier blocks' markers larger: fractions of 0 and 1 are
+                // shared by many blocks, and each must show around the
+                // later ones drawn over it.
+                let r = 4 + 2 * (panel.curves.len() - 1 - i).min(3) as i32;
                 let fitted: Vec<&BandPoint> = curve
                     .fitted
                     .iter()
                     .filter(|b| [b.level, b.p, b.lo, b.hi].iter().all(|v| v.is_finite()))
                     .collect();
-                if fitted.len() >= 2 {
+                let has_fit = fitted.len() >= 2;
+                if has_fit {
                     let band: Vec<(f64, f64)> = fitted
                         .iter()
                         .map(|b| (b.level, b.hi))
@@ -105,11 +118,11 @@ impl Figure for FragilityFigure {
                             .observed
                             .iter()
                             .filter(|p| p.0.is_finite() && p.1.is_finite())
-                            .map(|&p| Circle::new(p, 4, c.filled())),
+                            .map(|&p| marker(i, p, r)),
                     )
                     .map_err(e)?
                     .label(curve.label.as_str())
-                    .legend(move |(x, y)| Circle::new((x + 8, y), 4, c.filled()));
+                    .legend(move |at| legend_entry(i, at, has_fit));
             }
             chart
                 .configure_series_labels()
@@ -151,5 +164,32 @@ mod tests {
             }],
         };
         assert!(fig.to_svg().unwrap().contains("0.6 × 2.0 m"));
+    }
+
+    #[test]
+    fn each_block_has_its_own_marker_shape_and_the_subtitle_its_subscripts() {
+        let curve = |label: &str| FragilityCurve {
+            label: label.into(),
+            observed: vec![(0.2, 0.0), (0.6, 1.0)],
+            fitted: vec![],
+        };
+        let fig = FragilityFigure {
+            title: "t".into(),
+            subtitle: "μ_s = 0.5, μ_k = 0.5; markers: fraction of records".into(),
+            x_label: "PGA (g)".into(),
+            x_max: 0.6,
+            panels: vec![FragilityPanel {
+                caption: "overturning".into(),
+                curves: vec![curve("0.6 × 2 m"), curve("0.3 × 1.2 m")],
+            }],
+        };
+        let svg = fig.to_svg().unwrap();
+        // Block 1's markers are orange squares (block 0's blue discs).
+        assert!(
+            svg.lines().any(|l| l.starts_with("<rect") && l.contains("#FF7F0E")),
+            "block 1 has no square marker"
+        );
+        assert_eq!(crate::plot::svg_text::underscores(&svg), Vec::<String>::new());
+        crate::plot::svg_text::assert_numbered(&svg, "fragility");
     }
 }

@@ -15,14 +15,20 @@
 pub mod bifurcation;
 pub mod fragility;
 pub mod labels;
+pub mod marks;
 pub mod outcome_map;
 pub mod poincare;
 pub mod pulse_map;
+pub mod rich;
 pub mod rocking_spectrum;
 pub mod spectrum;
+#[cfg(test)]
+pub(crate) mod svg_text;
+pub mod ticks;
 pub mod time_history;
 pub mod work_precision;
 
+use std::ops::Range;
 use std::path::Path;
 use std::sync::OnceLock;
 
@@ -90,22 +96,83 @@ pub trait Figure {
 }
 
 /// Fills the background white and writes a title (and an optional second
-/// line) at the top; returns the area below.
+/// line) at the top, with subscripts ([`rich`]); returns the area below.
 pub fn titled<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
     title: &str,
     subtitle: &str,
 ) -> Result<DrawingArea<DB, Shift>, PlotError> {
     root.fill(&WHITE).map_err(PlotError::from_display)?;
-    let area = root
-        .titled(title, (FONT, 26).into_font().color(&BLACK))
-        .map_err(PlotError::from_display)?;
+    let area = title_line(root, title, 26.0, &BLACK)?;
     if subtitle.is_empty() {
         Ok(area)
     } else {
-        area.titled(subtitle, (FONT, 18).into_font().color(&RGBColor(70, 70, 70)))
-            .map_err(PlotError::from_display)
+        title_line(&area, subtitle, 18.0, &RGBColor(70, 70, 70))
     }
+}
+
+/// One centred line of text at the top of `area` (spaced as plotters'
+/// `titled`, and a little more when a subscript hangs below it); returns
+/// the area below.
+fn title_line<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    text: &str,
+    size: f64,
+    colour: &RGBColor,
+) -> Result<DrawingArea<DB, Shift>, PlotError> {
+    let mut h = rich::height(area, text, size)?;
+    if rich::has_subscript(text) {
+        h += (0.2 * size).round() as i32;
+    }
+    let pad = (h / 2).min(5);
+    let (w, _) = area.dim_in_pixel();
+    rich::draw(
+        area,
+        text,
+        (w as i32 / 2, pad),
+        size,
+        colour,
+        rich::Anchor::Centre,
+        false,
+    )?;
+    Ok(area.margin(pad * 2 + h, 0, 0, 0))
+}
+
+/// Writes the titles of a chart's axes, with subscripts ([`rich`]): `x`
+/// centred at the bottom of the `x_area`-pixel label area under the
+/// plotting area `plot` (its pixel ranges, as
+/// `chart.plotting_area().get_pixel_range()` gives them), `y` upright at
+/// the left of the `y_area`-pixel label area beside it. Drawn on `root`, the
+/// figure's whole area.
+pub fn axis_titles<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    plot: (Range<i32>, Range<i32>),
+    (x, y): (&str, &str),
+    size: f64,
+    (x_area, y_area): (i32, i32),
+) -> Result<(), PlotError> {
+    let (base_x, base_y) = root.get_base_pixel();
+    let (xs, ys) = plot;
+    let colour = RGBColor(0, 0, 0);
+    let h = rich::height(root, x, size)? + if rich::has_subscript(x) { (0.2 * size) as i32 } else { 0 };
+    rich::draw(
+        root,
+        x,
+        ((xs.start + xs.end) / 2 - base_x, ys.end + x_area - h - 2 - base_y),
+        size,
+        &colour,
+        rich::Anchor::Centre,
+        false,
+    )?;
+    rich::draw(
+        root,
+        y,
+        (xs.start - y_area + 2 - base_x, (ys.start + ys.end) / 2 - base_y),
+        size,
+        &colour,
+        rich::Anchor::Centre,
+        true,
+    )
 }
 
 /// A range `[lo, hi]` padded by `pad` of its width, widened to at least

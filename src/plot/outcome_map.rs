@@ -5,7 +5,7 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use super::labels::{legend_entries, legend_key, response_colour, response_label};
-use super::{FONT, Figure, PlotError, titled};
+use super::{FONT, Figure, PlotError, axis_titles, titled};
 use crate::analysis::classify::Response;
 
 /// What the cells are coloured by.
@@ -123,12 +123,16 @@ impl Figure for OutcomeMapFigure<'_> {
         chart
             .configure_mesh()
             .disable_mesh()
-            .x_desc(self.x_label.as_str())
-            .y_desc(self.y_label.as_str())
             .label_style((FONT, 16))
-            .axis_desc_style((FONT, 19))
             .draw()
             .map_err(e)?;
+        axis_titles(
+            root,
+            chart.plotting_area().get_pixel_range(),
+            (self.x_label.as_str(), self.y_label.as_str()),
+            19.0,
+            (56, 80),
+        )?;
         let scale = self.lyapunov_scale();
         let nx = self.x.len();
         chart
@@ -222,5 +226,23 @@ mod tests {
         assert_eq!(diverging(0.0, 1.0), RGBColor(255, 255, 255));
         assert_eq!(diverging(-2.0, 1.0), RGBColor(33, 102, 172));
         assert_eq!(diverging(1.0, 1.0), RGBColor(178, 24, 43));
+    }
+
+    #[test]
+    fn axis_labels_show_subscripts_not_underscores() {
+        let cells = [(Response::Periodic { period: 1 }, None); 4];
+        let fig = OutcomeMapFigure {
+            title: "Outcome map over A_v × Ω_h".into(),
+            subtitle: "s".into(),
+            x_label: crate::plot::labels::param_label(crate::sim::Param::Av),
+            y_label: crate::plot::labels::param_label(crate::sim::Param::OmegaH),
+            x: &[0.0, 1.0],
+            y: &[4.0, 8.0],
+            cells: &cells,
+            colouring: MapColouring::Outcome,
+        };
+        let svg = fig.to_svg().unwrap();
+        assert_eq!(crate::plot::svg_text::underscores(&svg), Vec::<String>::new());
+        crate::plot::svg_text::assert_numbered(&svg, "outcome map");
     }
 }

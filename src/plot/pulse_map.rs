@@ -1,13 +1,18 @@
 //! The pulse overturning map: the smallest overturning amplitude
-//! a_p/(g tan α) against ω_p/p, one line per pulse and slenderness, the
+//! a_p/(g tan α) against ω_p/p, one line and marker per pulse and
+//! slenderness, the
 //! safe windows above it as light bars (the regions that Makris & Roussos
 //! 2000 show between the two overturning modes).
 
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use super::rocking_spectrum::{ScalePoint, colour};
-use super::{FONT, Figure, PlotError, padded_range, titled};
+use super::marks::{colour, legend_entry, marker};
+use super::rocking_spectrum::ScalePoint;
+use super::{FONT, Figure, PlotError, axis_titles, padded_range, titled};
+
+/// Pixels below and left of the plotting area for numbers and titles.
+const LABEL_AREAS: (i32, i32) = (56, 80);
 
 /// One pulse at one slenderness.
 #[derive(Clone, Debug)]
@@ -52,19 +57,26 @@ impl Figure for PulseMapFigure {
         };
         let mut chart = ChartBuilder::on(&area)
             .margin(16)
-            .x_label_area_size(56)
-            .y_label_area_size(80)
+            .x_label_area_size(LABEL_AREAS.0)
+            .y_label_area_size(LABEL_AREAS.1)
             .build_cartesian_2d(x0.max(0.0)..x1, 0.0..y1)
             .map_err(e)?;
         chart
             .configure_mesh()
-            .x_desc("ω_p/p, pulse frequency over the frequency parameter")
-            .y_desc("a_p/(g tan α), smallest overturning amplitude")
             .label_style((FONT, 16))
-            .axis_desc_style((FONT, 19))
             .light_line_style(RGBColor(238, 238, 238))
             .draw()
             .map_err(e)?;
+        axis_titles(
+            root,
+            chart.plotting_area().get_pixel_range(),
+            (
+                "ω_p/p, pulse frequency over the frequency parameter",
+                "a_p/(g tan α), smallest overturning amplitude",
+            ),
+            19.0,
+            LABEL_AREAS,
+        )?;
         chart
             .draw_series(std::iter::once(PathElement::new(
                 vec![(x0.max(0.0), 1.0), (x1, 1.0)],
@@ -96,10 +108,8 @@ impl Figure for PulseMapFigure {
                 .draw_series(LineSeries::new(pts.iter().copied(), c.stroke_width(2)))
                 .map_err(e)?
                 .label(s.label.as_str())
-                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], c.stroke_width(2)));
-            chart
-                .draw_series(pts.iter().map(|&p| Circle::new(p, 3, c.filled())))
-                .map_err(e)?;
+                .legend(move |at| legend_entry(i, at, true));
+            chart.draw_series(pts.iter().map(|&p| marker(i, p, 4))).map_err(e)?;
         }
         if any_window {
             chart
@@ -141,5 +151,29 @@ mod tests {
         };
         let svg = fig.to_svg().unwrap();
         assert!(svg.contains("one-sine") && svg.contains("safe windows above it"));
+    }
+
+    #[test]
+    fn subscripts_are_drawn_not_written_as_underscores_and_axes_are_numbered() {
+        let fig = PulseMapFigure {
+            title: "t".into(),
+            subtitle: "μ_s = 0.5, μ_k = 0.5; a_p/(g tan α) = 0.1 … 6".into(),
+            y_max: 6.0,
+            series: vec![
+                PulseMapSeries {
+                    label: "one-sine, B/H = 0.2".into(),
+                    points: vec![(2.0, Some(1.2), vec![]), (3.0, Some(1.4), vec![])],
+                },
+                PulseMapSeries {
+                    label: "one-cosine, B/H = 0.2".into(),
+                    points: vec![(2.0, Some(1.3), vec![]), (3.0, Some(1.8), vec![])],
+                },
+            ],
+        };
+        let svg = fig.to_svg().unwrap();
+        assert_eq!(crate::plot::svg_text::underscores(&svg), Vec::<String>::new());
+        crate::plot::svg_text::assert_numbered(&svg, "pulse map");
+        // The second series' markers are squares, not discs like the first's.
+        assert!(svg.contains("<rect") && svg.contains("#FF7F0E"), "no square marker");
     }
 }

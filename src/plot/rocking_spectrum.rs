@@ -1,35 +1,28 @@
 //! The rocking spectrum: peak θ/α against the frequency parameter p (log
-//! axis), one line per slenderness, overturned blocks marked by crosses
-//! on the line θ/α = 1 and flight by triangles; and the overturning-scale
-//! spectrum: the smallest overturning PGA against p, with the safe windows
-//! above it as light bars of the series colour. Also the palette the engineering figures share.
+//! axis, numbered however narrow its range), one line and marker shape per
+//! slenderness, overturned blocks marked by crosses of their series' colour
+//! on the line θ/α = 1 and flight by black triangles; and the
+//! overturning-scale spectrum: the smallest overturning PGA against p, with
+//! the safe windows above it as light bars of the series colour.
 
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use super::{FONT, Figure, PlotError, titled};
+use super::marks::{legend_entry, marker};
+use super::ticks::{log_axis, tick_label};
+use super::{FONT, Figure, PlotError, axis_titles, titled};
 use crate::analysis::engineering::EndState;
 
-/// Colours of successive series (blocks, slendernesses, pulses): the
-/// matplotlib "tab10" hues, distinct in print and on screen.
-pub const PALETTE: [RGBColor; 8] = [
-    RGBColor(31, 119, 180),
-    RGBColor(255, 127, 14),
-    RGBColor(44, 160, 44),
-    RGBColor(148, 103, 189),
-    RGBColor(140, 86, 75),
-    RGBColor(227, 119, 194),
-    RGBColor(127, 127, 127),
-    RGBColor(23, 190, 207),
-];
+pub use super::marks::{PALETTE, colour};
 
-/// Colour of series `i`.
-pub fn colour(i: usize) -> RGBColor {
-    PALETTE[i % PALETTE.len()]
-}
+/// Grey of the overturning line θ/α = 1 and of the legend's generic marks.
+const MARK: RGBColor = RGBColor(90, 90, 90);
 
-/// Red of overturning marks.
-const OVERTURN: RGBColor = RGBColor(214, 39, 40);
+/// Title of the p axis, shared by both figures.
+const P_AXIS: &str = "p = √(3g/4R), frequency parameter (1/s)";
+
+/// Pixels below and left of the plotting area for numbers and titles.
+const LABEL_AREAS: (i32, i32) = (56, 80);
 
 /// `[lo, hi]` of the finite positive values, widened by a factor on each
 /// side for a log axis (`default` if none).
@@ -76,25 +69,32 @@ impl Figure for SpectrumFigure {
             * 1.08;
         let mut chart = ChartBuilder::on(&area)
             .margin(16)
-            .x_label_area_size(56)
-            .y_label_area_size(80)
-            .build_cartesian_2d((x0..x1).log_scale(), 0.0..y1)
+            .x_label_area_size(LABEL_AREAS.0)
+            .y_label_area_size(LABEL_AREAS.1)
+            .build_cartesian_2d(log_axis(x0..x1), 0.0..y1)
             .map_err(e)?;
         chart
             .configure_mesh()
-            .x_desc("p = √(3g/4R), frequency parameter (1/s)")
-            .y_desc("peak rotation θ/α")
+            .x_label_formatter(&|v| tick_label(*v))
             .label_style((FONT, 16))
-            .axis_desc_style((FONT, 19))
             .light_line_style(RGBColor(238, 238, 238))
             .draw()
             .map_err(e)?;
+        axis_titles(
+            root,
+            chart.plotting_area().get_pixel_range(),
+            (P_AXIS, "peak rotation θ/α"),
+            19.0,
+            LABEL_AREAS,
+        )?;
         chart
             .draw_series(std::iter::once(PathElement::new(
                 vec![(x0, 1.0), (x1, 1.0)],
-                OVERTURN.mix(0.5).stroke_width(1),
+                MARK.mix(0.5).stroke_width(1),
             )))
             .map_err(e)?;
+        let mut any_flight = false;
+        let mut any_overturned = false;
         for (i, s) in self.series.iter().enumerate() {
             let c = colour(i);
             let mut pts: Vec<(f64, f64, EndState)> = s
@@ -104,6 +104,11 @@ impl Figure for SpectrumFigure {
                 .filter(|p| p.0.is_finite() && p.1.is_finite())
                 .collect();
             pts.sort_by(|a, b| a.0.total_cmp(&b.0));
+            // Smaller marks on a dense series (a spectrum of 200 sizes),
+            // whose markers would otherwise merge into a band.
+            let r = if pts.len() > 60 { 3 } else { 4 };
+            any_flight |= pts.iter().any(|p| p.2 == EndState::Flight);
+            any_overturned |= pts.iter().any(|p| p.2 == EndState::Overturned);
             chart
                 .draw_series(LineSeries::new(
                     pts.iter().map(|p| (p.0, p.1.min(y1))),
@@ -111,19 +116,19 @@ impl Figure for SpectrumFigure {
                 ))
                 .map_err(e)?
                 .label(s.label.as_str())
-                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], c.stroke_width(2)));
+                .legend(move |at| legend_entry(i, at, true));
             chart
-                .draw_series(
-                    pts.iter()
-                        .filter(|p| p.2.survived())
-                        .map(|p| Circle::new((p.0, p.1), 3, c.filled())),
-                )
+                .draw_series(pts.iter().filter(|p| p.2.survived()).map(|p| marker(i, (p.0, p.1), r)))
                 .map_err(e)?;
+            // In the series' own colour, earlier series larger: where blocks
+            // of several B/H overturn at the same p (the same R), each cross
+            // still shows around the later ones drawn over it.
+            let arm = r + 1 + 2 * (self.series.len() - 1 - i).min(4) as i32;
             chart
                 .draw_series(
                     pts.iter()
                         .filter(|p| p.2 == EndState::Overturned)
-                        .map(|p| Cross::new((p.0, p.1.min(y1)), 5, OVERTURN.stroke_width(2))),
+                        .map(|p| Cross::new((p.0, p.1.min(y1)), arm, c.stroke_width(3))),
                 )
                 .map_err(e)?;
             chart
@@ -134,14 +139,26 @@ impl Figure for SpectrumFigure {
                 )
                 .map_err(e)?;
         }
-        chart
-            .draw_series(std::iter::empty::<Cross<(f64, f64), i32>>())
-            .map_err(e)?
-            .label("overturned (× on θ/α = 1)")
-            .legend(|(x, y)| Cross::new((x + 10, y), 5, OVERTURN.stroke_width(2)));
+        if any_overturned {
+            chart
+                .draw_series(std::iter::empty::<Cross<(f64, f64), i32>>())
+                .map_err(e)?
+                .label("overturned (× on θ/α = 1, in its series' colour)")
+                .legend(|(x, y)| Cross::new((x + 10, y), 5, MARK.stroke_width(2)));
+        }
+        if any_flight {
+            chart
+                .draw_series(std::iter::empty::<TriangleMarker<(f64, f64), i32>>())
+                .map_err(e)?
+                .label("flight (the block left the ground)")
+                .legend(|(x, y)| TriangleMarker::new((x + 10, y), 6, BLACK.filled()));
+        }
         chart
             .configure_series_labels()
-            .position(SeriesLabelPosition::UpperLeft)
+            // Where a spectrum is usually empty: small blocks (high p)
+            // overturn at the top, large ones (low p) rock little at the
+            // bottom left.
+            .position(SeriesLabelPosition::LowerRight)
             .background_style(WHITE.mix(0.9))
             .border_style(RGBColor(150, 150, 150))
             .label_font((FONT, 16))
@@ -199,19 +216,24 @@ impl Figure for OverturnScaleFigure {
         };
         let mut chart = ChartBuilder::on(&area)
             .margin(16)
-            .x_label_area_size(56)
-            .y_label_area_size(80)
-            .build_cartesian_2d((x0..x1).log_scale(), 0.0..y1)
+            .x_label_area_size(LABEL_AREAS.0)
+            .y_label_area_size(LABEL_AREAS.1)
+            .build_cartesian_2d(log_axis(x0..x1), 0.0..y1)
             .map_err(e)?;
         chart
             .configure_mesh()
-            .x_desc("p = √(3g/4R), frequency parameter (1/s)")
-            .y_desc(self.y_label.as_str())
+            .x_label_formatter(&|v| tick_label(*v))
             .label_style((FONT, 16))
-            .axis_desc_style((FONT, 19))
             .light_line_style(RGBColor(238, 238, 238))
             .draw()
             .map_err(e)?;
+        axis_titles(
+            root,
+            chart.plotting_area().get_pixel_range(),
+            (P_AXIS, self.y_label.as_str()),
+            19.0,
+            LABEL_AREAS,
+        )?;
         let mut any_window = false;
         for (i, s) in self.series.iter().enumerate() {
             let c = colour(i);
@@ -238,10 +260,8 @@ impl Figure for OverturnScaleFigure {
                 .draw_series(LineSeries::new(pts.iter().copied(), c.stroke_width(2)))
                 .map_err(e)?
                 .label(s.label.as_str())
-                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], c.stroke_width(2)));
-            chart
-                .draw_series(pts.iter().map(|&p| Circle::new(p, 3, c.filled())))
-                .map_err(e)?;
+                .legend(move |at| legend_entry(i, at, true));
+            chart.draw_series(pts.iter().map(|&p| marker(i, p, 4))).map_err(e)?;
         }
         if any_window {
             chart
@@ -290,5 +310,72 @@ mod tests {
         };
         assert!(over.to_svg().unwrap().contains("safe windows above it"));
         assert_eq!(log_range([f64::NAN, -1.0].into_iter(), (0.1, 10.0)), (0.1, 10.0));
+    }
+
+    fn two_series(overturned: bool) -> SpectrumFigure {
+        let end = if overturned {
+            EndState::Overturned
+        } else {
+            EndState::Rest
+        };
+        SpectrumFigure {
+            title: "t".into(),
+            subtitle: "μ_s = 0.4, μ_k = 0.35".into(),
+            series: vec![
+                SpectrumSeries {
+                    label: "B/H = 0.2".into(),
+                    points: vec![(2.0, 0.3, EndState::Rest), (2.5, 1.0, EndState::Overturned)],
+                },
+                SpectrumSeries {
+                    label: "B/H = 0.3".into(),
+                    points: vec![(2.2, 0.2, EndState::Rest), (3.0, 1.0, end)],
+                },
+            ],
+        }
+    }
+
+    #[test]
+    fn both_figures_number_their_p_axis_when_p_spans_less_than_a_decade() {
+        // p of blocks 2 to 3 1/s: no power of ten on the axis.
+        let svg = two_series(true).to_svg().unwrap();
+        crate::plot::svg_text::assert_numbered(&svg, "spectrum");
+        let over = OverturnScaleFigure {
+            title: "t".into(),
+            subtitle: "s".into(),
+            y_label: "smallest overturning PGA (g)".into(),
+            y_max: 2.0,
+            series: vec![OverturnSeries {
+                label: "B/H = 0.2".into(),
+                points: vec![(2.0, Some(0.5), vec![]), (3.0, Some(0.9), vec![])],
+            }],
+        };
+        crate::plot::svg_text::assert_numbered(&over.to_svg().unwrap(), "overturn scale");
+        // A single block: p is one value.
+        let one = OverturnScaleFigure {
+            series: vec![OverturnSeries {
+                label: "B/H = 0.2".into(),
+                points: vec![(2.6, Some(0.5), vec![])],
+            }],
+            ..over
+        };
+        crate::plot::svg_text::assert_numbered(&one.to_svg().unwrap(), "one block");
+    }
+
+    #[test]
+    fn overturned_crosses_take_their_series_colour_and_labels_show_no_underscore() {
+        // Series 1's colour appears more often when its block overturns:
+        // its cross is drawn in it, not in a red shared by every series.
+        let orange = "#FF7F0E";
+        let with = two_series(true).to_svg().unwrap();
+        let without = two_series(false).to_svg().unwrap();
+        assert!(
+            with.matches(orange).count() > without.matches(orange).count(),
+            "series 1's overturning cross is not in its colour"
+        );
+        assert!(!with.contains("#D62728"), "a shared red cross is drawn");
+        for label in ["B/H = 0.2", "B/H = 0.3", "overturned"] {
+            assert!(with.contains(label), "no legend entry {label}");
+        }
+        assert_eq!(crate::plot::svg_text::underscores(&with), Vec::<String>::new());
     }
 }

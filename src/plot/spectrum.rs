@@ -4,7 +4,7 @@
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use super::{FONT, Figure, PlotError, titled};
+use super::{FONT, Figure, PlotError, axis_titles, titled};
 use crate::analysis::spectrum::Peak;
 
 /// Dynamic range shown below the highest bin (twelve decades: beyond that
@@ -63,14 +63,21 @@ impl Figure for SpectrumFigure<'_> {
             .map_err(e)?;
         chart
             .configure_mesh()
-            .x_desc("ω/Ω_h (ω = 2πf in units of p; 1 = the forcing frequency)")
-            .y_desc("PSD of Θ (per cycle per unit τ)")
             .y_label_formatter(&|v| format!("{v:.0e}"))
             .label_style((FONT, 16))
-            .axis_desc_style((FONT, 19))
             .light_line_style(RGBColor(238, 238, 238))
             .draw()
             .map_err(e)?;
+        axis_titles(
+            root,
+            chart.plotting_area().get_pixel_range(),
+            (
+                "ω/Ω_h (ω = 2πf in units of p; 1 = the forcing frequency)",
+                "PSD of Θ (per cycle per unit τ)",
+            ),
+            19.0,
+            (52, 90),
+        )?;
         chart
             .draw_series(LineSeries::new(
                 shown().map(|(h, p)| (*h, p.max(floor))),
@@ -91,5 +98,30 @@ impl Figure for SpectrumFigure<'_> {
                 .map_err(e)?;
         }
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_frequency_axis_shows_its_subscript_not_an_underscore() {
+        let harmonic: Vec<f64> = (0..50).map(|k| f64::from(k) * 0.1).collect();
+        let psd: Vec<f64> = harmonic
+            .iter()
+            .map(|h| 1e-3 / (1.0 + (h - 1.0).powi(2) * 100.0))
+            .collect();
+        let fig = SpectrumFigure {
+            title: "t".into(),
+            subtitle: "Ω_h = Ω_v = 8".into(),
+            harmonic: &harmonic,
+            psd: &psd,
+            peaks: &[],
+            max_harmonic: 4.0,
+        };
+        let svg = fig.to_svg().unwrap();
+        assert_eq!(crate::plot::svg_text::underscores(&svg), Vec::<String>::new());
+        crate::plot::svg_text::assert_numbered(&svg, "power spectrum");
     }
 }

@@ -5,7 +5,9 @@
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use super::{FONT, Figure, PlotError, titled};
+use super::marks::{Marker, shape};
+use super::ticks::{log_axis, tick_label};
+use super::{FONT, Figure, PlotError, axis_titles, titled};
 use crate::bench::Record;
 
 /// The records to draw and the scenes in panel order.
@@ -57,20 +59,24 @@ impl Figure for WorkPrecisionFigure<'_> {
                 .margin(12)
                 .x_label_area_size(44)
                 .y_label_area_size(70)
-                .build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale())
+                .build_cartesian_2d(log_axis(x0..x1), log_axis(y0..y1))
                 .map_err(e)?;
             chart
                 .configure_mesh()
-                .x_desc("solver wall time (s)")
-                .y_desc("max error of Θ, Θ', X' at τ_end")
-                .x_label_formatter(&|v| format!("{v:.0e}"))
-                .y_label_formatter(&|v| format!("{v:.0e}"))
+                .x_label_formatter(&|v| tick_label(*v))
+                .y_label_formatter(&|v| tick_label(*v))
                 .label_style((FONT, 14))
-                .axis_desc_style((FONT, 16))
                 .light_line_style(RGBColor(238, 238, 238))
                 .draw()
                 .map_err(e)?;
-            for (method, colour) in METHODS {
+            axis_titles(
+                root,
+                chart.plotting_area().get_pixel_range(),
+                ("solver wall time (s)", "max error of Θ, Θ', X' at τ_end"),
+                16.0,
+                (44, 70),
+            )?;
+            for (k, (method, colour)) in METHODS.into_iter().enumerate() {
                 let mut pts: Vec<(f64, f64)> = recs
                     .iter()
                     .filter(|r| r.method == method && r.wall_s > 0.0)
@@ -81,9 +87,21 @@ impl Figure for WorkPrecisionFigure<'_> {
                     .draw_series(LineSeries::new(pts.iter().copied(), colour.stroke_width(2)))
                     .map_err(e)?
                     .label(method)
-                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], colour.stroke_width(2)));
+                    .legend(move |(x, y)| Marker {
+                        at: (x + 10, y),
+                        shape: shape(k),
+                        colour,
+                        r: 4,
+                        line: true,
+                    });
                 chart
-                    .draw_series(pts.iter().map(|&p| Circle::new(p, 4, colour.filled())))
+                    .draw_series(pts.iter().map(|&at| Marker {
+                        at,
+                        shape: shape(k),
+                        colour,
+                        r: 4,
+                        line: false,
+                    }))
                     .map_err(e)?;
             }
             chart
@@ -95,5 +113,45 @@ impl Figure for WorkPrecisionFigure<'_> {
                 .map_err(e)?;
         }
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn narrow_log_axes_are_numbered_methods_have_their_own_markers_and_no_underscore_shows() {
+        // Wall times within a factor of 3 and errors within a decade: no
+        // power of ten inside either padded axis.
+        let record = |method: &str, wall_s: f64, error: f64| Record {
+            scene: "rack".into(),
+            method: method.into(),
+            setting: 1e-6,
+            wall_s,
+            rhs_evals: 1,
+            steps: 1,
+            error,
+            impact_time_error: None,
+            impacts: 0,
+        };
+        let records = [
+            record("dop853", 0.0021, 2.1e-7),
+            record("dop853", 0.0035, 3.5e-7),
+            record("dopri5", 0.0025, 2.5e-7),
+            record("dopri5", 0.0031, 4.1e-7),
+        ];
+        let fig = WorkPrecisionFigure {
+            records: &records,
+            scenes: vec!["rack".into()],
+        };
+        let svg = fig.to_svg().unwrap();
+        crate::plot::svg_text::assert_numbered(&svg, "work-precision");
+        assert_eq!(crate::plot::svg_text::underscores(&svg), Vec::<String>::new());
+        // dopri5 (the second method) is drawn with squares.
+        assert!(
+            svg.lines().any(|l| l.starts_with("<rect") && l.contains("#2CA02C")),
+            "dopri5 has no square marker"
+        );
     }
 }

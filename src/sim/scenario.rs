@@ -64,6 +64,12 @@ pub const RECORD_TAIL_S: f64 = 30.0;
 /// ground accelerations ever recorded are about 3–4 g.
 pub const IMPLAUSIBLE_PGA_G: f64 = 5.0;
 
+/// PGA below which a record's unit is probably wrong, g: 0.01 g is about
+/// the threshold of shaking people feel, so a record an engineer runs is
+/// stronger; a record in cm/s² read as m/s² or as g comes out 100 to 1000
+/// times too weak and lands below it.
+pub const IMPLAUSIBLY_SMALL_PGA_G: f64 = 0.01;
+
 /// The block and its contact with the base.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Block {
@@ -508,6 +514,17 @@ pub struct ScenarioError {
     pub message: String,
 }
 
+/// A PGA for a message: three decimals as before where they show it
+/// (0.036 g), three significant digits below (0.000357 g), so a tiny peak
+/// does not print as 0.000.
+pub fn readable_g(g: f64) -> String {
+    if g == 0.0 || g.abs() >= 0.01 {
+        format!("{g:.3}")
+    } else {
+        format!("{g:.2e}")
+    }
+}
+
 impl ScenarioError {
     /// An error about `key`.
     pub fn new(key: impl Into<String>, message: impl std::fmt::Display) -> Self {
@@ -654,30 +671,38 @@ impl Scenario {
     }
 
     /// One line per record whose peak suggests a wrong unit (PGA above
-    /// [`IMPLAUSIBLE_PGA_G`] after unit and scale), naming the file and its
-    /// PGA: the run goes on, but the user is told.
+    /// [`IMPLAUSIBLE_PGA_G`] or below [`IMPLAUSIBLY_SMALL_PGA_G`] after unit
+    /// and scale), naming the file and its PGA: the run goes on, but the
+    /// user is told.
     pub fn warnings(&self) -> Vec<String> {
         let x = &self.excitation;
         if x.kind != ExcitationKind::Record {
             return Vec::new();
         }
-        [("excitation.unit_h", &x.record_h, x.scale_h), ("excitation.unit_v", &x.record_v, x.scale_v)]
-            .into_iter()
-            .filter_map(|(key, r, scale)| {
-                let r = r.as_ref()?;
-                let pga = r.series.peak_abs_g() * scale.abs();
-                (pga > IMPLAUSIBLE_PGA_G).then(|| {
-                    format!(
-                        "warning: {}: PGA {:.3} g (read in {}, scaled by {}) is implausible for ground motion (above {} g); check {key}",
-                        r.path.display(),
-                        pga,
-                        r.unit,
-                        scale,
-                        IMPLAUSIBLE_PGA_G
-                    )
-                })
-            })
-            .collect()
+        [
+            ("excitation.unit_h", &x.record_h, x.scale_h),
+            ("excitation.unit_v", &x.record_v, x.scale_v),
+        ]
+        .into_iter()
+        .filter_map(|(key, r, scale)| {
+            let r = r.as_ref()?;
+            let pga = r.series.peak_abs_g() * scale.abs();
+            let doubt = if pga > IMPLAUSIBLE_PGA_G {
+                format!("implausible for ground motion (above {IMPLAUSIBLE_PGA_G} g)")
+            } else if pga < IMPLAUSIBLY_SMALL_PGA_G {
+                format!("implausibly small for a record to run (below {IMPLAUSIBLY_SMALL_PGA_G} g)")
+            } else {
+                return None;
+            };
+            Some(format!(
+                "warning: {}: PGA {} g (read in {}, scaled by {}) is {doubt}; check {key}",
+                r.path.display(),
+                readable_g(pga),
+                r.unit,
+                scale,
+            ))
+        })
+        .collect()
     }
 
     /// The run options. The section is taken for harmonic excitation.

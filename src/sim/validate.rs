@@ -161,6 +161,18 @@ impl Scenario {
             "|scale| <= 1000",
             x.scale_v,
         )?;
+        // A zero factor makes the record no excitation at all, which no one
+        // means to ask for (a block at rest needs no run); a negative one
+        // flips the record's sign, the other polarity a rocking block
+        // responds to differently, and is allowed.
+        for (key, scale) in [("excitation.scale_h", x.scale_h), ("excitation.scale_v", x.scale_v)] {
+            if scale == 0.0 {
+                return Err(ScenarioError::new(
+                    key,
+                    "0 turns the record into no excitation at all; give a non-zero factor (a negative one flips the record's sign)",
+                ));
+            }
+        }
         if x.kind == ExcitationKind::Record && x.record_h.is_none() {
             return Err(ScenarioError::new(
                 "excitation.file_h",

@@ -208,9 +208,12 @@ fn read_record(keys: &RecordKeys<'_>, source: &Source) -> Result<Option<Record>,
     let unit = match keys.unit {
         None => None,
         Some(text) => Some(AccelUnit::parse(text).ok_or_else(|| {
+            let case = AccelUnit::case_hint(text).map_or(String::new(), |h| {
+                format!(": units are case-sensitive, did you mean \"{h}\"?")
+            });
             ConfigError::key(
                 &keys.key("unit"),
-                format!("unknown unit \"{text}\" (known: g, m/s2, cm/s2)"),
+                format!("unknown unit \"{text}\"{case} (known: g, m/s2, cm/s2)"),
             )
         })?),
     };

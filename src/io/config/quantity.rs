@@ -50,29 +50,67 @@ pub enum Unit {
     CentimetrePerSecond,
 }
 
+/// Every spelling of a non-acceleration unit, exactly as it must be
+/// written: SI symbols are case-sensitive (`ms` is a millisecond, `Ms`
+/// would be a megasecond; `mm` a millimetre, `Mm` a megametre), so no other
+/// case is read. Spaces inside are ignored (`g * tan(alpha)`).
+const SPELLINGS: &[(&str, Unit)] = &[
+    ("g*tan(alpha)", Unit::Uplift),
+    ("g*tan(α)", Unit::Uplift),
+    ("g·tan(alpha)", Unit::Uplift),
+    ("g·tanα", Unit::Uplift),
+    ("g*tanα", Unit::Uplift),
+    ("m", Unit::Metre),
+    ("cm", Unit::Centimetre),
+    ("mm", Unit::Millimetre),
+    ("Hz", Unit::Hertz),
+    ("rad/s", Unit::RadianPerSecond),
+    ("rad/sec", Unit::RadianPerSecond),
+    ("deg/s", Unit::DegreePerSecond),
+    ("°/s", Unit::DegreePerSecond),
+    ("deg/sec", Unit::DegreePerSecond),
+    ("rad", Unit::Radian),
+    ("radian", Unit::Radian),
+    ("radians", Unit::Radian),
+    ("deg", Unit::Degree),
+    ("°", Unit::Degree),
+    ("degree", Unit::Degree),
+    ("degrees", Unit::Degree),
+    ("s", Unit::Second),
+    ("sec", Unit::Second),
+    ("second", Unit::Second),
+    ("seconds", Unit::Second),
+    ("ms", Unit::Millisecond),
+    ("m/s", Unit::MetrePerSecond),
+    ("cm/s", Unit::CentimetrePerSecond),
+];
+
 impl Unit {
-    /// Reads a unit as written after the number (any case).
+    /// Reads a unit as written after the number, case-sensitive (see
+    /// [`SPELLINGS`] and [`AccelUnit::parse`]).
     fn parse(text: &str) -> Option<Unit> {
         if let Some(a) = AccelUnit::parse(text) {
             return Some(Unit::Accel(a));
         }
-        let t = text.trim().to_ascii_lowercase().replace(' ', "");
-        Some(match t.as_str() {
-            "g*tan(alpha)" | "g*tan(α)" | "g·tan(alpha)" | "g·tanα" | "g*tanα" => Unit::Uplift,
-            "m" => Unit::Metre,
-            "cm" => Unit::Centimetre,
-            "mm" => Unit::Millimetre,
-            "hz" => Unit::Hertz,
-            "rad/s" | "rad/sec" => Unit::RadianPerSecond,
-            "deg/s" | "°/s" | "deg/sec" => Unit::DegreePerSecond,
-            "rad" | "radian" | "radians" => Unit::Radian,
-            "deg" | "°" | "degree" | "degrees" => Unit::Degree,
-            "s" | "sec" | "second" | "seconds" => Unit::Second,
-            "ms" => Unit::Millisecond,
-            "m/s" => Unit::MetrePerSecond,
-            "cm/s" => Unit::CentimetrePerSecond,
-            _ => return None,
-        })
+        let t = text.trim().replace(' ', "");
+        SPELLINGS
+            .iter()
+            .find(|(spelling, _)| *spelling == t)
+            .map(|&(_, unit)| unit)
+    }
+
+    /// The unit `text` would be in another case (`Ms` → `ms`, `HZ` → `Hz`),
+    /// for the message refusing it.
+    fn case_hint(text: &str) -> Option<&'static str> {
+        if let Some(name) = AccelUnit::case_hint(text) {
+            return Some(name);
+        }
+        let t = text.trim().replace(' ', "");
+        SPELLINGS
+            .iter()
+            .map(|&(spelling, unit)| (spelling, unit.name()))
+            .find(|(spelling, _)| spelling.to_lowercase() == t.to_lowercase())
+            .map(|(_, name)| name)
     }
 
     /// How the unit is written in messages.
@@ -236,14 +274,16 @@ fn parse_quantity(text: &str) -> Result<Quantity, String> {
     if unit_text.is_empty() {
         return Ok(Quantity { value, unit: None });
     }
-    match Unit::parse(unit_text) {
-        Some(unit) => Ok(Quantity {
+    const KNOWN: &str = "g, m/s2, cm/s2, gal, g*tan(alpha), m, cm, mm, Hz, rad/s, deg/s, rad, deg, s, ms, m/s, cm/s";
+    match (Unit::parse(unit_text), Unit::case_hint(unit_text)) {
+        (Some(unit), _) => Ok(Quantity {
             value,
             unit: Some(unit),
         }),
-        None => Err(format!(
-            "unknown unit \"{unit_text}\" in \"{text}\" (known: g, m/s2, cm/s2, gal, g*tan(alpha), m, cm, mm, Hz, rad/s, deg/s, rad, deg, s, ms, m/s, cm/s)"
+        (None, Some(hint)) => Err(format!(
+            "unknown unit \"{unit_text}\" in \"{text}\": units are case-sensitive, did you mean \"{hint}\"? (known: {KNOWN})"
         )),
+        (None, None) => Err(format!("unknown unit \"{unit_text}\" in \"{text}\" (known: {KNOWN})")),
     }
 }
 
@@ -346,6 +386,33 @@ mod tests {
                 .contains("unknown unit \"furlongs\"")
         );
         assert!(parse_quantity("1e999 g").is_err());
+    }
+
+    #[test]
+    fn units_are_case_sensitive_and_a_wrong_case_is_named_with_the_right_one() {
+        for (text, right) in [
+            ("10 Ms", "ms"),
+            ("1000 Mm", "mm"),
+            ("2 HZ", "Hz"),
+            ("2 hz", "Hz"),
+            ("0.3 G", "g"),
+            ("3 M/S2", "m/s2"),
+            ("4 S", "s"),
+            ("5 DEG", "deg"),
+            ("1 Rad/s", "rad/s"),
+            ("60 CM", "cm"),
+        ] {
+            let e = parse_quantity(text).unwrap_err();
+            assert!(
+                e.contains("case-sensitive") && e.contains(&format!("did you mean \"{right}\"")),
+                "{text}: {e}"
+            );
+            assert!(e.contains("known: g, m/s2"), "{text}: {e}");
+        }
+        assert_eq!(q("10 ms").unit, Some(Unit::Millisecond));
+        assert_eq!(q("1000 mm").unit, Some(Unit::Millimetre));
+        assert_eq!(q("340 Gal").unit, Some(Unit::Accel(AccelUnit::CentimetresPerSecond2)));
+        assert_eq!(q("1 g * tan(alpha)").unit, Some(Unit::Uplift));
     }
 
     #[test]

@@ -2,7 +2,7 @@
 //! fixed time step (grammar: [`read_record`](super::read_record)).
 
 use super::{RecordError, check_accel, excerpt, fields, parse_float, parse_number};
-use crate::model::excitation::record::Series;
+use crate::model::excitation::record::{Series, step_in_range};
 use crate::model::units::AccelUnit;
 
 /// 1-based number of the AT2 header line holding NPTS and DT.
@@ -70,7 +70,7 @@ pub(super) fn parse_at2(
         line: AT2_COUNT_LINE,
         dt,
     };
-    if !(dt.is_finite() && dt > 0.0) {
+    if !step_in_range(dt) {
         return Err(bad_step());
     }
     // Capacity capped: NPTS comes from an untrusted header.
@@ -110,7 +110,7 @@ pub(super) fn parse_at2(
 
 /// The unit an AT2 description line (line 3) names: `Ok(Some(unit))` for
 /// `UNITS OF x` with x one of g, m/s², cm/s² (any spelling
-/// [`AccelUnit::parse`] reads), `Ok(None)` when it names no unit, and
+/// [`AccelUnit::parse`] reads, in any case: the format writes `G`), `Ok(None)` when it names no unit, and
 /// `Err(())` when it describes a velocity or displacement or names another
 /// unit. Lenient about the rest of the wording, which varies between
 /// database releases.
@@ -129,7 +129,7 @@ fn header_unit(line: &str) -> Result<Option<AccelUnit>, ()> {
             rest.split(|c: char| !c.is_ascii_alphanumeric() && c != '/' && c != '^')
                 .find(|word| !word.is_empty())
         })
-        .and_then(AccelUnit::parse)
+        .and_then(AccelUnit::parse_upper_case)
         .map(Some)
         .ok_or(())
 }

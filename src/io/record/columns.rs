@@ -2,7 +2,7 @@
 //! at a stated time step (grammar: [`read_record_as`](super::read_record_as)).
 
 use super::{RecordError, RecordFormat, check_accel, fields, is_comment, parse_float, parse_number};
-use crate::model::excitation::record::Series;
+use crate::model::excitation::record::{Series, step_in_range};
 use crate::model::units::AccelUnit;
 
 /// Parses a text record split into lines: one column at step `dt` (s) when
@@ -61,6 +61,16 @@ pub(super) fn parse_columns(
                     file: file.to_owned(),
                     line: line_no,
                     time,
+                    previous,
+                });
+            }
+            // A stated dt was checked already; the times of a two-column
+            // file are checked here, each step against the last.
+            Some(&previous) if dt.is_none() && !step_in_range(time - previous) => {
+                return Err(RecordError::StepOutOfRange {
+                    file: file.to_owned(),
+                    line: line_no,
+                    step: time - previous,
                     previous,
                 });
             }

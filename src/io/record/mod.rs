@@ -26,7 +26,7 @@ mod tests;
 
 use std::path::Path;
 
-use crate::model::excitation::record::{MAX_ABS_ACCEL_G, Series};
+use crate::model::excitation::record::{MAX_ABS_ACCEL_G, MAX_STEP_S, MIN_STEP_S, Series, step_in_range};
 use crate::model::units::AccelUnit;
 use at2::parse_at2;
 use columns::parse_columns;
@@ -106,9 +106,9 @@ pub enum RecordError {
         /// 1-based line number.
         line: usize,
     },
-    /// The AT2 time step is not a finite positive number (or NPTS·DT
-    /// overflows).
-    #[error("{file}:{line}: invalid time step DT = {dt} s (need 0 < DT and a finite NPTS*DT)")]
+    /// The AT2 time step is outside [[`MIN_STEP_S`], [`MAX_STEP_S`]] (or
+    /// NPTS·DT overflows).
+    #[error("{file}:{line}: invalid time step DT = {dt:?} s (need {min:e} s <= DT <= {max} s)", min = MIN_STEP_S, max = MAX_STEP_S)]
     BadStep {
         /// The path as given.
         file: String,
@@ -163,8 +163,8 @@ pub enum RecordError {
         /// 1-based line of the first value.
         line: usize,
     },
-    /// A stated time step that is not a finite positive number.
-    #[error("{file}: invalid time step {dt} s (need a finite dt > 0)")]
+    /// A stated time step outside [[`MIN_STEP_S`], [`MAX_STEP_S`]].
+    #[error("{file}: invalid time step {dt:?} s (need {min:e} s <= dt <= {max} s)", min = MIN_STEP_S, max = MAX_STEP_S)]
     StatedStep {
         /// The path as given.
         file: String,
@@ -211,6 +211,19 @@ pub enum RecordError {
         /// The time read, s.
         time: f64,
         /// The previous time, s.
+        previous: f64,
+    },
+    /// Two times of a two-column file are closer than [`MIN_STEP_S`] or
+    /// farther apart than [`MAX_STEP_S`].
+    #[error("{file}:{line}: time step {step:?} s from the previous sample (at {previous:?} s) is outside [{min:e} s, {max} s]", min = MIN_STEP_S, max = MAX_STEP_S)]
+    StepOutOfRange {
+        /// The path as given.
+        file: String,
+        /// 1-based line number.
+        line: usize,
+        /// The step, s.
+        step: f64,
+        /// The previous sample's time, s.
         previous: f64,
     },
     /// |acceleration| exceeds [`MAX_ABS_ACCEL_G`] (after conversion to g).
@@ -332,7 +345,9 @@ pub struct LoadedRecord {
 /// A [`RecordError`] naming the file (as given) and the 1-based line for: an
 /// I/O failure, a directory, a device or FIFO, a file over
 /// [`MAX_RECORD_BYTES`], an empty file, a bad AT2 header (unparseable
-/// NPTS/DT, NPTS = 0, DT <= 0, not an acceleration), a unit nobody states or
+/// NPTS/DT, NPTS = 0, not an acceleration), a time step (stated, DT or
+/// between two times) outside [[`MIN_STEP_S`], [`MAX_STEP_S`]] s, a unit
+/// nobody states or
 /// that contradicts the header, a one-column file without a time step, a
 /// count of values other than NPTS, a wrong number of columns, a field that
 /// is not a finite number, a negative or non-increasing time,
@@ -340,7 +355,7 @@ pub struct LoadedRecord {
 pub fn read_record_as(path: &Path, spec: &RecordSpec) -> Result<LoadedRecord, RecordError> {
     let file = path.display().to_string();
     if let Some(dt) = spec.dt
-        && !(dt.is_finite() && dt > 0.0)
+        && !step_in_range(dt)
     {
         return Err(RecordError::StatedStep { file, dt });
     }

@@ -150,7 +150,7 @@ fn at2_header_errors() {
         assert!(m.contains("ground.at2:4: invalid time step DT"), "{m}");
     }
     let m = err_str("ground.at2", &at2("NPTS=3, DT=1e308", "0.1 0.2 0.3\n"));
-    assert!(m.contains(":4: invalid time step DT = 100000"), "{m}");
+    assert!(m.contains(":4: invalid time step DT = 1e308 s"), "{m}");
     let m = err_str("short.at2", "PEER NGA STRONG MOTION DATABASE RECORD\nx\n");
     assert!(m.ends_with("short.at2: AT2 header has 3 lines, expected 4"), "{m}");
 }
@@ -461,4 +461,58 @@ fn the_sanity_limit_applies_after_conversion() {
         .to_string();
     assert!(m.contains("big.txt:2: |acceleration| of 203."), "{m}");
     assert!(read_as("big.txt", content, RecordSpec::stated(AccelUnit::CentimetresPerSecond2)).is_ok());
+}
+
+#[test]
+fn time_steps_outside_1e_5_to_10_s_are_refused_in_every_format() {
+    // AT2: the header's DT.
+    for dt in ["1e-300", "1e-6", "20"] {
+        let m = err_str("ground.at2", &at2(&format!("NPTS=2, DT={dt}"), "0.1 0.2\n"));
+        assert!(
+            m.contains("ground.at2:4: invalid time step DT") && m.contains("(need 1e-5 s <= DT <= 10 s)"),
+            "{m}"
+        );
+    }
+    assert!(read_as("edge.at2", &at2("NPTS=2, DT=1e-5", "0.1 0.2\n"), RecordSpec::default()).is_ok());
+    // One column: the stated step, printed readably.
+    for dt in [1e-300, 9e-6, 10.5] {
+        let spec = RecordSpec {
+            unit: Some(AccelUnit::G),
+            dt: Some(dt),
+        };
+        let m = read_as("dt.txt", "0.1\n0.2\n", spec).unwrap_err().to_string();
+        assert!(m.contains(&format!("dt.txt: invalid time step {dt:?} s")), "{m}");
+    }
+    // Two columns: each step, naming its line.
+    let m = read_as(
+        "two.txt",
+        "0 0.1\n0.01 0.2\n0.010000001 0.3\n",
+        RecordSpec::stated(AccelUnit::G),
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(
+        m.contains("two.txt:3: time step") && m.contains("outside [1e-5 s, 10 s]"),
+        "{m}"
+    );
+    let m = read_as("gap.txt", "0 0.1\n0.01 0.2\n30 0.3\n", RecordSpec::stated(AccelUnit::G))
+        .unwrap_err()
+        .to_string();
+    assert!(m.contains("gap.txt:3: time step 29.99 s"), "{m}");
+    // Steps of exactly 1e-5 s written as decimals pass despite rounding.
+    let fine: String = (0..50).map(|k| format!("{:.5} 0.1\n", k as f64 * 1e-5)).collect();
+    assert!(read_as("fine.txt", &fine, RecordSpec::stated(AccelUnit::G)).is_ok());
+}
+
+#[test]
+fn at2_headers_keep_reading_upper_case_units() {
+    for (units, unit) in [
+        ("UNITS OF G", AccelUnit::G),
+        ("UNITS OF CM/S/S", AccelUnit::CentimetresPerSecond2),
+        ("UNITS OF M/S/S", AccelUnit::MetresPerSecond2),
+    ] {
+        let content = format!("TITLE\nEVENT\nACCELERATION TIME SERIES IN {units}\nNPTS=2, DT=0.01 SEC\n0.1 0.2\n");
+        let r = read_as("upper.at2", &content, RecordSpec::default()).unwrap();
+        assert_eq!(r.unit, unit, "{units}");
+    }
 }

@@ -25,6 +25,28 @@
 /// not ground motion; it is rejected rather than simulated.
 pub const MAX_ABS_ACCEL_G: f64 = 100.0;
 
+/// Shortest time step between record samples accepted from a file, s.
+///
+/// Accelerographs sample at 50–1000 Hz and resampled records rarely go
+/// beyond 10 kHz; a step below 1e-5 s (100 kHz) is a unit mix-up (µs or ms
+/// read as s) or a corrupt header, and with steps near the smallest double
+/// the record's own integrals (PGV, PGD) underflow to nonsense.
+pub const MIN_STEP_S: f64 = 1e-5;
+
+/// Longest time step between record samples accepted from a file, s: 10 s
+/// between samples (0.1 Hz) cannot describe ground shaking, whose energy
+/// lies between about 0.1 and 30 Hz; such a step is a unit mix-up (ms read
+/// as s) or a gap in the file.
+pub const MAX_STEP_S: f64 = 10.0;
+
+/// Whether `step_s` lies in [[`MIN_STEP_S`], [`MAX_STEP_S`]], up to a
+/// relative 1e-9 so that the differences of times written at exactly 1e-5
+/// s (or 10 s) apart pass.
+pub fn step_in_range(step_s: f64) -> bool {
+    let slack = 1.0 + 1e-9;
+    step_s * slack >= MIN_STEP_S && step_s <= MAX_STEP_S * slack
+}
+
 /// Samples of ground acceleration: accelerations in g at strictly increasing
 /// times in seconds, the first at or after t = 0.
 ///
