@@ -132,6 +132,35 @@ fn fragility_runs<'py>(
     if levels.is_empty() || blocks.is_empty() {
         return Err(input("--levels and --block: give at least one of each"));
     }
+    // As the CLI: a value given twice would count its runs twice and
+    // narrow the fits' bands without a word.
+    for (j, v) in levels.iter().enumerate() {
+        if let Some(i) = levels[..j].iter().position(|u| u == v) {
+            return Err(input(format!(
+                "levels[{i}] and levels[{j}] are both {v}; give each level once"
+            )));
+        }
+    }
+    for (j, b) in blocks.iter().enumerate() {
+        if let Some(i) = blocks[..j].iter().position(|c| c == b) {
+            return Err(input(format!(
+                "blocks[{i}] and blocks[{j}] are both {} x {} m; give each block once",
+                b.0, b.1
+            )));
+        }
+    }
+    let canonical: Vec<PathBuf> = records
+        .iter()
+        .map(|(p, _)| p.canonicalize().unwrap_or_else(|_| p.clone()))
+        .collect();
+    for (j, p) in canonical.iter().enumerate() {
+        if let Some(i) = canonical[..j].iter().position(|q| q == p) {
+            return Err(input(format!(
+                "records[{i}] and records[{j}]: the record {} is listed twice; list each record once",
+                p.display()
+            )));
+        }
+    }
     let blocks: Vec<BlockSize> = blocks
         .into_iter()
         .map(|(width_m, height_m)| BlockSize { width_m, height_m })

@@ -100,3 +100,12 @@ def test_record_names_are_never_cut(tmp_path: Path) -> None:
     pd = pytest.importorskip("pandas")
     assert isinstance(f.to_pandas(), pd.DataFrame)
     assert f.to_pandas().groupby("record").size().to_dict() == {"RSN1063_NORTHR_RRS228": 1, "RSN1063_NORTHR_RRS318": 1}
+
+
+def test_a_record_level_or_block_given_twice_is_refused_naming_both() -> None:
+    with pytest.raises(rocking.ConfigError, match=r"records\[0\] and records\[1\]: the record .*elcentro-1940-ns.dat is listed twice"):
+        rocking.fragility([(ELCENTRO, "g"), (ELCENTRO.parent / "." / ELCENTRO.name, "g")], LEVELS, BLOCKS)
+    with pytest.raises(rocking.ConfigError, match=r"levels\[0\] and levels\[2\] are both 0.1"):
+        rocking.fragility([(ELCENTRO, "g")], [0.1, 0.2, 0.1], BLOCKS)
+    with pytest.raises(rocking.ConfigError, match=r"blocks\[0\] and blocks\[1\] are both 0.6 x 2 m"):
+        rocking.fragility([(ELCENTRO, "g")], LEVELS, [(0.6, 2.0), (0.6, 2)])

@@ -21,7 +21,7 @@ pub struct Num(pub f64);
 /// else. A NUL byte cannot occur in a path (record names are file stems)
 /// nor in the fixed words (end states, intensity measures) these files
 /// hold, whereas `inf` and `nan` occur in names (`elcentro-infill`).
-const NON_FINITE_CELL: &str = "\0non-finite";
+pub(crate) const NON_FINITE_CELL: &str = "\0non-finite";
 
 impl Serialize for Num {
     fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {

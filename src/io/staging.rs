@@ -257,7 +257,9 @@ mod tests {
         let out = root.join("out");
         {
             let mut s = Staging::new(&out).unwrap();
-            assert!(matches!(s.text("a.csv", "x\nNaN\n"), Err(OutputError::NonFinite(_))));
+            // What a CSV writer makes of a non-finite number.
+            let nan = format!("x\n{}\n", csv::NON_FINITE_CELL);
+            assert!(matches!(s.text("a.csv", &nan), Err(OutputError::NonFinite(_))));
         }
         assert!(!out.exists());
         assert_eq!(std::fs::read_dir(&root).unwrap().count(), 0);
