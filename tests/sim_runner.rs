@@ -222,7 +222,18 @@ fn pause_stops_output_and_step_advances_by_exactly_the_step() {
         got.iter()
             .any(|u| matches!(u, SimUpdate::Paused { paused: true, tau, .. } if *tau == 0.0))
     );
-    assert!(batches(&got, RunId(1)).is_empty(), "a paused thread sends no data");
+    // A paused start shows its first frame (the block where it starts,
+    // "what will it do?"), and nothing after it.
+    let first = batches(&got, RunId(1));
+    assert_eq!(first.len(), 1, "a paused start sends the first frame only");
+    assert_eq!(first[0].samples.len(), 1);
+    assert_eq!(first[0].samples[0].tau, 0.0);
+    assert_eq!(first[0].tau, 0.0);
+    assert_eq!(
+        (first[0].samples[0].theta, first[0].samples[0].theta_dot),
+        (0.0, 0.0),
+        "the default scene starts at rest, upright"
+    );
 
     h.step(1.0);
     let got = collect(&h, Duration::from_secs(5), |u| {

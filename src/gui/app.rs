@@ -132,6 +132,11 @@ pub struct RockingApp {
     camera: Camera,
     flash_at: Option<f64>,
     message: Option<Message>,
+    /// The message the status bar shows and when it first showed it
+    /// (egui's clock, s), for its expiry.
+    message_since: Option<(Message, f64)>,
+    /// Where the status bar was drawn last (points).
+    status_rect: Option<egui::Rect>,
     gpu: bool,
     frame_ms: f32,
     frame_interval_ms: f32,
@@ -247,6 +252,8 @@ impl RockingApp {
             camera: Camera::default(),
             flash_at: None,
             message: None,
+            message_since: None,
+            status_rect: None,
             gpu,
             frame_ms: 0.0,
             frame_interval_ms: 0.0,
@@ -300,6 +307,10 @@ impl RockingApp {
     /// How the run ended, if it has.
     pub fn end(&self) -> Option<&RunEnd> {
         self.end.as_ref()
+    }
+    /// Where the status bar was drawn last (points), once drawn.
+    pub fn status_rect(&self) -> Option<egui::Rect> {
+        self.status_rect
     }
     /// The status-bar message.
     pub fn message(&self) -> Option<&Message> {

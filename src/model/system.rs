@@ -28,6 +28,7 @@ use super::params::{FlightPolicy, Model};
 // Re-exported: the driver, outputs, analyses, tests and benches index the
 // state by these paths.
 pub use super::state::{FRICTION_LOSS, N, THETA, THETA_DOT, WORK, X, X_DOT};
+use crate::integrate::StepError;
 use crate::integrate::hybrid::{DriverError, HybridSystem, Jump, MAX_GUARDS};
 
 /// Kind of event, as written in `events.csv`.
@@ -119,9 +120,27 @@ pub struct BlockSystem {
 /// Errors from the model side of a run.
 #[derive(Clone, Copy, Debug, PartialEq, thiserror::Error)]
 pub enum ModelError {
-    /// The driver failed.
-    #[error(transparent)]
+    /// The driver failed. Shown with the block's own clock: the driver's
+    /// independent variable is the dimensionless time τ, which a user
+    /// reads as "τ" to a few decimals (the driver's message names a
+    /// generic "t" with all 17 digits).
+    #[error("{}", driver_message(.0))]
     Driver(#[from] DriverError),
+}
+
+/// `e` in the block's words: τ instead of the integrator's t, to four
+/// decimals (a step or event is found to far better than that, but a
+/// person reads where the run stopped, not its last bits).
+fn driver_message(e: &DriverError) -> String {
+    match *e {
+        DriverError::Step(StepError::StepSizeUnderflow { t, h }) => {
+            format!("step size underflow at τ = {t:.4} (h = {h:.1e})")
+        }
+        DriverError::Step(StepError::NonFinite { t }) => format!("non-finite state at τ = {t:.4}"),
+        DriverError::TooManySteps { t, limit } => format!("more than {limit} steps by τ = {t:.4}"),
+        DriverError::TooManyEvents { t, limit } => format!("more than {limit} events by τ = {t:.4}"),
+        DriverError::TimeReversal { t } => format!("reset map moved time backwards at τ = {t:.4}"),
+    }
 }
 
 impl BlockSystem {
@@ -494,5 +513,23 @@ impl HybridSystem<N> for BlockSystem {
             Mode::Rest => self.model.excitation.time_scale(),
             _ => f64::INFINITY,
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_failed_run_says_where_in_tau_to_four_decimals() {
+        let e = ModelError::from(DriverError::Step(StepError::NonFinite { t: 21.21694493994567 }));
+        assert_eq!(e.to_string(), "non-finite state at τ = 21.2169");
+        let e = ModelError::from(DriverError::Step(StepError::StepSizeUnderflow {
+            t: 3.000_000_000_1,
+            h: 1.234e-17,
+        }));
+        assert_eq!(e.to_string(), "step size underflow at τ = 3.0000 (h = 1.2e-17)");
+        let e = ModelError::from(DriverError::TooManyEvents { t: 7.5, limit: 100 });
+        assert_eq!(e.to_string(), "more than 100 events by τ = 7.5000");
     }
 }

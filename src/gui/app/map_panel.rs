@@ -25,7 +25,8 @@ impl RockingApp {
     }
 
     /// Sets both keys of a map cell at once (one restart, through the same
-    /// validation as the parameter panel) and says so in the status bar;
+    /// validation as the parameter panel), says so in the status bar and
+    /// closes the lesson's note (it described the scene left behind);
     /// refuses with a message naming the key, changing nothing.
     pub fn load_map_cell(&mut self, cell: &[(String, f64); 2]) -> bool {
         let [(kx, vx), (ky, vy)] = cell;
@@ -36,6 +37,9 @@ impl RockingApp {
         match next {
             Ok((s, c)) => {
                 self.apply(s, c);
+                // Another scene: the lesson's note (what to look for in
+                // the preset's motion) no longer describes it.
+                self.lecture.note = None;
                 self.message = Some(Message {
                     text: format!(
                         "from the outcome map: {kx} = {}, {ky} = {}",

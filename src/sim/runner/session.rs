@@ -547,6 +547,20 @@ impl Session {
         }
     }
 
+    /// Moves the run's first frame (the sample at its start, with the ghosts
+    /// there) into `batch` without moving the playhead: a run started
+    /// paused shows where the block starts instead of an empty stage.
+    /// Integrates one chunk ahead, which the run would do next anyway.
+    pub fn first_frame(&mut self, batch: &mut Batch) {
+        if self.released > self.start.0 {
+            return;
+        }
+        if self.ended.is_none() && self.queue.samples.front().is_none_or(|s| s.tau > self.released) {
+            self.advance_chunk();
+        }
+        self.release(self.released, batch);
+    }
+
     /// Integrates chunk by chunk until `tau` is computed or the run ends.
     pub fn fill_to(&mut self, tau: f64) {
         while self.ended.is_none() && self.driver.t() < tau {

@@ -211,6 +211,9 @@ impl Worker {
                     info: Box::new(s.info().clone()),
                 });
                 self.session = Some(s);
+                if self.paused {
+                    self.queue_first_frame();
+                }
                 self.queue_paused();
             }
             Err(msg) => {
@@ -307,6 +310,17 @@ impl Worker {
     }
 
     /// Queues `batch`, merging it into a waiting batch of the same run.
+    /// A paused run's first frame, so that the app shows the block where
+    /// it starts (and the ghosts there) before the user presses Play.
+    fn queue_first_frame(&mut self) {
+        let Some(s) = self.session.as_mut() else { return };
+        let mut batch = Batch::default();
+        s.first_frame(&mut batch);
+        if !batch.samples.is_empty() {
+            self.queue_batch(batch);
+        }
+    }
+
     fn queue_batch(&mut self, batch: Batch) {
         let Some(run) = self.session.as_ref().map(Session::run) else {
             return;
