@@ -162,11 +162,8 @@ impl RockingApp {
             self.hist.section.points().len() as u64 + self.hist.section.dropped
         )));
         if let Some(end) = &self.end {
-            essential.push(end_item(
-                end,
-                self.info.as_ref().map(|i| i.scenario.run.tumble_theta),
-                p,
-            ));
+            let tumble = self.info.as_ref().map(|i| i.scenario.run.tumble_theta);
+            essential.push(end_item(end, tumble, p, self.record_label.is_some()));
         }
         if self.paused {
             essential.push(Item::plain("paused".into()));
@@ -235,7 +232,7 @@ impl RockingApp {
 }
 
 /// How the run ended, short, with the why on hover.
-fn end_item(end: &RunEnd, tumble_theta: Option<f64>, p: f64) -> Item {
+fn end_item(end: &RunEnd, tumble_theta: Option<f64>, p: f64, record: bool) -> Item {
     use crate::model::Mode;
     match end {
         RunEnd::Terminal {
@@ -251,15 +248,19 @@ fn end_item(end: &RunEnd, tumble_theta: Option<f64>, p: f64) -> Item {
                 "|Θ| reached {limit}: the centre of mass passed over the corner and the model stops; the fall after it is drawn, not simulated"
             ))
         }
-        RunEnd::Terminal { mode: Mode::Rest, tau } => Item::colored(
-            format!("came to rest at τ = {tau:.2} (t = {:.2} s)", tau / p),
-            scene::mode_color(Mode::Rest),
-        ),
         RunEnd::Terminal { mode, tau } => {
             Item::colored(format!("{} at τ = {tau:.2}", mode.name()), scene::mode_color(*mode))
         }
         RunEnd::Rest { tau, .. } => Item::colored(
-            format!("at rest after the record, τ = {tau:.2} (t = {:.2} s)", tau / p),
+            format!(
+                "at rest{}, τ = {tau:.2} (t = {:.2} s)",
+                if record {
+                    " after the record"
+                } else {
+                    " for good (the base is still)"
+                },
+                tau / p
+            ),
             scene::mode_color(Mode::Rest),
         ),
         RunEnd::Failed(msg) => Item::colored("failed".into(), ERROR_RED).hover(format!("the run stopped: {msg}")),

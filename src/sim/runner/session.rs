@@ -196,6 +196,8 @@ struct MainSink<'a> {
     base: &'a mut BaseMotion,
     queue: &'a mut Queue,
     peaks: &'a mut Peaks,
+    /// τ of the latest event (where a block on a still base came to rest).
+    last_event: &'a mut f64,
 }
 
 impl Observer<Mode, EventRecord, N> for MainSink<'_> {
@@ -224,6 +226,7 @@ impl Observer<Mode, EventRecord, N> for MainSink<'_> {
     }
 
     fn event(&mut self, _t: f64, _before: Mode, y_before: &[f64; N], record: EventRecord) {
+        *self.last_event = record.tau;
         self.peaks.see(&self.probe.model.geo, y_before);
         self.queue.events.push_back(record);
     }
@@ -380,10 +383,14 @@ pub struct Session {
     /// How the run ended, once the driver stopped.
     ended: Option<RunEnd>,
     /// For a record run: its end, τ, after which rest ends the run
-    /// ([`RunEnd::Rest`]).
+    /// ([`RunEnd::Rest`]); on a still base (no excitation) its start.
     rest_after: Option<f64>,
     /// Extremes so far.
     peaks: Peaks,
+    /// τ of the latest event of the main trajectory.
+    last_event: f64,
+    /// Whether the base never moves (no excitation): rest is then final.
+    still_base: bool,
     /// τ up to which output has been released.
     released: f64,
     /// Whether section points come from landing on chunk ends (a section
@@ -462,6 +469,7 @@ impl Session {
         let mut peaks = Peaks::default();
         peaks.see(&geometry, &y0);
         let driver = live_driver(scenario, system, mode0, tau0, y0, outputs);
+        let still_base = scenario.excitation.kind == crate::sim::scenario::ExcitationKind::None;
         Ok(Self {
             run,
             info: RunInfo {
@@ -481,8 +489,12 @@ impl Session {
             next_chunk,
             ended: None,
             // Whatever `run.t_end` says: a live run ignores it, and rest after
-            // the record lasts for ever.
-            rest_after: scenario.record_end_tau(),
+            // the record lasts for ever. So does rest on a base that never
+            // moves: a free-rocking block at rest ends the run there, and
+            // the app keeps its picture (the spiral into the origin).
+            rest_after: scenario.record_end_tau().or(still_base.then_some(tau0)),
+            last_event: tau0,
+            still_base,
             peaks,
             released: tau0,
             exact_sections,
@@ -590,6 +602,7 @@ impl Session {
             base: &mut self.base,
             queue: &mut self.queue,
             peaks: &mut self.peaks,
+            last_event: &mut self.last_event,
         };
         let advanced = if self.exact_sections {
             self.driver.advance_onto(t_end, &mut sink)
@@ -607,8 +620,21 @@ impl Session {
                     self.queue.section.push_back(SectionRow::of_state(k, t, mode, &y));
                 }
                 if self.rest_after.is_some_and(|end| t >= end) && self.driver.mode() == Mode::Rest {
+                    // On a still base the run ends when the block came to
+                    // rest: a step at rest there reaches far past it (to the
+                    // batch run's end), and the samples after it, all the
+                    // same, would only delay the end by tens of seconds of
+                    // playback. After a record, at the chunk end where rest
+                    // was seen.
+                    let tau = if self.still_base {
+                        let rest_from = self.last_event.max(self.start.0);
+                        self.queue.samples.retain(|s| s.tau <= rest_from + LIVE_SAMPLE_DT);
+                        rest_from
+                    } else {
+                        t
+                    };
                     self.ended = Some(RunEnd::Rest {
-                        tau: t,
+                        tau,
                         max_abs_theta: self.peaks.theta.max(self.driver.peak_theta()),
                         max_abs_sliding: self.peaks.sliding,
                     });
@@ -830,6 +856,7 @@ mod tests {
                 let mut live = Session::new(RunId(1), &sc, Start::Initial).expect("starts");
                 // A record run stops at rest at a chunk end, the batch run
                 // at the end of a leg of REST_CHECK_TAU: within a chunk.
+                let unforced = sc.excitation.kind == crate::sim::scenario::ExcitationKind::None;
                 let slack = if opts.rest_after.is_some() {
                     2.0 * MAX_CHUNK
                 } else {
@@ -853,6 +880,22 @@ mod tests {
                             (max_abs_theta - peak).abs() <= 1e-9 * peak,
                             "{what}: {max_abs_theta} vs {peak}"
                         );
+                    }
+                    (Outcome::Rest, Some(RunEnd::Rest { tau, max_abs_theta, .. })) if unforced => {
+                        // On a still base the live run ends at the first
+                        // chunk end at rest; the batch run goes on at rest
+                        // to run.tau_end. Same impacts, same peak.
+                        assert!(*tau <= batch.tau_end, "{what}: live rest at {tau}");
+                        let rest_from = batch.events.last().map_or(0.0, |e| e.tau);
+                        assert!(
+                            *tau >= rest_from && *tau - rest_from <= MAX_CHUNK + 1e-9,
+                            "{what}: live rest at {tau}, batch at rest from {rest_from}"
+                        );
+                        assert_eq!(*max_abs_theta, batch.max_abs_theta, "{what}");
+                        assert_eq!(out.events.len(), batch.events.len(), "{what}: events live vs batch");
+                        for (a, b) in out.events.iter().zip(&batch.events) {
+                            assert!(a.tau == b.tau && a.kind == b.kind, "{what}: live {a:?}, batch {b:?}");
+                        }
                     }
                     (Outcome::Rest | Outcome::Running, None) => {
                         let last = out.samples.last().expect("samples");

@@ -309,7 +309,6 @@ impl Worker {
         }
     }
 
-    /// Queues `batch`, merging it into a waiting batch of the same run.
     /// A paused run's first frame, so that the app shows the block where
     /// it starts (and the ghosts there) before the user presses Play.
     fn queue_first_frame(&mut self) {
@@ -321,6 +320,7 @@ impl Worker {
         }
     }
 
+    /// Queues `batch`, merging it into a waiting batch of the same run.
     fn queue_batch(&mut self, batch: Batch) {
         let Some(run) = self.session.as_ref().map(Session::run) else {
             return;
