@@ -96,6 +96,10 @@ impl RockingApp {
             for item in &essential {
                 if item.width(ui) <= ui.available_width() {
                     item.show(ui, false);
+                } else if ui.available_width() > 60.0 {
+                    // Cut with "…" (whole on hover) rather than dropped:
+                    // how the run ended matters more than what follows.
+                    item.show(ui, true);
                 }
             }
             // The optional items go right of the message while they fit
@@ -240,12 +244,12 @@ fn end_item(end: &RunEnd, tumble_theta: Option<f64>, p: f64, record: bool) -> It
             tau,
         } => {
             let limit = tumble_theta.unwrap_or(1.0);
-            Item::colored(
-                format!("tumbled at τ = {tau:.2} (t = {:.2} s)", tau / p),
-                scene::mode_color(Mode::Tumbled),
-            )
-            .hover(format!(
-                "|Θ| reached {limit}: the centre of mass passed over the corner and the model stops; the fall after it is drawn, not simulated"
+            let text = format!(
+                "tumbled at τ = {tau:.2} (t = {:.2} s); the fall is drawn, not simulated",
+                tau / p
+            );
+            Item::colored(text.clone(), scene::mode_color(Mode::Tumbled)).hover(format!(
+                "{text}: |Θ| reached {limit}, the centre of mass passed over the corner and the model stops there"
             ))
         }
         RunEnd::Terminal { mode, tau } => {
