@@ -328,3 +328,26 @@ fn the_period_doubling_lesson_is_one_continuous_drag_at_every_scale() {
         }
     }
 }
+
+/// A slider that took the keyboard by a click (for its arrows) leaves
+/// Space to play and pause, as before the click: after a drag the lecturer
+/// pauses on what the drag found.
+#[test]
+fn space_still_plays_and_pauses_while_a_slider_has_the_keyboard() {
+    let mut h = app("period-doubling", egui::vec2(1280.0, 800.0));
+    let paused = h.state().paused();
+    let (_, at) = handle(&h, 1.6);
+    pointer(&mut h, at, None);
+    pointer(&mut h, at, Some(true));
+    pointer(&mut h, at + egui::vec2(3.0, 0.0), None);
+    pointer(&mut h, at + egui::vec2(3.0, 0.0), Some(false));
+    h.step();
+    assert_eq!(a_v(&h), 1.9);
+    h.key_press(egui::Key::Space);
+    h.step();
+    assert_eq!(h.state().paused(), !paused, "Space after the drag");
+    // The slider still has the arrows.
+    h.key_press(egui::Key::ArrowRight);
+    h.step();
+    assert_eq!(a_v(&h), 2.0);
+}

@@ -27,6 +27,20 @@ struct Drag {
     fine: bool,
 }
 
+/// Where the slider that has the keyboard leaves its id, for
+/// [`has_keyboard`].
+fn keyboard_id() -> egui::Id {
+    egui::Id::new("parameter slider with the keyboard")
+}
+
+/// Whether one of these sliders has the keyboard focus. It takes only the
+/// arrow keys, so the app's one-key shortcuts (Space, R, S) stay on while
+/// it has the focus a click gave it.
+pub fn has_keyboard(ctx: &egui::Context) -> bool {
+    let focused = ctx.memory(|m| m.focused());
+    focused.is_some() && ctx.data(|d| d.get_temp::<egui::Id>(keyboard_id())) == focused
+}
+
 /// How a slider is drawn and named.
 pub struct Slider<'a> {
     /// The value shown now (the scene's).
@@ -80,6 +94,9 @@ impl Slider<'_> {
             (false, None, _) => {}
         }
 
+        if ui.memory(|m| m.has_focus(r.id)) {
+            ui.data_mut(|data| data.insert_temp(keyboard_id(), r.id));
+        }
         // The keys: a step per press, from the value shown (or reached).
         let (plain, fine) = key_steps(ui, &r);
         if plain != 0 || fine != 0 {
