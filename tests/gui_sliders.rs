@@ -228,12 +228,12 @@ fn the_slider_tooltip_says_both_steps_with_their_units() {
 fn the_period_doubling_note_says_how_to_drag_and_the_windows() {
     let note = Note::of_preset("period-doubling").expect("a note").text;
     for part in [
-        "hold Shift and drag slowly right without letting go",
-        "each point moves A_v by 0.005",
+        "hold Shift and drag slowly right in one go, 0.005 a point",
         "2 at A_v ≈ 1.71",
         "4 at ≈ 2.27",
         "8 at 2.32",
-        "from 2.33 chaos, or a tumble",
+        "Shift+arrow keys step 0.005",
+        "from 2.33, chaos or a tumble",
     ] {
         assert!(note.contains(part), "note {note:?} lacks {part:?}");
     }

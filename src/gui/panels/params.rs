@@ -8,9 +8,11 @@
 //! harmonic scene.
 //!
 //! Every continuous parameter also has a slider ([`slider_range`]) beside
-//! its field. A drag applies each new value as it comes (at most once a
-//! frame, the panel's one commit per frame), through the same validation as
-//! a typed value; the run restarts from the state shown now or from the
+//! its field, which moves its value by how far the pointer moved (plain or
+//! fine, [`super::slider`]) and steps with the arrow keys. A drag or a key
+//! step applies each new value as it comes (at most once a frame, the
+//! panel's one commit per frame), through the same validation as a typed
+//! value; the run restarts from the state shown now or from the
 //! initial state, as the toggle at the top of the panel says
 //! ([`Edits::drag_from`]). A typed value always starts the scene over from
 //! its initial state: it states a scene (the run `rocking run` would
