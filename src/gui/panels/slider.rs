@@ -30,7 +30,7 @@ struct Drag {
 /// Where the slider that has the keyboard leaves its id, for
 /// [`has_keyboard`].
 fn keyboard_id() -> egui::Id {
-    egui::Id::new("parameter slider with the keyboard")
+    egui::Id::unique("parameter slider with the keyboard")
 }
 
 /// Whether one of these sliders has the keyboard focus. It takes only the
