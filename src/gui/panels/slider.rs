@@ -4,8 +4,9 @@
 //! egui's own slider sets the value under the pointer, so pressing on it
 //! jumps the value to that pixel, and its travel ends where the rail
 //! ends. Here a drag adds `Δx × rate` to the value it started from (one
-//! [`SliderRange::step`] per point, or a [`FINE_DRAG`](super::params::FINE_DRAG)-th of it once Shift
-//! has been held during the drag), so a press that does not move leaves
+//! [`SliderRange::step`] per point, or a
+//! [`FINE_DRAG`](super::params::FINE_DRAG)-th of it once Shift has been
+//! held during the drag), so a press that does not move leaves
 //! the value exactly as it was, and the value keeps moving while the
 //! pointer goes on past either end of the rail: only the slider's range
 //! limits it. The arrow keys step the focused slider by the same amounts.
