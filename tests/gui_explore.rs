@@ -13,6 +13,7 @@ use std::time::{Duration, Instant};
 use egui_kittest::Harness;
 use egui_kittest::kittest::{NodeT as _, Queryable as _};
 use gui_common::{henon, pointer, pump};
+use rocking::gui::panels::params::slider_range;
 use rocking::gui::panels::plots::SectionKind;
 use rocking::gui::{RockingApp, Settings};
 use rocking::sim::protocol::{RunId, SectionPoint, Speed, StartFrom};
@@ -112,9 +113,9 @@ fn dragging_the_a_v_slider_changes_the_run_live_and_the_section_points_follow() 
 
 /// Holding Shift, a drag moves the value a twentieth as far as a plain
 /// drag, until the button is released: the same 30-point pointer motion
-/// that takes A_v from 2.5 to about 0.4 without Shift moves it by about
-/// 0.1 with it, in four-digit values (period doubling's windows are 0.02
-/// wide).
+/// that would take A_v down by 30 plain steps of 0.1 moves it by 0.15
+/// with it, in four-digit values (period doubling's windows are 0.007 to
+/// 0.05 wide).
 #[test]
 fn a_shift_drag_moves_the_slider_a_twentieth_as_far() {
     let mut h = live(Speed::RealTime(8.0));
@@ -137,7 +138,7 @@ fn a_shift_drag_moves_the_slider_a_twentieth_as_far() {
     pointer(&mut h, a - egui::vec2(30.0, 0.0), Some(false));
     h.step();
     let fine = 2.5 - h.state().config().excitation.a_v;
-    let plain = 30.0 / rect.width() as f64 * 5.0;
+    let plain = 30.0 * slider_range("excitation.a_v").expect("a slider").step;
     assert!(
         (fine - plain / 20.0).abs() < 0.25 * plain / 20.0,
         "a Shift-drag of 30 points moved A_v by {fine} (plain: {plain}): {seen:?}"

@@ -52,7 +52,7 @@ pub const PHENOMENA: &[Lesson] = &[
     lesson(
         "Period doubling",
         "period-doubling",
-        "Drag A_v slowly from 1.6 to 2.3 (Parameters panel, under Excitation; hold Shift to drag finely): the single Poincaré dot splits into 2 at A_v ≈ 1.72, into 4 at ≈ 2.28 and into 8 at ≈ 2.32, the period-doubling road to chaos of the paper's Fig. 4.",
+        "Press on the A_v slider (under Excitation), hold Shift and drag slowly right in one go, 0.005 a point: the Poincaré dot splits into 2 at A_v ≈ 1.71, into 4 at ≈ 2.27 and into 8 at 2.32 (stop there; Shift+arrow keys step 0.005); from 2.33, chaos or a tumble: the road to chaos of the paper's Fig. 4.",
     ),
     Lesson {
         speed: 20.0,
@@ -233,7 +233,7 @@ mod tests {
     fn a_preset_loaded_by_name_gets_its_note() {
         let n = Note::of_preset("period-doubling").unwrap();
         assert_eq!(n.title, "Period doubling");
-        assert!(n.text.contains("1.6 to 2.3"));
+        assert!(n.text.contains("hold Shift and drag slowly right"));
         let f = Note::of_preset("fig7").unwrap();
         assert_eq!(f.title, "fig7: Chaotic rocking without sliding");
         assert!(f.text.contains("tumble"));

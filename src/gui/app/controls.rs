@@ -10,9 +10,9 @@ use crate::sim::protocol::{MAX_GHOSTS, Speed};
 
 impl RockingApp {
     /// Space plays or pauses, R resets, S steps, unless a text field has
-    /// the keyboard.
+    /// the keyboard (a parameter slider takes only the arrows).
     pub(super) fn keys(&mut self, ui: &egui::Ui) {
-        if ui.ctx().egui_wants_keyboard_input() {
+        if ui.ctx().egui_wants_keyboard_input() && !crate::gui::panels::slider::has_keyboard(ui.ctx()) {
             return;
         }
         let (space, r, s) = ui.input(|i| {

@@ -10,3 +10,4 @@ pub mod outcome_map;
 pub mod params;
 pub mod plots;
 pub mod scene;
+pub mod slider;

@@ -8,9 +8,11 @@
 //! harmonic scene.
 //!
 //! Every continuous parameter also has a slider ([`slider_range`]) beside
-//! its field. A drag applies each new value as it comes (at most once a
-//! frame, the panel's one commit per frame), through the same validation as
-//! a typed value; the run restarts from the state shown now or from the
+//! its field, which moves its value by how far the pointer moved (plain or
+//! fine, [`super::slider`]) and steps with the arrow keys. A drag or a key
+//! step applies each new value as it comes (at most once a frame, the
+//! panel's one commit per frame), through the same validation as a typed
+//! value; the run restarts from the state shown now or from the
 //! initial state, as the toggle at the top of the panel says
 //! ([`Edits::drag_from`]). A typed value always starts the scene over from
 //! its initial state: it states a scene (the run `rocking run` would
@@ -350,7 +352,8 @@ pub fn applies(key: &str, kind: ExcitationKind) -> bool {
 }
 
 /// The range of a key's slider: from `min` to `max` in the key's unit,
-/// on a logarithmic scale if `log`.
+/// on a logarithmic scale if `log`, and how far a point of drag or an
+/// arrow press moves it (`step`).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SliderRange {
     /// Left end.
@@ -359,41 +362,87 @@ pub struct SliderRange {
     pub max: f64,
     /// Logarithmic (for scales: sizes and frequencies).
     pub log: bool,
+    /// What one point of a plain drag, or one arrow press, adds: in the
+    /// key's unit, or for a logarithmic slider the fraction of the value
+    /// (0.05: 5 %). A round number near the range over the 54 points the
+    /// handle travels, so that the handle nearly follows the pointer and
+    /// the tooltip can say the step.
+    pub step: f64,
 }
 
-/// How much finer a Shift-drag moves a slider than a plain drag: on a
-/// 72-point rail over A_v 0–5 a point is 0.07, wider than the period-4
-/// window of the paper's Fig. 4 (2.28–2.30); a twentieth of it, 0.0035,
-/// lets a drag stop inside that window.
+/// How much finer a Shift-drag (and a Shift-arrow) moves a slider than a
+/// plain one: on A_v a point is 0.1 ψg, wider than the period-4 window
+/// of the paper's Fig. 4 (2.267–2.315 in this model); a twentieth of it,
+/// 0.005, puts about ten points in that window and one value (2.32)
+/// in the period-8 window (2.316–2.323), while the whole cascade from
+/// A_v = 1.6 still fits in one drag of about 150 points, on the screen
+/// at every presentation scale.
 pub const FINE_DRAG: f64 = 20.0;
 
 impl SliderRange {
-    /// This range shrunk by `factor` about `value`, on the rail's own
-    /// scale (linear, or logarithmic), so that `value` keeps its place
-    /// along the rail: a zoomed rail for a fine drag. A value outside the
-    /// range zooms about the nearer end's place.
-    pub fn zoomed(&self, value: f64, factor: f64) -> Self {
-        let log = self.log && self.min > 0.0 && value > 0.0;
-        // To the rail's linear coordinate, and back.
-        type Map = fn(f64) -> f64;
-        let (to, from): (Map, Map) = if log { (f64::ln, f64::exp) } else { (|x| x, |x| x) };
-        let (lo, hi, at) = (to(self.min), to(self.max), to(value));
-        let place = ((at - lo) / (hi - lo)).clamp(0.0, 1.0);
-        let width = (hi - lo) * factor;
-        Self {
-            min: from(at - place * width),
-            max: from(at + (1.0 - place) * width),
-            log,
+    /// The step of a plain or a fine move ([`SliderRange::step`], or a
+    /// [`FINE_DRAG`]-th of it).
+    pub fn step_of(&self, fine: bool) -> f64 {
+        if fine { self.step / FINE_DRAG } else { self.step }
+    }
+
+    /// `value` moved by `points` points of drag (or arrow presses; may be
+    /// fractional or negative), plain or `fine`, and kept on the range:
+    /// the range widened to take `start`, the value the move began from,
+    /// so that a value typed beyond the rail stays where it is until the
+    /// move heads back.
+    pub fn moved(&self, value: f64, points: f64, fine: bool, start: f64) -> f64 {
+        let step = self.step_of(fine);
+        let v = if self.log && value > 0.0 {
+            value * (1.0 + step).powf(points)
+        } else {
+            value + points * step
+        };
+        v.clamp(self.min.min(start), self.max.max(start))
+    }
+
+    /// Where `value` sits along the rail, from 0 (left end) to 1 (right
+    /// end), on the rail's own scale; a value beyond the range sits at the
+    /// nearer end.
+    pub fn place(&self, value: f64) -> f64 {
+        let f = if self.log && self.min > 0.0 && value > 0.0 {
+            (value / self.min).ln() / (self.max / self.min).ln()
+        } else {
+            (value - self.min) / (self.max - self.min)
+        };
+        if f.is_nan() { 0.0 } else { f.clamp(0.0, 1.0) }
+    }
+
+    /// A step as the tooltip says it: `0.1 ψg`, or `5 %` on a
+    /// logarithmic slider.
+    pub fn step_text(&self, fine: bool, unit: &str) -> String {
+        let step = self.step_of(fine);
+        if self.log {
+            format!("{} %", slider_text(100.0 * step))
+        } else if unit.is_empty() {
+            slider_text(step)
+        } else {
+            format!("{} {unit}", slider_text(step))
         }
     }
 }
 
-const fn lin(min: f64, max: f64) -> Option<SliderRange> {
-    Some(SliderRange { min, max, log: false })
+const fn lin(min: f64, max: f64, step: f64) -> Option<SliderRange> {
+    Some(SliderRange {
+        min,
+        max,
+        log: false,
+        step,
+    })
 }
 
-const fn log(min: f64, max: f64) -> Option<SliderRange> {
-    Some(SliderRange { min, max, log: true })
+const fn log(min: f64, max: f64, step: f64) -> Option<SliderRange> {
+    Some(SliderRange {
+        min,
+        max,
+        log: true,
+        step,
+    })
 }
 
 /// The slider of `key`, for the continuous parameters; `None` for the
@@ -404,21 +453,21 @@ const fn log(min: f64, max: f64) -> Option<SliderRange> {
 pub fn slider_range(key: &str) -> Option<SliderRange> {
     match key {
         // 5 cm (a statuette) to 10 m (a tall tank): three decades of size.
-        "block.width" | "block.height" => log(0.05, 10.0),
+        "block.width" | "block.height" => log(0.05, 10.0, 0.1),
         // Dry friction coefficients of real contacts lie below 1.5; `inf`
         // (no sliding) stays typed only.
-        "friction.static" | "friction.kinetic" | "impact.static" | "impact.kinetic" => lin(0.0, 2.0),
-        "impact.r" | "impact.e" => lin(0.0, 1.0),
+        "friction.static" | "friction.kinetic" | "impact.static" | "impact.kinetic" => lin(0.0, 2.0, 0.05),
+        "impact.r" | "impact.e" => lin(0.0, 1.0, 0.02),
         // Uplift needs A_h > tan ψ/ψ ≈ 1 (ψ g); 5 is five times that and
         // above every preset (the paper's bifurcations run to A_v = 3).
-        "excitation.a_h" | "excitation.a_v" => lin(0.0, 5.0),
+        "excitation.a_h" | "excitation.a_v" => lin(0.0, 5.0, 0.1),
         // From slow rocking to far above the block's own frequencies.
-        "excitation.omega_h" | "excitation.omega_v" => log(0.5, 30.0),
-        "excitation.phase_h" | "excitation.phase_v" => lin(0.0, std::f64::consts::TAU),
-        "excitation.pga_h" | "excitation.pga_v" => lin(0.0, 2.0),
-        "excitation.scale_h" | "excitation.scale_v" => lin(0.0, 5.0),
-        "initial.theta" => lin(-1.0, 1.0),
-        "initial.theta_dot" | "initial.x_dot" => lin(-3.0, 3.0),
+        "excitation.omega_h" | "excitation.omega_v" => log(0.5, 30.0, 0.05),
+        "excitation.phase_h" | "excitation.phase_v" => lin(0.0, std::f64::consts::TAU, 0.1),
+        "excitation.pga_h" | "excitation.pga_v" => lin(0.0, 2.0, 0.05),
+        "excitation.scale_h" | "excitation.scale_v" => lin(0.0, 5.0, 0.1),
+        "initial.theta" => lin(-1.0, 1.0, 0.05),
+        "initial.theta_dot" | "initial.x_dot" => lin(-3.0, 3.0, 0.1),
         _ => None,
     }
 }
@@ -612,57 +661,46 @@ pub fn show(
 }
 
 /// The slider of number key `k` (whose value reads `shown`); returns the
-/// new value while it is dragged. None is drawn for a value that is not a
-/// finite number (`inf`, or an empty default).
+/// new value while it is dragged or stepped with the arrow keys. None is
+/// drawn for a value that is not a finite number (`inf`, or an empty
+/// default).
 fn slider(ui: &mut egui::Ui, k: &Key, shown: &str) -> Option<Commit> {
     let range = slider_range(k.key)?;
     let value = shown.trim().parse::<f64>().ok().filter(|v| v.is_finite())?;
-    let mut v = value;
-    // A fine drag (begun or joined with Shift) lasts until the button is
-    // released: the rail then spans a FINE_DRAG-th of the range, zoomed
-    // about the value where it began (which keeps its place on the rail),
-    // so the handle follows the pointer at that finer rate.
-    let fine_id = egui::Id::unique(("fine drag", k.key));
-    let anchor: Option<f64> = ui.data(|d| d.get_temp(fine_id));
-    let rail = anchor.map_or(range, |v0| range.zoomed(v0, 1.0 / FINE_DRAG));
     // With the 60-point field beside it, the row fits the panel's
     // default 300 points.
     ui.spacing_mut().slider_width = 72.0;
-    let r = ui
-        .add(
-            egui::Slider::new(&mut v, rail.min..=rail.max)
-                .logarithmic(rail.log)
-                .show_value(false)
-                // A value beyond the range stays as it is until dragged.
-                .clamping(egui::SliderClamping::Never),
-        )
-        .on_hover_text(format!(
-            "Drag to explore {} from {} to {} {} (hold Shift for a drag {FINE_DRAG}× finer); the field beside takes any valid value",
-            k.label,
-            slider_text(range.min),
-            slider_text(range.max),
-            k.unit
-        ));
-    // Its own accessible name: the field beside is the one named by the label.
     let name = format!("{} slider", k.label);
-    ui.ctx().accesskit_node_builder(r.id, |node| node.set_label(name));
-    if !r.dragged() {
-        ui.data_mut(|d| d.remove::<f64>(fine_id));
-    } else if anchor.is_none() && ui.input(|i| i.modifiers.shift) {
-        // Shift held while dragging: the fine rail from the next frame on;
-        // this frame's move, on the full rail, is dropped.
-        ui.data_mut(|d| d.insert_temp(fine_id, value));
-        return None;
+    let (r, wanted) = super::slider::Slider {
+        value,
+        range,
+        name: &name,
     }
-    if !r.changed() {
-        return None;
-    }
-    let raw = slider_text(v);
+    .show(ui);
+    r.on_hover_text(slider_help(k, &range));
+    let raw = slider_text(wanted?);
     (raw.parse::<f64>().ok() != Some(value)).then_some(Commit {
         key: k.key,
         raw,
         dragged: true,
     })
+}
+
+/// The hover text of `k`'s slider: its range, and the plain and fine
+/// steps of a drag and of the arrow keys, with their unit.
+pub fn slider_help(k: &Key, range: &SliderRange) -> String {
+    let (plain, fine) = (range.step_text(false, k.unit), range.step_text(true, k.unit));
+    let unit = if k.unit.is_empty() {
+        String::new()
+    } else {
+        format!(" {}", k.unit)
+    };
+    format!(
+        "Drag to explore {} from {} to {}{unit}: each point of drag moves it {plain}; hold Shift during the drag for {fine} a point ({FINE_DRAG}× finer). The drag goes on past the ends of the rail. Click it, then the Left and Right (or Down and Up) arrow keys step {plain}, Shift+arrow {fine}. The field beside takes any valid value.",
+        k.label,
+        slider_text(range.min),
+        slider_text(range.max),
+    )
 }
 
 /// The text field of key `k`, committed when it loses focus (or on Enter).
@@ -710,31 +748,30 @@ fn text_field(
 mod tests {
     use super::*;
 
-    /// A zoomed rail is a FINE_DRAG-th of the range (of its span, or of
-    /// its decades) with the value at the same place along it.
+    /// A move is a number of steps from where it began, on the rail's
+    /// scale, held to the range (widened to take a value typed beyond it).
     #[test]
-    fn a_zoomed_rail_keeps_the_value_in_its_place() {
-        let lin = SliderRange {
-            min: 0.0,
-            max: 5.0,
-            log: false,
-        };
-        let z = lin.zoomed(2.0, 0.05);
-        assert!((z.max - z.min - 0.25).abs() < 1e-12);
-        assert!(((2.0 - z.min) / (z.max - z.min) - 0.4).abs() < 1e-12);
-        let log = SliderRange {
-            min: 0.5,
-            max: 30.0,
-            log: true,
-        };
-        let z = log.zoomed(8.0, 0.05);
-        assert!(z.log);
-        assert!(((z.max / z.min).ln() - 0.05 * 60f64.ln()).abs() < 1e-12);
-        let place = |r: SliderRange, v: f64| (v / r.min).ln() / (r.max / r.min).ln();
-        assert!((place(z, 8.0) - place(log, 8.0)).abs() < 1e-12);
-        // A value beyond the range: the rail hangs off the nearer end.
-        let z = lin.zoomed(7.0, 0.05);
-        assert!((z.max - 7.0).abs() < 1e-12 && (z.min - 6.75).abs() < 1e-12);
+    fn a_slider_moves_by_steps_and_stops_only_at_its_range() {
+        let a_v = slider_range("excitation.a_v").unwrap();
+        assert_eq!((a_v.step_of(false), a_v.step_of(true)), (0.1, 0.005));
+        assert!((a_v.moved(1.6, 7.0, false, 1.6) - 2.3).abs() < 1e-12);
+        assert!((a_v.moved(1.6, 7.0, true, 1.6) - 1.635).abs() < 1e-12);
+        assert!((a_v.moved(1.6, -2.5, false, 1.6) - 1.35).abs() < 1e-12);
+        assert_eq!(a_v.moved(4.9, 10.0, false, 4.9), 5.0);
+        assert_eq!(a_v.moved(0.2, -1000.0, true, 0.2), 0.0);
+        // Typed beyond the rail: it stays until moved back.
+        assert_eq!(a_v.moved(7.0, 3.0, false, 7.0), 7.0);
+        assert!((a_v.moved(7.0, -1.0, false, 7.0) - 6.9).abs() < 1e-12);
+        assert_eq!((a_v.place(2.5), a_v.place(-1.0), a_v.place(7.0)), (0.5, 0.0, 1.0));
+        // Logarithmic: a fraction of the value per step.
+        let omega = slider_range("excitation.omega_h").unwrap();
+        assert!((omega.moved(8.0, 2.0, false, 8.0) - 8.0 * 1.05 * 1.05).abs() < 1e-12);
+        assert!((omega.moved(8.0, -1.0, true, 8.0) - 8.0 / 1.0025).abs() < 1e-12);
+        assert!((omega.place(30f64.sqrt() * 0.5f64.sqrt()) - 0.5).abs() < 1e-12);
+        assert_eq!(omega.step_text(false, "p"), "5 %");
+        assert_eq!(omega.step_text(true, "p"), "0.25 %");
+        assert_eq!(a_v.step_text(true, "ψg"), "0.005 ψg");
+        assert_eq!(slider_range("impact.r").unwrap().step_text(false, ""), "0.02");
     }
 
     #[test]
@@ -756,6 +793,14 @@ mod tests {
                 sliders += 1;
                 assert_eq!(k.kind, Kind::Number, "{}", k.key);
                 assert!(r.min < r.max && (!r.log || r.min > 0.0), "{}: {r:?}", k.key);
+                // The whole range in 20 to 200 points of plain drag: the
+                // handle about follows a pointer on the 54-point travel.
+                let points = if r.log {
+                    (r.max / r.min).ln() / r.step.ln_1p()
+                } else {
+                    (r.max - r.min) / r.step
+                };
+                assert!((20.0..=200.0).contains(&points), "{}: {points} points", k.key);
             }
         }
         // B, H, four friction coefficients, r, e, two amplitudes, two
