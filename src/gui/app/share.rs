@@ -50,8 +50,14 @@ pub fn window_title(origin: &str, dirty: bool) -> String {
 struct Recording {
     path: PathBuf,
     options: GifOptions,
-    /// When it started, s of egui time.
-    start: f64,
+    /// The egui pass in which the file was chosen: that frame may still
+    /// show the dialog that asked (or come after a desktop dialog held
+    /// the app for as long as it was open), so the clock starts in the
+    /// next one.
+    chosen_pass: u64,
+    /// When it started, s of egui time; `None` until the first frame
+    /// after the file was chosen.
+    start: Option<f64>,
     /// When the next frame is due, s of egui time.
     next: f64,
     /// Frames asked for so far.
@@ -149,7 +155,9 @@ impl RockingApp {
     }
 
     /// Starts recording `options.seconds` of the window into a GIF at
-    /// `path`, written when the recording ends.
+    /// `path`, written when the recording ends. The clock starts in the
+    /// frame after this call, however long this frame took (a desktop
+    /// file dialog blocks the frame that opened it).
     pub fn record_gif(&mut self, ctx: &egui::Context, path: PathBuf, options: GifOptions) {
         if self.sharing_busy() {
             self.message = Some(Message {
@@ -160,12 +168,12 @@ impl RockingApp {
         }
         let waker = ctx.clone();
         let (tx, done) = capture::spawn_gif_writer(path.clone(), options, move || waker.request_repaint());
-        let now = ctx.input(|i| i.time);
         self.share.recording = Some(Recording {
             path,
             options,
-            start: now,
-            next: now,
+            chosen_pass: ctx.cumulative_pass_nr(),
+            start: None,
+            next: 0.0,
             asked: 0,
             tx,
             done,
@@ -228,6 +236,7 @@ impl RockingApp {
             self.share.title_sent = Some(title);
         }
         self.gif_window(ctx);
+        self.path_window_ui(ctx);
         self.tick_recording(ctx);
         self.tick_view(ctx);
         self.collect_written();
@@ -238,13 +247,24 @@ impl RockingApp {
             return;
         };
         let now = ctx.input(|i| i.time);
-        let end = rec.start + f64::from(rec.options.seconds);
+        let start = match rec.start {
+            Some(start) => start,
+            None if ctx.cumulative_pass_nr() > rec.chosen_pass => {
+                rec.next = now;
+                *rec.start.insert(now)
+            }
+            None => {
+                ctx.request_repaint();
+                return;
+            }
+        };
+        let end = start + f64::from(rec.options.seconds);
         if now >= end {
             let _ = rec.tx.send(Shot::End);
             let rec = self.share.recording.take().expect("checked above");
             self.share.encoding.push(rec.done);
             self.message = Some(Message {
-                text: format!("encoding {} ({} frames)…", file_name(&rec.path), rec.asked),
+                text: format!("writing {}: encoding {} frames…", file_name(&rec.path), rec.asked),
                 error: false,
             });
             return;
@@ -358,12 +378,14 @@ impl RockingApp {
         }
     }
 
-    /// The status-bar text while recording: `recording… 3.2 s of 5 s`.
+    /// The status-bar text while recording: `recording… 3.2 s of 5.0 s`
+    /// (`0.0 s` until the clock starts).
     pub(super) fn recording_label(&self, now: f64) -> Option<String> {
         let rec = self.share.recording.as_ref()?;
+        let done = rec.start.map_or(0.0, |start| (now - start).max(0.0));
         Some(format!(
-            "recording… {:.1} s of {} s",
-            (now - rec.start).max(0.0),
+            "recording… {:.1} s of {:.1} s",
+            done.min(f64::from(rec.options.seconds)),
             rec.options.seconds
         ))
     }
@@ -404,11 +426,9 @@ impl RockingApp {
             self.share.gif_dialog = None;
         } else if start {
             let options = *opts;
-            // The dialog leaves the screen before the first frame is taken.
+            // The file first: the recording starts once it is chosen.
             self.share.gif_dialog = None;
-            if let Some(path) = super::controls::save_dialog("GIF", "gif", "rocking.gif") {
-                self.record_gif(ctx, path, options);
-            }
+            self.ask_file(ctx, super::FileAsk::RecordGif(options));
         }
     }
 }
