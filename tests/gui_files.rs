@@ -286,3 +286,149 @@ fn a_cancelled_desktop_dialog_is_not_taken_for_a_missing_one() {
     assert!(h.state().path_window().is_none());
     assert!(h.state().message().is_none(), "{:?}", h.state().message());
 }
+
+// ---- Export view: at least 1920 px wide, whatever the window manager ----
+
+/// The PNG at `path`: width, height and RGB bytes.
+fn read_png(path: &Path) -> (usize, usize, Vec<u8>) {
+    let mut reader = png::Decoder::new(std::io::BufReader::new(std::fs::File::open(path).expect("written")))
+        .read_info()
+        .expect("a PNG");
+    let mut buf = vec![0; reader.output_buffer_size().expect("size")];
+    let info = reader.next_frame(&mut buf).expect("pixels");
+    assert_eq!(info.color_type, png::ColorType::Rgb);
+    buf.truncate(info.buffer_size());
+    (info.width as usize, info.height as usize, buf)
+}
+
+/// Exports the view to `path` while a window manager keeps the window
+/// at `physical` pixels (as it does a maximised window, or one as large
+/// as the screen): after every frame the window is put back to that size.
+/// (The harness draws its size in points times the zoom, so a window of
+/// fixed pixels is `physical / zoom` points.) Returns the status line.
+fn export_with_a_firm_window_manager(
+    h: &mut Harness<'static, RockingApp>,
+    physical: egui::Vec2,
+    path: &Path,
+) -> String {
+    let ctx = h.ctx.clone();
+    h.state_mut().export_view(&ctx, path.to_path_buf());
+    let start = std::time::Instant::now();
+    while h.state().sharing_busy() && start.elapsed() < Duration::from_secs(120) {
+        h.step();
+        let zoom = h.ctx.zoom_factor();
+        h.set_size(physical / zoom);
+        std::thread::sleep(Duration::from_millis(5));
+    }
+    assert!(!h.state().sharing_busy(), "the export ends");
+    let msg = h.state().message().expect("a message").clone();
+    assert!(!msg.error, "{msg:?}");
+    msg.text
+}
+
+/// Mean absolute difference per channel between the window as drawn
+/// (`window`, RGBA) and the export (RGB) scaled down to the window's size.
+fn mean_difference(window: ([u32; 2], &[u8]), export: (usize, usize, Vec<u8>)) -> f64 {
+    let ([ww, wh], rgba) = window;
+    let (w, h, rgb) = export;
+    let pixels = rgb
+        .chunks_exact(3)
+        .map(|c| egui::Color32::from_rgb(c[0], c[1], c[2]))
+        .collect();
+    let img = egui::ColorImage::new([w, h], pixels);
+    let size = [ww as usize, wh as usize];
+    let small = rocking::gui::capture::resample(&img, size);
+    let total: u64 = rgba
+        .chunks_exact(4)
+        .zip(small.chunks_exact(3))
+        .map(|(p, q)| (0..3).map(|k| u64::from(p[k].abs_diff(q[k]))).sum::<u64>())
+        .sum();
+    total as f64 / (3 * size[0] * size[1]) as f64
+}
+
+/// The reported failure: with a window manager that keeps the window's
+/// size, Export view wrote the window as it was, 1280 × 800.
+#[test]
+fn the_view_exports_1920_wide_when_the_window_manager_keeps_the_window_size() {
+    let mut h = rendered("default", SIZE);
+    // The stream drained and the last impact's flash (0.18 s) faded.
+    for _ in 0..30 {
+        h.step();
+    }
+    let dir = temp_dir("firm-wm");
+    let path = dir.join("view.png");
+    let line = export_with_a_firm_window_manager(&mut h, SIZE, &path);
+    let (w, hgt, rgb) = read_png(&path);
+    println!("firm window manager: {w} × {hgt} px; {line}");
+    assert!(w >= 1920 && hgt >= 1080, "{w} × {hgt}");
+    assert_eq!((w, hgt), (1920, 1200), "1280 × 800 points at 1.5 pixels a point");
+    assert!(line.starts_with("wrote view.png (1920 × 1200 px"), "{line}");
+    // The window was never touched, and the picture is its layout.
+    assert_eq!(h.ctx.zoom_factor(), 1.0);
+    assert_eq!(h.ctx.content_rect().size(), SIZE);
+    h.step();
+    let window = h.render().expect("rendered");
+    // To look at them: VIEW_OUT=/tmp/view (writes view.png and window.png there).
+    if let Some(out) = std::env::var_os("VIEW_OUT") {
+        let out = PathBuf::from(out);
+        std::fs::create_dir_all(&out).expect("folder");
+        std::fs::copy(&path, out.join("view.png")).expect("copied");
+        window.save(out.join("window.png")).expect("saved");
+    }
+    let diff = mean_difference(([window.width(), window.height()], window.as_raw()), (w, hgt, rgb));
+    println!("mean difference from the window: {diff:.2} levels");
+    assert!(diff < 8.0, "{diff}");
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+/// Every presentation scale, in both window sizes a lecture uses.
+#[test]
+fn the_view_exports_at_least_1920_by_1080_at_every_scale_and_window_size() {
+    let dir = temp_dir("scales");
+    for size in [SIZE, egui::vec2(1920.0, 1080.0)] {
+        let mut h = rendered("default", size);
+        h.step();
+        for scale in rocking::gui::prefs::SCALES {
+            let ctx = h.ctx.clone();
+            h.state_mut().set_presentation_scale(&ctx, scale);
+            // A window of `size` pixels at this scale.
+            h.set_size(size / scale);
+            for _ in 0..30 {
+                h.step();
+            }
+            let path = dir.join(format!("view-{}-{}.png", size.x, (scale * 100.0) as u32));
+            let line = export_with_a_firm_window_manager(&mut h, size, &path);
+            let (w, hgt, rgb) = read_png(&path);
+            h.step();
+            let window = h.render().expect("rendered");
+            let diff = mean_difference(([window.width(), window.height()], window.as_raw()), (w, hgt, rgb));
+            println!("{size:?} at {scale}: {w} × {hgt} px, mean difference {diff:.2}; {line}");
+            assert!(w >= 1920 && hgt >= 1080, "{size:?} at {scale}: {w} × {hgt}");
+            assert!(diff < 8.0, "{size:?} at {scale}: {diff}");
+            assert_eq!(h.ctx.zoom_factor(), scale);
+            assert_eq!(
+                (h.ctx.content_rect().size() * h.ctx.pixels_per_point()).round(),
+                size.round()
+            );
+        }
+    }
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+#[test]
+fn the_view_export_without_a_gpu_renderer_says_why_and_writes_nothing() {
+    let mut h = lazy("default");
+    h.step();
+    let dir = temp_dir("no-gpu");
+    let path = dir.join("view.png");
+    let ctx = h.ctx.clone();
+    h.state_mut().export_view(&ctx, path.clone());
+    assert!(pump(&mut h, Duration::from_secs(10), |a| !a.sharing_busy()));
+    let msg = h.state().message().expect("a message").clone();
+    assert!(
+        msg.error && msg.text.contains("view.png: the view could not be drawn"),
+        "{msg:?}"
+    );
+    assert!(!path.exists());
+    let _ = std::fs::remove_dir_all(dir);
+}

@@ -35,6 +35,7 @@ mod file_dialog;
 mod layout;
 pub mod lecture;
 mod map_panel;
+mod offscreen;
 mod receive;
 mod record_open;
 mod share;
