@@ -34,9 +34,12 @@ pub const NO_DIALOG_S: f64 = 0.3;
 /// window only; anything else, or unset, for the desktop's dialog first.
 pub const ENV: &str = "ROCKING_FILE_DIALOG";
 
-/// The status-bar line when the desktop's dialog could not open.
-pub const NO_DIALOG: &str =
-    "no file dialog could open (it needs xdg-desktop-portal or zenity): type the path in the window instead";
+/// The status-bar line when the desktop's dialog could not open (short:
+/// one line of the status bar; the path window says why).
+pub const NO_DIALOG: &str = "no file dialog could open: type the path instead";
+
+/// Why, in the path window.
+const NO_DIALOG_WHY: &str = "No file dialog could open: the desktop has no xdg-desktop-portal and no zenity.";
 
 /// What a path is asked for: one per File menu item.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -224,6 +227,8 @@ struct PathWindow {
     error: Option<String>,
     /// Whether the text field has been given the keyboard yet.
     focused: bool,
+    /// Whether it stands in for a desktop dialog that could not open.
+    fallback: bool,
 }
 
 /// How the app asks for paths.
@@ -256,6 +261,7 @@ impl RockingApp {
     /// are); if it could not open, the status bar says so and the path
     /// window opens.
     pub fn ask_file(&mut self, ctx: &egui::Context, ask: FileAsk) {
+        let mut fallback = false;
         if let Some(native) = self.files.native {
             let asked = Instant::now();
             let dir = self.files.dir.clone();
@@ -266,6 +272,7 @@ impl RockingApp {
                 }
                 None if asked.elapsed() >= Duration::from_secs_f64(NO_DIALOG_S) => return,
                 None => {
+                    fallback = true;
                     self.message = Some(Message {
                         text: NO_DIALOG.into(),
                         error: true,
@@ -278,6 +285,7 @@ impl RockingApp {
             text: proposed_text(ask, &self.files.dir),
             error: None,
             focused: false,
+            fallback,
         });
         ctx.request_repaint();
     }
@@ -349,6 +357,9 @@ impl RockingApp {
             .resizable(false)
             .anchor(egui::Align2::CENTER_CENTER, egui::vec2(0.0, 0.0))
             .show(ctx, |ui| {
+                if w.fallback {
+                    ui.label(egui::RichText::new(NO_DIALOG_WHY).weak());
+                }
                 let what = match w.ask.kind() {
                     PathKind::Open => "The file to open:",
                     PathKind::Save => "The file to write:",

@@ -256,7 +256,8 @@ impl RockingApp {
         };
         let end = start + f64::from(rec.options.seconds);
         if now >= end {
-            let _ = rec.tx.send(Shot::End);
+            // The clip's nominal end: the last frame is held until then.
+            let _ = rec.tx.send(Shot::End(end));
             let rec = self.share.recording.take().expect("checked above");
             self.share.encoding.push(rec.done);
             self.message = Some(Message {
