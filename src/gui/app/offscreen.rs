@@ -175,7 +175,6 @@ fn render(
         let mut renderer = rs.renderer.write();
         // In order for each texture (a full image, then its patches); the
         // textures' order among themselves does not matter.
-        #[expect(clippy::iter_over_hash_type, reason = "each texture is independent")]
         for (id, images) in &delta.set {
             for image in images {
                 renderer.update_texture(&rs.device, &rs.queue, lent(*id), image);
