@@ -411,6 +411,19 @@ fn the_view_exports_1920_wide_when_the_window_manager_keeps_the_window_size() {
     let diff = mean_difference(([window.width(), window.height()], window.as_raw()), (w, hgt, rgb));
     println!("mean difference from the window: {diff:.2} levels");
     assert!(diff < 8.0, "{diff}");
+    // The measure sees a layout change: the same picture against the
+    // window at the next presentation scale differs by far more.
+    let ctx = h.ctx.clone();
+    h.state_mut().set_presentation_scale(&ctx, 1.25);
+    h.set_size(SIZE / 1.25);
+    for _ in 0..30 {
+        h.step();
+    }
+    let other = h.render().expect("rendered");
+    let (w, hgt, rgb) = read_png(&path);
+    let control = mean_difference(([other.width(), other.height()], other.as_raw()), (w, hgt, rgb));
+    println!("mean difference from the window at 125 %: {control:.2} levels");
+    assert!(control > 2.0 * diff && control > 8.0, "{control}");
     let _ = std::fs::remove_dir_all(dir);
 }
 

@@ -244,7 +244,9 @@ impl RockingApp {
         ui.separator();
         if ui
             .button("Export view (PNG)…")
-            .on_hover_text("The window as it is, at least 1920 × 1080 pixels (a small window is drawn enlarged)")
+            .on_hover_text(
+                "The window as it is, at least 1920 × 1080 pixels (a small window is drawn again with more pixels)",
+            )
             .clicked()
         {
             ui.close();
