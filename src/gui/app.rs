@@ -3,7 +3,8 @@
 //! simulation thread), `controls` (top bar, menus, keyboard), `layout`
 //! (where the panels go, and the frame), `status` (the status bar),
 //! `record_open` (opening a record, and asking what its file leaves out),
-//! `share` (the window title, and the window as a GIF or PNG).
+//! `share` (the window title, and the window as a GIF or PNG),
+//! `file_dialog` (asking for a path, with or without the desktop's dialog).
 //!
 //! Contract: the app does no mechanics. Everything it shows comes from the
 //! simulation thread's updates ([`crate::sim::protocol`]), filtered by run
@@ -30,14 +31,17 @@ use crate::sim::protocol::{GhostState, RunEnd, RunId, RunInfo, SimUpdate, Speed,
 use crate::sim::runner::SimHandle;
 
 mod controls;
+mod file_dialog;
 mod layout;
 pub mod lecture;
 mod map_panel;
+mod offscreen;
 mod receive;
 mod record_open;
 mod share;
 mod status;
 
+pub use file_dialog::{FileAsk, NO_DIALOG, NativeDialog, PathKind};
 pub use record_open::RecordQuestion;
 pub use share::window_title;
 
@@ -152,6 +156,8 @@ pub struct RockingApp {
     lecture: lecture::Lecture,
     /// The window title, GIF recording and PNG export ([`share`]).
     share: share::Share,
+    /// How File menu items ask for a path ([`file_dialog`]).
+    files: file_dialog::FileDialogs,
 }
 
 impl RockingApp {
@@ -264,6 +270,7 @@ impl RockingApp {
             record_question: None,
             lecture: lecture::Lecture::default(),
             share: share::Share::default(),
+            files: file_dialog::FileDialogs::default(),
         }
     }
 

@@ -234,6 +234,9 @@ pub struct GifBuilder {
     frames: usize,
     /// The last frame written, whole (palette indices).
     prev: Option<Vec<u8>>,
+    /// When the recording ended (s, the frames' clock), if known: the
+    /// last frame lasts until then.
+    end: Option<f64>,
 }
 
 impl GifBuilder {
@@ -247,7 +250,16 @@ impl GifBuilder {
             encoder: None,
             frames: 0,
             prev: None,
+            end: None,
         }
+    }
+
+    /// Says when the recording ended (s, the clock of [`GifBuilder::push`]):
+    /// the last frame is shown until then, so the GIF plays for the whole
+    /// clip even when frames came slower than asked. Without it (or if it
+    /// is not after the last frame) the last frame lasts 1/fps.
+    pub fn end_at(&mut self, t: f64) {
+        self.end = Some(t);
     }
 
     /// Adds `image`, captured at `t` (s, any origin, increasing).
@@ -289,7 +301,10 @@ impl GifBuilder {
             .map(|i| {
                 let cs = match batch.get(i + 1).map(|f| f.0).or(next) {
                     Some(t1) => (t1 - batch[i].0) * 100.0,
-                    None => last_cs,
+                    None => match self.end {
+                        Some(end) if end > batch[i].0 => (end - batch[i].0) * 100.0,
+                        Some(_) | None => last_cs,
+                    },
                 };
                 // GIF delays are centiseconds; viewers treat under 2 as 10.
                 cs.round().clamp(2.0, 6000.0) as u16
@@ -349,9 +364,10 @@ impl GifBuilder {
 pub enum Shot {
     /// A frame captured at `t`, s.
     Frame(f64, Arc<ColorImage>),
-    /// The recording is over: write the file. (A writer whose senders are
-    /// all dropped before this, as when the app closes, writes nothing.)
-    End,
+    /// The recording ended at `t`, s (the frames' clock): write the file.
+    /// (A writer whose senders are all dropped before this, as when the
+    /// app closes, writes nothing.)
+    End(f64),
 }
 
 /// The GIF writer's thread: it encodes the frames sent on the returned
@@ -380,7 +396,8 @@ pub fn spawn_gif_writer(
                         failed = Some(e);
                     }
                 }
-                Ok(Shot::End) => {
+                Ok(Shot::End(t)) => {
+                    gif.end_at(t);
                     break match failed {
                         Some(e) => Err(format!("{}: {e}", path.display())),
                         None => write_gif(&path, gif),

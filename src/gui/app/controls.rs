@@ -1,7 +1,7 @@
 //! The top bar (File, Presets and View menus, playback, perturbation, speed
 //! and ghosts) and the keyboard shortcuts that mirror its buttons.
 
-use super::{Message, RockingApp};
+use super::{FileAsk, Message, RockingApp};
 use crate::gui::export;
 use crate::gui::settings::Settings;
 use crate::gui::units::Units;
@@ -223,63 +223,34 @@ impl RockingApp {
     fn file_menu(&mut self, ui: &mut egui::Ui) {
         if ui.button("Open scene…").clicked() {
             ui.close();
-            if let Some(path) = rfd::FileDialog::new()
-                .add_filter("scene", &["toml", "json"])
-                .pick_file()
-            {
-                self.open_scene(&path);
-            }
+            self.ask_file(ui.ctx(), FileAsk::OpenScene);
         }
         if ui.button("Open record…").clicked() {
             ui.close();
-            // No filter: records come as .AT2, .dat, .txt, .acc, .csv, …
-            if let Some(path) = rfd::FileDialog::new()
-                .set_title("Open a ground-motion record")
-                .pick_file()
-            {
-                self.open_record(&path);
-            }
+            self.ask_file(ui.ctx(), FileAsk::OpenRecord);
         }
         if ui.button("Save scene…").clicked() {
             ui.close();
-            if let Some(path) = save_dialog("scene", "toml", "scene.toml") {
-                self.save_scene(&path);
-            }
+            self.ask_file(ui.ctx(), FileAsk::SaveScene);
         }
         if ui.button("Export plots (PNG)…").clicked() {
             ui.close();
-            if let Some(path) = save_dialog("PNG", "png", "plots.png") {
-                let r = export::plots_png(
-                    &path,
-                    &self.hist,
-                    self.tau,
-                    self.history_view.window,
-                    self.phase.trail_tau,
-                );
-                self.message = Some(written(r, || format!("wrote {}", path.display())));
-            }
+            self.ask_file(ui.ctx(), FileAsk::ExportPlots);
         }
         if ui.button("Export data (CSV)…").clicked() {
             ui.close();
-            if let Some(info) = &self.info
-                && let Some(dir) = rfd::FileDialog::new().pick_folder()
-            {
-                let r = export::data_csv(&dir, &self.hist, &info.geometry);
-                self.message = Some(written(r, || {
-                    format!("wrote history.csv, poincare.csv, events.csv in {}", dir.display())
-                }));
-            }
+            self.ask_file(ui.ctx(), FileAsk::ExportData);
         }
         ui.separator();
         if ui
             .button("Export view (PNG)…")
-            .on_hover_text("The window as it is, at least 1920 × 1080 pixels (a small window is drawn enlarged)")
+            .on_hover_text(
+                "The window as it is, at least 1920 × 1080 pixels (a small window is drawn again with more pixels)",
+            )
             .clicked()
         {
             ui.close();
-            if let Some(path) = save_dialog("PNG", "png", "rocking.png") {
-                self.export_view(ui.ctx(), path);
-            }
+            self.ask_file(ui.ctx(), FileAsk::ExportView);
         }
         let busy = self.sharing_busy();
         if ui
@@ -317,15 +288,6 @@ impl RockingApp {
         }
         self.message = Some(written(r, || format!("saved {}", path.display())));
     }
-}
-
-/// Asks where to save a `filter` file (extension `ext`), proposing `name`;
-/// `None` if the user cancelled.
-pub(super) fn save_dialog(filter: &str, ext: &str, name: &str) -> Option<std::path::PathBuf> {
-    rfd::FileDialog::new()
-        .add_filter(filter, &[ext])
-        .set_file_name(name)
-        .save_file()
 }
 
 /// The status-bar line after writing a file: `done()` if it was written,

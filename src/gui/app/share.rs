@@ -1,17 +1,18 @@
 //! Sharing what the app shows: the window title (the scene's name and an
 //! unsaved-changes mark), recording an animated GIF of the window, and one
-//! PNG of it at presentation resolution. The pictures come from egui's
-//! screenshots ([`egui::Context::request_screenshot`]); the files are
-//! encoded and written by [`crate::gui::capture`] on background threads.
+//! PNG of it at presentation resolution. The GIF's frames are egui's
+//! screenshots ([`egui::Context::request_screenshot`]); the PNG is the app
+//! drawn off screen ([`super::offscreen`]). The files are encoded and
+//! written by [`crate::gui::capture`] on background threads.
 //!
 //! Everything here advances once a frame, in [`RockingApp::share_tick`]:
-//! the status bar calls it, so it runs in every frame the app draws.
+//! the status bar calls it, so it runs in every frame the app draws. The
+//! view's PNG is drawn in [`RockingApp::share_logic`], which has the frame.
 
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use crossbeam_channel::{Receiver, Sender};
-use egui::ColorImage;
 
 use super::{Message, RockingApp};
 use crate::gui::capture::{self, GifOptions, Shot, Written};
@@ -22,10 +23,6 @@ pub const PRESENTATION_WIDTH: f32 = 1920.0;
 
 /// The height it has at least, physical pixels.
 pub const PRESENTATION_HEIGHT: f32 = 1080.0;
-
-/// Frames the PNG export waits for the enlarged window before it takes
-/// the picture anyway (a window manager may refuse the size).
-const RESIZE_FRAMES: u32 = 30;
 
 /// The window title for a scene from `origin` (a preset, `preset NAME`, or
 /// a file path), with `•` after it while it has unsaved changes:
@@ -50,8 +47,14 @@ pub fn window_title(origin: &str, dirty: bool) -> String {
 struct Recording {
     path: PathBuf,
     options: GifOptions,
-    /// When it started, s of egui time.
-    start: f64,
+    /// The egui pass in which the file was chosen: that frame may still
+    /// show the dialog that asked (or come after a desktop dialog held
+    /// the app for as long as it was open), so the clock starts in the
+    /// next one.
+    chosen_pass: u64,
+    /// When it started, s of egui time; `None` until the first frame
+    /// after the file was chosen.
+    start: Option<f64>,
     /// When the next frame is due, s of egui time.
     next: f64,
     /// Frames asked for so far.
@@ -60,29 +63,12 @@ struct Recording {
     done: Receiver<Result<Written, String>>,
 }
 
-/// Where the PNG export of the view is.
-enum Snap {
-    /// The zoom was raised; next frame the window is enlarged to keep the
-    /// layout.
-    Zoomed,
-    /// Waiting for the enlarged window, or for the menu to close (frames
-    /// waited so far).
-    Resizing(u32),
-    /// The screenshot was asked for.
-    Shooting(Receiver<Arc<ColorImage>>),
-    /// The zoom was restored; next frame the window gets its size back.
-    Restoring,
-}
-
-/// A PNG export of the view.
+/// A PNG export of the view, drawn off screen in the next frame's
+/// [`eframe::App::logic`] ([`super::offscreen`]).
 struct ViewExport {
     path: PathBuf,
-    /// Zoom factor and window size (points) before the export.
-    zoom: f32,
-    size: egui::Vec2,
-    /// Whether the zoom (and window size) were changed for it.
-    scaled: bool,
-    stage: Snap,
+    /// Pixels per point of the picture over the window's.
+    scale: f32,
 }
 
 /// The sharing state of the app.
@@ -100,6 +86,9 @@ pub struct Share {
     view: Option<ViewExport>,
     /// PNGs being written.
     writing: Vec<Receiver<Result<Written, String>>>,
+    /// Whether the app's `ui` is running for the off-screen picture (its
+    /// sharing tick then does nothing).
+    pub(super) offscreen: bool,
 }
 
 impl RockingApp {
@@ -117,10 +106,11 @@ impl RockingApp {
         window_title(&self.settings.origin, self.scene_dirty())
     }
 
-    /// Whether a PNG export of the view has the zoom raised for now (the
-    /// presentation scale is then not the user's).
+    /// Whether a PNG export of the view is under way: its off-screen
+    /// pass runs the app's `ui` with another zoom and size, which are not
+    /// the user's.
     pub(super) fn exporting_view(&self) -> bool {
-        self.share.view.is_some()
+        self.share.view.is_some() || self.share.offscreen
     }
 
     /// Takes the settings now as the clean state (after a load or a save).
@@ -149,7 +139,9 @@ impl RockingApp {
     }
 
     /// Starts recording `options.seconds` of the window into a GIF at
-    /// `path`, written when the recording ends.
+    /// `path`, written when the recording ends. The clock starts in the
+    /// frame after this call, however long this frame took (a desktop
+    /// file dialog blocks the frame that opened it).
     pub fn record_gif(&mut self, ctx: &egui::Context, path: PathBuf, options: GifOptions) {
         if self.sharing_busy() {
             self.message = Some(Message {
@@ -160,12 +152,12 @@ impl RockingApp {
         }
         let waker = ctx.clone();
         let (tx, done) = capture::spawn_gif_writer(path.clone(), options, move || waker.request_repaint());
-        let now = ctx.input(|i| i.time);
         self.share.recording = Some(Recording {
             path,
             options,
-            start: now,
-            next: now,
+            chosen_pass: ctx.cumulative_pass_nr(),
+            start: None,
+            next: 0.0,
             asked: 0,
             tx,
             done,
@@ -175,11 +167,9 @@ impl RockingApp {
 
     /// Takes a PNG of the window at `path`, at least
     /// [`PRESENTATION_WIDTH`] × [`PRESENTATION_HEIGHT`] physical pixels:
-    /// a smaller window is enlarged with the zoom raised by the same factor
-    /// (the same layout, drawn with more pixels) for the frames the picture
-    /// takes, then put back. If the window manager keeps the window's size,
-    /// the zoom is put back and the window is taken as it is; the status
-    /// line says the size written.
+    /// a smaller window is drawn once more off screen, in its own layout,
+    /// with the pixels per point raised by the factor missing (the window
+    /// itself is left alone). The status line says the size written.
     pub fn export_view(&mut self, ctx: &egui::Context, path: PathBuf) {
         if self.sharing_busy() {
             self.message = Some(Message {
@@ -188,32 +178,47 @@ impl RockingApp {
             });
             return;
         }
-        let ppp = ctx.pixels_per_point();
-        let size = ctx.content_rect().size();
-        let k = (PRESENTATION_WIDTH / (size.x * ppp))
-            .max(PRESENTATION_HEIGHT / (size.y * ppp))
+        let pixels = ctx.content_rect().size() * ctx.pixels_per_point();
+        let scale = (PRESENTATION_WIDTH / pixels.x)
+            .max(PRESENTATION_HEIGHT / pixels.y)
             .max(1.0);
-        let zoom = ctx.zoom_factor();
-        let scaled = k > 1.0 + 1e-3;
-        let stage = if scaled {
-            ctx.set_zoom_factor(zoom * k);
-            Snap::Zoomed
-        } else {
-            Snap::Resizing(0)
-        };
-        self.share.view = Some(ViewExport {
-            path,
-            zoom,
-            size,
-            scaled,
-            stage,
-        });
+        self.share.view = Some(ViewExport { path, scale });
         ctx.request_repaint();
+    }
+
+    /// The sharing work that needs the frame: the PNG export of the view,
+    /// drawn off screen (from [`eframe::App::logic`]).
+    pub(super) fn share_logic(&mut self, ctx: &egui::Context, frame: &mut eframe::Frame) {
+        if self.share.offscreen {
+            return;
+        }
+        let Some(view) = self.share.view.take() else {
+            return;
+        };
+        match self.draw_offscreen(ctx, frame, view.scale) {
+            Ok(img) => {
+                let waker = ctx.clone();
+                self.share
+                    .writing
+                    .push(capture::spawn_png_writer(view.path, Arc::new(img), move || {
+                        waker.request_repaint()
+                    }));
+            }
+            Err(e) => {
+                self.message = Some(Message {
+                    text: format!("{}: the view could not be drawn: {e}", view.path.display()),
+                    error: true,
+                });
+            }
+        }
     }
 
     /// One frame of sharing: the title, the recording, the view export and
     /// the writers' results.
     pub(super) fn share_tick(&mut self, ctx: &egui::Context) {
+        if self.share.offscreen {
+            return;
+        }
         if self
             .share
             .clean
@@ -228,8 +233,8 @@ impl RockingApp {
             self.share.title_sent = Some(title);
         }
         self.gif_window(ctx);
+        self.path_window_ui(ctx);
         self.tick_recording(ctx);
-        self.tick_view(ctx);
         self.collect_written();
     }
 
@@ -238,13 +243,25 @@ impl RockingApp {
             return;
         };
         let now = ctx.input(|i| i.time);
-        let end = rec.start + f64::from(rec.options.seconds);
+        let start = match rec.start {
+            Some(start) => start,
+            None if ctx.cumulative_pass_nr() > rec.chosen_pass => {
+                rec.next = now;
+                *rec.start.insert(now)
+            }
+            None => {
+                ctx.request_repaint();
+                return;
+            }
+        };
+        let end = start + f64::from(rec.options.seconds);
         if now >= end {
-            let _ = rec.tx.send(Shot::End);
+            // The clip's nominal end: the last frame is held until then.
+            let _ = rec.tx.send(Shot::End(end));
             let rec = self.share.recording.take().expect("checked above");
             self.share.encoding.push(rec.done);
             self.message = Some(Message {
-                text: format!("encoding {} ({} frames)…", file_name(&rec.path), rec.asked),
+                text: format!("writing {}: encoding {} frames…", file_name(&rec.path), rec.asked),
                 error: false,
             });
             return;
@@ -262,72 +279,6 @@ impl RockingApp {
             rec.next = (rec.next + dt).max(now + 0.5 * dt);
         }
         ctx.request_repaint_after(std::time::Duration::from_secs_f64((rec.next - now).max(0.0)));
-    }
-
-    fn tick_view(&mut self, ctx: &egui::Context) {
-        let Some(view) = self.share.view.as_mut() else {
-            return;
-        };
-        ctx.request_repaint();
-        match &mut view.stage {
-            Snap::Zoomed => {
-                // The raised zoom is in effect: the same size in points is
-                // now k times the pixels.
-                ctx.send_viewport_cmd(egui::ViewportCommand::InnerSize(view.size));
-                view.stage = Snap::Resizing(0);
-            }
-            Snap::Resizing(frames) => {
-                let size = ctx.content_rect().size();
-                let fits = (size - view.size).abs().max_elem() < 1.0;
-                // Two frames at least: the menu that asked is gone from the picture.
-                if (fits && *frames >= 2) || (*frames >= RESIZE_FRAMES && !view.scaled) {
-                    view.stage = Snap::Shooting(shoot(ctx));
-                } else if *frames >= RESIZE_FRAMES {
-                    // The window manager kept the window's size: the raised
-                    // zoom would only enlarge the layout. Take the window as
-                    // it is (the status line says its size).
-                    ctx.set_zoom_factor(view.zoom);
-                    view.scaled = false;
-                    view.stage = Snap::Resizing(0);
-                } else {
-                    *frames += 1;
-                }
-            }
-            Snap::Shooting(rx) => match rx.try_recv() {
-                Ok(img) => {
-                    let waker = ctx.clone();
-                    let path = view.path.clone();
-                    self.share
-                        .writing
-                        .push(capture::spawn_png_writer(path, img, move || waker.request_repaint()));
-                    if view.scaled {
-                        ctx.set_zoom_factor(view.zoom);
-                        view.stage = Snap::Restoring;
-                    } else {
-                        self.share.view = None;
-                    }
-                }
-                Err(crossbeam_channel::TryRecvError::Empty) => {}
-                Err(crossbeam_channel::TryRecvError::Disconnected) => {
-                    // The integration dropped the request (no renderer).
-                    let path = view.path.clone();
-                    if view.scaled {
-                        ctx.set_zoom_factor(view.zoom);
-                        view.stage = Snap::Restoring;
-                    } else {
-                        self.share.view = None;
-                    }
-                    self.message = Some(Message {
-                        text: format!("{}: the window could not be captured", path.display()),
-                        error: true,
-                    });
-                }
-            },
-            Snap::Restoring => {
-                ctx.send_viewport_cmd(egui::ViewportCommand::InnerSize(view.size));
-                self.share.view = None;
-            }
-        }
     }
 
     /// Reports the writers that have finished.
@@ -358,12 +309,14 @@ impl RockingApp {
         }
     }
 
-    /// The status-bar text while recording: `recording… 3.2 s of 5 s`.
+    /// The status-bar text while recording: `recording… 3.2 s of 5.0 s`
+    /// (`0.0 s` until the clock starts).
     pub(super) fn recording_label(&self, now: f64) -> Option<String> {
         let rec = self.share.recording.as_ref()?;
+        let done = rec.start.map_or(0.0, |start| (now - start).max(0.0));
         Some(format!(
-            "recording… {:.1} s of {} s",
-            (now - rec.start).max(0.0),
+            "recording… {:.1} s of {:.1} s",
+            done.min(f64::from(rec.options.seconds)),
             rec.options.seconds
         ))
     }
@@ -404,25 +357,11 @@ impl RockingApp {
             self.share.gif_dialog = None;
         } else if start {
             let options = *opts;
-            // The dialog leaves the screen before the first frame is taken.
+            // The file first: the recording starts once it is chosen.
             self.share.gif_dialog = None;
-            if let Some(path) = super::controls::save_dialog("GIF", "gif", "rocking.gif") {
-                self.record_gif(ctx, path, options);
-            }
+            self.ask_file(ctx, super::FileAsk::RecordGif(options));
         }
     }
-}
-
-/// Asks for a screenshot of the frame being drawn; it comes on the
-/// returned receiver.
-fn shoot(ctx: &egui::Context) -> Receiver<Arc<ColorImage>> {
-    let (tx, rx) = crossbeam_channel::bounded(1);
-    let waker = ctx.clone();
-    ctx.request_screenshot(move |img| {
-        let _ = tx.send(img);
-        waker.request_repaint();
-    });
-    rx
 }
 
 fn file_name(path: &Path) -> String {
