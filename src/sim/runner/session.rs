@@ -246,6 +246,7 @@ impl Observer<Mode, EventRecord, N> for GhostSink<'_> {
             t,
             GhostState {
                 theta: y[THETA],
+                theta_dot: y[THETA_DOT],
                 x: y[X],
                 mode,
             },
@@ -622,6 +623,7 @@ impl Session {
                         g.driver.t(),
                         GhostState {
                             theta: y[THETA],
+                            theta_dot: y[THETA_DOT],
                             x: y[X],
                             mode: g.driver.mode(),
                         },
@@ -703,6 +705,7 @@ impl Session {
             self.ghosts.push(Ghost {
                 latest: GhostState {
                     theta: y0[THETA],
+                    theta_dot: y0[THETA_DOT],
                     x: y0[X],
                     mode: m,
                 },
