@@ -211,7 +211,7 @@ fn the_phase_portrait_draws_one_trail_per_ghost_in_its_scene_colour() {
     );
     assert_eq!(drawn.len(), 20, "one trail per ghost");
     for (k, (colour, points)) in drawn.iter().enumerate() {
-        assert!(*points >= 6, "ghost {k}: {points} trail points");
+        assert!(*points >= 4, "ghost {k}: {points} trail points");
         assert!(
             scene_colours.contains(colour),
             "ghost {k}'s trail colour {colour:?} is not in the scene"

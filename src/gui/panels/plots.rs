@@ -71,9 +71,12 @@ impl PhaseView {
 /// blur; short tails show the ghosts as a cloud spreading over it.
 pub const GHOST_TAIL_TAU: f64 = 1.0;
 
-/// Fewest points a ghost's tail keeps however fast the playback (one point
-/// arrives per frame, about 0.6 τ apart at 20×).
-const GHOST_TAIL_POINTS: usize = 6;
+/// Largest τ between two points of a ghost's tail that are joined. One
+/// point arrives per frame: 0.03 τ apart at 1× on the default block, 0.16
+/// at 5×; a line over a longer gap would cut across the attractor where
+/// the ghost never went, so faster playback draws shorter tails, down to
+/// the dot alone.
+const GHOST_TAIL_GAP: f64 = 0.25;
 
 /// Trail segments of decreasing age, drawn with increasing opacity.
 const TRAIL_SEGMENTS: usize = 10;
@@ -173,21 +176,27 @@ pub fn phase_plot(
     }
 }
 
-/// Each ghost's tail up to `now`: its last [`GHOST_TAIL_TAU`] (at least
-/// [`GHOST_TAIL_POINTS`] points), in the units of `scales`, with its
+/// Each ghost's tail up to `now`: its last [`GHOST_TAIL_TAU`], back to the
+/// first gap over [`GHOST_TAIL_GAP`], in the units of `scales`, with its
 /// colour in the scene.
 fn ghost_trails(hist: &RunHistory, now: f64, scales: &Scales) -> Vec<(Color32, Vec<[f64; 2]>)> {
     let trails = &hist.ghost_trails;
     let n = trails.len();
     (0..n)
         .map(|k| {
+            let mut newer = f64::INFINITY;
             let mut points: Vec<[f64; 2]> = trails
                 .trail(k)
                 .rev()
                 .skip_while(|p| p.tau > now)
-                .enumerate()
-                .take_while(|(i, p)| *i < GHOST_TAIL_POINTS || p.tau >= now - GHOST_TAIL_TAU)
-                .map(|(_, p)| [scales.theta(p.theta), scales.theta_dot(p.theta_dot)])
+                .take_while(|p| {
+                    // The newest point always (the ghost's dot).
+                    let keep =
+                        newer == f64::INFINITY || (newer - p.tau <= GHOST_TAIL_GAP && p.tau >= now - GHOST_TAIL_TAU);
+                    newer = p.tau;
+                    keep
+                })
+                .map(|p| [scales.theta(p.theta), scales.theta_dot(p.theta_dot)])
                 .collect();
             points.reverse();
             (scene::ghost_color(k, n), points)
