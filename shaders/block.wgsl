@@ -1,8 +1,8 @@
 // The block scene: every shape is an instanced quad (a rectangle or an
-// ellipse) with a centre, half-size and clockwise rotation in metres and a
-// premultiplied-alpha colour. Edges are anti-aliased in the fragment shader
-// by their distance to the boundary in pixels, since egui's render pass has
-// no multisampling.
+// ellipse, filled or outlined) with a centre, half-size and clockwise
+// rotation in metres and a premultiplied-alpha colour. Edges are
+// anti-aliased in the fragment shader by their distance to the boundary in
+// pixels, since egui's render pass has no multisampling.
 
 struct View {
     // World (m) to normalised device coordinates of the callback's viewport.
@@ -21,6 +21,8 @@ struct Instance {
     @location(2) color: vec4<f32>,
     // x: rotation, rad, clockwise positive; y: shape (0 rectangle, 1 ellipse).
     @location(3) angle_shape: vec2<f32>,
+    // x: outline width, m, centred on the edge (0: filled); y: padding.
+    @location(4) stroke: vec2<f32>,
 };
 
 struct VsOut {
@@ -30,14 +32,17 @@ struct VsOut {
     @location(1) half_px: vec2<f32>,
     @location(2) color: vec4<f32>,
     @location(3) shape: f32,
+    // Outline width in pixels (0: filled).
+    @location(4) stroke_px: f32,
 };
 
 @vertex
 fn vs_main(@builtin(vertex_index) vi: u32, inst: Instance) -> VsOut {
-    // Triangle strip: (-1,-1), (1,-1), (-1,1), (1,1), grown by one pixel so
-    // the anti-aliased edge is not clipped.
+    // Triangle strip: (-1,-1), (1,-1), (-1,1), (1,1), grown by one pixel
+    // and half an outline so neither the anti-aliased edge nor the outer
+    // half of an outline is clipped.
     let corner = vec2<f32>(f32(vi & 1u) * 2.0 - 1.0, f32((vi >> 1u) & 1u) * 2.0 - 1.0);
-    let grow = vec2<f32>(1.5, 1.5) / view.px_per_m;
+    let grow = vec2<f32>(1.5, 1.5) / view.px_per_m + vec2<f32>(0.5 * inst.stroke.x, 0.5 * inst.stroke.x);
     let local = corner * (inst.half_size + grow);
     let c = cos(inst.angle_shape.x);
     let s = sin(inst.angle_shape.x);
@@ -50,6 +55,7 @@ fn vs_main(@builtin(vertex_index) vi: u32, inst: Instance) -> VsOut {
     out.half_px = inst.half_size * view.px_per_m;
     out.color = inst.color;
     out.shape = inst.angle_shape.y;
+    out.stroke_px = inst.stroke.x * view.px_per_m.x;
     return out;
 }
 
@@ -66,6 +72,13 @@ fn fs_main(in: VsOut) -> @location(0) vec4<f32> {
         let q = in.local_px / r;
         inside = (1.0 - length(q)) * min(r.x, r.y);
     }
-    let coverage = clamp(inside + 0.5, 0.0, 1.0);
+    var coverage: f32;
+    if (in.stroke_px > 0.0) {
+        // An outline: the band within half its width of the edge.
+        let h = 0.5 * in.stroke_px;
+        coverage = clamp(inside + h + 0.5, 0.0, 1.0) * clamp(h - inside + 0.5, 0.0, 1.0);
+    } else {
+        coverage = clamp(inside + 0.5, 0.0, 1.0);
+    }
     return in.color * coverage;
 }

@@ -259,6 +259,7 @@ fn measure_frame_time_with_a_million_points_and_100_ghosts() {
     let ghosts: Vec<GhostState> = (0..100)
         .map(|k| GhostState {
             theta: last.theta + 0.003 * k as f64,
+            theta_dot: last.theta_dot,
             x: last.x,
             mode: last.mode,
         })
@@ -570,7 +571,7 @@ fn a_bifurcation_sweep_over_invalid_values_is_refused_naming_the_key() {
 #[test]
 fn snapshot_of_ghosts_separating_from_the_block() {
     // Ghost copies spread over a range of Θ, as chaos spreads them: each is
-    // drawn under the block in the ghost tint, not in the block's colour.
+    // outlined in a colour of its own, not in the block's colour.
     let (s, c) = scene("default", &[]);
     let mut updates = record(RunId(1), &c, 20.0);
     let last = updates
@@ -584,6 +585,7 @@ fn snapshot_of_ghosts_separating_from_the_block() {
     let ghosts: Vec<GhostState> = (0..8)
         .map(|k| GhostState {
             theta: last.theta + 0.06 * (k as f64 - 3.5),
+            theta_dot: last.theta_dot,
             x: last.x,
             mode: last.mode,
         })
@@ -602,15 +604,17 @@ fn snapshot_of_ghosts_separating_from_the_block() {
         .build_eframe(move |cc| RockingApp::with_stream(cc, s, c, updates));
     h.run();
     let img = h.render().expect("render");
-    // The tint over the dark background: a pale blue-grey no mode uses.
-    let tinted = img
-        .pixels()
-        .filter(|p| {
-            let [r, g, b] = [p.0[0] as i32, p.0[1] as i32, p.0[2] as i32];
-            b > r + 12 && b > g && (40..110).contains(&r)
-        })
-        .count();
-    assert!(tinted > 2_000, "ghost-tinted pixels: {tinted}");
+    // Every ghost's outline in its own colour (0.06 ψ apart: several
+    // pixels at the top of the block).
+    for k in 0..8 {
+        let want = rocking::gui::panels::scene::ghost_color(k, 8).to_array();
+        let seen = img
+            .as_raw()
+            .chunks_exact(4)
+            .filter(|p| p.iter().zip(want).all(|(a, b)| a.abs_diff(b) <= 2))
+            .count();
+        assert!(seen > 100, "ghost {k}: {seen} pixels of its colour");
+    }
     h.snapshot("ghosts");
 }
 

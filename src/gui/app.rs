@@ -346,6 +346,10 @@ impl RockingApp {
     pub fn poincare(&self) -> &PoincareView {
         &self.poincare
     }
+    /// The phase portrait's view: what its trails drew last frame.
+    pub fn phase_view(&self) -> &PhaseView {
+        &self.phase
+    }
     /// Where a slider drag restarts the run from (the panel's toggle).
     pub fn drag_from(&self) -> StartFrom {
         self.edits.drag_from
@@ -578,7 +582,10 @@ impl RockingApp {
         }
     }
 
-    fn send_ghosts(&self) {
+    fn send_ghosts(&mut self) {
+        // The new ghosts start from the block's state: their old trails
+        // would end in a jump to it.
+        self.hist.ghost_trails.clear();
         if let Link::Live(h) = &self.link {
             h.set_ghosts(self.ghost_count, self.ghost_eps);
         }

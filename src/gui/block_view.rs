@@ -6,7 +6,7 @@
 //! `callback_resources`; each frame only a [`SceneCallback`] with the view
 //! and the shapes is added, `prepare` writes them into the buffers and
 //! `paint` draws. Every shape is a [`Shape`]: an anti-aliased rectangle or
-//! ellipse in metres (`shaders/block.wgsl`). Where no wgpu render state
+//! ellipse in metres, filled or outlined (`shaders/block.wgsl`). Where no wgpu render state
 //! exists (a headless test harness) [`install`] is never called and the
 //! scene falls back to egui's painter with the same shapes.
 
@@ -32,8 +32,9 @@ pub struct Shape {
     /// Rotation, rad, clockwise positive; and the shape kind
     /// (0 rectangle, 1 ellipse).
     pub angle_shape: [f32; 2],
-    /// Padding to 16 bytes.
-    pub _pad: [f32; 2],
+    /// Outline width, m, centred on the edge (0: filled); and padding to
+    /// 16 bytes.
+    pub stroke: [f32; 2],
 }
 
 impl Shape {
@@ -44,7 +45,17 @@ impl Shape {
             half_size: [half_size[0] as f32, half_size[1] as f32],
             color: color.to_normalized_gamma_f32(),
             angle_shape: [angle as f32, 0.0],
-            _pad: [0.0; 2],
+            stroke: [0.0; 2],
+        }
+    }
+
+    /// The outline of a rectangle: a band `width` wide (m) centred on its
+    /// edge, so half of it shows even where the rectangle lies on a filled
+    /// shape of the same size.
+    pub fn outline(center: [f64; 2], half_size: [f64; 2], angle: f64, width: f64, color: egui::Color32) -> Self {
+        Self {
+            stroke: [width as f32, 0.0],
+            ..Self::rect(center, half_size, angle, color)
         }
     }
 
@@ -119,7 +130,8 @@ pub fn install(render_state: &egui_wgpu::RenderState) {
         bind_group_layouts: &[Some(&bgl)],
         immediate_size: 0,
     });
-    let attributes = wgpu::vertex_attr_array![0 => Float32x2, 1 => Float32x2, 2 => Float32x4, 3 => Float32x2];
+    let attributes =
+        wgpu::vertex_attr_array![0 => Float32x2, 1 => Float32x2, 2 => Float32x4, 3 => Float32x2, 4 => Float32x2];
     let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
         label: Some("block scene"),
         layout: Some(&layout),
@@ -244,5 +256,14 @@ mod tests {
         assert!((s.half_size[0] - 1.0).abs() < 1e-6);
         // Pointing up: clockwise rotation by −π/2 turns +x to +y.
         assert!((s.angle_shape[0] + std::f32::consts::FRAC_PI_2).abs() < 1e-6);
+    }
+
+    #[test]
+    fn an_outline_is_a_rectangle_with_a_stroke() {
+        let r = Shape::rect([1.0, 2.0], [0.5, 2.0], 0.1, egui::Color32::RED);
+        let o = Shape::outline([1.0, 2.0], [0.5, 2.0], 0.1, 0.02, egui::Color32::RED);
+        assert_eq!(r.stroke[0], 0.0);
+        assert_eq!(o.stroke[0], 0.02);
+        assert_eq!(Shape { stroke: [0.0; 2], ..o }, r);
     }
 }

@@ -16,6 +16,7 @@ use std::collections::VecDeque;
 
 use egui_plot::PlotPoint;
 
+use crate::gui::ghost_trails::GhostTrails;
 use crate::model::system::EventRecord;
 use crate::sim::SectionRow;
 use crate::sim::protocol::Sample;
@@ -161,6 +162,8 @@ pub struct RunHistory {
     pub dropped_samples: u64,
     /// Items refused for a non-finite value.
     pub rejected: u64,
+    /// The ghost copies' recent (Θ, Θ'), one bounded trail each.
+    pub ghost_trails: GhostTrails,
 }
 
 impl Default for RunHistory {
@@ -175,6 +178,7 @@ impl Default for RunHistory {
             impacts: 0,
             dropped_samples: 0,
             rejected: 0,
+            ghost_trails: GhostTrails::default(),
         }
     }
 }

@@ -11,6 +11,7 @@ pub mod app;
 pub mod block_view;
 pub mod capture;
 pub mod export;
+pub mod ghost_trails;
 pub mod glossary;
 pub mod history;
 pub mod lessons;

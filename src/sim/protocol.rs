@@ -175,6 +175,8 @@ pub use super::SectionRow as SectionPoint;
 pub struct GhostState {
     /// Θ.
     pub theta: f64,
+    /// Θ' = dΘ/dτ (the phase portrait draws each ghost's (Θ, Θ')).
+    pub theta_dot: f64,
     /// X (relative to the base), per R.
     pub x: f64,
     /// Mode.

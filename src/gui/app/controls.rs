@@ -118,7 +118,9 @@ impl RockingApp {
             let r = ui
                 .add(egui::DragValue::new(&mut self.ghost_count).range(0..=MAX_GHOSTS))
                 .labelled_by(ghosts_label.id)
-                .on_hover_text("Copies started from Θ perturbed by up to the ghost ε, drawn translucent");
+                .on_hover_text(
+                    "Copies started from Θ perturbed by up to the ghost ε, each outlined in a colour of its own",
+                );
             let eps_label = ui.label("ghost ε");
             let r2 = ui
                 .add(

@@ -165,6 +165,7 @@ impl RockingApp {
         let (shapes, scale, y_mid) = scene::build(&input, rect, &mut self.camera);
         let view = scene::view(rect, scale, &self.camera, y_mid, ui.ctx().pixels_per_point());
         scene::paint(ui, rect, shapes, view, self.gpu);
+        scene::ghost_caption(ui, rect, &input);
         if falling.is_some() {
             let text = "after the tumble: drawn, not simulated (the model stops when the centre of mass passes over the corner)";
             // Wrapped to the scene's width: one line is wider than a narrow

@@ -46,6 +46,7 @@ impl RockingApp {
                 }
                 self.hist.dropped_samples += batch.dropped_samples;
                 if !batch.ghosts.is_empty() || self.ghost_count == 0 {
+                    self.hist.ghost_trails.push(batch.tau, &batch.ghosts);
                     self.ghosts = batch.ghosts;
                 }
                 if batch.tau.is_finite() {
@@ -69,6 +70,7 @@ impl RockingApp {
                         error: true,
                     });
                 }
+                self.phase.hold(&self.hist);
                 self.end = Some(end);
             }
         }

@@ -26,8 +26,31 @@ pub const MODE_COLORS: [Color32; 6] = [
     Color32::from_rgb(170, 100, 230), // flight
 ];
 
-/// Colour of the ghost copies: a pale blue at low opacity, unlike any mode.
-pub const GHOST_TINT: Color32 = Color32::from_rgba_premultiplied(46, 56, 72, 72);
+/// Colour of ghost `k` of `n`: hues spread evenly from red through green
+/// and blue to violet (stopping short of red again, so the first and the
+/// last differ), bright and opaque. Twenty ghosts are 15° of hue apart,
+/// so each can be told from its neighbours; the phase portrait draws each
+/// ghost's trail in the same colour.
+pub fn ghost_color(k: usize, n: usize) -> Color32 {
+    let hue = 0.83 * k as f32 / n.max(1) as f32;
+    Color32::from(egui::ecolor::HsvaGamma {
+        h: hue,
+        s: 0.8,
+        v: 1.0,
+        a: 1.0,
+    })
+}
+
+/// Width of a ghost's outline, points: wide enough to see a colour in,
+/// narrow enough that twenty outlines a few pixels apart stay apart.
+pub const GHOST_OUTLINE: f64 = 2.0;
+
+/// The largest |Θ_ghost − Θ| over `ghosts`, units of ψ; `None` without
+/// ghosts. Shown beside the block, it grows by orders of magnitude while
+/// the ghosts are still hidden behind it.
+pub fn ghost_spread(sample: &Sample, ghosts: &[GhostState]) -> Option<f64> {
+    ghosts.iter().map(|g| (g.theta - sample.theta).abs()).reduce(f64::max)
+}
 
 /// The colour of `mode`.
 pub fn mode_color(mode: Mode) -> Color32 {
@@ -127,14 +150,6 @@ pub fn build(input: &SceneInput<'_>, rect: Rect, camera: &mut Camera) -> (Vec<Sh
     }
 
     let half = [0.5 * geo.width, 0.5 * geo.height];
-    // Ghosts under the block, in one pale tint of their own: while they
-    // follow the block it hides them; once chaos separates them they show
-    // as pale copies beside it (in the block's own colours they read as a
-    // blur of the block).
-    for g in input.ghosts {
-        let gp = pose(geo, g.theta, g.x, g.mode, s.base_x);
-        shapes.push(Shape::rect([gp.x, gp.y], half, gp.angle, GHOST_TINT));
-    }
     if input.flash > 0.0 {
         let grow = 0.06 * geo.width.min(geo.height) + 4.0 * px;
         shapes.push(Shape::rect(
@@ -146,6 +161,25 @@ pub fn build(input: &SceneInput<'_>, rect: Rect, camera: &mut Camera) -> (Vec<Sh
     }
     let mode = input.terminal.unwrap_or(s.mode);
     shapes.push(Shape::rect([p.x, p.y], half, p.angle, mode_color(mode)));
+    // Ghosts over the block, as outlines in colours of their own: a ghost
+    // that still follows the block outlines it, and once chaos separates
+    // them each shows as its own coloured frame (filled, or in one shared
+    // tint, twenty copies read as a blur at the block's edge). The farthest
+    // are drawn first, so the ones still near the block are not hidden
+    // under them.
+    let n = input.ghosts.len();
+    let mut order: Vec<(usize, &GhostState)> = input.ghosts.iter().enumerate().collect();
+    order.sort_by(|a, b| (b.1.theta - s.theta).abs().total_cmp(&(a.1.theta - s.theta).abs()));
+    for (k, g) in order {
+        let gp = pose(geo, g.theta, g.x, g.mode, s.base_x);
+        shapes.push(Shape::outline(
+            [gp.x, gp.y],
+            half,
+            gp.angle,
+            GHOST_OUTLINE * px,
+            ghost_color(k, n),
+        ));
+    }
 
     // The centre of mass.
     shapes.push(Shape::circle([p.x, p.y], 3.0 * px, Color32::from_rgb(30, 30, 36)));
@@ -191,6 +225,31 @@ pub fn view(rect: Rect, scale: f64, camera: &Camera, y_mid: f64, pixels_per_poin
     }
 }
 
+/// Writes how far the ghosts have drifted from the block in the top left
+/// corner of `rect`, while there are ghosts and the run goes on: the
+/// number grows from ε by orders of magnitude long before the drift shows
+/// as pixels.
+pub fn ghost_caption(ui: &mut egui::Ui, rect: Rect, input: &SceneInput<'_>) {
+    if input.terminal.is_some() {
+        return;
+    }
+    let Some(spread) = ghost_spread(input.sample, input.ghosts) else {
+        return;
+    };
+    let text = format!(
+        "{} ghosts: tilts differ from the block's by up to {spread:.1e} ψ",
+        input.ghosts.len()
+    );
+    let at = Rect::from_min_max(rect.min + egui::vec2(8.0, 6.0), rect.max - egui::vec2(8.0, 0.0));
+    let label = egui::Label::new(egui::RichText::new(text).color(Color32::from_rgb(220, 224, 235))).truncate();
+    ui.scope_builder(
+        egui::UiBuilder::new()
+            .max_rect(at)
+            .layout(egui::Layout::top_down(egui::Align::Min)),
+        |ui| ui.add(label),
+    );
+}
+
 /// Draws the shapes with wgpu (if `gpu`) or with egui's painter.
 pub fn paint(ui: &egui::Ui, rect: Rect, shapes: Vec<Shape>, view: ViewUniform, gpu: bool) {
     if gpu {
@@ -214,6 +273,7 @@ pub fn paint(ui: &egui::Ui, rect: Rect, shapes: Vec<Shape>, view: ViewUniform, g
         let color = Color32::from_rgba_premultiplied(c[0], c[1], c[2], c[3]);
         let [cx, cy] = s.center.map(f64::from);
         let [hx, hy] = s.half_size.map(f64::from);
+        let stroke = s.stroke[0] * view.px_per_m[0] / ui.ctx().pixels_per_point();
         if s.angle_shape[1] > 0.5 {
             let r = hx as f32 * view.px_per_m[0] / ui.ctx().pixels_per_point();
             painter.circle_filled(to_screen(cx, cy), r, color);
@@ -229,7 +289,11 @@ pub fn paint(ui: &egui::Ui, rect: Rect, shapes: Vec<Shape>, view: ViewUniform, g
                 corner(1.0, 1.0),
                 corner(-1.0, 1.0),
             ];
-            painter.add(egui::Shape::convex_polygon(pts, color, egui::Stroke::NONE));
+            if stroke > 0.0 {
+                painter.add(egui::Shape::closed_line(pts, egui::Stroke::new(stroke, color)));
+            } else {
+                painter.add(egui::Shape::convex_polygon(pts, color, egui::Stroke::NONE));
+            }
         }
     }
 }

@@ -249,6 +249,7 @@ impl Observer<Mode, EventRecord, N> for GhostSink<'_> {
             t,
             GhostState {
                 theta: y[THETA],
+                theta_dot: y[THETA_DOT],
                 x: y[X],
                 mode,
             },
@@ -662,6 +663,7 @@ impl Session {
                         g.driver.t(),
                         GhostState {
                             theta: y[THETA],
+                            theta_dot: y[THETA_DOT],
                             x: y[X],
                             mode: g.driver.mode(),
                         },
@@ -743,6 +745,7 @@ impl Session {
             self.ghosts.push(Ghost {
                 latest: GhostState {
                     theta: y0[THETA],
+                    theta_dot: y0[THETA_DOT],
                     x: y0[X],
                     mode: m,
                 },
