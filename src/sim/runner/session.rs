@@ -259,6 +259,20 @@ impl Observer<Mode, EventRecord, N> for GhostSink<'_> {
     fn event(&mut self, _t: f64, _before: Mode, _y_before: &[f64; N], _record: EventRecord) {}
 }
 
+/// Keeps the first sample that is not at rest (where a block at rest
+/// starts to move).
+struct FirstMove(Option<(f64, Mode, [f64; N])>);
+
+impl Observer<Mode, EventRecord, N> for FirstMove {
+    fn sample(&mut self, t: f64, mode: Mode, y: &[f64; N]) {
+        if self.0.is_none() && mode != Mode::Rest {
+            self.0 = Some((t, mode, *y));
+        }
+    }
+    fn section(&mut self, _k: u64, _t: f64, _mode: Mode, _y: &[f64; N]) {}
+    fn event(&mut self, _t: f64, _before: Mode, _y_before: &[f64; N], _record: EventRecord) {}
+}
+
 /// The τ grid of chunk ends: each forcing period split into `parts`,
 /// the periods starting at the section times. With no phase offset,
 /// period boundaries are computed as `k · period`, exactly as the driver
@@ -720,7 +734,15 @@ impl Session {
         if count == 0 {
             return;
         }
-        let (tau, mode, y) = self.shown_state(last_sample);
+        let shown = self.shown_state(last_sample);
+        // A tilt given to a block at rest settles back to rest (the base
+        // has not lifted it), and every copy would be the block itself:
+        // the ghosts start where the block lifts off, perturbed there.
+        let (tau, mode, y) = if shown.1 == Mode::Rest {
+            self.lift_off_after(shown).unwrap_or(shown)
+        } else {
+            shown
+        };
         for k in 0..count {
             let delta = eps * (k as f64 + 1.0) / count as f64;
             let mut system = BlockSystem::new(self.probe.model.clone());
@@ -734,26 +756,56 @@ impl Session {
             let mut driver = live_driver(&self.info.scenario, system, m, tau, y0, outputs);
             let mut states = VecDeque::new();
             // Bring the ghost level with the main trajectory's computed τ.
-            let done = !matches!(
-                driver.advance(
-                    self.driver.t(),
-                    self.batch_end.max(self.driver.t()),
-                    &mut GhostSink(&mut states),
-                ),
-                Ok(Advance::Reached)
-            );
+            let done = self.driver.t() > tau
+                && !matches!(
+                    driver.advance(
+                        self.driver.t(),
+                        self.batch_end.max(self.driver.t()),
+                        &mut GhostSink(&mut states),
+                    ),
+                    Ok(Advance::Reached)
+                );
+            // Until its own states come, a ghost is where the block is shown.
+            let (_, shown_mode, shown_y) = shown;
             self.ghosts.push(Ghost {
                 latest: GhostState {
-                    theta: y0[THETA],
-                    theta_dot: y0[THETA_DOT],
-                    x: y0[X],
-                    mode: m,
+                    theta: shown_y[THETA],
+                    theta_dot: shown_y[THETA_DOT],
+                    x: shown_y[X],
+                    mode: shown_mode,
                 },
                 driver,
                 states,
                 done,
             });
         }
+    }
+
+    /// The first sample at which the block, at rest in `from`, moves: the
+    /// same scenario run on from there until it leaves rest, within the
+    /// batch run's end. `None` if it never does (a base too weak to lift
+    /// it, or a still one).
+    fn lift_off_after(&self, from: (f64, Mode, [f64; N])) -> Option<(f64, Mode, [f64; N])> {
+        let (tau, mode, y) = from;
+        let outputs = Outputs {
+            sample_dt: Some(LIVE_SAMPLE_DT),
+            section_period: None,
+        };
+        let system = BlockSystem::new(self.probe.model.clone());
+        let mut driver = live_driver(&self.info.scenario, system, mode, tau, y, outputs);
+        let mut moved = FirstMove(None);
+        let mut t = tau;
+        while t < self.batch_end {
+            t = (t + MAX_CHUNK).min(self.batch_end);
+            let reached = driver.advance(t, self.batch_end, &mut moved);
+            if moved.0.is_some() {
+                return moved.0;
+            }
+            if !matches!(reached, Ok(Advance::Reached)) {
+                return None;
+            }
+        }
+        None
     }
 
     /// A new run of the same scenario from the state shown at the playhead,
@@ -923,6 +975,31 @@ mod tests {
                 }
             }
         }
+    }
+
+    #[test]
+    fn ghosts_set_on_a_block_at_rest_start_apart_once_it_lifts_off() {
+        // The sensitive-dependence lesson: 20 ghosts within 1e-6 of a
+        // block at rest on the default scene. A tilt of a block at rest
+        // settles back to rest, so the ghosts must start where the block
+        // lifts off, and keep their ε there.
+        let sc = preset("default");
+        let mut live = Session::new(RunId(1), &sc, Start::Initial).expect("starts");
+        live.set_ghosts(20, 1e-6, None);
+        live.fill_to(8.0);
+        let mut out = Batch::default();
+        live.release(8.0, &mut out);
+        let block = out.samples.last().expect("samples");
+        assert!(block.mode != Mode::Rest, "lifted off by τ = 8");
+        assert_eq!(out.ghosts.len(), 20);
+        let spread: Vec<f64> = out.ghosts.iter().map(|g| (g.theta - block.theta).abs()).collect();
+        let least = spread.iter().copied().fold(f64::INFINITY, f64::min);
+        let most = spread.iter().copied().fold(0.0, f64::max);
+        assert!(
+            least > 1e-9,
+            "every ghost keeps its perturbation: least |ΔΘ| = {least:e}"
+        );
+        assert!(most < 1e-3, "and is still close to the block: {most:e}");
     }
 
     #[test]
