@@ -58,7 +58,15 @@ fn ghost_stream(apart: usize) -> (Settings, Scenario, Vec<SimUpdate>, f64) {
                     theta = last.theta;
                 }
                 let far = batch.ghosts.iter().filter(|g| (g.theta - theta).abs() >= 0.02).count();
-                (far >= apart).then_some(batch.tau)
+                // Apart from each other too: started from ε·(k+1)/20 the
+                // ghosts first leave the block together, as one group.
+                let (lo, hi) = batch
+                    .ghosts
+                    .iter()
+                    .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), g| {
+                        (lo.min(g.theta), hi.max(g.theta))
+                    });
+                (far >= apart && hi - lo >= 0.05).then_some(batch.tau)
             }
             _ => None,
         };

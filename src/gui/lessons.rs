@@ -67,7 +67,7 @@ pub const PHENOMENA: &[Lesson] = &[
         ..lesson(
             "Sensitive dependence",
             "default",
-            "20 ghost copies start within a millionth of the block's tilt (ε = 1e-6). For a while they hide behind it; then chaos amplifies the difference (by about e^0.46 per τ) and after a few dozen τ they rock out of step: the butterfly effect, live.",
+            "20 ghost copies, each outlined in its own colour, start within a millionth of the block's tilt (ε = 1e-6) as the base first lifts it. For a while they hide behind it; then chaos amplifies the difference (by about e^0.46 per τ) and about a dozen τ later they rock out of step, in the scene and as coloured dots in the phase portrait: the butterfly effect, live.",
         )
     },
     Lesson {
