@@ -30,6 +30,7 @@ use crate::sim::protocol::{GhostState, RunEnd, RunId, RunInfo, SimUpdate, Speed,
 use crate::sim::runner::SimHandle;
 
 mod controls;
+pub mod frame_layout;
 mod layout;
 pub mod lecture;
 mod map_panel;
@@ -37,6 +38,7 @@ mod receive;
 mod record_open;
 mod share;
 mod status;
+mod style;
 
 pub use record_open::RecordQuestion;
 pub use share::window_title;
@@ -147,6 +149,8 @@ pub struct RockingApp {
     lecture: lecture::Lecture,
     /// The window title, GIF recording and PNG export ([`share`]).
     share: share::Share,
+    /// Where the last frame put its panels ([`frame_layout`]).
+    frame_layout: frame_layout::FrameLayout,
 }
 
 impl RockingApp {
@@ -212,6 +216,7 @@ impl RockingApp {
     }
 
     fn base(cc: &eframe::CreationContext<'_>, link: Link, settings: Settings, config: Scenario) -> Self {
+        style::apply(&cc.egui_ctx, style::TextSizes::NORMAL);
         let gpu = match cc.wgpu_render_state.as_ref() {
             Some(rs) => {
                 block_view::install(rs);
@@ -257,6 +262,7 @@ impl RockingApp {
             record_question: None,
             lecture: lecture::Lecture::default(),
             share: share::Share::default(),
+            frame_layout: frame_layout::FrameLayout::default(),
         }
     }
 

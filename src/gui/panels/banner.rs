@@ -168,13 +168,14 @@ const PAD: f32 = 8.0;
 pub const STRIP_HEIGHT: f32 = 1.3 * HEADLINE_PT + 2.0 * 1.35 * DETAIL_PT + 2.0 * PAD;
 
 /// Draws `lines` centred on a dark plate filling `rect` (a fixed size, so
-/// the plate does not change width with the text it holds).
-pub fn show(ui: &mut egui::Ui, rect: egui::Rect, lines: &Lines) {
+/// the plate does not change width with the text it holds). Returns where
+/// the text went.
+pub fn show(ui: &mut egui::Ui, rect: egui::Rect, lines: &Lines) -> egui::Rect {
     ui.painter().rect_filled(rect, 8.0, Color32::from_black_alpha(170));
     let builder = egui::UiBuilder::new()
         .max_rect(rect.shrink2(egui::vec2(12.0, PAD)))
         .layout(egui::Layout::top_down(egui::Align::Center));
-    ui.scope_builder(builder, |ui| {
+    let text = ui.scope_builder(builder, |ui| {
         ui.spacing_mut().item_spacing.y = 2.0;
         ui.label(
             RichText::new(&lines.headline)
@@ -189,6 +190,7 @@ pub fn show(ui: &mut egui::Ui, rect: egui::Rect, lines: &Lines) {
             ui.label(RichText::new(s).size(DETAIL_PT).color(Color32::from_gray(215)));
         }
     });
+    text.response.rect
 }
 
 #[cfg(test)]
