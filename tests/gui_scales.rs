@@ -245,3 +245,152 @@ fn the_lecture_presentation_lays_out_at_every_offered_scale() {
         }
     }
 }
+
+/// The smallest text painted, and the tick numbers of each plot: (font
+/// size, row height) in pixels.
+fn sizes_px(h: &Harness<'static, RockingApp>) -> (f32, Vec<(&'static str, f32, f32)>) {
+    let ppp = h.ctx.pixels_per_point();
+    let texts = texts(h);
+    let smallest = texts.iter().map(|t| t.size).fold(f32::INFINITY, f32::min) * ppp;
+    let mut numbers = Vec::new();
+    for plot in axes::recorded(&h.ctx) {
+        let (x, y) = ticks(&texts, plot.frame);
+        for t in x.into_iter().chain(y) {
+            numbers.push((plot.name, t.size * ppp, t.rect.height() * ppp));
+        }
+    }
+    (smallest, numbers)
+}
+
+/// At 100 % in a 1280 × 800 window every text painted (plot numbers, axis
+/// titles, parameter names and values, the status bar, notes) is at least
+/// 14 px; the lecture presentation draws plot numbers at 20 px or more and
+/// keeps the Poincaré plot at least 300 × 200 px.
+#[test]
+fn no_text_is_below_14_px_and_the_lecture_presentation_numbers_plots_at_20_px() {
+    for preset in ["default", "period-doubling"] {
+        let mut h = fixed(WINDOWS[0], preset, Vec::new());
+        for _ in 0..4 {
+            h.step();
+        }
+        let (smallest, numbers) = sizes_px(&h);
+        let tallest = numbers.iter().map(|n| n.2).fold(0.0, f32::max);
+        eprintln!("{preset} at 100 %: smallest text {smallest} px, plot numbers {:?} px (rows {tallest} px)", numbers.iter().map(|n| n.1).fold(f32::INFINITY, f32::min));
+        assert!(smallest >= 14.0, "{preset}: a text of {smallest} px");
+        assert!(numbers.len() >= 8, "{preset}: {numbers:?}");
+
+        let ctx = h.ctx.clone();
+        h.state_mut().set_lecture_presentation(&ctx, true);
+        for _ in 0..4 {
+            h.step();
+        }
+        let mut seen = Vec::new();
+        for tab in [None, Some("Poincaré points"), Some("Power spectrum")] {
+            if let Some(tab) = tab {
+                match h.query_by_label(tab) {
+                    Some(node) => node.click(),
+                    None => continue,
+                }
+                h.step();
+                h.step();
+            }
+            let (smallest, numbers) = sizes_px(&h);
+            assert!(smallest >= 14.0, "{preset} lecture: a text of {smallest} px");
+            for (plot, size, _) in &numbers {
+                assert!(*size >= 20.0, "{preset} lecture: {plot} numbers at {size} px");
+                seen.push(*plot);
+            }
+            eprintln!("{preset} lecture: plot numbers {:?} px", numbers.iter().map(|n| n.1).fold(f32::INFINITY, f32::min));
+        }
+        for plot in ["phase", "poincare", "history", "spectrum"] {
+            assert!(seen.contains(&plot), "{preset} lecture: {plot} never shown");
+        }
+        h.get_by_label("Poincaré points").click();
+        h.step();
+        h.step();
+        let ppp = h.ctx.pixels_per_point();
+        let poincare = axes::recorded(&h.ctx)
+            .into_iter()
+            .find(|p| p.name == "poincare")
+            .expect("the Poincaré plot");
+        let px = poincare.frame.size() * ppp;
+        eprintln!("{preset} lecture: Poincaré plot {px:?} px");
+        assert!(px.x >= 300.0 && px.y >= 200.0, "{preset} lecture: Poincaré {px:?} px");
+    }
+}
+
+/// The app on `preset`, its first 40 τ and then `tail`, with frames 0.05 s
+/// apart in egui's clock (so the drawn fall after a tumble, 1.2 s, takes
+/// 24 frames).
+fn fixed_timed(size: egui::Vec2, preset: &str, tail: Vec<SimUpdate>) -> Harness<'static, RockingApp> {
+    let (s, c) = scene(preset, &[]);
+    let mut updates = record(RunId(1), &c, 40.0);
+    updates.extend(tail);
+    Harness::builder()
+        .with_size(size)
+        .with_step_dt(0.05)
+        .build_eframe(move |cc| RockingApp::with_stream(cc, s, c, updates))
+}
+
+/// After a tumble, at every offered scale in both windows: the verdict's
+/// text stays inside its plate, and the plate and the "drawn, not
+/// simulated" caption lie above the fallen block and the table. The Kobe
+/// rack (a record scene, the banner in a strip of its own) and the default
+/// scene made to tumble late, at t = 157.53 s (a long headline on a plate
+/// over the scene).
+#[test]
+fn the_banner_fits_its_plate_and_the_caption_clears_the_fallen_block() {
+    let (_, c) = scene("default", &[]);
+    let p = c.geometry().p;
+    let late = vec![SimUpdate::Finished {
+        run: RunId(1),
+        end: RunEnd::Terminal {
+            mode: Mode::Tumbled,
+            tau: 157.53 * p,
+        },
+    }];
+    for size in WINDOWS {
+        for scale in prefs::offered([size.x, size.y], false) {
+            for (preset, tail, headline) in [
+                ("kobe-rack", Vec::new(), "OVERTURNED at t = 6.89 s"),
+                ("default", late.clone(), "OVERTURNED at t = 157.53 s"),
+            ] {
+                let what = format!("{preset} {size:?} at {scale}");
+                let mut h = fixed_timed(size, preset, tail);
+                let ctx = h.ctx.clone();
+                h.state_mut().set_presentation_scale(&ctx, scale);
+                for _ in 0..40 {
+                    h.step();
+                }
+                let _ = h.get_by_label(headline);
+                let layout = h.state().frame_layout().clone();
+                let banner = layout.banner.expect("a banner");
+                assert!(
+                    banner.plate.expand(0.5).contains_rect(banner.text),
+                    "{what}: text {:?} leaves its plate {:?}",
+                    banner.text,
+                    banner.plate
+                );
+                let caption = layout.caption.expect("the caption");
+                let block = layout.block_top.expect("the block");
+                let table = layout.table_top.expect("the table");
+                assert!(
+                    caption.max.y <= block && caption.max.y <= table,
+                    "{what}: caption {caption:?} over the block (top {block}) or table ({table})"
+                );
+                assert!(
+                    banner.plate.max.y <= block,
+                    "{what}: plate {:?} over the block (top {block})",
+                    banner.plate
+                );
+                assert!(
+                    banner.plate.expand(0.5).contains_rect(caption),
+                    "{what}: caption {caption:?} off the plate {:?}",
+                    banner.plate
+                );
+                let central = layout.panels.iter().find(|p| p.0 == "central").expect("central").1;
+                assert!(central.contains_rect(caption), "{what}: caption {caption:?} outside {central:?}");
+            }
+        }
+    }
+}

@@ -17,6 +17,11 @@ use crate::sim::protocol::RunEnd;
 /// How long an impact flash lasts, s of wall-clock time.
 const FLASH_S: f64 = 0.18;
 
+/// The remark under the verdict after a tumble, on the banner's plate
+/// (over the ground or the fallen block it hid them; the status bar says
+/// why the model stops there).
+const FALL_NOTE: &str = "the fall after the tumble is drawn (not simulated)";
+
 impl RockingApp {
     fn params_panel(&mut self, ui: &mut egui::Ui) {
         // Fill the width the layout gave the panel (a panel otherwise
@@ -122,22 +127,6 @@ impl RockingApp {
             return;
         };
         let verdict = self.end.as_ref().and_then(|e| Verdict::of(e, info.geometry));
-        // A record scene: the banner in its own strip above the block.
-        let rect = match &self.record_label {
-            Some(label) => {
-                let strip = egui::Rect::from_min_size(full.min, egui::vec2(full.width(), banner::STRIP_HEIGHT));
-                let lines = match &verdict {
-                    Some(v) => banner::Lines::verdict(v, Some(label.title())),
-                    None => banner::Lines::playing(sample, info.geometry, Some(label.title())),
-                };
-                let plate = strip.shrink2(egui::vec2(10.0, 4.0));
-                let text = banner::show(ui, plate, &lines);
-                self.frame_layout.banner = Some(BannerRects { plate, text });
-                egui::Rect::from_min_max(egui::pos2(full.min.x, strip.max.y), full.max)
-            }
-            None => full,
-        };
-        let now = ui.input(|i| i.time);
         // After a tumble: the fall onto the side, drawn (not simulated).
         let tumbled = matches!(
             self.end,
@@ -146,6 +135,32 @@ impl RockingApp {
                 ..
             })
         );
+        // A record scene: the banner in its own strip above the block.
+        let rect = match &self.record_label {
+            Some(label) => {
+                let mut lines = match &verdict {
+                    Some(v) => banner::Lines::verdict(v, Some(label.title())),
+                    None => banner::Lines::playing(sample, info.geometry, Some(label.title())),
+                };
+                if tumbled {
+                    lines.note = Some(FALL_NOTE.to_owned());
+                }
+                let fitted = banner::fit(ui, full.width() - 20.0, &lines);
+                let strip = egui::Rect::from_min_size(
+                    full.min,
+                    egui::vec2(full.width(), banner::STRIP_HEIGHT.max(fitted.height + 8.0)),
+                );
+                let plate = strip.shrink2(egui::vec2(10.0, 4.0));
+                let (text, last) = banner::show(ui, plate, &fitted);
+                self.frame_layout.banner = Some(BannerRects { plate, text });
+                if tumbled {
+                    self.frame_layout.caption = Some(last);
+                }
+                egui::Rect::from_min_max(egui::pos2(full.min.x, strip.max.y), full.max)
+            }
+            None => full,
+        };
+        let now = ui.input(|i| i.time);
         let mut falling = None;
         if tumbled {
             let t0 = *self.lecture.fall_t0.get_or_insert(now);
@@ -187,35 +202,26 @@ impl RockingApp {
         self.frame_layout.table_top = Some(to_screen(0.0));
         let view = scene::view(rect, scale, &self.camera, y_mid, ui.ctx().pixels_per_point());
         scene::paint(ui, rect, shapes, view, self.gpu);
-        if falling.is_some() {
-            let text = "after the tumble: drawn, not simulated (the model stops when the centre of mass passes over the corner)";
-            // Wrapped to the scene's width: one line is wider than a narrow
-            // scene and was cut at both ends.
-            let mut job = egui::text::LayoutJob::simple(
-                text.to_owned(),
-                egui::FontId::proportional(14.0),
-                egui::Color32::from_rgb(255, 170, 150),
-                rect.width() - 16.0,
-            );
-            job.halign = egui::Align::Center;
-            let galley = ui.painter().layout_job(job);
-            let top = rect.max.y - 8.0 - galley.size().y;
-            let at = egui::pos2(rect.center().x, top);
-            self.frame_layout.caption = Some(galley.rect.translate(at.to_vec2()));
-            ui.painter().galley(at, galley, egui::Color32::WHITE);
-        }
+        // Any scene but a record's (whose banner has its strip above):
+        // the verdict on a plate over the top of the scene, where the sky
+        // is once the block has fallen.
         if self.record_label.is_none()
             && let Some(v) = &verdict
         {
-            // Any other scene that tumbles: the verdict over the block.
-            let lines = banner::Lines::verdict(v, None);
-            let below = usize::from(lines.detail.is_some());
+            let mut lines = banner::Lines::verdict(v, None);
+            if tumbled {
+                lines.note = Some(FALL_NOTE.to_owned());
+            }
+            let fitted = banner::fit(ui, rect.width() - 20.0, &lines);
             let plate = egui::Rect::from_min_size(
                 rect.min + egui::vec2(10.0, 10.0),
-                egui::vec2(rect.width() - 20.0, banner::plate_height(below)),
+                egui::vec2(rect.width() - 20.0, fitted.height),
             );
-            let text = banner::show(ui, plate, &lines);
+            let (text, last) = banner::show(ui, plate, &fitted);
             self.frame_layout.banner = Some(BannerRects { plate, text });
+            if tumbled {
+                self.frame_layout.caption = Some(last);
+            }
         }
         ui.allocate_rect(full, egui::Sense::hover());
         if std::env::var_os("LAYOUT_DEBUG").is_some() { eprintln!("central end {:?} max {:?}", ui.min_rect(), ui.max_rect()); }
@@ -386,7 +392,11 @@ impl eframe::App for RockingApp {
         // Panels remember the size the user gave them, per presentation
         // scale: a new scale starts from its own proportional defaults
         // instead of keeping sizes in points meant for another.
-        let at = (self.lecture.scale * 100.0).round() as i32;
+        // (And per presentation: the lecture's larger text has its own.)
+        let at = (
+            (self.presentation_scale() * 100.0).round() as i32,
+            self.lecture.presentation,
+        );
         let mut panels = Vec::new();
         let r = egui::Panel::top("controls").show(ui, |ui| self.controls(ui));
         panels.push(("controls", r.response.rect));
@@ -461,10 +471,13 @@ impl eframe::App for RockingApp {
                 .show(ui, |ui| self.plots_panel(ui));
             panels.push(("plots", r.response.rect));
         } else if !tabs.is_empty() {
+            // The lecture presentation's larger numbers take more of the
+            // plots' width: the column is wider to keep them large.
+            let share = if self.lecture.presentation { 0.35 } else { 0.3 };
             let (lo, hi) = range_within(180.0, (0.35 * w).max(190.0), budget);
             let r = egui::Panel::right(("side", at))
                 .resizable(true)
-                .default_size((0.3 * w).clamp(220.0, 560.0).clamp(lo, hi))
+                .default_size((share * w).clamp(220.0, 560.0).clamp(lo, hi))
                 .size_range(lo..=hi)
                 .show(ui, |ui| self.side_panel(ui, &tabs));
             panels.push(("side", r.response.rect));
