@@ -394,3 +394,67 @@ fn the_banner_fits_its_plate_and_the_caption_clears_the_fallen_block() {
         }
     }
 }
+
+/// Clicks View ▸ `item` (a panel's checkbox), closes the menu, and lets the
+/// layout settle.
+fn toggle_view(h: &mut Harness<'static, RockingApp>, item: &str) {
+    use egui::accesskit::Role;
+    h.key_press(egui::Key::Escape);
+    h.step();
+    h.get_by_label("View").click();
+    for _ in 0..10 {
+        h.step();
+        if h.query_by_role_and_label(Role::CheckBox, item).is_some() {
+            break;
+        }
+    }
+    h.get_by_role_and_label(Role::CheckBox, item).click();
+    h.step();
+    h.key_press(egui::Key::Escape);
+    for _ in 0..4 {
+        h.step();
+    }
+}
+
+fn panel(h: &Harness<'static, RockingApp>, name: &str) -> Option<egui::Rect> {
+    h.state()
+        .frame_layout()
+        .panels
+        .iter()
+        .find(|p| p.0 == name)
+        .map(|p| p.1)
+}
+
+/// A panel hidden from the View menu and shown again comes back at the
+/// size it had, in both windows.
+#[test]
+fn a_panel_shown_again_from_the_view_menu_comes_back_at_its_size() {
+    for size in WINDOWS {
+        let mut h = fixed(size, "period-doubling", Vec::new());
+        for _ in 0..4 {
+            h.step();
+        }
+        for (items, name) in [
+            (&["Parameters"][..], "params"),
+            (&["Time history", "Power spectrum"][..], "history"),
+            (&["Phase portrait", "Poincaré points"][..], "side"),
+        ] {
+            let before = panel(&h, name).expect("shown");
+            for item in items {
+                toggle_view(&mut h, item);
+            }
+            assert!(panel(&h, name).is_none(), "{size:?}: {name} hidden");
+            for item in items {
+                toggle_view(&mut h, item);
+            }
+            let after = panel(&h, name).expect("shown again");
+            eprintln!("{size:?}: {name} {:?} → {:?}", before.size(), after.size());
+            assert!(
+                (after.width() - before.width()).abs() <= 1.0 && (after.height() - before.height()).abs() <= 1.0,
+                "{size:?}: {name} was {:?}, came back {:?}",
+                before.size(),
+                after.size()
+            );
+        }
+    }
+}
