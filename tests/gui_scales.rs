@@ -15,7 +15,7 @@
 mod gui_common;
 
 use egui_kittest::Harness;
-use egui_kittest::kittest::Queryable as _;
+use egui_kittest::kittest::{NodeT as _, Queryable as _};
 use gui_common::scene;
 use rocking::gui::RockingApp;
 use rocking::gui::panels::axes;
@@ -134,12 +134,6 @@ fn check_frame(h: &Harness<'static, RockingApp>, what: &str) -> Vec<&'static str
     let layout = h.state().frame_layout().clone();
     let screen = layout.screen;
     assert!(screen.width() > 0.0, "{what}: laid out");
-    if std::env::var_os("LAYOUT_DEBUG").is_some() {
-        eprintln!("{what}: {:?} params need {}", layout.panels, layout.params_need);
-        for t in texts(h).iter().filter(|t| t.rect.max.x > screen.max.x - 40.0 || std::env::var_os("LAYOUT_ALL").is_some()) {
-            eprintln!("  {:?} {:?} clip {:?}", t.text, t.rect, t.clip);
-        }
-    }
     // No panel covers another, and each is inside the window.
     for (i, (a, ra)) in layout.panels.iter().enumerate() {
         assert!(
@@ -457,4 +451,60 @@ fn a_panel_shown_again_from_the_view_menu_comes_back_at_its_size() {
             );
         }
     }
+}
+
+/// The View menu offers the scales the window holds (the others greyed
+/// out), Ctrl + stops at the largest, and a scale remembered from a larger
+/// screen gives way to what this window holds.
+#[test]
+fn only_the_scales_the_window_holds_are_offered_or_reached() {
+    let mut h = fixed(WINDOWS[0], "default", Vec::new());
+    h.step();
+    h.get_by_label("View").click();
+    for _ in 0..10 {
+        h.step();
+        if h.query_by_label("150 %").is_some() {
+            break;
+        }
+    }
+    for scale in prefs::SCALES {
+        let label = format!("{:.0} %", 100.0 * scale);
+        let enabled = !h.get_by_label(&label).accesskit_node().is_disabled();
+        assert_eq!(enabled, scale <= 1.6, "{label} at 1280 × 800");
+    }
+    h.key_press(egui::Key::Escape);
+    h.step();
+    let ctx = h.ctx.clone();
+    h.state_mut().set_presentation_scale(&ctx, 1.5);
+    h.step();
+    for _ in 0..5 {
+        h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::Plus);
+        h.step();
+        h.step();
+    }
+    let top = h.state().presentation_scale();
+    assert!((top - 1.6).abs() < 1e-4, "Ctrl + stops at 160 %: {top}");
+    assert!((h.ctx.zoom_factor() - 1.6).abs() < 1e-4);
+
+    // Remembered at 250 % on a 4K screen, opened in a 1280 × 800 window.
+    let dir = std::env::temp_dir().join(format!("rocking-scales-{}", std::process::id()));
+    let path = dir.join("app.toml");
+    prefs::Prefs {
+        scale: 2.5,
+        lecture: true,
+    }
+    .save(&path)
+    .unwrap();
+    let mut h = fixed(WINDOWS[0], "default", Vec::new());
+    let ctx = h.ctx.clone();
+    h.state_mut().remember_scale_in(&ctx, path.clone());
+    h.step();
+    h.step();
+    assert!(h.state().lecture_presentation(), "the lecture presentation is remembered");
+    let applied = h.state().presentation_scale();
+    assert!(
+        (applied - prefs::max_scale([1280.0, 800.0], true)).abs() < 1e-4,
+        "{applied}"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
 }
