@@ -18,6 +18,7 @@ use egui_kittest::Harness;
 use egui_kittest::kittest::{NodeT as _, Queryable as _};
 use gui_common::scene;
 use rocking::gui::RockingApp;
+use rocking::gui::lessons::Note;
 use rocking::gui::panels::axes;
 use rocking::gui::prefs;
 use rocking::model::Mode;
@@ -27,15 +28,21 @@ use rocking::sim::runner::record;
 /// The two windows a lecture is given on, pixels.
 const WINDOWS: [egui::Vec2; 2] = [egui::vec2(1280.0, 800.0), egui::vec2(1920.0, 1080.0)];
 
-/// The app on `preset`, fed the first 40 τ of its run and then `tail`,
-/// in a window of `size` pixels, without wgpu.
+/// The app on `preset` with its note (as the Presets menu loads it), fed
+/// the first 40 τ of its run and then `tail`, in a window of `size`
+/// pixels, without wgpu.
 fn fixed(size: egui::Vec2, preset: &str, tail: Vec<SimUpdate>) -> Harness<'static, RockingApp> {
     let (s, c) = scene(preset, &[]);
     let mut updates = record(RunId(1), &c, 40.0);
     updates.extend(tail);
-    Harness::builder()
-        .with_size(size)
-        .build_eframe(move |cc| RockingApp::with_stream(cc, s, c, updates))
+    let note = Note::of_preset(preset);
+    Harness::builder().with_size(size).build_eframe(move |cc| {
+        let mut app = RockingApp::with_stream(cc, s, c, updates);
+        if let Some(n) = note {
+            app.set_note(n);
+        }
+        app
+    })
 }
 
 /// The scales to check in a window of `size` pixels: those the View menu
@@ -156,6 +163,14 @@ fn check_frame(h: &Harness<'static, RockingApp>, what: &str) -> Vec<&'static str
         "{what}: the scene is {:.0} of {:.0} points",
         scene.width(),
         screen.width()
+    );
+    // And at least 150 px of height, to see the block from the back of a
+    // hall (a long note once left it 95 px at 150 % in 1280 × 800).
+    let ppp = h.ctx.pixels_per_point();
+    assert!(
+        scene.height() * ppp >= 150.0,
+        "{what}: the scene is {:.0} px high",
+        scene.height() * ppp
     );
     let texts = texts(h);
     // No text cut at the left or right edge of what it is drawn in.

@@ -109,8 +109,19 @@ impl RockingApp {
         // What to look at, then the mode legend, each as tall as its text
         // needs at this width, above the block.
         if self.note().is_some() {
+            // At most 40 % of the scene's height (scrolled beyond): a long
+            // note in a short scene (a large presentation scale) left the
+            // block a sliver.
+            let row = ui.text_style_height(&egui::TextStyle::Body);
+            let most = (0.4 * full.height() - row).max(2.0 * row);
             let used = ui
-                .scope_builder(egui::UiBuilder::new().max_rect(full), |ui| self.note_strip(ui))
+                .scope_builder(egui::UiBuilder::new().max_rect(full), |ui| {
+                    egui::ScrollArea::vertical()
+                        .id_salt("note")
+                        .max_height(most)
+                        .auto_shrink([false, true])
+                        .show(ui, |ui| self.note_strip(ui));
+                })
                 .response
                 .rect;
             full.min.y = used.max.y + 4.0;
@@ -513,5 +524,5 @@ fn range_within(min: f32, max: f32, room: f32) -> (f32, f32) {
 /// and title beside them, in the style's plot-number font.
 fn min_plot(ui: &egui::Ui) -> egui::Vec2 {
     let f = crate::gui::panels::axes::number_font(ui.style()).size;
-    egui::vec2(16.0 * f, 9.0 * f)
+    egui::vec2(16.0 * f, 8.0 * f)
 }
