@@ -284,7 +284,10 @@ fn no_text_is_below_14_px_and_the_lecture_presentation_numbers_plots_at_20_px() 
         }
         let (smallest, numbers) = sizes_px(&h);
         let tallest = numbers.iter().map(|n| n.2).fold(0.0, f32::max);
-        eprintln!("{preset} at 100 %: smallest text {smallest} px, plot numbers {:?} px (rows {tallest} px)", numbers.iter().map(|n| n.1).fold(f32::INFINITY, f32::min));
+        eprintln!(
+            "{preset} at 100 %: smallest text {smallest} px, plot numbers {:?} px (rows {tallest} px)",
+            numbers.iter().map(|n| n.1).fold(f32::INFINITY, f32::min)
+        );
         assert!(smallest >= 14.0, "{preset}: a text of {smallest} px");
         assert!(numbers.len() >= 8, "{preset}: {numbers:?}");
 
@@ -309,7 +312,10 @@ fn no_text_is_below_14_px_and_the_lecture_presentation_numbers_plots_at_20_px() 
                 assert!(*size >= 20.0, "{preset} lecture: {plot} numbers at {size} px");
                 seen.push(*plot);
             }
-            eprintln!("{preset} lecture: plot numbers {:?} px", numbers.iter().map(|n| n.1).fold(f32::INFINITY, f32::min));
+            eprintln!(
+                "{preset} lecture: plot numbers {:?} px",
+                numbers.iter().map(|n| n.1).fold(f32::INFINITY, f32::min)
+            );
         }
         for plot in ["phase", "poincare", "history", "spectrum"] {
             assert!(seen.contains(&plot), "{preset} lecture: {plot} never shown");
@@ -398,7 +404,10 @@ fn the_banner_fits_its_plate_and_the_caption_clears_the_fallen_block() {
                     banner.plate
                 );
                 let central = layout.panels.iter().find(|p| p.0 == "central").expect("central").1;
-                assert!(central.contains_rect(caption), "{what}: caption {caption:?} outside {central:?}");
+                assert!(
+                    central.contains_rect(caption),
+                    "{what}: caption {caption:?} outside {central:?}"
+                );
             }
         }
     }
@@ -515,7 +524,10 @@ fn only_the_scales_the_window_holds_are_offered_or_reached() {
     h.state_mut().remember_scale_in(&ctx, path.clone());
     h.step();
     h.step();
-    assert!(h.state().lecture_presentation(), "the lecture presentation is remembered");
+    assert!(
+        h.state().lecture_presentation(),
+        "the lecture presentation is remembered"
+    );
     let applied = h.state().presentation_scale();
     assert!(
         (applied - prefs::max_scale([1280.0, 800.0], true)).abs() < 1e-4,

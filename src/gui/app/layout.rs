@@ -126,12 +126,26 @@ impl RockingApp {
                 .rect;
             full.min.y = used.max.y + 4.0;
         }
-        if std::env::var_os("LAYOUT_DEBUG").is_some() { eprintln!("central start {:?} max {:?} full {:?}", ui.min_rect(), ui.max_rect(), full); }
+        if std::env::var_os("LAYOUT_DEBUG").is_some() {
+            eprintln!(
+                "central start {:?} max {:?} full {:?}",
+                ui.min_rect(),
+                ui.max_rect(),
+                full
+            );
+        }
         let used = ui
             .scope_builder(egui::UiBuilder::new().max_rect(full), lecture::legend)
             .response
             .rect;
-        if std::env::var_os("LAYOUT_DEBUG").is_some() { eprintln!("after legend {:?} max {:?} used {:?}", ui.min_rect(), ui.max_rect(), used); }
+        if std::env::var_os("LAYOUT_DEBUG").is_some() {
+            eprintln!(
+                "after legend {:?} max {:?} used {:?}",
+                ui.min_rect(),
+                ui.max_rect(),
+                used
+            );
+        }
         full.min.y = used.max.y + 2.0;
         let (Some(info), Some(sample)) = (self.info.as_ref(), self.hist.samples.last()) else {
             self.no_run_label(ui);
@@ -235,7 +249,9 @@ impl RockingApp {
             }
         }
         ui.allocate_rect(full, egui::Sense::hover());
-        if std::env::var_os("LAYOUT_DEBUG").is_some() { eprintln!("central end {:?} max {:?}", ui.min_rect(), ui.max_rect()); }
+        if std::env::var_os("LAYOUT_DEBUG").is_some() {
+            eprintln!("central end {:?} max {:?}", ui.min_rect(), ui.max_rect());
+        }
     }
 
     /// Whether the run takes stroboscopic section points (harmonic
@@ -322,8 +338,7 @@ impl RockingApp {
         // Both stacked need two plots and four rows of text (two titles,
         // the section's controls and its caption).
         let row = ui.text_style_height(&egui::TextStyle::Body) + ui.spacing().item_spacing.y;
-        let tabbed =
-            both && (self.lecture.presentation || ui.available_height() < 2.0 * min_plot(ui).y + 5.0 * row);
+        let tabbed = both && (self.lecture.presentation || ui.available_height() < 2.0 * min_plot(ui).y + 5.0 * row);
         let (mut phase, mut section) = (self.show.phase, poincare);
         if tabbed {
             ui.horizontal(|ui| {

@@ -62,7 +62,10 @@ pub fn apply(ctx: &egui::Context, sizes: TextSizes) {
         styles.insert(TextStyle::Small, FontId::new(sizes.small, FontFamily::Proportional));
         styles.insert(TextStyle::Body, FontId::new(sizes.body, FontFamily::Proportional));
         styles.insert(TextStyle::Button, FontId::new(sizes.button, FontFamily::Proportional));
-        styles.insert(TextStyle::Monospace, FontId::new(sizes.monospace, FontFamily::Monospace));
+        styles.insert(
+            TextStyle::Monospace,
+            FontId::new(sizes.monospace, FontFamily::Monospace),
+        );
         styles.insert(TextStyle::Heading, FontId::new(sizes.heading, FontFamily::Proportional));
         styles.insert(
             TextStyle::Name(axes::PLOT_NUMBERS.into()),

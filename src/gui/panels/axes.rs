@@ -453,7 +453,13 @@ mod tests {
     /// at least the floor gap apart, with the data inside.
     #[test]
     fn nice_bounds_keep_two_numbers_on_a_short_axis() {
-        for (lo, hi) in [(-0.0041, 0.0093), (0.2, 0.2), (-0.4, 0.9), (1.001, 1.0012), (-123.4, 560.0)] {
+        for (lo, hi) in [
+            (-0.0041, 0.0093),
+            (0.2, 0.2),
+            (-0.4, 0.9),
+            (1.001, 1.0012),
+            (-123.4, 560.0),
+        ] {
             for length in [60.0, 120.0, 160.0, 300.0] {
                 for grow in [1.2, 1.6] {
                     let (min_gap, floor) = (grow * MIN_LABEL_GAP[0], grow * FLOOR_LABEL_GAP[0]);
