@@ -285,7 +285,7 @@ fn no_text_is_below_14_px_and_the_lecture_presentation_numbers_plots_at_20_px() 
         let (smallest, numbers) = sizes_px(&h);
         let tallest = numbers.iter().map(|n| n.2).fold(0.0, f32::max);
         eprintln!(
-            "{preset} at 100 %: smallest text {smallest} px, plot numbers {:?} px (rows {tallest} px)",
+            "{preset} at 100 %: smallest text {smallest} px, plot numbers {:?} px (digits {tallest} px high)",
             numbers.iter().map(|n| n.1).fold(f32::INFINITY, f32::min)
         );
         assert!(smallest >= 14.0, "{preset}: a text of {smallest} px");
@@ -313,8 +313,9 @@ fn no_text_is_below_14_px_and_the_lecture_presentation_numbers_plots_at_20_px() 
                 seen.push(*plot);
             }
             eprintln!(
-                "{preset} lecture: plot numbers {:?} px",
-                numbers.iter().map(|n| n.1).fold(f32::INFINITY, f32::min)
+                "{preset} lecture: smallest text {smallest} px, plot numbers {:?} px (digits {:?} px high)",
+                numbers.iter().map(|n| n.1).fold(f32::INFINITY, f32::min),
+                numbers.iter().map(|n| n.2).fold(0.0, f32::max)
             );
         }
         for plot in ["phase", "poincare", "history", "spectrum"] {
