@@ -32,6 +32,7 @@ use crate::sim::runner::SimHandle;
 
 mod controls;
 mod file_dialog;
+pub mod frame_layout;
 mod layout;
 pub mod lecture;
 mod map_panel;
@@ -40,6 +41,7 @@ mod receive;
 mod record_open;
 mod share;
 mod status;
+mod style;
 
 pub use file_dialog::{FileAsk, NO_DIALOG, NativeDialog, PathKind};
 pub use record_open::RecordQuestion;
@@ -158,6 +160,8 @@ pub struct RockingApp {
     share: share::Share,
     /// How File menu items ask for a path ([`file_dialog`]).
     files: file_dialog::FileDialogs,
+    /// Where the last frame put its panels ([`frame_layout`]).
+    frame_layout: frame_layout::FrameLayout,
 }
 
 impl RockingApp {
@@ -223,6 +227,7 @@ impl RockingApp {
     }
 
     fn base(cc: &eframe::CreationContext<'_>, link: Link, settings: Settings, config: Scenario) -> Self {
+        style::apply(&cc.egui_ctx, style::TextSizes::NORMAL);
         let gpu = match cc.wgpu_render_state.as_ref() {
             Some(rs) => {
                 block_view::install(rs);
@@ -271,6 +276,7 @@ impl RockingApp {
             lecture: lecture::Lecture::default(),
             share: share::Share::default(),
             files: file_dialog::FileDialogs::default(),
+            frame_layout: frame_layout::FrameLayout::default(),
         }
     }
 

@@ -192,12 +192,39 @@ impl RockingApp {
         ui.separator();
         ui.checkbox(&mut self.forces, "Contact force and friction cone");
         ui.separator();
+        let mut lecture = self.lecture_presentation();
+        if ui
+            .checkbox(&mut lecture, "Lecture presentation")
+            .on_hover_text("Larger text, plot numbers at 20 px, and the phase portrait and Poincaré points as tabs so each keeps a large plot")
+            .changed()
+        {
+            self.set_lecture_presentation(ui.ctx(), lecture);
+        }
         let now = self.presentation_scale();
         ui.label("Presentation scale (Ctrl + / Ctrl − / Ctrl 0)");
+        // Only the scales this window holds: at a larger one the panels
+        // would not fit beside the block (prefs::MIN_LAYOUT_POINTS).
+        let top = self.max_scale(ui.ctx());
         ui.horizontal_wrapped(|ui| {
             for scale in prefs::SCALES {
                 let on = (now - scale).abs() < 0.01;
-                if ui.selectable_label(on, format!("{:.0} %", 100.0 * scale)).clicked() {
+                let fits = scale <= top + 1e-4;
+                let r = ui.add_enabled(fits, egui::Button::selectable(on, format!("{:.0} %", 100.0 * scale)));
+                let r = if fits {
+                    r
+                } else {
+                    let [w, h] = if lecture {
+                        prefs::LECTURE_LAYOUT_POINTS
+                    } else {
+                        prefs::MIN_LAYOUT_POINTS
+                    };
+                    r.on_disabled_hover_text(format!(
+                        "needs a window of at least {:.0} × {:.0} pixels",
+                        w * scale,
+                        h * scale
+                    ))
+                };
+                if r.clicked() {
                     self.set_presentation_scale(ui.ctx(), scale);
                 }
             }

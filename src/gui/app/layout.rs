@@ -4,7 +4,8 @@
 use std::time::{Duration, Instant};
 
 use super::RockingApp;
-use super::lecture::{self, SideTab};
+use super::frame_layout::BannerRects;
+use super::lecture::{self, BottomTab, PlotTab, SideTab};
 use crate::gui::panels::banner::{self, Verdict};
 use crate::gui::panels::ground;
 use crate::gui::panels::params;
@@ -16,6 +17,11 @@ use crate::sim::protocol::RunEnd;
 /// How long an impact flash lasts, s of wall-clock time.
 const FLASH_S: f64 = 0.18;
 
+/// The remark under the verdict after a tumble, on the banner's plate
+/// (over the ground or the fallen block it hid them; the status bar says
+/// why the model stops there).
+const FALL_NOTE: &str = "the fall after the tumble is drawn (not simulated)";
+
 impl RockingApp {
     fn params_panel(&mut self, ui: &mut egui::Ui) {
         // Fill the width the layout gave the panel (a panel otherwise
@@ -23,14 +29,19 @@ impl RockingApp {
         ui.set_min_width(ui.available_width());
         ui.heading("Parameters");
         ui.label(egui::RichText::new(&self.settings.origin).weak());
-        egui::ScrollArea::both().show(ui, |ui| {
+        let panel_w = ui.available_width();
+        let out = egui::ScrollArea::both().show(ui, |ui| {
             let settings = &self.settings;
             let explicit = |k: &str| settings.explicit(k);
-            let commit = params::show(ui, &self.config, &explicit, &mut self.edits);
-            if let Some(c) = commit {
-                self.commit(c);
-            }
+            params::show(ui, &self.config, &explicit, &mut self.edits)
         });
+        // The width the rows need (names, sliders, values and units side by
+        // side): the next frame sizes the panel to hold it.
+        let frame = egui::Frame::side_top_panel(ui.style()).total_margin().sum().x;
+        self.frame_layout.params_need = out.content_size.x + (panel_w - out.inner_rect.width()) + frame + 1.0;
+        if let Some(c) = out.inner {
+            self.commit(c);
+        }
     }
 
     /// The tabs the side panel has: the plots and each analysis the View
@@ -55,6 +66,10 @@ impl RockingApp {
     /// A side panel showing one of `tabs`, with a tab bar when there are
     /// several.
     fn side_panel(&mut self, ui: &mut egui::Ui, tabs: &[SideTab]) {
+        // Fill the width the layout gave the panel: egui remembers a
+        // panel's size as what its contents took, so contents narrower
+        // than the panel would shrink it frame after frame.
+        ui.set_min_width(ui.available_width());
         let Some(&first) = tabs.first() else {
             return;
         };
@@ -94,36 +109,49 @@ impl RockingApp {
         // What to look at, then the mode legend, each as tall as its text
         // needs at this width, above the block.
         if self.note().is_some() {
+            // At most 40 % of the scene's height (scrolled beyond): a long
+            // note in a short scene (a large presentation scale) left the
+            // block a sliver.
+            let row = ui.text_style_height(&egui::TextStyle::Body);
+            let most = (0.4 * full.height() - row).max(2.0 * row);
             let used = ui
-                .scope_builder(egui::UiBuilder::new().max_rect(full), |ui| self.note_strip(ui))
+                .scope_builder(egui::UiBuilder::new().max_rect(full), |ui| {
+                    egui::ScrollArea::vertical()
+                        .id_salt("note")
+                        .max_height(most)
+                        .auto_shrink([false, true])
+                        .show(ui, |ui| self.note_strip(ui));
+                })
                 .response
                 .rect;
             full.min.y = used.max.y + 4.0;
+        }
+        if std::env::var_os("LAYOUT_DEBUG").is_some() {
+            eprintln!(
+                "central start {:?} max {:?} full {:?}",
+                ui.min_rect(),
+                ui.max_rect(),
+                full
+            );
         }
         let used = ui
             .scope_builder(egui::UiBuilder::new().max_rect(full), lecture::legend)
             .response
             .rect;
+        if std::env::var_os("LAYOUT_DEBUG").is_some() {
+            eprintln!(
+                "after legend {:?} max {:?} used {:?}",
+                ui.min_rect(),
+                ui.max_rect(),
+                used
+            );
+        }
         full.min.y = used.max.y + 2.0;
         let (Some(info), Some(sample)) = (self.info.as_ref(), self.hist.samples.last()) else {
             self.no_run_label(ui);
             return;
         };
         let verdict = self.end.as_ref().and_then(|e| Verdict::of(e, info.geometry));
-        // A record scene: the banner in its own strip above the block.
-        let rect = match &self.record_label {
-            Some(label) => {
-                let strip = egui::Rect::from_min_size(full.min, egui::vec2(full.width(), banner::STRIP_HEIGHT));
-                let lines = match &verdict {
-                    Some(v) => banner::Lines::verdict(v, Some(label.title())),
-                    None => banner::Lines::playing(sample, info.geometry, Some(label.title())),
-                };
-                banner::show(ui, strip.shrink2(egui::vec2(10.0, 4.0)), &lines);
-                egui::Rect::from_min_max(egui::pos2(full.min.x, strip.max.y), full.max)
-            }
-            None => full,
-        };
-        let now = ui.input(|i| i.time);
         // After a tumble: the fall onto the side, drawn (not simulated).
         let tumbled = matches!(
             self.end,
@@ -132,6 +160,32 @@ impl RockingApp {
                 ..
             })
         );
+        // A record scene: the banner in its own strip above the block.
+        let rect = match &self.record_label {
+            Some(label) => {
+                let mut lines = match &verdict {
+                    Some(v) => banner::Lines::verdict(v, Some(label.title())),
+                    None => banner::Lines::playing(sample, info.geometry, Some(label.title())),
+                };
+                if tumbled {
+                    lines.note = Some(FALL_NOTE.to_owned());
+                }
+                let fitted = banner::fit(ui, full.width() - 20.0, &lines);
+                let strip = egui::Rect::from_min_size(
+                    full.min,
+                    egui::vec2(full.width(), banner::STRIP_HEIGHT.max(fitted.height + 8.0)),
+                );
+                let plate = strip.shrink2(egui::vec2(10.0, 4.0));
+                let (text, last) = banner::show(ui, plate, &fitted);
+                self.frame_layout.banner = Some(BannerRects { plate, text });
+                if tumbled {
+                    self.frame_layout.caption = Some(last);
+                }
+                egui::Rect::from_min_max(egui::pos2(full.min.x, strip.max.y), full.max)
+            }
+            None => full,
+        };
+        let now = ui.input(|i| i.time);
         let mut falling = None;
         if tumbled {
             let t0 = *self.lecture.fall_t0.get_or_insert(now);
@@ -163,38 +217,45 @@ impl RockingApp {
             forces: self.forces,
         };
         let (shapes, scale, y_mid) = scene::build(&input, rect, &mut self.camera);
+        // Where the block's top and the table's top are drawn (points), for
+        // the layout tests: world height y is drawn at centre − (y − y_mid)·scale.
+        let to_screen = |y: f64| rect.center().y - ((y - y_mid) * scale) as f32;
+        let p = crate::sim::protocol::pose(&info.geometry, sample.theta, sample.x, sample.mode, sample.base_x);
+        let (sin, cos) = p.angle.sin_cos();
+        let reach = 0.5 * (info.geometry.width * sin.abs() + info.geometry.height * cos.abs());
+        self.frame_layout.block_top = Some(to_screen(p.y + reach));
+        self.frame_layout.table_top = Some(to_screen(0.0));
         let view = scene::view(rect, scale, &self.camera, y_mid, ui.ctx().pixels_per_point());
         scene::paint(ui, rect, shapes, view, self.gpu);
         scene::ghost_caption(ui, rect, &input);
-        if falling.is_some() {
-            let text = "after the tumble: drawn, not simulated (the model stops when the centre of mass passes over the corner)";
-            // Wrapped to the scene's width: one line is wider than a narrow
-            // scene and was cut at both ends.
-            let mut job = egui::text::LayoutJob::simple(
-                text.to_owned(),
-                egui::FontId::proportional(14.0),
-                egui::Color32::from_rgb(255, 170, 150),
-                rect.width() - 16.0,
-            );
-            job.halign = egui::Align::Center;
-            let galley = ui.painter().layout_job(job);
-            let top = rect.max.y - 8.0 - galley.size().y;
-            ui.painter()
-                .galley(egui::pos2(rect.center().x, top), galley, egui::Color32::WHITE);
-        }
+        // Any scene but a record's (whose banner has its strip above):
+        // the verdict on a plate over the top of the scene, where the sky
+        // is once the block has fallen.
+        // Survival there would cover the block it is about (a free-rocking
+        // block at rest): only a record scene, whose banner has its own
+        // strip, says SURVIVED; the status bar says how any run ended.
         if self.record_label.is_none()
-            && let Some(v) = &verdict
+            && let Some(v) = verdict.as_ref().filter(|v| !matches!(v, Verdict::Survived { .. }))
         {
-            // Any other scene that tumbles: the verdict over the block.
-            let lines = banner::Lines::verdict(v, None);
-            let below = usize::from(lines.detail.is_some());
+            let mut lines = banner::Lines::verdict(v, None);
+            if tumbled {
+                lines.note = Some(FALL_NOTE.to_owned());
+            }
+            let fitted = banner::fit(ui, rect.width() - 20.0, &lines);
             let plate = egui::Rect::from_min_size(
                 rect.min + egui::vec2(10.0, 10.0),
-                egui::vec2(rect.width() - 20.0, banner::plate_height(below)),
+                egui::vec2(rect.width() - 20.0, fitted.height),
             );
-            banner::show(ui, plate, &lines);
+            let (text, last) = banner::show(ui, plate, &fitted);
+            self.frame_layout.banner = Some(BannerRects { plate, text });
+            if tumbled {
+                self.frame_layout.caption = Some(last);
+            }
         }
         ui.allocate_rect(full, egui::Sense::hover());
+        if std::env::var_os("LAYOUT_DEBUG").is_some() {
+            eprintln!("central end {:?} max {:?}", ui.min_rect(), ui.max_rect());
+        }
     }
 
     /// Whether the run takes stroboscopic section points (harmonic
@@ -207,51 +268,95 @@ impl RockingApp {
     }
 
     /// The bottom panel: the time history, and beside it the ground
-    /// acceleration of a record scene (always) or the power spectrum.
+    /// acceleration of a record scene (always) or the power spectrum; as
+    /// tabs where the panel is too narrow for both side by side.
     fn history_panel(&mut self, ui: &mut egui::Ui) {
         let scales = self.scales();
         let ground = self.record_label.clone();
         let spectrum = self.show.spectrum && ground.is_none();
         let both = self.show.history && (spectrum || ground.is_some());
         let width = ui.available_width();
+        let tabbed = both && 0.4 * width < min_plot(ui).x;
+        let (mut show_history, mut show_other) = (self.show.history, spectrum || ground.is_some());
+        if tabbed {
+            let other = if ground.is_some() {
+                "Ground acceleration"
+            } else {
+                "Power spectrum"
+            };
+            ui.horizontal(|ui| {
+                ui.selectable_value(&mut self.lecture.bottom_tab, BottomTab::History, "Time history");
+                ui.selectable_value(&mut self.lecture.bottom_tab, BottomTab::Other, other);
+            });
+            show_history = self.lecture.bottom_tab == BottomTab::History;
+            show_other = !show_history;
+        }
         let height = ui.available_height();
         ui.horizontal(|ui| {
-            if self.show.history {
-                let w = if both { 0.6 * width } else { width };
+            if show_history {
+                let w = if show_other { 0.6 * width } else { width };
                 ui.allocate_ui(egui::vec2(w, height), |ui| {
                     ui.vertical(|ui| {
                         plots::history_plot(ui, &self.hist, &mut self.history_view, self.tau, &scales);
                     });
                 });
             }
+            if !show_other {
+                return;
+            }
+            // The rest of the width and the whole height (a row's height is
+            // otherwise that of what it holds so far).
+            let size = egui::vec2(ui.available_width(), height);
             if let Some(label) = &ground {
-                ui.vertical(|ui| {
-                    ground::ground_plot(ui, &self.hist, &mut self.ground, label, self.tau, &scales);
+                ui.allocate_ui(size, |ui| {
+                    ui.vertical(|ui| {
+                        ground::ground_plot(ui, &self.hist, &mut self.ground, label, self.tau, &scales);
+                    });
                 });
             } else if spectrum {
                 let (dt, omega_h) = self.info.as_ref().map_or(
                     (crate::sim::runner::LIVE_SAMPLE_DT, self.config.excitation.omega_h),
                     |i| (i.sample_dt, i.scenario.excitation.omega_h),
                 );
-                ui.vertical(|ui| {
-                    // One line, cut with "…" in a narrow column (egui shows it whole on
-                    // hover), so the plot keeps its height at a large presentation scale.
-                    ui.add(egui::Label::new("Power spectrum of Θ (last 41 τ)").truncate());
-                    plots::spectrum_plot(ui, &self.hist, &mut self.spectrum, dt, omega_h, &scales);
+                ui.allocate_ui(size, |ui| {
+                    ui.vertical(|ui| {
+                        // One line, cut with "…" in a narrow column (egui shows it whole on
+                        // hover), so the plot keeps its height at a large presentation scale.
+                        ui.add(egui::Label::new("Power spectrum of Θ (last 41 τ)").truncate());
+                        plots::spectrum_plot(ui, &self.hist, &mut self.spectrum, dt, omega_h, &scales);
+                    });
                 });
             }
         });
     }
 
+    /// The phase portrait above the Poincaré points; as tabs where the
+    /// column is too short for both (a large scale) or in the lecture
+    /// presentation, so the plot shown keeps a size a hall can read.
     fn plots_panel(&mut self, ui: &mut egui::Ui) {
+        // Fill the panel's width (see side_panel).
+        ui.set_min_width(ui.available_width());
         let scales = self.scales();
         let poincare = self.show.poincare && self.has_section();
         let both = self.show.phase && poincare;
+        // Both stacked need two plots and four rows of text (two titles,
+        // the section's controls and its caption).
+        let row = ui.text_style_height(&egui::TextStyle::Body) + ui.spacing().item_spacing.y;
+        let tabbed = both && (self.lecture.presentation || ui.available_height() < 2.0 * min_plot(ui).y + 5.0 * row);
+        let (mut phase, mut section) = (self.show.phase, poincare);
+        if tabbed {
+            ui.horizontal(|ui| {
+                ui.selectable_value(&mut self.lecture.plot_tab, PlotTab::Phase, "Phase portrait");
+                ui.selectable_value(&mut self.lecture.plot_tab, PlotTab::Poincare, "Poincaré points");
+            });
+            phase = self.lecture.plot_tab == PlotTab::Phase;
+            section = !phase;
+        }
         let h = ui.available_height();
-        if self.show.phase {
+        if phase {
             ui.label("Phase portrait (click to start there)");
             // The Poincaré plot below has its section controls to fit too.
-            let height = if both { 0.44 * h - 20.0 } else { h - 20.0 };
+            let height = if section { 0.44 * h - row } else { h - row };
             ui.allocate_ui(egui::vec2(ui.available_width(), height), |ui| {
                 if let Some((theta, theta_dot)) = plots::phase_plot(ui, &self.hist, &mut self.phase, self.tau, &scales)
                 {
@@ -259,7 +364,7 @@ impl RockingApp {
                 }
             });
         }
-        if poincare {
+        if section {
             ui.label("Poincaré points (double-click to fit)");
             if let Some(phase) = plots::poincare_plot(ui, &self.hist, &mut self.poincare, &scales) {
                 self.set_section_phase(phase);
@@ -318,15 +423,28 @@ impl eframe::App for RockingApp {
         // Panels remember the size the user gave them, per presentation
         // scale: a new scale starts from its own proportional defaults
         // instead of keeping sizes in points meant for another.
-        let at = (self.lecture.scale * 100.0).round() as i32;
-        egui::Panel::top("controls").show(ui, |ui| self.controls(ui));
-        egui::Panel::bottom("status").show(ui, |ui| self.status(ui));
+        // (And per presentation: the lecture's larger text has its own.)
+        let at = (
+            (self.presentation_scale() * 100.0).round() as i32,
+            self.lecture.presentation,
+        );
+        let mut panels = Vec::new();
+        let r = egui::Panel::top("controls").show(ui, |ui| self.controls(ui));
+        panels.push(("controls", r.response.rect));
+        let r = egui::Panel::bottom("status").show(ui, |ui| self.status(ui));
+        panels.push(("status", r.response.rect));
         if self.show.params {
-            egui::Panel::left(("params", at))
+            // As wide as its rows need (measured last frame; a narrower
+            // panel scrolls them sideways and cuts the units off), within
+            // 40 % of the window.
+            let need = self.frame_layout.params_need;
+            let most = (0.4 * w).max(160.0);
+            let r = egui::Panel::left(("params", at))
                 .resizable(true)
-                .default_size((0.23 * w).clamp(180.0, 340.0))
-                .size_range(150.0..=(0.3 * w).max(160.0))
+                .default_size((0.23 * w).clamp(180.0, 340.0).max(need).min(most))
+                .size_range(need.clamp(150.0, most)..=(0.3 * w).max(need).clamp(160.0, most))
                 .show(ui, |ui| self.params_panel(ui));
+            panels.push(("params", r.response.rect));
         }
         if self.show.history || self.show.spectrum || self.record_label.is_some() {
             // A record scene's bottom panel carries the ground trace, the
@@ -337,11 +455,17 @@ impl eframe::App for RockingApp {
             } else {
                 ("history", 0.24 * h)
             };
-            egui::Panel::bottom((id, at))
+            // Tall enough for a readable plot under its row of controls and
+            // a row of tabs, within 42 % of the window.
+            let row = ui.text_style_height(&egui::TextStyle::Body) + ui.spacing().item_spacing.y;
+            let need = min_plot(ui).y + 2.0 * row + 16.0;
+            let most = (0.42 * h).max(100.0);
+            let r = egui::Panel::bottom((id, at))
                 .resizable(true)
-                .default_size(height.clamp(140.0, 330.0))
-                .size_range(90.0..=(0.42 * h).max(100.0))
+                .default_size(height.clamp(140.0, 330.0).max(need).min(most))
+                .size_range(need.clamp(90.0, most)..=most)
                 .show(ui, |ui| self.history_panel(ui));
+            panels.push(("history", r.response.rect));
         }
         if !self.show.bifurcation {
             self.bifurcation.hide();
@@ -356,33 +480,69 @@ impl eframe::App for RockingApp {
         // A wide window (a 1920-pixel projector at scale 1) has room for
         // the plots beside an analysis; a narrower one tabs them.
         let wide = w >= 1500.0;
+        // What the right-hand panels may take: the block scene keeps 30 %
+        // of the width whatever the parameter panel took.
+        let left = panels.iter().find(|p| p.0 == "params").map_or(0.0, |p| p.1.width());
+        let mut budget = 0.7 * w - left - 2.0;
         if wide && tabs.len() > 1 && tabs[0] == SideTab::Plots {
-            egui::Panel::right(("analyses", at))
+            let (lo, hi) = range_within(200.0, 0.27 * w, budget - 200.0);
+            let r = egui::Panel::right(("analyses", at))
                 .resizable(true)
-                .default_size(0.22 * w)
-                .size_range(200.0..=0.27 * w)
+                .default_size((0.22 * w).clamp(lo, hi))
+                .size_range(lo..=hi)
                 .show(ui, |ui| self.side_panel(ui, &tabs[1..]));
+            panels.push(("analyses", r.response.rect));
+            budget -= r.response.rect.width();
             self.lecture.tabs_seen.push(SideTab::Plots);
-            egui::Panel::right(("plots", at))
+            let (lo, hi) = range_within(200.0, 0.25 * w, budget);
+            let r = egui::Panel::right(("plots", at))
                 .resizable(true)
-                .default_size(0.2 * w)
-                .size_range(200.0..=0.25 * w)
+                .default_size((0.2 * w).clamp(lo, hi))
+                .size_range(lo..=hi)
                 .show(ui, |ui| self.plots_panel(ui));
+            panels.push(("plots", r.response.rect));
         } else if !tabs.is_empty() {
-            egui::Panel::right(("side", at))
+            // The lecture presentation's larger numbers take more of the
+            // plots' width: the column is wider to keep them large.
+            let share = if self.lecture.presentation { 0.35 } else { 0.3 };
+            let (lo, hi) = range_within(180.0, (0.35 * w).max(190.0), budget);
+            let r = egui::Panel::right(("side", at))
                 .resizable(true)
-                .default_size((0.3 * w).clamp(220.0, 560.0))
-                .size_range(180.0..=(0.35 * w).max(190.0))
+                .default_size((share * w).clamp(220.0, 560.0).clamp(lo, hi))
+                .size_range(lo..=hi)
                 .show(ui, |ui| self.side_panel(ui, &tabs));
+            panels.push(("side", r.response.rect));
         }
-        egui::CentralPanel::default().show(ui, |ui| {
+        self.frame_layout.banner = None;
+        self.frame_layout.caption = None;
+        self.frame_layout.block_top = None;
+        self.frame_layout.table_top = None;
+        let r = egui::CentralPanel::default().show(ui, |ui| {
             if self.show.scene {
                 self.scene_panel(ui);
             } else {
                 ui.centered_and_justified(|ui| ui.label("Block scene hidden (View menu)"));
             }
         });
+        panels.push(("central", r.response.rect));
+        self.frame_layout.screen = screen;
+        self.frame_layout.panels = panels;
         self.record_window(ui.ctx());
         self.time_frame(ui, start);
     }
+}
+
+/// A panel's size range, points: from `min` to `max`, but never more than
+/// `room` (then the range is `room` alone, however small).
+fn range_within(min: f32, max: f32, room: f32) -> (f32, f32) {
+    let hi = max.min(room).max(1.0);
+    (min.min(hi), hi)
+}
+
+/// The smallest plot, axes included, that still reads, points: room for
+/// two numbered ticks a readable gap apart on each axis and the numbers
+/// and title beside them, in the style's plot-number font.
+fn min_plot(ui: &egui::Ui) -> egui::Vec2 {
+    let f = crate::gui::panels::axes::number_font(ui.style()).size;
+    egui::vec2(16.0 * f, 8.0 * f)
 }

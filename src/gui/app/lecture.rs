@@ -43,6 +43,29 @@ impl SideTab {
     }
 }
 
+/// Which of the phase portrait and the Poincaré points the side panel
+/// shows where it has room for one only.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum PlotTab {
+    /// The phase portrait.
+    #[default]
+    Phase,
+    /// The Poincaré points.
+    Poincare,
+}
+
+/// Which of the time history and the plot beside it (power spectrum, or a
+/// record's ground acceleration) the bottom panel shows where it has room
+/// for one only.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum BottomTab {
+    /// The time history.
+    #[default]
+    History,
+    /// The power spectrum or the ground acceleration.
+    Other,
+}
+
 /// The state of the extras.
 #[derive(Debug)]
 pub struct Lecture {
@@ -54,8 +77,18 @@ pub struct Lecture {
     pub tab: SideTab,
     /// The tabs the side panel had last frame.
     pub tabs_seen: Vec<SideTab>,
-    /// The presentation scale in effect (egui's zoom factor).
+    /// The plot the side panel shows where it shows one.
+    pub plot_tab: PlotTab,
+    /// The plot the bottom panel shows where it shows one.
+    pub bottom_tab: BottomTab,
+    /// The presentation scale chosen (remembered): egui's zoom factor
+    /// where the window holds it.
     pub scale: f32,
+    /// The zoom factor last set: the scale chosen, capped by the window
+    /// ([`prefs::max_scale`]).
+    pub applied: f32,
+    /// Whether the lecture presentation is on (remembered).
+    pub presentation: bool,
     /// Where the scale is remembered; `None`: not remembered (tests,
     /// fixed streams).
     pub prefs_path: Option<PathBuf>,
@@ -72,7 +105,11 @@ impl Default for Lecture {
             note_hidden: false,
             tab: SideTab::Plots,
             tabs_seen: vec![SideTab::Plots],
+            plot_tab: PlotTab::default(),
+            bottom_tab: BottomTab::default(),
             scale: 1.0,
+            applied: 1.0,
+            presentation: false,
             prefs_path: None,
             fall_t0: None,
             scene_rect: None,
@@ -151,9 +188,24 @@ impl RockingApp {
         self.lecture.tab = tab;
     }
 
-    /// The presentation scale in effect.
+    /// The presentation scale in effect (egui's zoom factor): the one
+    /// chosen, or less where the window does not hold it.
     pub fn presentation_scale(&self) -> f32 {
-        self.lecture.scale
+        self.lecture.applied
+    }
+
+    /// Whether the lecture presentation is on.
+    pub fn lecture_presentation(&self) -> bool {
+        self.lecture.presentation
+    }
+
+    /// Turns the lecture presentation on or off, and remembers it.
+    pub fn set_lecture_presentation(&mut self, ctx: &egui::Context, on: bool) {
+        self.lecture.presentation = on;
+        super::style::apply(ctx, super::style::TextSizes::of(on));
+        // Its larger text needs more room: the scale may have to give way.
+        self.apply_scale(ctx);
+        self.save_prefs();
     }
 
     /// Remembers the presentation scale in `path` from now on (and uses
@@ -162,7 +214,9 @@ impl RockingApp {
         match Prefs::load(&path) {
             Ok(p) => {
                 self.lecture.scale = p.scale;
-                ctx.set_zoom_factor(p.scale);
+                self.lecture.presentation = p.lecture;
+                super::style::apply(ctx, super::style::TextSizes::of(p.lecture));
+                self.apply_scale(ctx);
             }
             Err(e) => self.message = Some(Message { text: e, error: true }),
         }
@@ -177,27 +231,56 @@ impl RockingApp {
         }
     }
 
-    /// Sets the presentation scale (clamped), and remembers it.
+    /// Sets the presentation scale (clamped to [`prefs::SCALE_RANGE`] and
+    /// to what the window holds), and remembers it.
     pub fn set_presentation_scale(&mut self, ctx: &egui::Context, scale: f32) {
-        ctx.set_zoom_factor(Prefs::clamp_scale(scale));
-        self.follow_scale(ctx);
+        self.lecture.scale = Prefs::clamp_scale(scale).min(self.max_scale(ctx));
+        self.apply_scale(ctx);
+        self.save_prefs();
     }
 
-    /// Picks up a scale changed by egui's own Ctrl +/−/0 and stores it.
-    pub(super) fn follow_scale(&mut self, ctx: &egui::Context) {
-        let z = ctx.zoom_factor();
-        if z == self.lecture.scale || self.exporting_view() {
-            return;
+    /// The largest scale the window holds ([`prefs::max_scale`]).
+    pub(super) fn max_scale(&self, ctx: &egui::Context) -> f32 {
+        let window = ctx.content_rect().size() * ctx.zoom_factor();
+        prefs::max_scale([window.x, window.y], self.lecture.presentation)
+    }
+
+    /// Sets egui's zoom to the scale chosen, capped by the window.
+    fn apply_scale(&mut self, ctx: &egui::Context) {
+        let z = self.lecture.scale.min(self.max_scale(ctx));
+        self.lecture.applied = z;
+        if ctx.zoom_factor() != z {
+            ctx.set_zoom_factor(z);
         }
-        let clamped = Prefs::clamp_scale(z);
-        if clamped != z {
-            ctx.set_zoom_factor(clamped);
-        }
-        self.lecture.scale = clamped;
+    }
+
+    fn save_prefs(&mut self) {
+        let prefs = Prefs {
+            scale: self.lecture.scale,
+            lecture: self.lecture.presentation,
+        };
         if let Some(path) = &self.lecture.prefs_path
-            && let Err(e) = (Prefs { scale: clamped }).save(path)
+            && let Err(e) = prefs.save(path)
         {
             self.message = Some(Message { text: e, error: true });
+        }
+    }
+
+    /// Picks up a scale changed by egui's own Ctrl +/−/0 and stores it;
+    /// keeps the zoom within what the window holds (a window made smaller,
+    /// or a scale remembered from a larger screen).
+    pub(super) fn follow_scale(&mut self, ctx: &egui::Context) {
+        if self.exporting_view() {
+            return;
+        }
+        let z = ctx.zoom_factor();
+        if z != self.lecture.applied {
+            // The keyboard changed it: that is the scale chosen now.
+            self.lecture.scale = Prefs::clamp_scale(z).min(self.max_scale(ctx));
+            self.apply_scale(ctx);
+            self.save_prefs();
+        } else {
+            self.apply_scale(ctx);
         }
     }
 
@@ -260,11 +343,26 @@ impl RockingApp {
 pub fn legend(ui: &mut egui::Ui) {
     ui.horizontal_wrapped(|ui| {
         ui.spacing_mut().item_spacing.x = 4.0;
+        let font = egui::TextStyle::Body.resolve(ui.style());
         for (i, name) in Mode::NAMES.iter().enumerate() {
+            // A swatch and its name stay on one row: start a new row unless
+            // both fit (egui wraps between widgets, so the swatch could end
+            // one row and its name begin the next, and spacing never wraps,
+            // so a trailing gap pushed the row past the scene).
+            let text = ui
+                .painter()
+                .layout_no_wrap((*name).to_owned(), font.clone(), egui::Color32::WHITE)
+                .size()
+                .x;
+            let gap = if i == 0 { 0.0 } else { 8.0 };
+            if i > 0 && ui.available_size_before_wrap().x < gap + 12.0 + 4.0 + text + 4.0 {
+                ui.end_row();
+            } else {
+                ui.add_space(gap);
+            }
             let (r, _) = ui.allocate_exact_size(egui::vec2(12.0, 12.0), egui::Sense::hover());
             ui.painter().rect_filled(r, 2.0, scene::MODE_COLORS[i]);
             ui.label(*name);
-            ui.add_space(8.0);
         }
     });
 }

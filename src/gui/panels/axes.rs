@@ -99,6 +99,37 @@ pub fn marks(bounds: (f64, f64), points_per_unit: f64, min_gap: f64, floor_gap: 
     out
 }
 
+/// Bounds for data spanning `lo` … `hi` on an axis `length` points long,
+/// widened to whole numbered steps and then by `pad` of the span each side:
+/// so the axis shows at least two numbered ticks (its outermost steps) at
+/// least `floor_gap` apart, however short the axis or narrow the data (a
+/// period-one orbit's Poincaré points all but coincide), where the axis is
+/// at least 2.2 floor gaps long (else the data, padded). The step is the
+/// smallest 1–2–5 step that keeps numbers `floor_gap` apart, at least
+/// what `min_gap` asks where the axis is long enough.
+pub fn nice_bounds(lo: f64, hi: f64, length: f64, min_gap: f64, floor_gap: f64, pad: f64) -> (f64, f64) {
+    let (lo, hi) = (lo.min(hi), lo.max(hi));
+    if !(lo.is_finite() && hi.is_finite() && length.is_finite() && length > 0.0) {
+        return (lo, hi);
+    }
+    let span = (hi - lo).max(1e-12 * lo.abs().max(1.0));
+    let mut step = nice_step(span * min_gap.min(floor_gap) / length);
+    for _ in 0..64 {
+        let a = (lo / step).floor() * step;
+        let b = (hi / step).ceil() * step;
+        let b = if b - a < step { a + step } else { b };
+        let width = (b - a) * (1.0 + 2.0 * pad);
+        // Numbers `step` apart are this many points apart:
+        let gap = step * length / width;
+        if gap >= floor_gap {
+            return (a - pad * (b - a), b + pad * (b - a));
+        }
+        step = nice_step(step * 1.01);
+    }
+    // An axis shorter than two floor gaps: the data, padded.
+    (lo - pad * span, hi + pad * span)
+}
+
 /// The next 1–2–5 step below `step` (1 → 0.5, 5 → 2, 2 → 1).
 fn step_below(step: f64) -> f64 {
     let base = 10f64.powf(step.log10().floor());
@@ -139,44 +170,148 @@ pub fn format_tick(mark: GridMark, _range: &RangeInclusive<f64>) -> String {
 }
 
 /// `plot` with readable axes: 1–2–5 ticks numbered on both axes at any
-/// zoom ([`marks`]) and their numbers ([`format_tick`]).
+/// zoom ([`marks`]) and their numbers ([`format_tick`]), at the gaps
+/// [`MIN_LABEL_GAP`] gives for egui's default font. [`titled`] then fits the
+/// gaps and the numbers to the font the style gives plot numbers.
 pub fn readable<'a>(plot: Plot<'a>) -> Plot<'a> {
-    let spacer = |axis: usize| {
+    with_gaps(plot, 1.0)
+}
+
+/// The font size [`MIN_LABEL_GAP`] and [`FLOOR_LABEL_GAP`] were chosen
+/// for, points: egui's default body text.
+const GAP_FONT_PT: f32 = 12.5;
+
+/// The text style plot numbers are drawn in ([`crate::gui::app`] sets its
+/// size: at least 14 px, 20 px in the lecture presentation).
+pub const PLOT_NUMBERS: &str = "plot numbers";
+
+/// The font of plot numbers in `style`: [`PLOT_NUMBERS`], else the body font.
+pub fn number_font(style: &egui::Style) -> egui::FontId {
+    let name = egui::TextStyle::Name(PLOT_NUMBERS.into());
+    style
+        .text_styles
+        .get(&name)
+        .cloned()
+        .unwrap_or_else(|| egui::TextStyle::Body.resolve(style))
+}
+
+/// The smallest gaps between numbered ticks for plot numbers in `style`'s
+/// [`number_font`], points per axis: ([`MIN_LABEL_GAP`], [`FLOOR_LABEL_GAP`])
+/// grown with the font.
+pub fn gaps(style: &egui::Style) -> ([f64; 2], [f64; 2]) {
+    let grow = f64::from((number_font(style).size / GAP_FONT_PT).max(1.0));
+    (
+        [grow * MIN_LABEL_GAP[0], grow * MIN_LABEL_GAP[1]],
+        [grow * FLOOR_LABEL_GAP[0], grow * FLOOR_LABEL_GAP[1]],
+    )
+}
+
+/// `plot`'s grid and numbers with every gap [`MIN_LABEL_GAP`],
+/// [`FLOOR_LABEL_GAP`] multiplied by `grow` (numbers larger than the font the
+/// gaps were chosen for need as much more room).
+fn with_gaps<'a>(plot: Plot<'a>, grow: f64) -> Plot<'a> {
+    let spacer = move |axis: usize| {
         move |input: GridInput| {
             // base_step_size is the plot-unit length of GRID_MIN points.
             let ppu = f64::from(GRID_MIN) / input.base_step_size;
-            marks(input.bounds, ppu, MIN_LABEL_GAP[axis], FLOOR_LABEL_GAP[axis])
+            marks(
+                input.bounds,
+                ppu,
+                grow * MIN_LABEL_GAP[axis],
+                grow * FLOOR_LABEL_GAP[axis],
+            )
         }
-    };
-    // egui_plot hides numbers closer than its label spacing (60 points on
-    // x, 20 on y by default) and fades them up to a larger one; [`marks`]
-    // already keeps numbered marks at least the floor apart and thin ones
-    // closer, so number exactly the marks at or beyond the floor, at full
-    // strength.
-    let hints = |hints: AxisHints<'a>, axis: usize| -> AxisHints<'a> {
-        let floor = FLOOR_LABEL_GAP[axis] as f32;
-        hints
-            .formatter(format_tick)
-            .label_spacing(egui::Rangef::new(floor * 0.96, floor * 0.97))
     };
     plot.grid_spacing(egui::Rangef::new(GRID_MIN, 300.0))
         .x_grid_spacer(spacer(0))
         .y_grid_spacer(spacer(1))
-        .custom_x_axes(vec![hints(AxisHints::new_x(), 0)])
-        .custom_y_axes(vec![hints(AxisHints::new_y(), 1)])
+        .custom_x_axes(vec![hints(AxisHints::new_x(), 0, grow, None)])
+        .custom_y_axes(vec![hints(AxisHints::new_y(), 1, grow, None)])
 }
 
-/// Room the axes themselves take from a plot's rectangle, points: the
-/// numbers and the title beside the y axis, and under the x axis.
-const AXIS_ROOM: egui::Vec2 = egui::vec2(56.0, 44.0);
+/// Axis `axis`'s hints: [`format_tick`] numbers, in `font` (egui_plot's
+/// body font if `None`). egui_plot hides numbers closer than its label
+/// spacing (60 points on x, 20 on y by default) and fades them up to a
+/// larger one; [`marks`] already keeps numbered marks at least the floor
+/// apart and thin ones closer, so number exactly the marks at or beyond the
+/// floor, at full strength.
+fn hints<'a>(hints: AxisHints<'a>, axis: usize, grow: f64, font: Option<egui::FontId>) -> AxisHints<'a> {
+    let floor = (grow * FLOOR_LABEL_GAP[axis]) as f32;
+    let hints = hints
+        .formatter(format_tick)
+        .label_spacing(egui::Rangef::new(floor * 0.96, floor * 0.97));
+    match font {
+        Some(f) => hints.tick_label_font(f),
+        None => hints,
+    }
+}
 
 /// `plot` titled `x` and `y`, each shortened to fit the length of its axis
 /// in `ui`'s remaining room ([`fit_title`]): a title longer than its axis
-/// is painted past the plot, over whatever is beside it.
+/// is painted past the plot, over whatever is beside it. Its numbers are in
+/// the style's [`number_font`], with gaps grown to match.
 pub fn titled<'a>(plot: Plot<'a>, ui: &egui::Ui, x: &str, y: &str) -> Plot<'a> {
-    let room = ui.available_size() - AXIS_ROOM;
-    plot.x_axis_label(fit_title(ui, x, room.x))
-        .y_axis_label(fit_title(ui, y, room.y))
+    let font = number_font(ui.style());
+    let grow = f64::from((font.size / GAP_FONT_PT).max(1.0));
+    let room = ui.available_size() - axis_room(ui);
+    // The last number on the x axis is centred on the plot's right edge:
+    // leave room for its right half, or the panel's edge cuts it.
+    let width = (ui.available_size_before_wrap().x - 1.8 * font.size).max(64.0);
+    let plot = with_gaps(plot, grow).width(width);
+    plot.custom_x_axes(vec![
+        hints(AxisHints::new_x(), 0, grow, Some(font.clone())).label(fit_title(ui, x, room.x)),
+    ])
+    .custom_y_axes(vec![
+        hints(AxisHints::new_y(), 1, grow, Some(font)).label(fit_title(ui, y, room.y)),
+    ])
+}
+
+/// Room the axes themselves take from a plot's rectangle, points: the
+/// numbers and the title beside the y axis, and under the x axis (at egui's
+/// default font, 56 × 44, grown with the fonts in use).
+fn axis_room(ui: &egui::Ui) -> egui::Vec2 {
+    let numbers = number_font(ui.style()).size;
+    let title = egui::TextStyle::Body.resolve(ui.style()).size;
+    egui::vec2(3.0 * numbers + 1.5 * title, 1.6 * numbers + 1.9 * title)
+}
+
+/// Where a plot's data area (inside its axes) was drawn, and in which
+/// pass: what the layout tests read back.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PlotRecord {
+    /// The plot's name.
+    pub name: &'static str,
+    /// Its data area, points.
+    pub frame: egui::Rect,
+    /// egui's pass it was drawn in.
+    pub pass: u64,
+}
+
+fn records_id() -> egui::Id {
+    egui::Id::unique("rocking plot records")
+}
+
+/// Notes where plot `name` put its data area this pass (`transform` is
+/// what egui_plot returned).
+pub fn record(ui: &egui::Ui, name: &'static str, transform: &egui_plot::PlotTransform) {
+    let pass = ui.ctx().cumulative_pass_nr();
+    let rec = PlotRecord {
+        name,
+        frame: *transform.frame(),
+        pass,
+    };
+    ui.ctx().data_mut(|d| {
+        let v: &mut Vec<PlotRecord> = d.get_temp_mut_or_default(records_id());
+        v.retain(|r| r.name != name && r.pass + 1 >= pass);
+        v.push(rec);
+    });
+}
+
+/// The plots drawn in the latest pass that drew any, with their data areas.
+pub fn recorded(ctx: &egui::Context) -> Vec<PlotRecord> {
+    let v: Vec<PlotRecord> = ctx.data(|d| d.get_temp(records_id()).unwrap_or_default());
+    let last = v.iter().map(|r| r.pass).max().unwrap_or(0);
+    v.into_iter().filter(|r| r.pass == last).collect()
 }
 
 /// The longest form of `title` that fits `length` points in the body font
@@ -310,6 +445,38 @@ mod tests {
                 thin == top || thin * ppu < 0.96 * FLOOR_LABEL_GAP[axis],
                 "axis {axis}: {m:?}"
             );
+        }
+    }
+
+    /// Data that all but coincide (a period-one orbit's section points),
+    /// on a short axis, at both fonts: the bounds leave two numbered ticks
+    /// at least the floor gap apart, with the data inside.
+    #[test]
+    fn nice_bounds_keep_two_numbers_on_a_short_axis() {
+        for (lo, hi) in [
+            (-0.0041, 0.0093),
+            (0.2, 0.2),
+            (-0.4, 0.9),
+            (1.001, 1.0012),
+            (-123.4, 560.0),
+        ] {
+            for length in [60.0, 120.0, 160.0, 300.0] {
+                for grow in [1.2, 1.6] {
+                    let (min_gap, floor) = (grow * MIN_LABEL_GAP[0], grow * FLOOR_LABEL_GAP[0]);
+                    if length < 2.2 * floor {
+                        // Too short for two numbers a floor apart with the
+                        // padding: the layout never makes a plot this small.
+                        continue;
+                    }
+                    let (a, b) = nice_bounds(lo, hi, length, min_gap, floor, 0.04);
+                    assert!(a <= lo && b >= hi, "{lo} {hi}: {a} {b}");
+                    let m = marks((a, b), length / (b - a), min_gap, floor);
+                    let top = m.iter().map(|g| g.step_size).fold(0.0, f64::max);
+                    let numbered = m.iter().filter(|g| g.step_size == top).count();
+                    assert!(numbered >= 2, "{lo} {hi} on {length}: {a} {b} {m:?}");
+                    assert!(top * length / (b - a) >= floor * 0.999, "{lo} {hi} on {length}");
+                }
+            }
         }
     }
 

@@ -107,6 +107,12 @@ const HEADLINE_PT: f32 = 40.0;
 /// Size of the lines under it, points.
 const DETAIL_PT: f32 = 22.0;
 
+/// Size of the remark at the bottom, points.
+const NOTE_PT: f32 = 16.0;
+
+/// Colour of the remark: a pale red, like the tumbled block.
+const NOTE_COLOR: Color32 = Color32::from_rgb(255, 170, 150);
+
 /// The lines of a banner.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Lines {
@@ -118,6 +124,9 @@ pub struct Lines {
     pub detail: Option<String>,
     /// The last line (the record's name and PGA).
     pub subtitle: Option<String>,
+    /// A remark under them, smaller (after a tumble: the fall shown is
+    /// drawn, not simulated).
+    pub note: Option<String>,
 }
 
 impl Lines {
@@ -128,6 +137,7 @@ impl Lines {
             color: v.color(),
             detail: v.detail(),
             subtitle,
+            note: None,
         }
     }
 
@@ -144,6 +154,7 @@ impl Lines {
                 one_decimal(si.horizontal(sample.theta, sample.x))
             )),
             subtitle,
+            note: None,
         }
     }
 }
@@ -154,41 +165,83 @@ fn one_decimal(x: f64) -> String {
     if s == "-0.0" { "0.0".to_string() } else { s }
 }
 
-/// Height of a plate holding a headline and `below` lines under it, points.
-pub fn plate_height(below: usize) -> f32 {
-    1.3 * HEADLINE_PT + below as f32 * 1.35 * DETAIL_PT + 2.0 * PAD
-}
-
 /// Space above and below the lines on the plate, points.
 const PAD: f32 = 8.0;
 
+/// Space left and right of the lines on the plate, points.
+const SIDE: f32 = 12.0;
+
+/// Gap between lines, points.
+const LINE_GAP: f32 = 2.0;
+
+/// Smallest size a line is shrunk to, points: below it, it wraps instead
+/// (in a plate grown to hold it).
+const MIN_PT: f32 = 14.0;
+
 /// Height of the strip a record scene's banner takes above the block,
-/// points: always room for the headline and two lines, so the scene keeps
-/// its size when the verdict replaces the clock.
+/// points: always room for the headline and two lines at full size, so the
+/// scene keeps its size when the verdict replaces the clock.
 pub const STRIP_HEIGHT: f32 = 1.3 * HEADLINE_PT + 2.0 * 1.35 * DETAIL_PT + 2.0 * PAD;
 
-/// Draws `lines` centred on a dark plate filling `rect` (a fixed size, so
-/// the plate does not change width with the text it holds).
-pub fn show(ui: &mut egui::Ui, rect: egui::Rect, lines: &Lines) {
+/// A banner fitted to a width: each line's size, and the plate's height.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Fitted {
+    /// Each line's text, size (points) and colour.
+    lines: Vec<(String, f32, Color32)>,
+    /// The plate's height, points.
+    pub height: f32,
+}
+
+/// Fits `lines` to a plate `width` points wide: each line at its nominal
+/// size where it fits on one row, else shrunk until it does (a long time
+/// such as `OVERTURNED at t = 157.53 s` on a narrow scene), and wrapped
+/// only below [`MIN_PT`]; the plate is as tall as the lines then are.
+pub fn fit(ui: &egui::Ui, width: f32, lines: &Lines) -> Fitted {
+    let inner = (width - 2.0 * SIDE).max(1.0);
+    let mut all = vec![(lines.headline.clone(), HEADLINE_PT, lines.color)];
+    if let Some(d) = &lines.detail {
+        all.push((d.clone(), DETAIL_PT, Color32::WHITE));
+    }
+    if let Some(s) = &lines.subtitle {
+        all.push((s.clone(), DETAIL_PT, Color32::from_gray(215)));
+    }
+    if let Some(n) = &lines.note {
+        all.push((n.clone(), NOTE_PT, NOTE_COLOR));
+    }
+    let painter = ui.painter();
+    let mut height = 2.0 * PAD - LINE_GAP;
+    for (text, size, color) in &mut all {
+        let one = painter.layout_no_wrap(text.clone(), egui::FontId::proportional(*size), *color);
+        if one.size().x > inner {
+            // Text width grows in proportion to the size; a hair of slack
+            // for rounding.
+            *size = (*size * 0.98 * inner / one.size().x).max(MIN_PT);
+        }
+        let laid = painter.layout(text.clone(), egui::FontId::proportional(*size), *color, inner);
+        height += laid.size().y + LINE_GAP;
+    }
+    Fitted { lines: all, height }
+}
+
+/// Draws `fitted` centred on a dark plate filling `rect` (as wide as it
+/// was fitted to; a record's strip may be taller than it needs). Returns
+/// where the text went, and where its last line went.
+pub fn show(ui: &mut egui::Ui, rect: egui::Rect, fitted: &Fitted) -> (egui::Rect, egui::Rect) {
     ui.painter().rect_filled(rect, 8.0, Color32::from_black_alpha(170));
     let builder = egui::UiBuilder::new()
-        .max_rect(rect.shrink2(egui::vec2(12.0, PAD)))
+        .max_rect(rect.shrink2(egui::vec2(SIDE, PAD)))
         .layout(egui::Layout::top_down(egui::Align::Center));
-    ui.scope_builder(builder, |ui| {
-        ui.spacing_mut().item_spacing.y = 2.0;
-        ui.label(
-            RichText::new(&lines.headline)
-                .size(HEADLINE_PT)
-                .strong()
-                .color(lines.color),
-        );
-        if let Some(d) = &lines.detail {
-            ui.label(RichText::new(d).size(DETAIL_PT).color(Color32::WHITE));
+    let text = ui.scope_builder(builder, |ui| {
+        ui.spacing_mut().item_spacing.y = LINE_GAP;
+        let mut last = egui::Rect::NOTHING;
+        for (line, size, color) in &fitted.lines {
+            last = ui
+                .add(egui::Label::new(RichText::new(line).size(*size).color(*color)).wrap())
+                .rect;
         }
-        if let Some(s) = &lines.subtitle {
-            ui.label(RichText::new(s).size(DETAIL_PT).color(Color32::from_gray(215)));
-        }
+        last
     });
+    (text.response.rect, text.inner)
 }
 
 #[cfg(test)]

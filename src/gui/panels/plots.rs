@@ -169,6 +169,7 @@ pub fn phase_plot(
         }
         plot_ui.pointer_coordinate()
     });
+    axes::record(ui, "phase", &resp.transform);
     if resp.response.clicked() {
         resp.inner.map(|p| scales.state_of(p.x, p.y))
     } else {
@@ -282,9 +283,17 @@ fn section_selector(ui: &mut egui::Ui, view: &mut PoincareView) -> Option<f64> {
         ui.selectable_value(&mut chosen, SectionKind::Impact, "at impacts")
             .on_hover_text("Θ' just before each impact against the forcing phase Ω_h τ mod 2π at that impact (Θ is 0 at every impact)");
         if chosen == SectionKind::Stroboscopic {
+            ui.spacing_mut().slider_width = 90.0;
+            // The slider and its number are one widget laid out in a row of
+            // its own, which cannot wrap: start a new row unless φ, the
+            // slider and "6.28 rad" all fit (else the row grows past the
+            // panel, which then grows past the window).
+            let number = 5.0 * egui::TextStyle::Body.resolve(ui.style()).size;
+            if ui.available_size_before_wrap().x < ui.spacing().slider_width + number + 24.0 {
+                ui.end_row();
+            }
             let pl = ui.label("φ");
             let mut phase = view.phase;
-            ui.spacing_mut().slider_width = 90.0;
             let r = ui
                 .add(
                     egui::Slider::new(&mut phase, 0.0..=std::f64::consts::TAU)
@@ -374,11 +383,14 @@ pub fn poincare_plot(ui: &mut egui::Ui, hist: &RunHistory, view: &mut PoincareVi
         .allow_double_click_reset(false)
         .show(ui, |plot_ui| {
             if auto_fit && let Some(b) = bbox {
-                let (dx, dy) = ((b[1] - b[0]).max(1e-3), (b[3] - b[2]).max(1e-3));
-                plot_ui.set_plot_bounds(PlotBounds::from_min_max(
-                    [b[0] - 0.06 * dx, b[2] - 0.06 * dy],
-                    [b[1] + 0.06 * dx, b[3] + 0.06 * dy],
-                ));
+                // Widened to whole numbered steps, so even a period-one
+                // orbit's near-coincident points on a short axis get two
+                // numbers on each axis.
+                let size = plot_ui.transform().frame().size();
+                let (min_gap, floor) = axes::gaps(&plot_ui.ctx().global_style());
+                let (x0, x1) = axes::nice_bounds(b[0], b[1], f64::from(size.x), min_gap[0], floor[0], 0.04);
+                let (y0, y1) = axes::nice_bounds(b[2], b[3], f64::from(size.y), min_gap[1], floor[1], 0.04);
+                plot_ui.set_plot_bounds(PlotBounds::from_min_max([x0, y0], [x1, y1]));
             }
             let bounds = plot_ui.plot_bounds();
             let frame = *plot_ui.transform().frame();
@@ -443,6 +455,7 @@ pub fn poincare_plot(ui: &mut egui::Ui, hist: &RunHistory, view: &mut PoincareVi
                 );
             }
         });
+    axes::record(ui, "poincare", &resp.transform);
     let r = &resp.response;
     if r.dragged() || (r.hovered() && ui.input(|i| i.smooth_scroll_delta != egui::Vec2::ZERO || i.zoom_delta() != 1.0))
     {
@@ -517,7 +530,9 @@ type Series = (
 /// displacement in cm or X per R; accelerations are per unit g in both.
 /// Dashed lines mark ±α, the overturning angle of a block at rest.
 pub fn history_plot(ui: &mut egui::Ui, hist: &RunHistory, view: &mut HistoryView, now: f64, scales: &Scales) {
-    ui.horizontal(|ui| {
+    // Wrapped: one row would be wider than a narrow column and push the
+    // plot beside it off its room.
+    ui.horizontal_wrapped(|ui| {
         // The axes' units in words too: the plot's own titles are painted
         // small, and this line is also what a screen reader (and a test) reads.
         ui.label(egui::RichText::new(format!("{} against {}", scales.theta_label(), scales.time_label())).strong());
@@ -575,7 +590,7 @@ pub fn history_plot(ui: &mut egui::Ui, hist: &RunHistory, view: &mut HistoryView
         lines.push((name, color, view.scratch.clone()));
     }
     let tip = scales.tip_angle();
-    axes::titled(
+    let resp = axes::titled(
         axes::readable(Plot::new("history")),
         ui,
         scales.time_label(),
@@ -602,6 +617,7 @@ pub fn history_plot(ui: &mut egui::Ui, hist: &RunHistory, view: &mut HistoryView
             plot_ui.line(Line::new(name, PlotPoints::Owned(pts)).color(color).width(1.2));
         }
     });
+    axes::record(ui, "history", &resp.transform);
 }
 
 /// Samples of the last stretch of Θ the spectrum is taken from: 2¹³ at the
@@ -685,7 +701,7 @@ pub fn spectrum_plot(
         ui.label(egui::RichText::new(note).weak());
     }
     let pts: Vec<[f64; 2]> = view.points.iter().map(|p| [scales.frequency(p[0]), p[1]]).collect();
-    axes::titled(
+    let resp = axes::titled(
         axes::readable(Plot::new("spectrum")),
         ui,
         scales.frequency_label(),
@@ -705,6 +721,7 @@ pub fn spectrum_plot(
                 .width(1.0),
         );
     });
+    axes::record(ui, "spectrum", &resp.transform);
 }
 
 #[cfg(test)]
