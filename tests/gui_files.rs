@@ -434,7 +434,7 @@ fn the_view_exports_at_least_1920_by_1080_at_every_scale_and_window_size() {
     for size in [SIZE, egui::vec2(1920.0, 1080.0)] {
         let mut h = rendered("default", size);
         h.step();
-        for scale in rocking::gui::prefs::SCALES {
+        for scale in rocking::gui::prefs::offered([size.x, size.y], false) {
             let ctx = h.ctx.clone();
             h.state_mut().set_presentation_scale(&ctx, scale);
             // A window of `size` pixels at this scale.

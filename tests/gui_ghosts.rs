@@ -14,7 +14,6 @@ use gui_common::scene;
 use rocking::gui::block_view::Shape;
 use rocking::gui::lessons::{Lesson, PHENOMENA};
 use rocking::gui::panels::scene::{Camera, SceneInput, build};
-use rocking::gui::prefs::SCALES;
 use rocking::gui::{RockingApp, Settings};
 use rocking::model::Mode;
 use rocking::sim::Scenario;
@@ -178,7 +177,7 @@ fn twenty_ghosts_are_drawn_in_twenty_colours_and_spread_apart_at_every_scale() {
     for size in [SMALL, LARGE] {
         let mut h = app(size, s.clone(), c.clone(), updates.clone());
         assert_eq!(h.state().ghosts().len(), 20);
-        for scale in SCALES {
+        for scale in rocking::gui::prefs::offered([size.x, size.y], false) {
             let ctx = h.ctx.clone();
             h.state_mut().set_presentation_scale(&ctx, scale);
             h.step();

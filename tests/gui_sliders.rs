@@ -286,7 +286,7 @@ fn the_period_doubling_note_gives_the_windows_the_core_finds() {
 #[test]
 fn the_period_doubling_lesson_is_one_continuous_drag_at_every_scale() {
     for size in [egui::vec2(1280.0, 800.0), egui::vec2(1920.0, 1080.0)] {
-        for scale in rocking::gui::prefs::SCALES {
+        for scale in rocking::gui::prefs::offered([size.x, size.y], false) {
             let mut h = app("period-doubling", size);
             h.ctx.set_zoom_factor(scale);
             for _ in 0..3 {

@@ -11,7 +11,6 @@ use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable as _;
 use gui_common::{pump, scene};
 use rocking::gui::RockingApp;
-use rocking::gui::prefs::SCALES;
 use rocking::sim::protocol::Speed;
 
 fn live_at(size: egui::Vec2, preset: &'static str, paused: bool) -> Harness<'static, RockingApp> {
@@ -52,7 +51,7 @@ fn refuse(h: &mut Harness<'static, RockingApp>) -> String {
 #[test]
 fn the_status_bar_is_one_line_at_every_scale_and_size() {
     for size in [egui::vec2(1280.0, 800.0), egui::vec2(1920.0, 1080.0)] {
-        for scale in SCALES {
+        for scale in rocking::gui::prefs::offered([size.x, size.y], false) {
             let mut h = live_at(size, "free-rocking", false);
             let ctx = h.ctx.clone();
             h.state_mut().set_presentation_scale(&ctx, scale);
