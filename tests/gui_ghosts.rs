@@ -281,6 +281,18 @@ fn a_free_rocking_run_that_ended_at_rest_keeps_its_spiral_in_the_phase_portrait(
     println!("rest at τ = {rest:.2}; spiral points 1 τ after rest {before}, after the end at τ = 60 {after}");
     assert!(before > 100, "{before}");
     assert!(after >= before, "the spiral faded: {before} -> {after} points");
+    // The whole spiral, from the release at Θ = 0.5 (the preset's Θ₀).
+    let widest = h
+        .state()
+        .phase_view()
+        .drawn
+        .iter()
+        .map(|p| p[0].abs())
+        .fold(0.0, f64::max);
+    assert!(
+        widest >= 0.49,
+        "the held trail reaches back to Θ = {widest}, not the release at 0.5"
+    );
 }
 
 /// Pixels of two renders that differ, and how many distinct colours among

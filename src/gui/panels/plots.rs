@@ -81,6 +81,11 @@ const GHOST_TAIL_GAP: f64 = 0.25;
 /// Trail segments of decreasing age, drawn with increasing opacity.
 const TRAIL_SEGMENTS: usize = 10;
 
+/// How far back an ended run's trail reaches at least, τ: the whole of
+/// free rocking's release-to-rest (21 τ) and the last few dozen forcing
+/// periods before a tumble.
+const HELD_TRAIL_TAU: f64 = 60.0;
+
 /// Most trail points drawn: the trail is thinned to this.
 const TRAIL_POINTS: usize = 2400;
 
@@ -94,7 +99,12 @@ pub fn phase_plot(
     scales: &Scales,
 ) -> Option<(f64, f64)> {
     let now = view.held.map_or(now, |held| held.min(now));
-    let t0 = now - view.trail_tau;
+    // An ended run's trail no longer fades, and reaches back at least
+    // HELD_TRAIL_TAU: free rocking's whole spiral, from the release to rest.
+    let t0 = match view.held {
+        Some(_) => now - view.trail_tau.max(HELD_TRAIL_TAU),
+        None => now - view.trail_tau,
+    };
     let end = hist.samples.len() - hist.samples.iter().rev().take_while(|s| s.tau > now).count();
     let start = end - hist.samples.iter().take(end).rev().take_while(|s| s.tau >= t0).count();
     let recent: Vec<[f64; 2]> = {
@@ -136,7 +146,11 @@ pub fn phase_plot(
             let per = n.div_ceil(TRAIL_SEGMENTS);
             for (i, chunk_start) in (0..n).step_by(per).enumerate() {
                 let end = (chunk_start + per + 1).min(n);
-                let alpha = 0.12 + 0.88 * (i as f32 + 1.0) / TRAIL_SEGMENTS as f32;
+                let alpha = if view.held.is_some() {
+                    0.9
+                } else {
+                    0.12 + 0.88 * (i as f32 + 1.0) / TRAIL_SEGMENTS as f32
+                };
                 plot_ui.line(
                     Line::new("", PlotPoints::new(recent[chunk_start..end].to_vec()))
                         .color(Color32::from_rgb(110, 170, 255).gamma_multiply(alpha))
