@@ -235,6 +235,7 @@ fn after_a_tumble_the_block_visibly_falls_onto_its_side_and_the_status_says_why(
     let first = h.state().shown_sample().unwrap().theta;
     assert!(first * psi < 0.5, "the fall starts at the tumble angle, {first}");
     let _ = h.get_by_label_contains("drawn, not simulated");
+    let _ = h.get_by_label("mode: tumbled");
     // Within the fall's time (60 frames of 20 ms), it lies on its side.
     let mut angles = vec![first];
     for _ in 0..80 {

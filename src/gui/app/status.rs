@@ -158,7 +158,12 @@ impl RockingApp {
             Item::plain(format!("τ = {:.2}", self.tau)),
             Item::plain(format!("t = {:.2} s", self.tau / p)),
         ];
-        let mode = self.hist.samples.last().map_or("–", |s| s.mode.name());
+        // A run that ended in a terminal mode is in it, whatever mode the
+        // last sample before the event was drawn in.
+        let mode = match &self.end {
+            Some(RunEnd::Terminal { mode, .. }) => mode.name(),
+            _ => self.hist.samples.last().map_or("–", |s| s.mode.name()),
+        };
         essential.push(Item::plain(format!("mode: {mode}")));
         essential.push(Item::plain(format!("impacts: {}", self.hist.impacts)));
         essential.push(Item::plain(format!(
