@@ -305,6 +305,7 @@ fn figures_are_written_as_png_and_svg() {
             y: &ys,
             cells: &cells,
             colouring,
+            basins: None,
         };
         check_png_and_svg(&fig, &dir, name);
     }

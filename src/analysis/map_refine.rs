@@ -218,6 +218,11 @@ impl<C: Copy + PartialEq> Refiner<C> {
         self.source.iter().filter(|&&s| s == Source::Computed).count()
     }
 
+    /// Number of cells that inherited their class so far.
+    pub fn inherited(&self) -> usize {
+        self.source.iter().filter(|&&s| s == Source::Inherited).count()
+    }
+
     /// The map as far as it is known, one entry per cell: each cell shows
     /// the class of the lattice cell that covers it at the finest level
     /// where that one is known (the cell itself once it is known). `None`

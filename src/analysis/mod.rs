@@ -20,6 +20,7 @@
 //! Layers: `model → integrate → sim → analysis → (cli, gui)`. A parameter
 //! is varied through a typed [`Param`](crate::sim::Param), never by name.
 
+pub mod attractor;
 pub mod classify;
 pub mod engineering;
 pub mod lyapunov;
@@ -27,6 +28,7 @@ pub mod map_refine;
 pub mod orbit_diagram;
 pub mod outcome_map;
 pub mod section;
+pub mod settle;
 pub mod spectrum;
 pub mod steady;
 

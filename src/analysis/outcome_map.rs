@@ -16,7 +16,10 @@ use rayon::prelude::*;
 
 use super::classify::{ClassifyOptions, Response};
 use super::orbit_diagram::PlanError;
-use super::steady::{LyapunovFn, SteadyError, Window, check_scenario, steady_response};
+use super::attractor::{Attractor, Catalogue};
+use super::map_refine::Refiner;
+use super::settle::{CellResponse, cell_response};
+use super::steady::{LyapunovFn, SteadyError, Window, check_scenario};
 use super::{Progress, ProgressFn};
 use crate::sim::{Param, Scenario};
 
@@ -123,10 +126,17 @@ pub struct Cell {
     pub y: f64,
     /// The steady response.
     pub response: Response,
-    /// Largest |Θ| over the run, transient included.
-    pub max_abs_theta: f64,
+    /// Largest |Θ| over the run, transient included (over the part run,
+    /// for a run stopped early); `None` for a cell that inherited its
+    /// class without being run.
+    pub max_abs_theta: Option<f64>,
     /// Largest Lyapunov exponent per unit τ, when a hook supplied it.
     pub lyapunov: Option<f64>,
+    /// The periodic attractor reached, numbered from 1 (basin maps only).
+    pub attractor: Option<u32>,
+    /// Whether the cell was run (otherwise it inherited its class from a
+    /// uniform neighbourhood while the map was refined).
+    pub computed: bool,
 }
 
 /// What a block outcome map needs.
@@ -171,20 +181,283 @@ impl BlockMap<'_> {
     }
 }
 
-/// The outcome map of the block (module docs).
+/// The outcome map of the block, every cell run over its whole window
+/// (module docs): [`compute_map`] with [`MapPlan::FULL`].
 pub fn block_map(spec: &BlockMap<'_>, progress: &ProgressFn<'_>) -> Result<Vec<Cell>, MapError<SteadyError>> {
-    spec.check()?;
-    grid_map(spec.x, spec.y, progress, |x, y| {
-        let cfg = spec.scenario(x, y)?;
-        let s = steady_response(&cfg, &spec.window, &spec.classify, spec.lyapunov)?;
-        Ok(Cell {
-            x,
-            y,
-            response: s.response,
-            max_abs_theta: s.max_abs_theta,
-            lyapunov: s.lyapunov,
+    Ok(compute_map(spec, MapPlan::FULL, progress)?.cells)
+}
+
+
+/// How a map is computed.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+pub struct MapPlan {
+    /// Stop each cell's run as soon as its class is certain
+    /// ([`settle`](super::settle)).
+    pub early_stop: bool,
+    /// Compute a coarse lattice first and then only where classes meet
+    /// ([`map_refine`](super::map_refine)): at least this many cells along
+    /// the longer axis at the coarse level. `None`: every cell.
+    pub coarse: Option<usize>,
+}
+
+/// Cells of the coarse level along the longer axis (at least): 64 keeps
+/// an island of 1/64 of the axis (1.6 % of it) from being missed, and
+/// costs 64² ≈ 4,000 runs whatever the resolution.
+pub const COARSE_CELLS: usize = 64;
+
+/// Lattice lines around a cell that must agree before it inherits their
+/// class: 1 catches boundaries that bulge between two lattice lines.
+pub const HALO: usize = 1;
+
+impl MapPlan {
+    /// Every cell computed over its whole window: the reference, kept for
+    /// checking and for papers (`--full`).
+    pub const FULL: Self = Self {
+        early_stop: false,
+        coarse: None,
+    };
+
+    /// The fast plan: early stopping and refinement from
+    /// [`COARSE_CELLS`].
+    pub const FAST: Self = Self {
+        early_stop: true,
+        coarse: Some(COARSE_CELLS),
+    };
+}
+
+/// What a cell is told apart by while a map is refined: its class and,
+/// in a basin map, which periodic attractor it reached (discovery number).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Label {
+    /// The class.
+    pub response: Response,
+    /// The periodic attractor, in a basin map.
+    pub attractor: Option<u32>,
+}
+
+/// A whole map, with how it was computed.
+#[derive(Clone, Debug, PartialEq)]
+pub struct OutcomeMap {
+    /// Every cell in row order.
+    pub cells: Vec<Cell>,
+    /// The periodic attractors of a basin map (none for a parameter map),
+    /// numbered as the cells' `attractor`.
+    pub attractors: Vec<Attractor>,
+    /// Cells whose run was computed (the rest inherited their class).
+    pub computed: usize,
+    /// Computed cells whose run stopped early.
+    pub stopped_early: usize,
+}
+
+/// A map being computed: hands out batches of cells, takes their results,
+/// and puts the map together. The CLI, Python (local and on a Dask
+/// cluster) and the app all drive this one engine; they differ only in
+/// where a batch's cells run.
+pub struct MapRun<'a> {
+    spec: BlockMap<'a>,
+    plan: MapPlan,
+    basin: bool,
+    refiner: Option<Refiner<Label>>,
+    full_done: bool,
+    results: Vec<Option<CellResponse>>,
+    labels: Vec<Option<u32>>,
+    catalogue: Catalogue,
+}
+
+impl<'a> MapRun<'a> {
+    /// A run of `spec` with `plan`. Cells are refined only without
+    /// Lyapunov exponents (an inherited cell has none), and attractors are
+    /// told apart when both axes are initial-state keys (a basin map: the
+    /// same system in every cell).
+    pub fn new(spec: BlockMap<'a>, plan: MapPlan) -> Self {
+        let basin = spec.x_param.is_initial_state() && spec.y_param.is_initial_state();
+        let refiner = match (plan.coarse, spec.lyapunov) {
+            (Some(coarse), None) => Some(Refiner::new(spec.x.n, spec.y.n, coarse, HALO)),
+            _ => None,
+        };
+        let n = spec.x.n * spec.y.n;
+        Self {
+            spec,
+            plan,
+            basin,
+            refiner,
+            full_done: false,
+            results: vec![None; n],
+            labels: vec![None; n],
+            catalogue: Catalogue::default(),
+        }
+    }
+
+    /// The map's specification.
+    pub fn spec(&self) -> &BlockMap<'a> {
+        &self.spec
+    }
+
+    /// Cells in the map.
+    pub fn len(&self) -> usize {
+        self.results.len()
+    }
+
+    /// Whether the map has no cell (never: an axis has at least one value).
+    pub fn is_empty(&self) -> bool {
+        self.results.is_empty()
+    }
+
+    /// Whether attractors are told apart (a basin map).
+    pub fn is_basin(&self) -> bool {
+        self.basin
+    }
+
+    /// The (x, y) values of cell `index` (row order).
+    pub fn xy(&self, index: usize) -> (f64, f64) {
+        let nx = self.spec.x.n;
+        (self.spec.x.value(index % nx), self.spec.y.value(index / nx))
+    }
+
+    /// The next batch of cells to compute (indices, increasing), with the
+    /// number of cells that inherited their class on the way; `None` when
+    /// the map is complete.
+    pub fn next_batch(&mut self) -> Option<(Vec<usize>, usize)> {
+        match &mut self.refiner {
+            None if self.full_done => None,
+            None => {
+                self.full_done = true;
+                Some(((0..self.results.len()).collect(), 0))
+            }
+            Some(r) => {
+                let before = r.computed() + r.inherited();
+                let todo = r.next_level()?;
+                let inherited = r.computed() + r.inherited() - before;
+                Some((todo, inherited))
+            }
+        }
+    }
+
+    /// Computes cell `index` (any thread; pure).
+    pub fn compute(&self, index: usize) -> Result<CellResponse, SteadyError> {
+        let (x, y) = self.xy(index);
+        cell_at(&self.spec, x, y, self.plan.early_stop)
+    }
+
+    /// Records a batch's results (in any order); attractors are identified
+    /// in index order, so the numbering does not depend on the order.
+    pub fn record(&mut self, mut batch: Vec<(usize, CellResponse)>) {
+        batch.sort_by_key(|(i, _)| *i);
+        for (index, cell) in batch {
+            let attractor = match (self.basin, cell.response) {
+                (true, Response::Periodic { period }) => {
+                    let k = period as usize;
+                    Some(self.catalogue.identify(&cell.cycle[cell.cycle.len() - k..]))
+                }
+                _ => None,
+            };
+            self.labels[index] = attractor;
+            if let Some(r) = &mut self.refiner {
+                r.record(
+                    index,
+                    Label {
+                        response: cell.response,
+                        attractor,
+                    },
+                );
+            }
+            self.results[index] = Some(cell);
+        }
+    }
+
+    /// The class of cell `index` so far (computed or inherited).
+    pub fn label(&self, index: usize) -> Option<Label> {
+        match &self.refiner {
+            Some(r) => r.class(index),
+            None => self.results[index].as_ref().map(|c| Label {
+                response: c.response,
+                attractor: self.labels[index],
+            }),
+        }
+    }
+
+    /// The finished map. Cells never computed nor inherited (a map whose
+    /// batches were not all recorded) are an error naming the first.
+    pub fn finish(self) -> Result<OutcomeMap, MapError<SteadyError>> {
+        let mut labels = Vec::with_capacity(self.results.len());
+        let mut classes = Vec::with_capacity(self.results.len());
+        for index in 0..self.results.len() {
+            let Some(label) = self.label(index) else {
+                let (x, y) = self.xy(index);
+                return Err(MapError {
+                    x,
+                    y,
+                    error: SteadyError::Window("the map was not finished".into()),
+                });
+            };
+            labels.push(label.attractor);
+            classes.push(label.response);
+        }
+        let (attractors, ids) = self.catalogue.numbered(&labels);
+        let mut computed = 0;
+        let mut stopped_early = 0;
+        let cells = (0..self.results.len())
+            .map(|index| {
+                let (x, y) = self.xy(index);
+                let result = self.results[index].as_ref();
+                computed += usize::from(result.is_some());
+                stopped_early += usize::from(result.is_some_and(|c| c.stopped_at.is_some()));
+                Cell {
+                    x,
+                    y,
+                    response: classes[index],
+                    max_abs_theta: result.map(|c| c.max_abs_theta),
+                    lyapunov: result.and_then(|c| c.lyapunov),
+                    attractor: labels[index].map(|l| ids[l as usize]),
+                    computed: result.is_some(),
+                }
+            })
+            .collect();
+        Ok(OutcomeMap {
+            cells,
+            attractors,
+            computed,
+            stopped_early,
         })
-    })
+    }
+}
+
+/// Cell (x, y) of `spec`, stopped early when `early`.
+fn cell_at(spec: &BlockMap<'_>, x: f64, y: f64, early: bool) -> Result<CellResponse, SteadyError> {
+    let cfg = spec.scenario(x, y)?;
+    cell_response(&cfg, &spec.window, &spec.classify, spec.lyapunov, early)
+}
+
+/// Computes the map of `spec` with `plan` on the current rayon pool.
+/// `progress` is told the number of cells, then once per cell computed
+/// or inherited. The result is the same for any number of threads.
+pub fn compute_map(
+    spec: &BlockMap<'_>,
+    plan: MapPlan,
+    progress: &ProgressFn<'_>,
+) -> Result<OutcomeMap, MapError<SteadyError>> {
+    spec.check()?;
+    let mut run = MapRun::new(*spec, plan);
+    progress(Progress::Total(run.len() as u64));
+    while let Some((cells, inherited)) = run.next_batch() {
+        for _ in 0..inherited {
+            progress(Progress::Done);
+        }
+        let results: Vec<Result<(usize, CellResponse), MapError<SteadyError>>> = cells
+            .par_iter()
+            .map(|&index| {
+                let r = run.compute(index).map(|c| (index, c)).map_err(|error| {
+                    let (x, y) = run.xy(index);
+                    MapError { x, y, error }
+                });
+                progress(Progress::Done);
+                r
+            })
+            .collect();
+        let batch = results.into_iter().collect::<Result<Vec<_>, _>>()?;
+        run.record(batch);
+    }
+    run.finish()
 }
 
 #[cfg(test)]

@@ -1,14 +1,22 @@
 //! `rocking map`: the outcome map over two config keys.
 //!
 //! Writes into `--out`:
-//! - `map.csv`: `x,y,outcome,period,max_abs_theta,lyapunov`, rows with y
-//!   outer and x inner, both increasing (`period` only for `periodic`,
-//!   `lyapunov` empty unless computed);
+//! - `map.csv`: `x,y,outcome,period,max_abs_theta,lyapunov,attractor,computed`,
+//!   rows with y outer and x inner, both increasing (`period` only for
+//!   `periodic`, `lyapunov` empty unless computed, `attractor` the periodic
+//!   attractor's number in a basin map, `computed` false for a cell that
+//!   inherited its class while the map was refined, whose
+//!   `max_abs_theta` is then empty);
 //! - `map.png`, `map.svg`: cells coloured by outcome, with a legend;
 //! - `map_lyapunov.png`, `map_lyapunov.svg` as well when exponents were
 //!   computed: cells coloured by the largest exponent;
 //! - `map.json`: the base configuration, the axes, window, classifier
-//!   thresholds and the crate version.
+//!   thresholds, how the map was computed (`plan`, cells run and stopped
+//!   early), a basin map's attractors and the crate version.
+//!
+//! By default each cell stops as soon as its class is certain and the map
+//! is refined where classes meet (docs/analysis.md); `--full` runs every
+//! cell over its whole window.
 //!
 //! Bad input exits 2 with a one-line error naming the flag or key, before
 //! anything runs or is written.
@@ -22,13 +30,13 @@ use super::args::{SceneArgs, StudyArgs, StudyOutput};
 use super::batch::BatchError;
 use super::sweep::{progress_bar, progress_fn, thread_pool};
 use crate::analysis::classify::{ClassifyOptions, Response};
-use crate::analysis::outcome_map::{Axis, BlockMap, Cell, block_map};
+use crate::analysis::outcome_map::{Axis, BlockMap, COARSE_CELLS, Cell, MapPlan, compute_map};
 use crate::analysis::steady::LyapunovFn;
 use crate::io::config;
 use crate::io::csv::{self, Num, Row};
 use crate::io::output;
 use crate::plot::labels::{fixed_parameters, num, param_label, param_symbol};
-use crate::plot::outcome_map::{MapColouring, OutcomeMapFigure};
+use crate::plot::outcome_map::{Basins, MapColouring, OutcomeMapFigure, attractor_label};
 use crate::sim::Param;
 
 /// Arguments of `rocking map`.
@@ -46,6 +54,15 @@ pub struct MapArgs {
     /// Window and threads.
     #[command(flatten)]
     pub study: StudyArgs,
+    /// Run every cell over its whole window, no early stop and no
+    /// refinement (the reference the fast map is checked against).
+    #[arg(long)]
+    pub full: bool,
+    /// Cells along the longer axis of the coarse grid that refinement
+    /// starts from; an island smaller than the map's extent over this may
+    /// be missed.
+    #[arg(long, value_name = "N", default_value_t = COARSE_CELLS, conflicts_with = "full")]
+    pub coarse: usize,
     /// Output folder, Lyapunov exponents, quiet.
     #[command(flatten)]
     pub output: StudyOutput,
@@ -75,12 +92,23 @@ struct MapRow {
     y: Num,
     outcome: &'static str,
     period: Option<u32>,
-    max_abs_theta: Num,
+    max_abs_theta: Option<Num>,
     lyapunov: Option<Num>,
+    attractor: Option<u32>,
+    computed: bool,
 }
 
 impl Row for MapRow {
-    const HEADER: &'static [&'static str] = &["x", "y", "outcome", "period", "max_abs_theta", "lyapunov"];
+    const HEADER: &'static [&'static str] = &[
+        "x",
+        "y",
+        "outcome",
+        "period",
+        "max_abs_theta",
+        "lyapunov",
+        "attractor",
+        "computed",
+    ];
 }
 
 /// `map.csv` of `cells` (in row order).
@@ -90,8 +118,10 @@ pub fn map_csv(cells: &[Cell]) -> String {
         y: Num(c.y),
         outcome: c.response.name(),
         period: c.response.period(),
-        max_abs_theta: Num(c.max_abs_theta),
+        max_abs_theta: c.max_abs_theta.map(Num),
         lyapunov: c.lyapunov.map(Num),
+        attractor: c.attractor,
+        computed: c.computed,
     }))
 }
 
@@ -117,6 +147,17 @@ pub fn run_with(args: &MapArgs, lyapunov: Option<&LyapunovFn<'_>>) -> Result<(),
             )));
         }
     }
+    if !args.full && args.coarse < 2 {
+        return Err(input(anyhow!("--coarse {}: must be >= 2", args.coarse)));
+    }
+    let plan = if args.full {
+        MapPlan::FULL
+    } else {
+        MapPlan {
+            early_stop: true,
+            coarse: Some(args.coarse),
+        }
+    };
     let mut config = base.clone();
     let window = args.study.window(&base).map_err(|e| input(anyhow!(e)))?;
     config.run.tau_end = window.tau_end;
@@ -139,11 +180,24 @@ pub fn run_with(args: &MapArgs, lyapunov: Option<&LyapunovFn<'_>>) -> Result<(),
 
     let start = Instant::now();
     let bar = progress_bar(x.n * y.n, "cells", args.output.quiet);
-    let cells = pool
-        .install(|| block_map(&spec, &progress_fn(&bar)))
+    let map = pool
+        .install(|| compute_map(&spec, plan, &progress_fn(&bar)))
         .map_err(|e| BatchError::Run(anyhow!("{} = {}, {} = {}: {}", x.key, e.x, y.key, e.y, e.error)))?;
     bar.finish_and_clear();
     let wall = start.elapsed().as_secs_f64();
+    let cells = &map.cells;
+    let attractors: Vec<serde_json::Value> = map
+        .attractors
+        .iter()
+        .map(|a| {
+            json!({
+                "id": a.id,
+                "period": a.period,
+                "point": {"theta": a.point[0], "theta_dot": a.point[1], "x_dot": a.point[2]},
+                "cells": a.cells,
+            })
+        })
+        .collect();
 
     let meta = json!({
         "command": "rocking map",
@@ -152,6 +206,10 @@ pub fn run_with(args: &MapArgs, lyapunov: Option<&LyapunovFn<'_>>) -> Result<(),
         "y": y,
         "window": window,
         "classify": spec.classify,
+        "plan": plan,
+        "cells_run": map.computed,
+        "cells_stopped_early": map.stopped_early,
+        "attractors": attractors,
         "config": config::to_json(&config),
         "units": "theta = θ/ψ; lyapunov per unit τ; config: the base configuration, the two axis keys take each cell's values",
     });
@@ -169,6 +227,11 @@ pub fn run_with(args: &MapArgs, lyapunov: Option<&LyapunovFn<'_>>) -> Result<(),
     );
     let (xs, ys) = (x.values(), y.values());
     let data: Vec<(Response, Option<f64>)> = cells.iter().map(|c| (c.response, c.lyapunov)).collect();
+    let ids: Vec<Option<u32>> = cells.iter().map(|c| c.attractor).collect();
+    let basins = (!map.attractors.is_empty()).then_some(Basins {
+        ids: &ids,
+        attractors: &map.attractors,
+    });
     let figure = |colouring| OutcomeMapFigure {
         title: title.clone(),
         subtitle: subtitle.clone(),
@@ -178,10 +241,11 @@ pub fn run_with(args: &MapArgs, lyapunov: Option<&LyapunovFn<'_>>) -> Result<(),
         y: &ys,
         cells: &data,
         colouring,
+        basins,
     };
     let with_lyapunov = cells.iter().any(|c| c.lyapunov.is_some());
     super::write::staged(&args.output.out, |staging| {
-        staging.text("map.csv", &map_csv(&cells))?;
+        staging.text("map.csv", &map_csv(cells))?;
         staging.text("map.json", &(serde_json::to_string_pretty(&meta)? + "\n"))?;
         let outcome = figure(MapColouring::Outcome);
         super::write::figure(staging, "map", &outcome)?;
@@ -194,8 +258,11 @@ pub fn run_with(args: &MapArgs, lyapunov: Option<&LyapunovFn<'_>>) -> Result<(),
 
     if !args.output.quiet {
         let mut counts: Vec<(String, usize)> = Vec::new();
-        for c in &cells {
-            let name = c.response.to_string();
+        for c in cells {
+            let name = match c.attractor {
+                Some(id) => format!("{} A{id}", c.response),
+                None => c.response.to_string(),
+            };
             match counts.iter_mut().find(|(n, _)| *n == name) {
                 Some(entry) => entry.1 += 1,
                 None => counts.push((name, 1)),
@@ -203,7 +270,23 @@ pub fn run_with(args: &MapArgs, lyapunov: Option<&LyapunovFn<'_>>) -> Result<(),
         }
         counts.sort();
         let summary: Vec<String> = counts.iter().map(|(n, c)| format!("{n}: {c}")).collect();
-        crate::say!("mapped {} × {} cells in {wall:.1} s; {}", x.n, y.n, summary.join(", "));
+        let how = if args.full {
+            "every cell run over its whole window".to_string()
+        } else {
+            format!(
+                "{} cells run ({} stopped early), the rest inherited from uniform neighbourhoods",
+                map.computed, map.stopped_early
+            )
+        };
+        crate::say!(
+            "mapped {} × {} cells in {wall:.1} s ({how}); {}",
+            x.n,
+            y.n,
+            summary.join(", ")
+        );
+        for a in &map.attractors {
+            crate::say!("attractor {} ({} cells)", attractor_label(a), a.cells);
+        }
         crate::say!("wrote {}", args.output.out.display());
     }
     Ok(())
@@ -220,20 +303,24 @@ mod tests {
             y: Num(8.0),
             outcome: "chaotic",
             period: None,
-            max_abs_theta: Num(0.25),
+            max_abs_theta: Some(Num(0.25)),
             lyapunov: Some(Num(0.1)),
+            attractor: None,
+            computed: true,
         };
         assert_eq!(csv::header_of(&r), csv::header::<MapRow>());
         let cell = Cell {
             x: 0.5,
             y: 8.0,
             response: crate::analysis::classify::Response::Periodic { period: 2 },
-            max_abs_theta: 0.25,
+            max_abs_theta: Some(0.25),
             lyapunov: None,
+            attractor: Some(2),
+            computed: true,
         };
         assert_eq!(
             map_csv(&[cell]),
-            "x,y,outcome,period,max_abs_theta,lyapunov\n0.5,8.0,periodic,2,0.25,\n"
+            "x,y,outcome,period,max_abs_theta,lyapunov,attractor,computed\n0.5,8.0,periodic,2,0.25,,2,true\n"
         );
     }
 }

@@ -6,6 +6,7 @@ use plotters::prelude::*;
 
 use super::labels::{legend_entries, legend_key, response_colour, response_label};
 use super::{FONT, Figure, PlotError, axis_titles, titled};
+use crate::analysis::attractor::Attractor;
 use crate::analysis::classify::Response;
 
 /// What the cells are coloured by.
@@ -37,6 +38,48 @@ pub struct OutcomeMapFigure<'a> {
     pub cells: &'a [(Response, Option<f64>)],
     /// Colouring.
     pub colouring: MapColouring,
+    /// A basin map's attractors: each cell's attractor number (row order)
+    /// and the attractors; periodic cells are then coloured by attractor,
+    /// the legend naming each by its period and representative point.
+    pub basins: Option<Basins<'a>>,
+}
+
+/// The attractors of a basin map, for its colours and legend.
+#[derive(Clone, Copy, Debug)]
+pub struct Basins<'a> {
+    /// Each cell's attractor number (from 1), row order.
+    pub ids: &'a [Option<u32>],
+    /// The attractors, numbered 1, 2, ….
+    pub attractors: &'a [Attractor],
+}
+
+/// Colours of attractors 1, 2, … (cycled beyond ten): a qualitative set
+/// that avoids the grey of rest, the near-black of tumbling and the red
+/// of chaos.
+const ATTRACTOR_COLOURS: [RGBColor; 10] = [
+    RGBColor(31, 119, 180),
+    RGBColor(44, 160, 44),
+    RGBColor(255, 127, 14),
+    RGBColor(148, 103, 189),
+    RGBColor(23, 190, 207),
+    RGBColor(140, 86, 75),
+    RGBColor(188, 189, 34),
+    RGBColor(227, 119, 194),
+    RGBColor(174, 199, 232),
+    RGBColor(152, 223, 138),
+];
+
+/// The colour of attractor `id` (from 1).
+fn attractor_colour(id: u32) -> RGBColor {
+    ATTRACTOR_COLOURS[(id.max(1) as usize - 1) % ATTRACTOR_COLOURS.len()]
+}
+
+/// The legend text of an attractor: `A2: period 2, Θ = 0.3125, Θ' = -0.0513`.
+pub fn attractor_label(a: &Attractor) -> String {
+    format!(
+        "A{}: period {}, Θ = {:.4}, Θ' = {:.4}",
+        a.id, a.period, a.point[0], a.point[1]
+    )
 }
 
 /// Cell edges: halfway between neighbouring values (a single value v gets
@@ -84,10 +127,14 @@ impl OutcomeMapFigure<'_> {
         if m > 0.0 { m } else { 1.0 }
     }
 
-    fn colour(&self, cell: &(Response, Option<f64>), scale: f64) -> RGBColor {
+    fn colour(&self, c: usize, scale: f64) -> RGBColor {
+        let cell = &self.cells[c];
         match (self.colouring, cell.1) {
             (MapColouring::Lyapunov, Some(l)) if l.is_finite() => diverging(l, scale),
-            _ => response_colour(cell.0),
+            _ => match self.basins.and_then(|b| b.ids.get(c).copied().flatten()) {
+                Some(id) => attractor_colour(id),
+                None => response_colour(cell.0),
+            },
         }
     }
 }
@@ -135,20 +182,34 @@ impl Figure for OutcomeMapFigure<'_> {
         )?;
         let scale = self.lyapunov_scale();
         let nx = self.x.len();
-        chart
-            .draw_series(self.cells.iter().enumerate().map(|(c, cell)| {
-                let (i, j) = (c % nx, c / nx);
-                Rectangle::new(
-                    [(xe[i], ye[j]), (xe[i + 1], ye[j + 1])],
-                    self.colour(cell, scale).filled(),
-                )
-            }))
-            .map_err(e)?;
+        // One rectangle per run of equal colour along a row: a 1000 × 1000
+        // map is a few thousand shapes, not a million, in the SVG.
+        let mut runs = Vec::new();
+        for j in 0..self.y.len() {
+            let mut start = 0;
+            while start < nx {
+                let colour = self.colour(j * nx + start, scale);
+                let mut end = start + 1;
+                while end < nx && self.colour(j * nx + end, scale) == colour {
+                    end += 1;
+                }
+                runs.push(Rectangle::new([(xe[start], ye[j]), (xe[end], ye[j + 1])], colour.filled()));
+                start = end;
+            }
+        }
+        chart.draw_series(runs).map_err(e)?;
 
         // Legend: the classes present, then (for λ colouring) a colour bar.
         let text = (FONT, 17).into_font().color(&BLACK);
         let mut row = 30;
-        let classes = legend_entries(self.cells.iter().map(|c| c.0));
+        let in_basin = |c: usize| self.basins.is_some_and(|b| b.ids.get(c).copied().flatten().is_some());
+        let classes = legend_entries(
+            self.cells
+                .iter()
+                .enumerate()
+                .filter(|&(c, _)| !in_basin(c))
+                .map(|(_, cell)| cell.0),
+        );
         let shown: Vec<Response> = match self.colouring {
             MapColouring::Outcome => classes,
             MapColouring::Lyapunov => classes
@@ -184,6 +245,21 @@ impl Figure for OutcomeMapFigure<'_> {
                 .draw(&Text::new(response_label(r), (42, row + 2), text.clone()))
                 .map_err(e)?;
             row += 30;
+        }
+        if let (Some(b), MapColouring::Outcome) = (self.basins, self.colouring) {
+            let small = (FONT, 14).into_font().color(&BLACK);
+            for a in b.attractors {
+                legend_area
+                    .draw(&Rectangle::new([(10, row), (34, row + 20)], attractor_colour(a.id).filled()))
+                    .map_err(e)?;
+                legend_area
+                    .draw(&Rectangle::new([(10, row), (34, row + 20)], BLACK.stroke_width(1)))
+                    .map_err(e)?;
+                legend_area
+                    .draw(&Text::new(attractor_label(a), (42, row + 3), small.clone()))
+                    .map_err(e)?;
+                row += 30;
+            }
         }
         if self.colouring == MapColouring::Lyapunov {
             row += 10;
@@ -240,6 +316,7 @@ mod tests {
             y: &[4.0, 8.0],
             cells: &cells,
             colouring: MapColouring::Outcome,
+            basins: None,
         };
         let svg = fig.to_svg().unwrap();
         assert_eq!(crate::plot::svg_text::underscores(&svg), Vec::<String>::new());

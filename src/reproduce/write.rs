@@ -225,6 +225,7 @@ fn write_ratio_map(
         y: &y,
         cells: &cells,
         colouring: MapColouring::Outcome,
+        basins: None,
     };
     write_figure(sink, &format!("{}impact_ratio_map", prefix(n)), &fig, names)
 }

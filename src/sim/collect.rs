@@ -82,6 +82,18 @@ pub trait Sink {
     fn section(&mut self, row: &SectionRow);
     /// An event.
     fn event(&mut self, record: &EventRecord);
+    /// Whether this sink may end the run before `tau_end`: a run whose sink
+    /// watches advances one forcing period at a time (taking exactly the
+    /// steps of an uninterrupted run) and asks [`settled`](Self::settled)
+    /// after each. Only runs with a section are watched.
+    fn watches(&self) -> bool {
+        false
+    }
+    /// Whether the run can end now, its fate being certain (asked after
+    /// each forcing period when the sink [`watches`](Self::watches)).
+    fn settled(&self) -> bool {
+        false
+    }
 }
 
 /// The sink that keeps everything in memory.

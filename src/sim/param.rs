@@ -100,6 +100,12 @@ impl Param {
         Param::ZenoEps,
     ];
 
+    /// Whether the parameter is part of the initial state (a map over
+    /// two of them is a basin map: the same system in every cell).
+    pub fn is_initial_state(self) -> bool {
+        matches!(self, Param::Theta0 | Param::ThetaDot0 | Param::XDot0)
+    }
+
     /// The config key it is written and shown as, e.g. `excitation.a_v`.
     pub fn key(self) -> &'static str {
         match self {

@@ -6,7 +6,7 @@ use serde::Serialize;
 
 use super::collect::{Collector, HistoryRow, Keep, SectionRow, Sink, Tallies};
 use super::method::{StepperVisitor, with_stepper};
-use crate::integrate::hybrid::{Driver, Limits, Outputs};
+use crate::integrate::hybrid::{Advance, Driver, Limits, Outputs};
 use crate::integrate::{StepStats, Stepper, Tolerances};
 use crate::model::dynamics::Tilt;
 use crate::model::system::{EventRecord, FRICTION_LOSS, ModelError, N, Tally, WORK, X};
@@ -325,9 +325,24 @@ fn run_with<S: Stepper<N>>(
         },
     };
     match opts.rest_after {
-        None => {
-            driver.advance(opts.tau_end, &mut obs)?;
-        }
+        None => match section_period.filter(|_| obs.sink.watches()) {
+            // Legs of one forcing period, each ending on a section time,
+            // all with the run's end as horizon: the same steps as one
+            // advance to `tau_end`, so a watched run that is not stopped
+            // ends bit for bit as an unwatched one.
+            Some(period) => {
+                while driver.t() < opts.tau_end && !obs.sink.settled() {
+                    let next = ((driver.t() / period).floor() + 1.0) * period;
+                    let leg = driver.advance_past(next.min(opts.tau_end), opts.tau_end, &mut obs)?;
+                    if matches!(leg, Advance::Terminal) {
+                        break;
+                    }
+                }
+            }
+            None => {
+                driver.advance(opts.tau_end, &mut obs)?;
+            }
+        },
         Some(rest_after) => {
             driver.advance(rest_after.min(opts.tau_end), &mut obs)?;
             // After the record the ground is still, so rest is for ever:

@@ -1,0 +1,318 @@
+//! Early stopping of a steady-response run: a run ends as soon as its
+//! class is certain, instead of running out its whole window.
+//!
+//! A map cell used to run its transient and window (τ 0–800 by default)
+//! whatever it did; most cells come to rest or settle onto a periodic
+//! orbit long before. [`Settle`] watches a run's section points and events
+//! and ends it (through [`Sink::settled`]) when one of these holds at a
+//! section point τ_n:
+//! - **Rest**: the block is at rest and has been since at least τ_n − T
+//!   (T = 2π/Ω_h, no event in between). At rest the motion depends on
+//!   the time alone (flat and stuck, whatever the state), so a base that
+//!   did not lift or slide the block during one whole period never will
+//!   when the forcing has period T: the run would end at rest with the
+//!   same last event, which is exactly [`classify_run`]'s rest criterion.
+//! - **Periodic, period k**: the last `2k + CONFIRM` recurrences of
+//!   period k hold to [`SETTLE_FRACTION`] of the classifier's tolerance:
+//!   |p_{j+k,d} − p_{j,d}| ≤ 10⁻³·(rel_tol·a_d + abs_tol) for each component
+//!   d (a_d: the largest |p_d| over the points tested). The orbit has then
+//!   converged a thousand times more tightly than the classifier needs,
+//!   for at least two whole cycles of every point plus `CONFIRM` periods.
+//!   To change the class later, the distance to the orbit would have to
+//!   grow a thousandfold within the window, which needs an unstable orbit;
+//!   a trajectory stays within 10⁻⁶ of an unstable one for that long only
+//!   from a set of initial states of measure zero. The class is then read
+//!   off the window's points as the full run would have them: the last
+//!   cycle repeated over the window, classified by
+//!   [`classify_points`] (so period k may still come out as a smaller
+//!   period, when two of the cycle's points agree to the classifier's
+//!   tolerance, as the full run would find).
+//!
+//! Every other run (chaotic, quasiperiodic, slowly converging) runs its
+//! whole window, and tumbling and flight end a run by themselves.
+//!
+//! Early stopping is used only when the forcing has period T exactly:
+//! Ω_v = m·Ω_h for a whole m ≥ 1, or no vertical forcing. With another
+//! Ω_v the section at T is not a Poincaré section of the forced system,
+//! and neither criterion holds; such runs run their whole window.
+//!
+//! The watched run takes exactly the steps of the full one up to where it
+//! stops ([`Sink::watches`]), so a run that does not stop is the full run,
+//! bit for bit.
+
+use std::collections::VecDeque;
+
+use super::classify::{ClassifyOptions, Response, classify_points, classify_run};
+use super::section::{after_transient, block_coordinates, points_in_window};
+use super::steady::{LyapunovFn, SteadyError, Window};
+use crate::model::Mode;
+use crate::model::system::EventRecord;
+use crate::sim::{HistoryRow, Scenario, SectionRow, Sink, simulate_into};
+
+/// Fraction of the classifier's tolerance to which a periodic orbit must
+/// have converged before its run stops (module docs): 10⁻³, a thousand
+/// times tighter than the class needs, and still 10⁴ times above the
+/// 10⁻¹² scatter of a converged orbit at the default integration
+/// tolerance (so a converged orbit does reach it).
+pub const SETTLE_FRACTION: f64 = 1e-3;
+
+/// Recurrences beyond two whole cycles that must hold before a periodic
+/// run stops: 16 forcing periods, a margin against a passing
+/// near-recurrence of a chaotic transient.
+pub const CONFIRM: usize = 16;
+
+/// Why a watched run stopped early.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Verdict {
+    /// At rest for a whole forcing period at `tau`.
+    Rest {
+        /// τ of the section point where it was seen.
+        tau: f64,
+    },
+    /// Converged onto a periodic orbit of period `k` at `tau`.
+    Periodic {
+        /// τ of the section point where it was seen.
+        tau: f64,
+        /// The orbit's last cycle of section points, (Θ, Θ', X'), oldest
+        /// first: `k` points.
+        cycle: Vec<[f64; 3]>,
+    },
+}
+
+/// The sink that watches a run (module docs).
+#[derive(Debug)]
+pub struct Settle {
+    period: f64,
+    opts: ClassifyOptions,
+    /// The latest section points, newest last, at most `capacity`.
+    recent: VecDeque<[f64; 3]>,
+    capacity: usize,
+    /// The latest event (the rest criterion reads its τ).
+    last_event: Option<EventRecord>,
+    verdict: Option<Verdict>,
+    /// Every section point of the run, kept for the classifier when the
+    /// run is not stopped (after the transient only).
+    kept: Vec<SectionRow>,
+    transient: f64,
+}
+
+impl Settle {
+    /// A watcher for a run whose forcing has period `period` (τ), keeping
+    /// the section points after `transient` for the full classification.
+    pub fn new(period: f64, transient: f64, opts: ClassifyOptions) -> Self {
+        let k_max = opts.k_max as usize;
+        let capacity = 3 * k_max + CONFIRM;
+        Self {
+            period,
+            opts,
+            recent: VecDeque::with_capacity(capacity),
+            capacity,
+            last_event: None,
+            verdict: None,
+            kept: Vec::new(),
+            transient,
+        }
+    }
+
+    /// Why the run stopped, if it did.
+    pub fn verdict(&self) -> Option<&Verdict> {
+        self.verdict.as_ref()
+    }
+
+    /// The section points at τ ≥ the transient seen so far.
+    pub fn kept(&self) -> &[SectionRow] {
+        &self.kept
+    }
+
+    /// The smallest period k whose last `2k + CONFIRM` recurrences hold to
+    /// [`SETTLE_FRACTION`] of the tolerance, if any.
+    fn converged_period(&self) -> Option<usize> {
+        let n = self.recent.len();
+        (1..=self.opts.k_max as usize).find(|&k| {
+            let pairs = 2 * k + CONFIRM;
+            if n < pairs + k {
+                return false;
+            }
+            let first = n - pairs - k;
+            let mut amplitude = [0.0_f64; 3];
+            for p in self.recent.range(first..) {
+                for (a, x) in amplitude.iter_mut().zip(p) {
+                    *a = a.max(x.abs());
+                }
+            }
+            let tol: [f64; 3] =
+                std::array::from_fn(|d| SETTLE_FRACTION * (self.opts.rel_tol * amplitude[d] + self.opts.abs_tol));
+            // Newest pair first: a run that has not converged fails at once.
+            (first..n - k).rev().all(|j| {
+                let (a, b) = (&self.recent[j], &self.recent[j + k]);
+                a.iter().zip(b).zip(&tol).all(|((x, y), t)| (y - x).abs() <= *t)
+            })
+        })
+    }
+}
+
+impl Sink for Settle {
+    fn sample(&mut self, _row: &HistoryRow) {}
+
+    fn section(&mut self, row: &SectionRow) {
+        if row.tau >= self.transient {
+            self.kept.push(*row);
+        }
+        if self.verdict.is_some() {
+            return;
+        }
+        let since = self.last_event.map_or(0.0, |e| e.tau);
+        if row.mode == Mode::Rest && since <= row.tau - self.period {
+            self.verdict = Some(Verdict::Rest { tau: row.tau });
+            return;
+        }
+        if self.recent.len() == self.capacity {
+            self.recent.pop_front();
+        }
+        self.recent.push_back([row.theta, row.theta_dot, row.x_dot]);
+        if let Some(k) = self.converged_period() {
+            let cycle = self.recent.range(self.recent.len() - k..).copied().collect();
+            self.verdict = Some(Verdict::Periodic { tau: row.tau, cycle });
+        }
+    }
+
+    fn event(&mut self, record: &EventRecord) {
+        self.last_event = Some(*record);
+    }
+
+    fn watches(&self) -> bool {
+        true
+    }
+
+    fn settled(&self) -> bool {
+        self.verdict.is_some()
+    }
+}
+
+/// Whether a scenario's forcing has the section's period 2π/Ω_h exactly
+/// (module docs): harmonic, and no vertical forcing or Ω_v a whole
+/// multiple of Ω_h.
+pub fn forcing_is_periodic(scenario: &Scenario) -> bool {
+    let x = &scenario.excitation;
+    if x.forcing_period().is_none() {
+        return false;
+    }
+    if x.a_v == 0.0 {
+        return true;
+    }
+    let m = x.omega_v() / x.omega_h;
+    m >= 1.0 && m.fract() == 0.0
+}
+
+/// The steady response of one map cell, stopped as soon as it is certain.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CellResponse {
+    /// Its class.
+    pub response: Response,
+    /// Largest |Θ| over the part of the run computed.
+    pub max_abs_theta: f64,
+    /// Largest Lyapunov exponent per unit τ, when a hook supplied it.
+    pub lyapunov: Option<f64>,
+    /// The last cycle of a periodic response's section points
+    /// (Θ, Θ', X'), `period` points; empty for the other classes.
+    pub cycle: Vec<[f64; 3]>,
+    /// τ at which the run stopped early; `None` when it ran its whole
+    /// window (or ended by tumbling or flight).
+    pub stopped_at: Option<f64>,
+}
+
+/// Runs `scenario` over `window` and classifies its steady response,
+/// stopping as soon as the class is certain when `early` is set and the
+/// forcing allows it (module docs); otherwise the full run of
+/// [`steady_response`](super::steady::steady_response), with the same class.
+pub fn cell_response(
+    scenario: &Scenario,
+    window: &Window,
+    opts: &ClassifyOptions,
+    lyapunov: Option<&LyapunovFn<'_>>,
+    early: bool,
+) -> Result<CellResponse, SteadyError> {
+    let mut cfg = scenario.clone();
+    cfg.run.tau_end = window.tau_end;
+    let model = cfg.model()?;
+    let Some(period) = model.excitation.forcing_period() else {
+        return Err(SteadyError::NotHarmonic);
+    };
+    let mut run = cfg.run_options();
+    run.output_dt = None;
+    run.section = true;
+    let mut watch = Settle::new(period, window.transient, *opts);
+    let mut res = if early && forcing_is_periodic(&cfg) {
+        simulate_into(model, &cfg.initial, &run, &mut watch)?
+    } else {
+        // Unwatched: the same run, never stopped.
+        struct Full<'a>(&'a mut Settle);
+        impl Sink for Full<'_> {
+            fn sample(&mut self, _row: &HistoryRow) {}
+            fn section(&mut self, row: &SectionRow) {
+                if row.tau >= self.0.transient {
+                    self.0.kept.push(*row);
+                }
+            }
+            fn event(&mut self, record: &EventRecord) {
+                self.0.last_event = Some(*record);
+            }
+        }
+        simulate_into(model, &cfg.initial, &run, &mut Full(&mut watch))?
+    };
+    let (mut response, cycle, stopped_at) = match watch.verdict() {
+        Some(Verdict::Rest { tau }) => (Response::Rest, Vec::new(), Some(*tau)),
+        Some(Verdict::Periodic { tau, cycle }) => {
+            // The window's points as the full run would have them: those
+            // already taken (a run may converge inside the window, after
+            // points that had not), then the converged cycle repeated, the
+            // next point being the one a period before it.
+            let n = points_in_window(period, window.transient, window.tau_end) as usize;
+            let mut points = block_coordinates(watch.kept());
+            let k = cycle.len();
+            for j in 0..n.max(opts.min_points()).saturating_sub(points.len()) {
+                points.push(cycle[j % k]);
+            }
+            let response = classify_points(&points, None, opts)?;
+            (response, cycle.clone(), Some(*tau))
+        }
+        None => {
+            // The full run: classify it as `steady_response` does, from the
+            // events' last τ and the points after the transient.
+            res.events.extend(watch.last_event);
+            res.section = watch.kept.clone();
+            let response = classify_run(&res, period, window.transient, None, opts)?;
+            let cycle = match response {
+                Response::Periodic { period: k } => {
+                    let rows = after_transient(&res.section, window.transient);
+                    rows[rows.len() - k as usize..]
+                        .iter()
+                        .map(|r| [r.theta, r.theta_dot, r.x_dot])
+                        .collect()
+                }
+                _ => Vec::new(),
+            };
+            (response, cycle, None)
+        }
+    };
+    let mut exponent = None;
+    if let (Some(hook), Response::Periodic { .. } | Response::Quasiperiodic | Response::Chaotic) = (lyapunov, response)
+    {
+        exponent = hook(&cfg);
+        if let Some(l) = exponent {
+            if !l.is_finite() {
+                return Err(super::classify::ClassifyError::NonFiniteExponent.into());
+            }
+            if stopped_at.is_none() {
+                response = classify_run(&res, period, window.transient, exponent, opts)?;
+            }
+        }
+    }
+    Ok(CellResponse {
+        response,
+        max_abs_theta: res.max_abs_theta,
+        lyapunov: exponent,
+        cycle,
+        stopped_at,
+    })
+}
