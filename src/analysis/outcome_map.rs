@@ -229,8 +229,9 @@ impl MapPlan {
 /// in a basin map, which periodic attractor it reached (discovery number).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Label {
-    /// The class.
-    pub response: Response,
+    /// The class; `None` for a cell whose run failed (a class of its own,
+    /// so that its neighbours are computed).
+    pub response: Option<Response>,
     /// The periodic attractor, in a basin map.
     pub attractor: Option<u32>,
 }
@@ -356,7 +357,7 @@ impl<'a> MapRun<'a> {
                 r.record(
                     index,
                     Label {
-                        response: cell.response,
+                        response: Some(cell.response),
                         attractor,
                     },
                 );
@@ -370,10 +371,36 @@ impl<'a> MapRun<'a> {
         match &self.refiner {
             Some(r) => r.class(index),
             None => self.results[index].as_ref().map(|c| Label {
-                response: c.response,
+                response: Some(c.response),
                 attractor: self.labels[index],
             }),
         }
+    }
+
+    /// Records that cell `index` could not be computed (the app shows such
+    /// cells and goes on; the CLI stops at the first).
+    pub fn record_failed(&mut self, index: usize) {
+        if let Some(r) = &mut self.refiner {
+            r.record(
+                index,
+                Label {
+                    response: None,
+                    attractor: None,
+                },
+            );
+        }
+    }
+
+    /// Lattice stride of the batch last handed out (1 when every cell is
+    /// computed at once).
+    pub fn stride(&self) -> usize {
+        self.refiner.as_ref().and_then(Refiner::stride).unwrap_or(1)
+    }
+
+    /// The refinement state, for a view that draws the map as it fills
+    /// (`None` when every cell is computed at once).
+    pub fn refiner(&self) -> Option<&Refiner<Label>> {
+        self.refiner.as_ref()
     }
 
     /// The finished map. Cells never computed nor inherited (a map whose
@@ -382,16 +409,20 @@ impl<'a> MapRun<'a> {
         let mut labels = Vec::with_capacity(self.results.len());
         let mut classes = Vec::with_capacity(self.results.len());
         for index in 0..self.results.len() {
-            let Some(label) = self.label(index) else {
+            let Some(Label {
+                response: Some(response),
+                attractor,
+            }) = self.label(index)
+            else {
                 let (x, y) = self.xy(index);
                 return Err(MapError {
                     x,
                     y,
-                    error: SteadyError::Window("the map was not finished".into()),
+                    error: SteadyError::Window("the map was not finished (a cell failed or was never computed)".into()),
                 });
             };
-            labels.push(label.attractor);
-            classes.push(label.response);
+            labels.push(attractor);
+            classes.push(response);
         }
         let (attractors, ids) = self.catalogue.numbered(&labels);
         let mut computed = 0;
