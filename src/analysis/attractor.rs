@@ -8,7 +8,7 @@
 //! component: |a_i,d − b_(i+s) mod k,d| ≤ 10⁻²·max(A_d, B_d) + 10⁻⁹, where
 //! A_d, B_d are the largest |p_d| of each cycle. The shift is needed
 //! because a run may stop at any phase of its cycle. Converged cycles
-//! agree to about 10⁻⁶ of their amplitude (the early stop's
+//! agree to about 10⁻⁵ of their amplitude (the early stop's
 //! [`SETTLE_FRACTION`](super::settle::SETTLE_FRACTION)) and a cycle from a
 //! full run to the classifier's 10⁻³; distinct coexisting orbits (a
 //! period-2 orbit and its mirror image, say) differ by a sizeable part of

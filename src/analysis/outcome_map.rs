@@ -200,14 +200,19 @@ pub struct MapPlan {
     pub coarse: Option<usize>,
 }
 
-/// Cells of the coarse level along the longer axis (at least): 64 keeps
-/// an island of 1/64 of the axis (1.6 % of it) from being missed, and
-/// costs 64² ≈ 4,000 runs whatever the resolution.
-pub const COARSE_CELLS: usize = 64;
+/// Cells of the coarse level along the longer axis (at least): 32 costs
+/// about 1,000 runs whatever the resolution. An island that no lattice
+/// cell of a level touches and that no boundary seen at the level above
+/// comes near (within the halo) is missed; on the fig3 A_h × Ω_h map at
+/// 200 × 200 (a map with many one-cell islands), coarse 32 with halo 2
+/// ran 17,530 cells and agreed with `--full` on 99.63 % of the cells,
+/// against 18,340 runs and 99.46 % with coarse 64 and halo 1.
+pub const COARSE_CELLS: usize = 32;
 
 /// Lattice lines around a cell that must agree before it inherits their
-/// class: 1 catches boundaries that bulge between two lattice lines.
-pub const HALO: usize = 1;
+/// class: 2 catches boundaries that bulge between lattice lines and most
+/// one-cell islands next to a boundary (see [`COARSE_CELLS`]).
+pub const HALO: usize = 2;
 
 impl MapPlan {
     /// Every cell computed over its whole window: the reference, kept for

@@ -14,13 +14,13 @@
 //!   same last event, which is exactly [`classify_run`]'s rest criterion.
 //! - **Periodic, period k**: the last `2k + CONFIRM` recurrences of
 //!   period k hold to [`SETTLE_FRACTION`] of the classifier's tolerance:
-//!   |p_{j+k,d} − p_{j,d}| ≤ 10⁻³·(rel_tol·a_d + abs_tol) for each component
+//!   |p_{j+k,d} − p_{j,d}| ≤ 10⁻²·(rel_tol·a_d + abs_tol) for each component
 //!   d (a_d: the largest |p_d| over the points tested). The orbit has then
-//!   converged a thousand times more tightly than the classifier needs,
+//!   converged a hundred times more tightly than the classifier needs,
 //!   for at least two whole cycles of every point plus `CONFIRM` periods.
 //!   To change the class later, the distance to the orbit would have to
-//!   grow a thousandfold within the window, which needs an unstable orbit;
-//!   a trajectory stays within 10⁻⁶ of an unstable one for that long only
+//!   grow a hundredfold within the window, which needs an unstable orbit;
+//!   a trajectory stays within 10⁻⁵ of an unstable one for that long only
 //!   from a set of initial states of measure zero. The class is then read
 //!   off the window's points as the full run would have them: the last
 //!   cycle repeated over the window, classified by
@@ -50,16 +50,17 @@ use crate::model::system::EventRecord;
 use crate::sim::{HistoryRow, Scenario, SectionRow, Sink, simulate_into};
 
 /// Fraction of the classifier's tolerance to which a periodic orbit must
-/// have converged before its run stops (module docs): 10⁻³, a thousand
-/// times tighter than the class needs, and still 10⁴ times above the
-/// 10⁻¹² scatter of a converged orbit at the default integration
-/// tolerance (so a converged orbit does reach it).
-pub const SETTLE_FRACTION: f64 = 1e-3;
+/// have converged before its run stops (module docs): 10⁻², a hundred
+/// times tighter than the class needs (10⁻⁵ of the amplitude), and still
+/// far above the 10⁻¹² scatter of a converged orbit at the default
+/// integration tolerance (so a converged orbit does reach it; a loose
+/// tolerance whose scatter exceeds it only means the run is not stopped).
+pub const SETTLE_FRACTION: f64 = 1e-2;
 
 /// Recurrences beyond two whole cycles that must hold before a periodic
-/// run stops: 16 forcing periods, a margin against a passing
+/// run stops: 8 forcing periods, a margin against a passing
 /// near-recurrence of a chaotic transient.
-pub const CONFIRM: usize = 16;
+pub const CONFIRM: usize = 8;
 
 /// Why a watched run stopped early.
 #[derive(Clone, Debug, PartialEq)]
@@ -274,7 +275,14 @@ pub fn cell_response(
                 points.push(cycle[j % k]);
             }
             let response = classify_points(&points, None, opts)?;
-            (response, cycle.clone(), Some(*tau))
+            // The window's own period may differ from the converged one (a
+            // window that began before the run converged): its cycle is the
+            // window's last `period` points.
+            let cycle = match response {
+                Response::Periodic { period } => points[points.len() - period as usize..].to_vec(),
+                _ => Vec::new(),
+            };
+            (response, cycle, Some(*tau))
         }
         None => {
             // The full run: classify it as `steady_response` does, from the
