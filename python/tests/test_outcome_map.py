@@ -138,3 +138,14 @@ def test_coarse_is_checked_as_the_cli_checks_it(cli, tmp_path: Path) -> None:
     with pytest.raises(rocking.ConfigError) as e:
         rocking.outcome_map("fig3", X, Y, coarse=1)
     assert str(e.value) == expected == "coarse=1: must be >= 2"
+
+
+def test_a_failed_cell_is_the_clis_run_error(cli, tmp_path: Path) -> None:
+    x, y = ("excitation.a_h", 0.5, 3.0, 4), ("excitation.omega_h", 6, 10, 3)
+    expected = cli.error(
+        "map", "--preset", "fig3", "--set", "run.max_steps=50", "--x", *map(str, x), "--y", *map(str, y), *CLI_WINDOW,
+        "--out", str(tmp_path / "o"), code=1,
+    )
+    with pytest.raises(rocking.RunError) as e:
+        rocking.outcome_map(rocking.Scene("fig3", max_steps=50), x, y, progress=False, **WINDOW)
+    assert str(e.value) == expected
