@@ -3,8 +3,9 @@ task, and the speedup of a 100 x 100 outcome map on 2 workers against 1.
 
     python examples/dask_benchmark.py [--repeats 3] [--cells 100]
 
-Overhead per task: a map split into one task per row on one single-thread
-worker, against the same map computed locally on one thread; the
+Overhead per task: a full map (`full=True`: every cell in one batch) of
+2 x 200 cells split into 200 tasks on one single-thread worker, against
+the same map computed locally on one thread; the
 difference divided by the number of tasks is what Dask adds to each
 (scheduling, pickling the scene and the results, the worker's bookkeeping).
 Speedup: the map (window τ 100–200, 4 chunks per worker thread) on 1 worker
@@ -40,13 +41,15 @@ def main() -> None:
     scene = rocking.Scene("fig3")
     window = {"transient": 100.0, "tau_end": 200.0}
 
-    # Overhead per task: 200 one-row tasks of 2 cells each.
+    # Overhead per task: 200 tasks of 2 cells each, in one batch.
     rows = 200
     x, y = ("excitation.a_h", 0.5, 1.0, 2), ("excitation.omega_h", 6.0, 10.0, rows)
-    local_time, local = timed(lambda: rocking.outcome_map(scene, x, y, threads=1, progress=False, **window), args.repeats)
+    local_time, local = timed(lambda: rocking.outcome_map(scene, x, y, threads=1, full=True, progress=False, **window), args.repeats)
     with LocalCluster(n_workers=1, threads_per_worker=1, host="127.0.0.1", dashboard_address=None) as cluster, Client(cluster) as client:
-        rocking.dask.outcome_map(client, scene, x, y, chunks=2, **window)  # warm the worker (imports)
-        dask_time, remote = timed(lambda: rocking.dask.outcome_map(client, scene, x, y, chunks=rows, **window), args.repeats)
+        rocking.dask.outcome_map(client, scene, x, y, full=True, chunks=2, progress=False, **window)  # warm the worker (imports)
+        dask_time, remote = timed(
+            lambda: rocking.dask.outcome_map(client, scene, x, y, full=True, chunks=rows, progress=False, **window), args.repeats
+        )
     assert remote.cells.equals(local.cells)
     print(f"overhead: {rows} tasks in {dask_time:.3f} s on 1 worker vs {local_time:.3f} s locally on 1 thread: "
           f"{1e3 * (dask_time - local_time) / rows:.2f} ms per task")
@@ -58,8 +61,10 @@ def main() -> None:
     results = {}
     for workers in (1, 2):
         with LocalCluster(n_workers=workers, threads_per_worker=1, host="127.0.0.1", dashboard_address=None) as cluster, Client(cluster) as client:
-            rocking.dask.outcome_map(client, scene, x, ("excitation.omega_h", 6.0, 12.0, 2), chunks=2, **window)  # warm up
-            times[workers], results[workers] = timed(lambda: rocking.dask.outcome_map(client, scene, x, y, **window), args.repeats)
+            rocking.dask.outcome_map(client, scene, x, ("excitation.omega_h", 6.0, 12.0, 2), chunks=2, progress=False, **window)  # warm up
+            times[workers], results[workers] = timed(
+                lambda: rocking.dask.outcome_map(client, scene, x, y, progress=False, **window), args.repeats
+            )
     assert results[1].cells.equals(results[2].cells)
     print(f"{n} x {n} map: 1 worker {times[1]:.2f} s, 2 workers {times[2]:.2f} s (medians of {args.repeats}): "
           f"speedup {times[1] / times[2]:.2f}")

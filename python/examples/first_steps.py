@@ -50,6 +50,10 @@ for value, outcome, period in zip(sweep.values, sweep.outcome, sweep.period.fill
 m = rocking.outcome_map(scene, ("excitation.a_h", 0.5, 3.0, 6), ("excitation.omega_h", 4.0, 10.0, 4), transient=200, tau_end=400)
 for j, omega in enumerate(m.y):
     print(f"omega_h = {omega:4.1f}: " + " ".join(f"{o[:5]:>5}" for o in m.outcome[j]))
+# Each cell's run stopped as soon as its class was certain; on a larger
+# map, cells inside a region of one class inherit it without being run
+# (`m.computed`). `full=True` runs every cell over its whole window.
+print(f"{m.cells_run} of {m.outcome.size} cells run, {m.cells_stopped_early} of them stopped early")
 
 # %% [markdown]
 # ## The same sweep on a Dask cluster

@@ -160,6 +160,7 @@ pub const MAP_ARGS: &[(&str, &str)] = &[
     ("--y", "y"),
     ("--transient", "transient"),
     ("--tau-end", "tau_end"),
+    ("--coarse", "coarse"),
     ("--threads", "threads"),
 ];
 

@@ -14,6 +14,7 @@ mod errors;
 mod fragility;
 mod interrupt;
 mod keys;
+mod map;
 mod memory;
 mod scene;
 mod simulate;
@@ -39,7 +40,8 @@ fn _rocking(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(simulate::_simulate, m)?)?;
     m.add_function(wrap_pyfunction!(simulate::_lyapunov, m)?)?;
     m.add_function(wrap_pyfunction!(study::_sweep, m)?)?;
-    m.add_function(wrap_pyfunction!(study::_outcome_map, m)?)?;
+    m.add_function(wrap_pyfunction!(map::_outcome_map, m)?)?;
+    m.add_function(wrap_pyfunction!(map::_outcome_cells, m)?)?;
     m.add_function(wrap_pyfunction!(fragility::_fragility_runs, m)?)?;
     m.add_function(wrap_pyfunction!(fragility::_fragility_fits, m)?)?;
     m.add_function(wrap_pyfunction!(spectrum::_spectrum, m)?)?;

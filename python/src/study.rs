@@ -1,12 +1,12 @@
-//! `sweep` and `outcome_map`: the CLI's `rocking sweep` and `rocking map`
-//! over the library's analyses, checked with the CLI's messages, computed
-//! in chunks without the GIL on all cores, with Ctrl-C checked between
-//! chunks, and returned as columns (numpy arrays).
+//! `sweep`: the CLI's `rocking sweep` over the library's analyses,
+//! checked with the CLI's messages, computed in chunks without the GIL on
+//! all cores, with Ctrl-C checked between chunks, and returned as columns
+//! (numpy arrays); and what `sweep` and `outcome_map` ([`crate::map`])
+//! share: the workers, the window, the checkpoint between chunks.
 //!
 //! Chunks never change a number: a sweep without continuation is computed
 //! as shards of its grid (the mechanism of `rocking sweep --shard K/N`),
-//! a map row by row (each row a map whose y axis is that row's value,
-//! exactly), and every value or cell depends only on its own index.
+//! and every value depends only on its own index.
 
 use anyhow::anyhow;
 use numpy::IntoPyArray as _;
@@ -17,20 +17,19 @@ use rocking::analysis::lyapunov::largest_for_scenario;
 use rocking::analysis::orbit_diagram::{
     BifurcationValue, BlockSweep, Continuation, Grid, Plan, Shard, SweepError, block_sweep,
 };
-use rocking::analysis::outcome_map::{Axis, BlockMap, Cell, block_map};
 use rocking::analysis::silent;
 use rocking::analysis::steady::{LyapunovFn, SteadyError, Window, steady_response};
 use rocking::io::config;
 use rocking::sim::{InitialState, Param, Scenario};
 
-use crate::errors::{MAP_ARGS, SWEEP_ARGS, config_error, key_error, run_error, with_python_args};
+use crate::errors::{SWEEP_ARGS, config_error, key_error, run_error, with_python_args};
 use crate::scene::Scene;
 
 /// Most worker threads per core, as the CLI allows (`--threads`).
 const MAX_THREADS_PER_CORE: usize = 4;
 
 /// Bad input without a key (a flag's value).
-fn input(message: impl std::fmt::Display) -> PyErr {
+pub fn input(message: impl std::fmt::Display) -> PyErr {
     config_error(message.to_string(), crate::errors::Origin::default())
 }
 
@@ -97,7 +96,7 @@ impl Workers {
 
 /// The window of a study: `transient` and `tau_end` (default: the scene's
 /// `run.tau_end`), checked with the CLI's messages.
-fn window(base: &Scenario, transient: f64, tau_end: Option<f64>) -> PyResult<Window> {
+pub fn window(base: &Scenario, transient: f64, tau_end: Option<f64>) -> PyResult<Window> {
     let w = Window {
         transient,
         tau_end: tau_end.unwrap_or(base.run.tau_end),
@@ -107,13 +106,13 @@ fn window(base: &Scenario, transient: f64, tau_end: Option<f64>) -> PyResult<Win
 }
 
 /// The hook that fills the `lyapunov` column, as `--lyapunov` does.
-fn lyapunov_hook(on: bool) -> Option<&'static LyapunovFn<'static>> {
+pub fn lyapunov_hook(on: bool) -> Option<&'static LyapunovFn<'static>> {
     on.then_some(&largest_for_scenario as &LyapunovFn<'static>)
 }
 
 /// Values per chunk between two Ctrl-C checks: enough to keep every
 /// thread busy, few enough to answer within a few values' time.
-fn chunk_len(workers: &Workers) -> usize {
+pub fn chunk_len(workers: &Workers) -> usize {
     4 * workers.threads().max(2)
 }
 
@@ -187,17 +186,19 @@ fn sweep_plan<'a>(
     Ok(SweepPlan { spec, plan })
 }
 
-/// Why a computation stopped: a failed value (the CLI's exit 1) or Ctrl-C.
-enum Stop {
+/// Why a computation stopped: a failed value (the CLI's exit 1), or an
+/// exception to pass on as it is (Ctrl-C's KeyboardInterrupt, an error
+/// raised by a `progress` callback or a map's executor).
+pub enum Stop {
     Failed(anyhow::Error),
-    Interrupted(PyErr),
+    Raised(PyErr),
 }
 
 impl Stop {
-    fn into_py(self) -> PyErr {
+    pub fn into_py(self) -> PyErr {
         match self {
             Stop::Failed(e) => run_error(&e),
-            Stop::Interrupted(e) => e,
+            Stop::Raised(e) => e,
         }
     }
 }
@@ -251,7 +252,7 @@ fn compute_sweep(
             }
         }
         if interruptible && let Err(e) = checkpoint(progress, done, count) {
-            return Err(Stop::Interrupted(e));
+            return Err(Stop::Raised(e));
         }
     }
     if let Some(e) = first_failure {
@@ -311,7 +312,7 @@ fn compute_continuation(
             },
         ));
         if interruptible && let Err(e) = checkpoint(progress, out.len(), total) {
-            return Err(Stop::Interrupted(e));
+            return Err(Stop::Raised(e));
         }
     }
     out.sort_by_key(|(i, _)| *i);
@@ -321,7 +322,7 @@ fn compute_continuation(
 /// Response columns shared by sweeps and maps: `outcome`, `period` (0
 /// where not periodic), `max_abs_theta`, `lyapunov` (NaN where none) and
 /// `has_lyapunov`.
-fn response_columns(
+pub fn response_columns(
     py: Python<'_>,
     out: &Bound<'_, PyDict>,
     rows: impl Iterator<Item = (Response, f64, Option<f64>)>,
@@ -442,181 +443,4 @@ pub fn _sweep<'py>(
     })();
     let (grid, values) = computed.map_err(|e| with_python_args(e, SWEEP_ARGS))?;
     sweep_columns(py, &grid, &values)
-}
-
-/// One axis from its key, first and last value and count, checked as
-/// `rocking map` checks `--x`/`--y`.
-fn axis(flag: &str, spec: (String, f64, f64, i64)) -> PyResult<(Axis, Param)> {
-    let (key, a, b, n) = spec;
-    let param = config::param(&key).map_err(|e| key_error(&key, format!("{flag} {e}")))?;
-    let n = usize::try_from(n).map_err(|_| input(format!("{flag} {key}: N = '{n}' is not a positive integer")))?;
-    let axis = Axis::new(flag, &key, a, b, n).map_err(input)?;
-    Ok((axis, param))
-}
-
-/// A checked map.
-struct MapPlan {
-    x: Axis,
-    x_param: Param,
-    y: Axis,
-    y_param: Param,
-    window: Window,
-}
-
-impl MapPlan {
-    fn spec<'a>(&'a self, base: &'a Scenario, y: &'a Axis, lyapunov: bool) -> BlockMap<'a> {
-        BlockMap {
-            base,
-            x_param: self.x_param,
-            x: &self.x,
-            y_param: self.y_param,
-            y,
-            window: self.window,
-            classify: ClassifyOptions::default(),
-            lyapunov: lyapunov_hook(lyapunov),
-        }
-    }
-}
-
-/// Checks a map as `rocking map` does, before anything runs.
-fn map_plan(
-    base: &Scenario,
-    x: (String, f64, f64, i64),
-    y: (String, f64, f64, i64),
-    transient: f64,
-    tau_end: Option<f64>,
-    lyapunov: bool,
-) -> PyResult<MapPlan> {
-    let (x, x_param) = axis("--x", x)?;
-    let (y, y_param) = axis("--y", y)?;
-    if x_param == y_param {
-        return Err(key_error(
-            &y.key,
-            format!("--y {}: the two axes must be different keys", y.key),
-        ));
-    }
-    for (flag, p) in [("--x", x_param), ("--y", y_param)] {
-        if p == Param::TauEnd {
-            return Err(key_error(
-                p.key(),
-                format!("{flag} run.tau_end: the run length is set by --tau-end, it cannot be an axis"),
-            ));
-        }
-    }
-    let window = window(base, transient, tau_end)?;
-    let plan = MapPlan {
-        x,
-        x_param,
-        y,
-        y_param,
-        window,
-    };
-    plan.spec(base, &plan.y, lyapunov).check().map_err(|e| {
-        input(format!(
-            "--x {} = {}, --y {} = {}: {}",
-            plan.x.key, e.x, plan.y.key, e.y, e.error
-        ))
-    })?;
-    Ok(plan)
-}
-
-/// Rows `rows` of the map, row by row (each a one-row map at exactly that
-/// row's y value), Ctrl-C checked between rows (`interruptible`).
-fn compute_rows(
-    base: &Scenario,
-    plan: &MapPlan,
-    workers: &Workers,
-    rows: std::ops::Range<usize>,
-    lyapunov: bool,
-    interruptible: bool,
-    progress: Option<&Py<PyAny>>,
-) -> Result<Vec<Cell>, Stop> {
-    let total = rows.len() * plan.x.n;
-    let mut cells = Vec::with_capacity(total);
-    for j in rows {
-        let yv = plan.y.value(j);
-        let row = Axis::new("--y", &plan.y.key, yv, yv, 1).map_err(|e| Stop::Failed(anyhow!("row {j}: {e}")))?;
-        let spec = plan.spec(base, &row, lyapunov);
-        let done = workers.run(|| block_map(&spec, &silent)).map_err(|e| {
-            Stop::Failed(anyhow!(
-                "{} = {}, {} = {}: {}",
-                plan.x.key,
-                e.x,
-                plan.y.key,
-                e.y,
-                e.error
-            ))
-        })?;
-        cells.extend(done);
-        if interruptible && let Err(e) = checkpoint(progress, cells.len(), total) {
-            return Err(Stop::Interrupted(e));
-        }
-    }
-    Ok(cells)
-}
-
-/// `rocking map` (without files): the outcome map over `x = (key, A, B, N)`
-/// and `y = (key, A, B, N)`, cells in map.csv's order (y outer, x inner).
-/// `rows=(j0, j1)` computes only rows j0 ≤ j < j1 (for `rocking.dask`).
-#[pyfunction]
-#[pyo3(signature = (scene, x, y, *, transient=600.0, tau_end=None, lyapunov=false, threads=None, rows=None, check_only=false, progress=None))]
-#[allow(clippy::too_many_arguments)]
-pub fn _outcome_map<'py>(
-    py: Python<'py>,
-    scene: &Scene,
-    x: (String, f64, f64, i64),
-    y: (String, f64, f64, i64),
-    transient: f64,
-    tau_end: Option<f64>,
-    lyapunov: bool,
-    threads: Option<usize>,
-    rows: Option<(usize, usize)>,
-    check_only: bool,
-    progress: Option<Py<PyAny>>,
-) -> PyResult<Bound<'py, PyDict>> {
-    let base = scene.scenario();
-    let computed = (|| {
-        let plan = map_plan(base, x, y, transient, tau_end, lyapunov)?;
-        let (j0, j1) = rows.unwrap_or((0, plan.y.n));
-        if j0 > j1 || j1 > plan.y.n {
-            return Err(input(format!(
-                "rows ({j0}, {j1}): must satisfy 0 <= j0 <= j1 <= {}",
-                plan.y.n
-            )));
-        }
-        let workers = Workers::new(threads)?;
-        let cells = if check_only {
-            Vec::new()
-        } else {
-            let interruptible = rows.is_none();
-            py.detach(|| {
-                compute_rows(
-                    base,
-                    &plan,
-                    &workers,
-                    j0..j1,
-                    lyapunov,
-                    interruptible,
-                    progress.as_ref(),
-                )
-            })
-            .map_err(Stop::into_py)?
-        };
-        Ok((plan, j0, j1, cells))
-    })();
-    let (plan, j0, j1, cells) = computed.map_err(|e| with_python_args(e, MAP_ARGS))?;
-    let out = PyDict::new(py);
-    out.set_item("x_key", &plan.x.key)?;
-    out.set_item("y_key", &plan.y.key)?;
-    out.set_item("x_values", plan.x.values().into_pyarray(py))?;
-    out.set_item("y_values", plan.y.values().into_pyarray(py))?;
-    out.set_item("rows", (j0, j1))?;
-    out.set_item("x", cells.iter().map(|c| c.x).collect::<Vec<_>>().into_pyarray(py))?;
-    out.set_item("y", cells.iter().map(|c| c.y).collect::<Vec<_>>().into_pyarray(py))?;
-    response_columns(
-        py,
-        &out,
-        cells.iter().map(|c| (c.response, c.max_abs_theta, c.lyapunov)),
-    )?;
-    Ok(out)
 }

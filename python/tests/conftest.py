@@ -58,7 +58,7 @@ def cli() -> Cli:
 #: are the CLI's with the flag written as the argument that gave the value
 #: (`--threads 0: …` → `threads=0: …`).
 SWEEP_ARGS = {"--param": "param", "--from": "start", "--to": "stop", "--step": "step", "--transient": "transient", "--tau-end": "tau_end", "--continuation": "continuation", "--threads": "threads"}
-MAP_ARGS = {"--x": "x", "--y": "y", "--transient": "transient", "--tau-end": "tau_end", "--threads": "threads"}
+MAP_ARGS = {"--x": "x", "--y": "y", "--transient": "transient", "--tau-end": "tau_end", "--coarse": "coarse", "--threads": "threads"}
 SPECTRUM_ARGS = {"--record": "record", "--unit": "unit", "--from": "sizes[0]", "--to": "sizes[1]", "--count": "sizes[2]", "--b-over-h": "b_over_h", "--scale": "scale", "--pga": "pga"}
 
 

@@ -38,14 +38,54 @@ def test_a_sweep_on_the_cluster_is_the_local_one(client) -> None:
     assert len(client.scheduler_info()["workers"]) == 2
 
 
-def test_a_map_on_the_cluster_is_the_local_one(client) -> None:
-    x, y = ("excitation.a_h", 0.5, 3.0, 4), ("excitation.omega_h", 6, 10, 5)
-    local = rocking.outcome_map("fig3", x, y, transient=100, tau_end=200)
-    remote = rocking.dask.outcome_map(client, "fig3", x, y, transient=100, tau_end=200, chunks=3)
+def assert_same_map(remote: rocking.OutcomeMap, local: rocking.OutcomeMap) -> None:
     assert remote.cells.equals(local.cells)
+    # Byte for byte, NaN included.
+    assert remote.cells.tobytes() == local.cells.tobytes()
     np.testing.assert_array_equal(remote.x, local.x)
     np.testing.assert_array_equal(remote.y, local.y)
-    assert remote.outcome.shape == (5, 4)
+    assert (remote.cells_run, remote.cells_stopped_early) == (local.cells_run, local.cells_stopped_early)
+    assert len(remote.attractors) == len(local.attractors)
+    for a, b in zip(remote.attractors, local.attractors):
+        assert (a["id"], a["period"], a["point"], a["cells"]) == (b["id"], b["period"], b["point"], b["cells"])
+        assert a["cycle"].tobytes() == b["cycle"].tobytes()
+
+
+def test_a_map_on_the_cluster_is_the_local_one(client) -> None:
+    # Refined from a 4-cell lattice: several batches, each split over the
+    # workers.
+    x, y = ("excitation.a_h", 0.5, 3.0, 12), ("excitation.omega_h", 4, 12, 9)
+    local = rocking.outcome_map("fig3", x, y, transient=100, tau_end=200, coarse=4, progress=False)
+    assert local.cells_run < 12 * 9
+    for chunks in (3, 17):
+        calls: list[tuple[int, int]] = []
+        remote = rocking.dask.outcome_map(
+            client, "fig3", x, y, transient=100, tau_end=200, coarse=4, chunks=chunks,
+            progress=lambda done, total: calls.append((done, total)),
+        )
+        assert_same_map(remote, local)
+        assert calls[-1] == (12 * 9, 12 * 9)
+    assert remote.outcome.shape == (9, 12)
+    full = rocking.outcome_map("fig3", x, y, transient=100, tau_end=200, full=True, progress=False)
+    assert_same_map(rocking.dask.outcome_map(client, "fig3", x, y, transient=100, tau_end=200, full=True, chunks=5), full)
+
+
+def test_a_basin_map_on_the_cluster_is_the_local_one(client) -> None:
+    scene = rocking.Scene("fig4", a_v_norm=1.0)
+    x, y = ("initial.theta", -0.6, 0.6, 9), ("initial.theta_dot", -0.6, 0.6, 9)
+    local = rocking.outcome_map(scene, x, y, transient=100, tau_end=200, progress=False)
+    assert len(local.attractors) >= 2
+    assert_same_map(rocking.dask.outcome_map(client, scene, x, y, transient=100, tau_end=200, chunks=4), local)
+
+
+def test_a_failed_cell_on_a_worker_is_the_local_run_error(client) -> None:
+    scene = rocking.Scene("fig3", max_steps=50)
+    x, y = ("excitation.a_h", 0.5, 3.0, 4), ("excitation.omega_h", 6, 10, 3)
+    with pytest.raises(rocking.RunError) as local:
+        rocking.outcome_map(scene, x, y, transient=100, tau_end=200, progress=False)
+    with pytest.raises(rocking.RunError) as remote:
+        rocking.dask.outcome_map(client, scene, x, y, transient=100, tau_end=200, chunks=5)
+    assert str(remote.value) == str(local.value)
 
 
 def test_bad_input_fails_on_the_client_with_the_clis_message(client) -> None:

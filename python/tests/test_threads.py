@@ -98,6 +98,34 @@ def test_ctrl_c_stops_a_long_sweep_between_chunks(tmp_path) -> None:
     assert waited < 10, waited
 
 
+MAP = """
+import sys, time, rocking
+print("started", flush=True)
+t = time.perf_counter()
+try:
+    rocking.outcome_map("fig3", ("excitation.a_h", 0.1, 3, 300), ("excitation.omega_h", 2, 12, 300), full=True, threads=2)
+    print("finished", flush=True)
+except KeyboardInterrupt:
+    print(f"interrupted {time.perf_counter() - t:.2f}", flush=True)
+"""
+
+
+def test_ctrl_c_stops_a_long_map_between_chunks(tmp_path) -> None:
+    p = subprocess.Popen([sys.executable, "-c", MAP], stdout=subprocess.PIPE, text=True, cwd=tmp_path)
+    assert p.stdout is not None
+    assert p.stdout.readline().strip() == "started"
+    time.sleep(1.5)
+    sent = time.perf_counter()
+    p.send_signal(signal.SIGINT)
+    out, _ = p.communicate(timeout=120)
+    waited = time.perf_counter() - sent
+    assert out.startswith("interrupted"), out
+    assert p.returncode == 0
+    # A chunk is a few hundred cells of a few ms each; the whole map
+    # (90,000 cells over their whole window) would take minutes.
+    assert waited < 20, waited
+
+
 CALL = """
 import time, rocking
 scene = rocking.Scene("fig3", tau_end=%s)

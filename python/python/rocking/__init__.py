@@ -224,21 +224,45 @@ def outcome_map(
     tau_end: float | None = None,
     lyapunov: bool = False,
     threads: int | None = None,
+    full: bool = False,
+    coarse: int = 64,
     progress: Progress = None,
 ) -> OutcomeMap:
     """The outcome map over `x = (key, first, last, count)` and `y` (same),
     as `rocking map --x … --y …`: each cell's steady response from the
     scene's initial state (Poincaré points at `transient ≤ τ_k ≤ tau_end`),
-    with its largest Lyapunov exponent if `lyapunov`. `progress`: see the
-    module's help. Ctrl-C stops it between rows."""
+    with its largest Lyapunov exponent if `lyapunov`. Same numbers as the
+    CLI, cell for cell, for any `threads`.
+
+    By default the map is computed fast, as `rocking map` computes it:
+    *early stopping* ends a cell's run as soon as its class is certain (a
+    periodic orbit whose section points have recurred long enough, rest,
+    tumbling or flight; chaotic and quasi-periodic cells run their whole
+    window), and *refinement* computes a lattice of about `coarse` cells
+    along the longer axis first, then only the cells near where classes
+    meet: a cell inside a neighbourhood of one class inherits that class
+    without being run (`computed` false, `max_abs_theta` NaN). An island
+    of another class smaller than the map's extent over `coarse` can be
+    missed. Without refinement (`lyapunov=True`: an inherited cell would
+    have no exponent) every cell is run. `full=True` runs every cell over
+    its whole window: the reference, as `rocking map --full` (`coarse` is
+    then unused).
+
+    When both axes are initial-state keys (`initial.theta`,
+    `initial.theta_dot`, `initial.x_dot`: a basin map), each periodic cell
+    is also labelled with the attractor it reaches (`attractor`, numbered
+    from 1 in row order of the first cell reaching it; `attractors` lists
+    them). `progress`: see the module's help (an inherited cell counts as
+    done). Ctrl-C stops it between chunks of a few hundred cells."""
     s = _scene(scene)
     with _Reporter(progress, "outcome_map") as report:
         data = _rocking._outcome_map(
             s, tuple(x), tuple(y), transient=transient, tau_end=tau_end, lyapunov=lyapunov, threads=threads,
-            progress=report,
+            full=full, coarse=coarse, progress=report,
         )
-    return OutcomeMap._assemble([data])._keep(
-        scene=s, x_axis=tuple(x), y_axis=tuple(y), transient=transient, tau_end=_tau_end(s, tau_end), lyapunov_asked=lyapunov
+    return OutcomeMap._of(data)._keep(
+        scene=s, x_axis=tuple(x), y_axis=tuple(y), transient=transient, tau_end=_tau_end(s, tau_end),
+        lyapunov_asked=lyapunov, full=full, coarse=coarse,
     )
 
 

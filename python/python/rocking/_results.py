@@ -3,7 +3,8 @@
 They only arrange what the extension computed: columns into numpy arrays
 and structured `Table`s (the CLI's CSV columns, same names and numbers),
 and chunks computed apart (Dask) back into one result, identical to the
-single-machine one. A value that does not exist (no overturning, no
+single-machine one (a map's cells computed apart are put together by the
+extension's map engine). A value that does not exist (no overturning, no
 exponent) is NaN in a float column and masked in the masked-array
 properties, never 0; a missing period (an int column) is masked. Each
 result keeps its inputs (`scene`, the grid, `transient`, `tau_end`,
@@ -37,7 +38,7 @@ EVENTS = (
 POINCARE = ("k", "tau", "theta", "theta_dot", "x", "x_dot", "mode")
 POINTS = ("index", "value", "k", "tau", "theta", "theta_dot", "x", "x_dot", "mode")
 CLASSES = ("index", "value", "outcome", "period", "max_abs_theta", "lyapunov", "has_lyapunov")
-CELLS = ("x", "y", "outcome", "period", "max_abs_theta", "lyapunov", "has_lyapunov")
+CELLS = ("x", "y", "outcome", "period", "max_abs_theta", "lyapunov", "has_lyapunov", "attractor", "computed")
 
 
 class Run:
@@ -273,6 +274,8 @@ def _attrs(inputs: Mapping[str, Any]) -> dict[str, Any]:
     for k, v in inputs.items():
         if v is None:
             continue
+        if isinstance(v, bool):  # netCDF has no boolean attribute
+            v = int(v)
         out[k] = v if isinstance(v, (int, float, str)) else repr(v)
     return out
 
@@ -280,14 +283,33 @@ def _attrs(inputs: Mapping[str, Any]) -> dict[str, Any]:
 class OutcomeMap(_Inputs):
     """An outcome map, as `rocking map` computes it.
 
-    `x` and `y` are the axes' values; `outcome`, `period`, `max_abs_theta`
-    and `lyapunov` are 2-D arrays indexed `[j, i]` (row j = y value, column
-    i = x value); `cells` are map.csv's rows (y outer, x inner). Its
-    inputs: `scene`, `x_axis`, `y_axis` (key, first, last, count),
-    `transient`, `tau_end` (resolved), `lyapunov_asked`.
+    `x` and `y` are the axes' values; `outcome`, `period`, `max_abs_theta`,
+    `lyapunov`, `attractor` and `computed` are 2-D arrays indexed `[j, i]`
+    (row j = y value, column i = x value); `cells` are map.csv's rows (y
+    outer, x inner). A cell that inherited its class while the map was
+    refined (`computed` false) was not run: its `max_abs_theta` is NaN.
+    `attractor` is the periodic attractor a cell reaches in a basin map
+    (both axes initial-state keys), masked elsewhere; `attractors` lists
+    them (map.json's entries: `id`, `period`, `point` = (theta, theta_dot,
+    x_dot), the representative section point, `cycle`, every point of the
+    cycle, and `cells`, how many cells reach it). `cells_run` and
+    `cells_stopped_early` count the cells run and those of them whose run
+    stopped once its class was certain. Its inputs: `scene`, `x_axis`,
+    `y_axis` (key, first, last, count), `transient`, `tau_end` (resolved),
+    `lyapunov_asked`, `full`, `coarse`.
     """
 
-    def __init__(self, x_key: str, y_key: str, x: np.ndarray, y: np.ndarray, cells: Table) -> None:
+    def __init__(
+        self,
+        x_key: str,
+        y_key: str,
+        x: np.ndarray,
+        y: np.ndarray,
+        cells: Table,
+        attractors: list[dict[str, Any]],
+        cells_run: int,
+        cells_stopped_early: int,
+    ) -> None:
         #: The config key along the horizontal axis.
         self.x_key = x_key
         #: The config key along the vertical axis.
@@ -297,19 +319,44 @@ class OutcomeMap(_Inputs):
         #: Vertical axis values.
         self.y = y
         #: One row per cell in map.csv's order: x, y, outcome, period (0
-        #: where not periodic), max_abs_theta, lyapunov (NaN where none),
-        #: has_lyapunov.
+        #: where not periodic), max_abs_theta (NaN where not run), lyapunov
+        #: (NaN where none), has_lyapunov, attractor (-1 where none),
+        #: computed.
         self.cells = cells
+        #: A basin map's periodic attractors, numbered as `attractor`.
+        self.attractors = attractors
+        #: Cells that were run (the others inherited their class).
+        self.cells_run = cells_run
+        #: Cells run that stopped as soon as their class was certain.
+        self.cells_stopped_early = cells_stopped_early
 
     @classmethod
-    def _assemble(cls, parts: Sequence[Mapping[str, Any]]) -> "OutcomeMap":
-        """One map from row chunks computed apart, in row order."""
-        parts = sorted(parts, key=lambda p: tuple(p["rows"]))
-        first = parts[0]
-        cells = concat(
-            [table({"x": np.asarray(p["x"]), "y": np.asarray(p["y"]), **_responses(p)}, CELLS) for p in parts]
+    def _of(cls, d: Mapping[str, Any]) -> "OutcomeMap":
+        """The map from the extension's columns."""
+        cells = table(
+            {
+                "x": np.asarray(d["x"]),
+                "y": np.asarray(d["y"]),
+                **_responses(d),
+                "attractor": np.asarray(d["attractor"]),
+                "computed": np.asarray(d["computed"]),
+            },
+            CELLS,
         )
-        return cls(first["x_key"], first["y_key"], np.asarray(first["x_values"]), np.asarray(first["y_values"]), cells)
+        attractors = [
+            {**a, "point": tuple(a["point"]), "cycle": np.asarray(a["cycle"], dtype=float).reshape(-1, 3)}
+            for a in d["attractors"]
+        ]
+        return cls(
+            d["x_key"],
+            d["y_key"],
+            np.asarray(d["x_values"]),
+            np.asarray(d["y_values"]),
+            cells,
+            attractors,
+            int(d["cells_run"]),
+            int(d["cells_stopped_early"]),
+        )
 
     def _grid(self, name: str) -> np.ndarray:
         return np.asarray(self.cells[name]).reshape(len(self.y), len(self.x))
@@ -326,7 +373,8 @@ class OutcomeMap(_Inputs):
 
     @property
     def max_abs_theta(self) -> np.ndarray:
-        """Largest |Θ| per cell."""
+        """Largest |Θ| per cell over the part of its run computed; NaN
+        where the cell was not run (it inherited its class)."""
         return self._grid("max_abs_theta")
 
     @property
@@ -334,8 +382,20 @@ class OutcomeMap(_Inputs):
         """Largest Lyapunov exponent per unit τ per cell; masked where none."""
         return _masked(self._grid("lyapunov"), self._grid("has_lyapunov"))
 
+    @property
+    def attractor(self) -> np.ma.MaskedArray:
+        """The periodic attractor each cell reaches (its `id` in
+        `attractors`), in a basin map; masked elsewhere."""
+        grid = self._grid("attractor")
+        return _masked(grid, grid >= 0)
+
+    @property
+    def computed(self) -> np.ndarray:
+        """Whether each cell was run (false: it inherited its class)."""
+        return self._grid("computed")
+
     def to_pandas(self) -> Any:
-        """map.csv as a `pandas.DataFrame` (missing entries `pd.NA`). Needs pandas."""
+        """map.csv as a `pandas.DataFrame` (missing entries `pd.NA` or NaN). Needs pandas."""
         import pandas as pd
 
         c = self.cells
@@ -348,29 +408,43 @@ class OutcomeMap(_Inputs):
                 "period": pd.Series(c["period"], dtype="Int64").where(periodic),
                 "max_abs_theta": np.asarray(c["max_abs_theta"]),
                 "lyapunov": pd.Series(c["lyapunov"], dtype="Float64").where(np.asarray(c["has_lyapunov"])),
+                "attractor": pd.Series(c["attractor"], dtype="Int64").where(np.asarray(c["attractor"]) >= 0),
+                "computed": np.asarray(c["computed"]),
             }
         )
 
     def to_xarray(self) -> Any:
         """The map as an `xarray.Dataset` over the dimensions (y key, x
         key), e.g. ("excitation.omega_h", "excitation.a_h"), with outcome,
-        period and lyapunov (NaN where missing) and max_abs_theta, and the
-        inputs as attributes. Needs xarray."""
+        period, lyapunov and attractor (NaN where missing), max_abs_theta,
+        computed, and the inputs and counts as attributes. Needs xarray."""
         xr = _xarray()
         dims = (self.y_key, self.x_key)
+        attractor = self._grid("attractor")
         return xr.Dataset(
             {
                 "outcome": (dims, self.outcome),
                 "period": (dims, _period_float(self._grid("period"), self._grid("outcome"))),
                 "max_abs_theta": (dims, self.max_abs_theta),
                 "lyapunov": (dims, self._grid("lyapunov")),
+                "attractor": (dims, np.where(attractor >= 0, attractor.astype(float), np.nan)),
+                "computed": (dims, self.computed),
             },
             coords={self.y_key: self.y, self.x_key: self.x},
-            attrs=_attrs(getattr(self, "inputs", {})),
+            attrs=_attrs(
+                {
+                    **getattr(self, "inputs", {}),
+                    "cells_run": self.cells_run,
+                    "cells_stopped_early": self.cells_stopped_early,
+                }
+            ),
         )
 
     def __repr__(self) -> str:
-        return f"rocking.OutcomeMap({self.x_key!r} × {self.y_key!r}, {len(self.x)} × {len(self.y)} cells)"
+        return (
+            f"rocking.OutcomeMap({self.x_key!r} × {self.y_key!r}, {len(self.x)} × {len(self.y)} cells, "
+            f"{self.cells_run} run, {len(self.attractors)} attractors)"
+        )
 
 
 @dataclass(frozen=True)

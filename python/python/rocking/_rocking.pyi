@@ -1,7 +1,7 @@
 """Type stubs of the extension module `rocking._rocking` (PyO3)."""
 
 from os import PathLike
-from typing import Any, Callable, Mapping
+from typing import Any, Callable, Iterable, Mapping
 
 __version__: str
 
@@ -94,9 +94,23 @@ def _outcome_map(
     tau_end: float | None = None,
     lyapunov: bool = False,
     threads: int | None = None,
-    rows: tuple[int, int] | None = None,
-    check_only: bool = False,
+    full: bool = False,
+    coarse: int = 64,
+    executor: Callable[[list[int]], Iterable[dict[str, Any]]] | None = None,
     progress: Callable[[int, int], Any] | None = None,
+) -> dict[str, Any]: ...
+def _outcome_cells(
+    scene: Scene,
+    x: tuple[str, float, float, int],
+    y: tuple[str, float, float, int],
+    indices: list[int],
+    *,
+    transient: float = 600.0,
+    tau_end: float | None = None,
+    lyapunov: bool = False,
+    threads: int | None = None,
+    full: bool = False,
+    coarse: int = 64,
 ) -> dict[str, Any]: ...
 def _fragility_runs(
     scene: Scene,

@@ -7,26 +7,31 @@
     ...                              ("excitation.omega_h", 2.0, 12.0, 100))
 
 The work is split into chunks (shards of a sweep's grid, as
-`rocking sweep --shard K/N` splits it; rows of a map), each computed on a
-worker by the same library call as on one machine, and joined in index
-order: the result is identical, number for number, to `rocking.sweep` and
+`rocking sweep --shard K/N` splits it; each batch of a map's cells, which
+the map's engine hands out on the client), each computed on a worker by
+the same library call as on one machine, and joined in index order: the
+result is identical, number for number, to `rocking.sweep` and
 `rocking.outcome_map`. The input is checked on the client first, so bad
 input fails at once with the CLI's message. Workers need `rocking`
 installed and, for record scenes, the record files at the same paths.
 
 A value that fails on a worker raises its `RunError` on the client; when
-several chunks fail, the one raised is the first Dask reports, not
-necessarily the failure with the smallest index that `rocking.sweep`
-(like the CLI) would name.
+several chunks of a sweep or fragility study fail, the one raised is the
+first Dask reports, not necessarily the failure with the smallest index
+that `rocking.sweep` (like the CLI) would name. A map names the same
+failed cell as `rocking.outcome_map`.
 """
 
 from __future__ import annotations
 
-from typing import Any, Sequence
+from typing import TYPE_CHECKING, Any, Iterator
 
 from . import _rocking
 from ._results import Fragility, OutcomeMap, Sweep
 from ._rocking import Scene
+
+if TYPE_CHECKING:
+    from . import Progress
 
 Axis = tuple[str, float, float, int]
 
@@ -51,9 +56,9 @@ def _sweep_task(shard: tuple[int, int], scene: Scene, args: tuple[Any, ...], opt
     return _rocking._sweep(scene, *args, shard=shard, **options)
 
 
-def _map_task(rows: tuple[int, int], scene: Scene, x: Axis, y: Axis, options: dict[str, Any]) -> dict[str, Any]:
-    """Rows j0 ≤ j < j1 of a map, on a worker."""
-    return _rocking._outcome_map(scene, x, y, rows=rows, **options)
+def _cells_task(indices: list[int], scene: Scene, x: Axis, y: Axis, options: dict[str, Any]) -> dict[str, Any]:
+    """Cells `indices` of a map, on a worker, packed in arrays."""
+    return _rocking._outcome_cells(scene, x, y, indices, **options)
 
 
 def sweep(
@@ -97,11 +102,11 @@ def sweep(
     )
 
 
-def _row_chunks(rows: int, chunks: int) -> list[tuple[int, int]]:
-    """`rows` split into `chunks` contiguous ranges of nearly equal length."""
-    chunks = max(1, min(chunks, rows))
-    bounds = [rows * i // chunks for i in range(chunks + 1)]
-    return [(bounds[i], bounds[i + 1]) for i in range(chunks)]
+def _split(indices: list[int], chunks: int) -> list[list[int]]:
+    """`indices` split into `chunks` contiguous runs of nearly equal length."""
+    chunks = max(1, min(chunks, len(indices)))
+    bounds = [len(indices) * i // chunks for i in range(chunks + 1)]
+    return [indices[bounds[i] : bounds[i + 1]] for i in range(chunks)]
 
 
 def outcome_map(
@@ -113,22 +118,55 @@ def outcome_map(
     transient: float = 600.0,
     tau_end: float | None = None,
     lyapunov: bool = False,
+    full: bool = False,
+    coarse: int = 64,
     chunks: int | None = None,
     threads_per_task: int = 1,
+    progress: Progress = None,
 ) -> OutcomeMap:
-    """`rocking.outcome_map` on the cluster behind `client`, split into
-    `chunks` blocks of rows (default: 4 per worker thread, at most one per
-    row)."""
+    """`rocking.outcome_map` on the cluster behind `client`. The map's
+    engine runs here, on the client, as it does on one machine: it hands
+    out batches of cells (with refinement, the coarse lattice first, then
+    the cells where classes meet; with `full=True`, every cell at once),
+    each batch is split into `chunks` tasks (default: 4 per worker thread,
+    at most one per cell) computed on the workers, and their cells go back
+    to the engine. The map is identical to `rocking.outcome_map`'s for any
+    chunking. Each task uses `threads_per_task` threads (1: Dask's worker
+    threads are the parallelism). `progress`: as for `rocking.outcome_map`,
+    reported as tasks finish. A failed cell raises the `RunError` that
+    `rocking.outcome_map` raises (the batch's first failure in cell order)."""
+    from distributed import as_completed
+
+    from . import _Reporter
+
     s = _scene(scene)
     x, y = tuple(x), tuple(y)  # type: ignore[assignment]
-    options: dict[str, Any] = {"transient": transient, "tau_end": tau_end, "lyapunov": lyapunov}
-    ny = len(_rocking._outcome_map(s, x, y, check_only=True, **options)["y_values"])
+    options: dict[str, Any] = {
+        "transient": transient,
+        "tau_end": tau_end,
+        "lyapunov": lyapunov,
+        "full": full,
+        "coarse": coarse,
+    }
     n = chunks if chunks is not None else 4 * _worker_threads(client)
-    options["threads"] = threads_per_task
-    futures = client.map(_map_task, _row_chunks(ny, int(n)), scene=s, x=x, y=y, options=options, pure=False)
-    parts: Sequence[dict[str, Any]] = client.gather(futures)
-    return OutcomeMap._assemble(parts)._keep(
-        scene=s, x_axis=x, y_axis=y, transient=transient, tau_end=_tau_end(s, tau_end), lyapunov_asked=lyapunov
+
+    def executor(indices: list[int]) -> Iterator[dict[str, Any]]:
+        futures = client.map(
+            _cells_task, _split(indices, int(n)), scene=s, x=x, y=y,
+            options={**options, "threads": threads_per_task}, pure=False,
+        )
+        try:
+            for future in as_completed(futures):
+                yield future.result()
+        finally:
+            # Stopped early (a failure, Ctrl-C): the rest is not needed.
+            client.cancel(futures)
+
+    with _Reporter(progress, "outcome_map") as report:
+        data = _rocking._outcome_map(s, x, y, **options, executor=executor, progress=report)
+    return OutcomeMap._of(data)._keep(
+        scene=s, x_axis=x, y_axis=y, transient=transient, tau_end=_tau_end(s, tau_end), lyapunov_asked=lyapunov,
+        full=full, coarse=coarse,
     )
 
 
