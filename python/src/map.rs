@@ -19,7 +19,7 @@ use pyo3::types::{PyDict, PyList};
 use rayon::prelude::*;
 use rocking::analysis::classify::{ClassifyOptions, Response};
 use rocking::analysis::outcome_map::{Axis, BlockMap, COARSE_CELLS, MapPlan, MapRun, OutcomeMap};
-use rocking::analysis::settle::{CellResponse, cell_response};
+use rocking::analysis::settle::CellResponse;
 use rocking::analysis::steady::Window;
 use rocking::io::config;
 use rocking::sim::{Param, Scenario};
@@ -156,16 +156,7 @@ fn check(
 /// needs the whole run; a worker has only the map's specification).
 fn compute(checked: &Checked, spec: &BlockMap<'_>, index: usize) -> Result<CellResponse, String> {
     let (x, y) = checked.xy(index);
-    spec.scenario(x, y)
-        .and_then(|cfg| {
-            cell_response(
-                &cfg,
-                &spec.window,
-                &spec.classify,
-                spec.lyapunov,
-                checked.plan.early_stop,
-            )
-        })
+    spec.cell(x, y, checked.plan.early_stop)
         .map_err(|e| checked.failure(index, e))
 }
 

@@ -167,6 +167,14 @@ impl BlockMap<'_> {
         Ok(Param::apply(self.base, &[(self.x_param, x), (self.y_param, y)])?)
     }
 
+    /// The response of cell (x, y), its run stopped as soon as its class
+    /// is certain when `early` ([`cell_response`]). The one function every
+    /// driver of a map runs per cell, wherever the cell runs.
+    pub fn cell(&self, x: f64, y: f64, early: bool) -> Result<CellResponse, SteadyError> {
+        let cfg = self.scenario(x, y)?;
+        cell_response(&cfg, &self.window, &self.classify, self.lyapunov, early)
+    }
+
     /// Makes and checks every cell's scenario before anything runs.
     pub fn check(&self) -> Result<(), MapError<SteadyError>> {
         for yv in self.y.values() {
@@ -342,7 +350,7 @@ impl<'a> MapRun<'a> {
     /// Computes cell `index` (any thread; pure).
     pub fn compute(&self, index: usize) -> Result<CellResponse, SteadyError> {
         let (x, y) = self.xy(index);
-        cell_at(&self.spec, x, y, self.plan.early_stop)
+        self.spec.cell(x, y, self.plan.early_stop)
     }
 
     /// Records a batch's results (in any order); attractors are identified
@@ -458,11 +466,6 @@ impl<'a> MapRun<'a> {
     }
 }
 
-/// Cell (x, y) of `spec`, stopped early when `early`.
-fn cell_at(spec: &BlockMap<'_>, x: f64, y: f64, early: bool) -> Result<CellResponse, SteadyError> {
-    let cfg = spec.scenario(x, y)?;
-    cell_response(&cfg, &spec.window, &spec.classify, spec.lyapunov, early)
-}
 
 /// Computes the map of `spec` with `plan` on the current rayon pool.
 /// `progress` is told the number of cells, then once per cell computed

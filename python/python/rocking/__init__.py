@@ -225,7 +225,7 @@ def outcome_map(
     lyapunov: bool = False,
     threads: int | None = None,
     full: bool = False,
-    coarse: int = 64,
+    coarse: int = 32,
     progress: Progress = None,
 ) -> OutcomeMap:
     """The outcome map over `x = (key, first, last, count)` and `y` (same),

@@ -119,7 +119,7 @@ def outcome_map(
     tau_end: float | None = None,
     lyapunov: bool = False,
     full: bool = False,
-    coarse: int = 64,
+    coarse: int = 32,
     chunks: int | None = None,
     threads_per_task: int = 1,
     progress: Progress = None,
