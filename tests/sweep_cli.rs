@@ -286,7 +286,7 @@ fn map_writes_its_files_and_rejects_bad_axes() {
     assert_eq!(names, ["map.csv", "map.json", "map.png", "map.svg"]);
     let csv = std::fs::read_to_string(out.join("map.csv")).unwrap();
     let rows: Vec<&str> = csv.lines().collect();
-    assert_eq!(rows[0], "x,y,outcome,period,max_abs_theta,lyapunov");
+    assert_eq!(rows[0], "x,y,outcome,period,max_abs_theta,lyapunov,attractor,computed");
     assert_eq!(rows.len(), 5);
     // A_h = 0.5 cannot lift the block: rest; A_h = 3, A_v = 1: period 1.
     assert!(rows[1].starts_with("1.0,0.5,rest,,"), "{}", rows[1]);
