@@ -214,12 +214,22 @@ pub fn run_with(args: &MapArgs, lyapunov: Option<&LyapunovFn<'_>>) -> Result<(),
         "units": "theta = θ/ψ; lyapunov per unit τ; config: the base configuration, the two axis keys take each cell's values",
     });
     let (sx, sy) = (param_symbol(x_param), param_symbol(y_param));
+    let what = if map.attractors.is_empty() {
+        "Outcome map"
+    } else {
+        "Basins of attraction"
+    };
     let title = format!(
-        "Outcome map over {sx} × {sy}: {}",
+        "{what} over {sx} × {sy}: {}",
         fixed_parameters(&config, &[x_param, y_param])
     );
+    let how = if args.full {
+        "every cell run to the end".to_string()
+    } else {
+        format!("{} run, the rest inherited", map.computed)
+    };
     let subtitle = format!(
-        "{} × {} cells; response from the Poincaré points at {} ≤ τ_k ≤ {}, from the initial state",
+        "{} × {} cells ({how}); response from the Poincaré points at {} ≤ τ_k ≤ {}, from the initial state",
         x.n,
         y.n,
         num(window.transient),

@@ -64,6 +64,8 @@ pub fn param_symbol(param: Param) -> String {
         Param::ImpactE => "e",
         Param::Width => "B",
         Param::Height => "H",
+        Param::Theta0 => "Θ(0)",
+        Param::ThetaDot0 => "Θ'(0)",
         other => other.key(),
     };
     s.to_string()
@@ -91,7 +93,10 @@ pub fn fixed_parameters(cfg: &Scenario, varied: &[Param]) -> String {
             if oh {
                 parts.push(format!("Ω_h = {}", num(x.omega_h)));
             }
-            if ov {
+            if ov && x.omega_v.is_none() && !oh {
+                // Ω_v follows Ω_h, which is varied: it varies with it.
+                parts.push("Ω_v = Ω_h".to_string());
+            } else if ov {
                 parts.push(format!("Ω_v = {}", num(x.omega_v())));
             }
         }
@@ -191,6 +196,16 @@ pub fn legend_entries(responses: impl Iterator<Item = Response>) -> Vec<Response
 mod tests {
     use super::*;
     use crate::io::config::load;
+
+    #[test]
+    fn a_vertical_frequency_that_follows_a_varied_horizontal_one_is_not_shown_fixed() {
+        let cfg = load(Some("fig3"), None, &[]).unwrap();
+        let t = fixed_parameters(&cfg, &[Param::Ah, Param::OmegaH]);
+        assert!(t.contains("Ω_v = Ω_h") && !t.contains("Ω_v = 8"), "{t}");
+        let set = vec!["excitation.omega_v=8".to_string()];
+        let cfg = load(Some("fig3"), None, &set).unwrap();
+        assert!(fixed_parameters(&cfg, &[Param::OmegaH]).contains("Ω_v = 8"));
+    }
 
     #[test]
     fn fig4_title_names_its_fixed_parameters() {
