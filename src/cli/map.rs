@@ -280,12 +280,17 @@ pub fn run_with(args: &MapArgs, lyapunov: Option<&LyapunovFn<'_>>) -> Result<(),
         }
         counts.sort();
         let summary: Vec<String> = counts.iter().map(|(n, c)| format!("{n}: {c}")).collect();
+        let total = x.n * y.n;
         let how = if args.full {
             "every cell run over its whole window".to_string()
+        } else if map.computed == total {
+            format!("every cell run, {} stopped early", map.stopped_early)
         } else {
             format!(
-                "{} cells run ({} stopped early), the rest inherited from uniform neighbourhoods",
-                map.computed, map.stopped_early
+                "{} cells run, {} of them stopped early; {} inherited from uniform neighbourhoods",
+                map.computed,
+                map.stopped_early,
+                total - map.computed
             )
         };
         crate::say!(
