@@ -556,6 +556,16 @@ impl OutcomeMapView {
         }
     }
 
+    /// Says so when the map's thread ended without finishing (it panicked:
+    /// the panic hook has printed why), instead of showing it as still
+    /// computing.
+    fn check_alive(&mut self) {
+        let died = self.mapper.as_ref().is_some_and(|m| m.finished() && !m.has_pending());
+        if died && !self.done && self.invalid.is_none() {
+            self.invalid = Some("the map stopped: its thread ended before the map was finished".into());
+        }
+    }
+
     /// Rebuilds the texture from the refiner's picture; a cell computed in
     /// the batch under way shows its own class before its label arrives
     /// (in a basin map only when not periodic: its attractor is not known
@@ -620,6 +630,7 @@ impl OutcomeMapView {
             self.range_from(cfg);
         }
         self.receive();
+        self.check_alive();
         self.controls(ui, cfg);
         let key = self.wanted(settings);
         if self.key.as_ref() != Some(&key) {

@@ -177,21 +177,20 @@ impl OutcomeMapView {
                 ui.label(if n > 0 { text } else { text.weak() });
             }
         });
-        if self.basin {
-            ui.horizontal_wrapped(|ui| {
-                for a in self.attractors() {
-                    let n = self
-                        .attractor_counts
-                        .iter()
-                        .find(|(id, _)| *id == a.id)
-                        .map_or(0, |(_, n)| *n);
-                    swatch(ui, attractor_color(a.id));
-                    ui.label(attractor_label(a)).on_hover_text(format!(
-                        "Periodic attractor {}: its cycle's section point with the largest Θ; {n} cells of the map \
-                         reach it",
-                        a.id
-                    ));
-                }
+        // One attractor a line: its name is long, and wrapped it would
+        // split from its swatch.
+        for a in self.attractors().iter().filter(|_| self.basin) {
+            let n = self
+                .attractor_counts
+                .iter()
+                .find(|(id, _)| *id == a.id)
+                .map_or(0, |(_, n)| *n);
+            ui.horizontal(|ui| {
+                swatch(ui, attractor_color(a.id));
+                ui.label(attractor_label(a)).on_hover_text(format!(
+                    "Periodic attractor {}: its cycle's section point with the largest Θ; {n} cells of the map reach it",
+                    a.id
+                ));
             });
         }
     }
