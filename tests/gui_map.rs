@@ -367,21 +367,31 @@ fn a_hidden_outcome_map_stops_and_a_bad_range_is_refused() {
 /// of the default scene over the view's default ranges and window, and
 /// the cells refinement computed. A measurement, not a check: run with
 /// `cargo test --release --test gui_map -- --ignored --nocapture` (set
-/// `OUTCOME_MAP_PNG=path` to keep a rendering).
+/// `OUTCOME_MAP_PNG=path` to keep a rendering, and
+/// `OUTCOME_MAP_SCENE="fig4 excitation.a_v=1.0"` for another preset and
+/// overrides).
 #[test]
 #[ignore]
 fn measure_the_default_outcome_map() {
+    let scene = || match std::env::var("OUTCOME_MAP_SCENE") {
+        Ok(words) => {
+            let mut words = words.split_whitespace();
+            let preset = words.next().unwrap_or("default").to_string();
+            let sets: Vec<&str> = words.collect();
+            gui_common::scene(&preset, &sets)
+        }
+        Err(_) => scene(),
+    };
     // With `OUTCOME_MAP_PNG=path`, rendered on wgpu and saved there.
     let png = std::env::var("OUTCOME_MAP_PNG").ok();
-    let mut h = if png.is_some() {
-        let (s, c) = scene();
-        Harness::builder()
-            .with_size(SIZE)
-            .wgpu()
-            .build_eframe(move |cc| RockingApp::with_stream(cc, s, c, Vec::new()))
+    let (s, c) = scene();
+    let builder = Harness::builder().with_size(SIZE);
+    let builder = if png.is_some() {
+        builder.wgpu()
     } else {
-        quiet()
+        builder.with_step_dt(0.05)
     };
+    let mut h = builder.build_eframe(move |cc| RockingApp::with_stream(cc, s, c, Vec::new()));
     // `OUTCOME_MAP_BASIN=1`: the Θ₀ × Θ'₀ basin instead; `OUTCOME_MAP_N=64`:
     // another resolution.
     if std::env::var("OUTCOME_MAP_BASIN").is_ok() {
@@ -404,8 +414,8 @@ fn measure_the_default_outcome_map() {
         std::thread::sleep(Duration::from_millis(20));
         if last.elapsed() > Duration::from_secs(30) {
             last = Instant::now();
-            let (c, t) = h.state().outcome_map().computed();
-            println!("{:.0} s: {c} of {t} cells computed", start.elapsed().as_secs_f64());
+            let (c, t) = h.state().outcome_map().progress();
+            println!("{:.0} s: {c} of {t} cells done", start.elapsed().as_secs_f64());
         }
     }
     let m = h.state().outcome_map();
@@ -413,13 +423,16 @@ fn measure_the_default_outcome_map() {
     let (computed, total) = m.computed();
     println!(
         "{n} × {n} on {threads} threads: first level drawn after {first:.1} s, whole map after {all:.1} s; \
-         {computed} of {total} cells computed ({share:.1} %); classes drawn {drawn:?}",
+         {computed} of {total} cells computed ({share:.1} %), {stopped} stopped early; classes drawn {drawn:?}; \
+         attractors {attractors:?}",
         n = m.resolution,
         threads = rayon::current_num_threads(),
         first = first.unwrap_or_default().as_secs_f64(),
         all = all.unwrap_or_default().as_secs_f64(),
         share = 100.0 * computed as f64 / total as f64,
         drawn = m.drawn(),
+        stopped = m.stopped_early(),
+        attractors = m.drawn_attractors(),
     );
     if let Some(path) = png {
         h.step();
