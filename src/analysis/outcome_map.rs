@@ -404,6 +404,18 @@ impl<'a> MapRun<'a> {
         }
     }
 
+    /// The attractors found so far, numbered as [`finish`](Self::finish)
+    /// would number them from the cells known so far (by first cell in row
+    /// order), and the number of each discovery number (a [`Label`]'s
+    /// `attractor`, index into the second vector). After the last batch
+    /// these are `finish`'s attractors. Empty for a parameter map.
+    pub fn attractors(&self) -> (Vec<Attractor>, Vec<u32>) {
+        let labels: Vec<Option<u32>> = (0..self.results.len())
+            .map(|index| self.label(index).and_then(|l| l.attractor))
+            .collect();
+        self.catalogue.numbered(&labels)
+    }
+
     /// Lattice stride of the batch last handed out (1 when every cell is
     /// computed at once).
     pub fn stride(&self) -> usize {

@@ -5,13 +5,19 @@
 //! refined where classes meet. A click on a cell loads that scene.
 //!
 //! Contract:
-//! - The view does no physics and no classification: each cell is the
-//!   analysis layer's steady response (run by [`mapper`] on a named
-//!   thread), and which cells are computed is the analysis layer's
-//!   refinement schedule ([`crate::analysis::map_refine`]), applied to
-//!   the legend's classes ([`Slot`]: period 3 and period 6 share a colour,
-//!   so the boundary between them is not refined). Cells inside a uniform
-//!   block inherit its class without being computed; the panel says so.
+//! - The view does no physics and no classification: the map is the
+//!   analysis layer's map engine ([`MapRun`](crate::analysis::outcome_map::MapRun),
+//!   the one `rocking map` and Python drive) with the fast plan, run by
+//!   [`mapper`] on a named thread: each cell stops once its class is
+//!   certain, and cells are computed coarse first and then where labels
+//!   ([`Label`]: the exact class and, in a basin map, the attractor) meet.
+//!   The finished map is `compute_map` with that plan, cell for cell.
+//!   Cells inside a uniform block inherit its label without being
+//!   computed; the panel says so, and counts them as done.
+//! - Cells are coloured by their legend class ([`Slot`]); in a basin map
+//!   (both keys initial-state keys) a periodic cell is coloured by its
+//!   attractor instead, with the colours and legend text of `rocking
+//!   map`'s figure, and the attractors numbered as it numbers them.
 //! - A map is computed for the scene's explicit keys with the two mapped
 //!   keys free. It restarts when any other key of the scene changes, or
 //!   when the axes, resolution or window change; setting a mapped key
@@ -27,7 +33,7 @@ mod draw;
 pub mod mapper;
 mod slot;
 
-pub use self::slot::Slot;
+pub use self::slot::{Slot, attractor_color};
 
 use std::time::{Duration, Instant};
 
@@ -35,9 +41,10 @@ use egui::{Color32, TextureHandle, TextureOptions};
 use egui_plot::{PlotPoint, PlotTransform};
 
 use self::mapper::{Class, Mapper, Reply, Request};
+use crate::analysis::attractor::Attractor;
 use crate::analysis::classify::ClassifyOptions;
 use crate::analysis::map_refine::{Refiner, Source};
-use crate::analysis::outcome_map::Axis;
+use crate::analysis::outcome_map::{Axis, HALO, Label};
 use crate::analysis::steady::Window;
 use crate::gui::panels::bifurcation::SHORT_WINDOW;
 use crate::gui::settings::Settings;
@@ -59,8 +66,7 @@ pub const KEYS: [&str; 9] = [
 ];
 
 /// Cells per axis to choose from. 128 is the default: fine enough to see
-/// the structure of the overturning map, 35–100 s on a shared two-core
-/// machine for the default scene (optimised build).
+/// the structure of the overturning map.
 pub const RESOLUTIONS: [usize; 4] = [32, 64, 128, 256];
 
 /// Default cells per axis.
@@ -145,9 +151,21 @@ pub struct OutcomeMapView {
     key: Option<Key>,
     mapper: Option<Mapper>,
     retired: Vec<Mapper>,
-    refiner: Option<Refiner<Slot>>,
-    /// The exact class of each computed cell (the refiner keeps the slot).
+    /// The mirror of the engine's refinement, fed the engine's labels.
+    refiner: Option<Refiner<Label>>,
+    /// The exact class of each computed cell, as soon as it arrives
+    /// (its label comes when its whole batch is recorded).
     responses: Vec<Option<Class>>,
+    /// Whether the current map is a basin map (attractors told apart).
+    basin: bool,
+    /// A basin map's attractors so far, numbered as `rocking map` numbers
+    /// them, and the number of each discovery number.
+    attractors: (Vec<Attractor>, Vec<u32>),
+    /// Cells drawn per attractor in the last picture (id, cells).
+    attractor_counts: Vec<(u32, usize)>,
+    /// Cells of the current map received, and how many of them stopped
+    /// early.
+    received: (usize, usize),
     axes: Option<(Axis, Axis)>,
     texture: Option<TextureHandle>,
     transform: Option<PlotTransform>,
@@ -187,6 +205,10 @@ impl Default for OutcomeMapView {
             retired: Vec::new(),
             refiner: None,
             responses: Vec::new(),
+            basin: false,
+            attractors: (Vec::new(), Vec::new()),
+            attractor_counts: Vec::new(),
+            received: (0, 0),
             axes: None,
             texture: None,
             transform: None,
@@ -258,10 +280,63 @@ impl OutcomeMapView {
         &self.counts
     }
 
-    /// Cells of the current map computed so far, and its total cells.
+    /// Cells of the current map computed so far (their batch recorded),
+    /// and its total cells.
     pub fn computed(&self) -> (usize, usize) {
         let total = self.axes.as_ref().map_or(0, |(x, y)| x.n * y.n);
         (self.refiner.as_ref().map_or(0, Refiner::computed), total)
+    }
+
+    /// Cells of the current map done (computed as they arrive, and
+    /// inherited), and its total cells: the progress line.
+    pub fn progress(&self) -> (usize, usize) {
+        let total = self.axes.as_ref().map_or(0, |(x, y)| x.n * y.n);
+        let inherited = self.refiner.as_ref().map_or(0, Refiner::inherited);
+        (self.received.0 + inherited, total)
+    }
+
+    /// Computed cells of the current map whose run stopped early (their
+    /// class was certain before the end of the window).
+    pub fn stopped_early(&self) -> usize {
+        self.received.1
+    }
+
+    /// Whether the current map tells attractors apart (both keys are
+    /// initial-state keys).
+    pub fn is_basin(&self) -> bool {
+        self.basin
+    }
+
+    /// A basin map's attractors so far, numbered from 1 by their first
+    /// cell in row order (as `rocking map` numbers them).
+    pub fn attractors(&self) -> &[Attractor] {
+        &self.attractors.0
+    }
+
+    /// Cells drawn in the last picture per attractor (id, cells), by id.
+    pub fn drawn_attractors(&self) -> &[(u32, usize)] {
+        &self.attractor_counts
+    }
+
+    /// The label of cell (i, j) if known (computed or inherited), with a
+    /// basin map's attractor numbered as [`attractors`](Self::attractors)
+    /// numbers it.
+    pub fn label(&self, i: usize, j: usize) -> Option<Label> {
+        let r = self.refiner.as_ref()?;
+        let (x, y) = self.axes.as_ref()?;
+        if i >= x.n || j >= y.n {
+            return None;
+        }
+        let label = r.class(j * x.n + i)?;
+        Some(Label {
+            response: label.response,
+            attractor: label.attractor.map(|d| self.attractor_id(d)),
+        })
+    }
+
+    /// The id of discovery number `d` (0 before the attractors arrive).
+    fn attractor_id(&self, d: u32) -> u32 {
+        self.attractors.1.get(d as usize).copied().unwrap_or(0)
     }
 
     /// Time from the start of the current map to its coarse level drawn
@@ -280,7 +355,7 @@ impl OutcomeMapView {
             return None;
         }
         let c = j * x.n + i;
-        r.class(c).map(|k| (k, r.source(c)))
+        r.class(c).map(|k| (Slot::of(k.response), r.source(c)))
     }
 
     /// The exact class of cell (i, j) if it was computed (`Some(None)`:
@@ -357,6 +432,10 @@ impl OutcomeMapView {
         }
         self.refiner = None;
         self.responses.clear();
+        self.basin = false;
+        self.attractors = (Vec::new(), Vec::new());
+        self.attractor_counts.clear();
+        self.received = (0, 0);
         self.axes = None;
         self.failed.clear();
         self.counts.clear();
@@ -372,7 +451,9 @@ impl OutcomeMapView {
                 let nx = req.x.n;
                 let ny = req.y.n;
                 self.axes = Some((req.x.clone(), req.y.clone()));
-                self.refiner = Some(Refiner::new(nx, ny, req.coarse, mapper::HALO));
+                self.basin = req.is_basin();
+                // The engine's refiner has this size, coarse level and halo.
+                self.refiner = Some(Refiner::new(nx, ny, req.coarse, HALO));
                 self.responses = vec![None; nx * ny];
                 let ctx = ctx.clone();
                 match mapper::start(req, Box::new(move || ctx.request_repaint())) {
@@ -434,16 +515,32 @@ impl OutcomeMapView {
                     self.level = (stride, 0, cells);
                     self.dirty = true;
                 }
-                Reply::Cell { index, class, error } => {
+                Reply::Cell {
+                    index,
+                    class,
+                    stopped_early,
+                    error,
+                } => {
                     self.cells += 1;
                     self.level.1 += 1;
-                    r.record(index, Slot::of(class));
+                    self.received.0 += 1;
+                    self.received.1 += usize::from(stopped_early);
                     if let Some(slot) = self.responses.get_mut(index) {
                         *slot = Some(class);
                     }
                     if let Some(e) = error {
                         self.failed.push((index, e));
                     }
+                    self.dirty = true;
+                }
+                Reply::Labels(labels) => {
+                    for (index, label) in labels {
+                        r.record(index, label);
+                    }
+                    self.dirty = true;
+                }
+                Reply::Attractors { attractors, ids } => {
+                    self.attractors = (attractors, ids);
                     self.dirty = true;
                 }
                 Reply::Invalid(e) => self.invalid = Some(e),
@@ -459,7 +556,20 @@ impl OutcomeMapView {
         }
     }
 
-    /// Rebuilds the texture from the refiner's picture.
+    /// Says so when the map's thread ended without finishing (it panicked:
+    /// the panic hook has printed why), instead of showing it as still
+    /// computing.
+    fn check_alive(&mut self) {
+        let died = self.mapper.as_ref().is_some_and(|m| m.finished() && !m.has_pending());
+        if died && !self.done && self.invalid.is_none() {
+            self.invalid = Some("the map stopped: its thread ended before the map was finished".into());
+        }
+    }
+
+    /// Rebuilds the texture from the refiner's picture; a cell computed in
+    /// the batch under way shows its own class before its label arrives
+    /// (in a basin map only when not periodic: its attractor is not known
+    /// yet).
     fn repaint(&mut self, ctx: &egui::Context) {
         if !self.dirty {
             return;
@@ -472,15 +582,36 @@ impl OutcomeMapView {
         let (nx, ny) = (r.nx(), r.ny());
         let picture = r.picture();
         let mut counts = [0usize; Slot::ALL.len()];
+        let mut by_attractor: Vec<(u32, usize)> = Vec::new();
         let mut pixels = vec![Color32::TRANSPARENT; nx * ny];
-        for (c, class) in picture.iter().enumerate() {
-            if let Some(slot) = *class {
-                counts[Slot::ALL.iter().position(|s| *s == slot).unwrap_or(0)] += 1;
-                // Texture rows go down, the map's y goes up.
-                let (i, j) = (c % nx, c / nx);
-                pixels[(ny - 1 - j) * nx + i] = slot.color();
-            }
+        for (c, label) in picture.iter().enumerate() {
+            let (slot, attractor) = match (label, self.responses.get(c).copied().flatten()) {
+                (_, Some(class)) if r.class(c).is_none() && !(self.basin && Slot::of(class).is_periodic()) => {
+                    (Slot::of(class), None)
+                }
+                (Some(l), _) => (
+                    Slot::of(l.response),
+                    l.attractor.filter(|_| self.basin).map(|d| self.attractor_id(d)),
+                ),
+                (None, _) => continue,
+            };
+            counts[Slot::ALL.iter().position(|s| *s == slot).unwrap_or(0)] += 1;
+            let color = match attractor {
+                Some(id) => {
+                    match by_attractor.iter_mut().find(|(a, _)| *a == id) {
+                        Some((_, n)) => *n += 1,
+                        None => by_attractor.push((id, 1)),
+                    }
+                    attractor_color(id)
+                }
+                None => slot.color(),
+            };
+            // Texture rows go down, the map's y goes up.
+            let (i, j) = (c % nx, c / nx);
+            pixels[(ny - 1 - j) * nx + i] = color;
         }
+        by_attractor.sort_unstable();
+        self.attractor_counts = by_attractor;
         self.counts = Slot::ALL.into_iter().zip(counts).filter(|(_, n)| *n > 0).collect();
         let image = egui::ColorImage::new([nx, ny], pixels);
         if let Some(t) = self.texture.as_mut().filter(|t| t.size() == [nx, ny]) {
@@ -499,6 +630,7 @@ impl OutcomeMapView {
             self.range_from(cfg);
         }
         self.receive();
+        self.check_alive();
         self.controls(ui, cfg);
         let key = self.wanted(settings);
         if self.key.as_ref() != Some(&key) {

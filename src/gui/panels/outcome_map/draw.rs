@@ -6,10 +6,12 @@ use crate::gui::panels::axes;
 use egui::{Color32, TextureHandle};
 use egui_plot::{HLine, Plot, PlotBounds, PlotImage, PlotPoint, VLine};
 
+use super::slot::attractor_color;
 use super::{AxisChoice, KEYS, OutcomeMapView, RESOLUTIONS, Slot, current_value, default_range};
 use crate::analysis::map_refine::Source;
 use crate::analysis::steady::Window;
 use crate::gui::panels::bifurcation::{PAPER_WINDOW, SHORT_WINDOW};
+use crate::plot::outcome_map::attractor_label;
 use crate::sim::Scenario;
 
 impl OutcomeMapView {
@@ -125,29 +127,31 @@ impl OutcomeMapView {
             return;
         }
         let (computed, total) = self.computed();
+        let (done, _) = self.progress();
         let share = if total > 0 {
             100.0 * computed as f64 / total as f64
         } else {
             0.0
         };
+        let stopped = self.stopped_early();
         let line = if self.done {
             let took = self
                 .took
                 .map_or(String::new(), |t| format!(" in {:.1} s", t.as_secs_f64()));
             format!(
-                "{n} × {n} cells{took}; {computed} computed ({share:.0} %), the rest refined where classes meet",
+                "{n} × {n} cells{took}; {computed} computed ({share:.0} %, {stopped} stopped once their class was \
+                 certain), the rest refined where classes meet",
                 n = self.resolution
             )
         } else {
             let (stride, got, of) = self.level;
-            format!(
-                "computing: level {stride} cells per block, {got} / {of}; {computed} of {total} cells computed so far"
-            )
+            format!("computing: {done} of {total} cells done; level {stride} cells per block, {got} / {of} computed")
         };
         ui.horizontal_wrapped(|ui| {
             ui.label(line).on_hover_text(
                 "Computed coarse first, then refined where classes meet: a cell whose surroundings at the level above \
-                 all have one class inherits it without being run",
+                 all have one class inherits it without being run (it counts as done). A cell's run stops as soon as \
+                 its class is certain; chaotic and quasiperiodic cells run their whole window.",
             );
             if let Some((_, e)) = self.failed.first() {
                 ui.colored_label(red, format!("{} failed, first: {e}", self.failed.len()));
@@ -155,19 +159,40 @@ impl OutcomeMapView {
         });
     }
 
+    /// The classes, and in a basin map its attractors instead of the
+    /// periodic classes (their cells are coloured by attractor).
     pub(super) fn legend(&self, ui: &mut egui::Ui) {
+        let swatch = |ui: &mut egui::Ui, color: Color32| {
+            let (r, _) = ui.allocate_exact_size(egui::vec2(12.0, 12.0), egui::Sense::hover());
+            ui.painter().rect_filled(r, 2.0, color);
+        };
         ui.horizontal_wrapped(|ui| {
             for slot in Slot::ALL {
                 let n = self.counts.iter().find(|(s, _)| *s == slot).map_or(0, |(_, n)| *n);
-                if slot == Slot::Failed && n == 0 {
+                if (slot == Slot::Failed && n == 0) || (self.basin && slot.is_periodic()) {
                     continue;
                 }
-                let (r, _) = ui.allocate_exact_size(egui::vec2(12.0, 12.0), egui::Sense::hover());
-                ui.painter().rect_filled(r, 2.0, slot.color());
+                swatch(ui, slot.color());
                 let text = egui::RichText::new(slot.name());
                 ui.label(if n > 0 { text } else { text.weak() });
             }
         });
+        // One attractor a line: its name is long, and wrapped it would
+        // split from its swatch.
+        for a in self.attractors().iter().filter(|_| self.basin) {
+            let n = self
+                .attractor_counts
+                .iter()
+                .find(|(id, _)| *id == a.id)
+                .map_or(0, |(_, n)| *n);
+            ui.horizontal(|ui| {
+                swatch(ui, attractor_color(a.id));
+                ui.label(attractor_label(a)).on_hover_text(format!(
+                    "Periodic attractor {}: its cycle's section point with the largest Θ; {n} cells of the map reach it",
+                    a.id
+                ));
+            });
+        }
     }
 
     pub(super) fn plot(&mut self, ui: &mut egui::Ui, cfg: &Scenario) -> Option<[(String, f64); 2]> {
@@ -225,15 +250,24 @@ impl OutcomeMapView {
         let hovered = resp.inner.and_then(index);
         let clicked = resp.response.clicked();
         if let Some((i, j)) = hovered {
+            let attractor = self
+                .label(i, j)
+                .and_then(|l| l.attractor)
+                .and_then(|id| self.attractors().iter().find(|a| a.id == id))
+                .map_or(String::new(), |a| format!(", attractor {}", attractor_label(a)));
             let what = match self.cell(i, j) {
                 Some((slot, source)) => match (source, self.response(i, j)) {
-                    (Source::Computed, Some(Some(r))) => format!("{r} (computed)"),
-                    (Source::Computed, _) => format!("{} (computed)", slot.name()),
+                    (Source::Computed, Some(Some(r))) => format!("{r}{attractor} (computed)"),
+                    (Source::Computed, _) => format!("{}{attractor} (computed)", slot.name()),
                     (Source::Inherited | Source::Unknown, _) => {
-                        format!("{} (inherited: refined where classes meet)", slot.name())
+                        format!("{}{attractor} (inherited: refined where classes meet)", slot.name())
                     }
                 },
-                None => "not yet computed".to_string(),
+                None => match self.response(i, j) {
+                    Some(Some(r)) => format!("{r} (computed)"),
+                    Some(None) => "failed (computed)".to_string(),
+                    None => "not yet computed".to_string(),
+                },
             };
             resp.response.on_hover_text(format!(
                 "{} = {:.4}, {} = {:.4}: {what}\nclick to load this scene",

@@ -1,25 +1,32 @@
 //! The outcome map's background computation: one named thread per map,
-//! which walks the analysis layer's refinement schedule
-//! ([`Refiner`]) level by level, computes each level's cells on all cores
-//! (rayon) and sends each cell's class back as soon as it is known.
+//! which drives the analysis layer's map engine ([`MapRun`], the one
+//! `rocking map` and Python drive) with the fast plan: each cell stops as
+//! soon as its class is certain, and the map is computed coarse first and
+//! then refined where labels meet. Each batch's cells run on all cores
+//! (rayon) and each cell's class is sent back as soon as it is known.
 //!
 //! Contract:
-//! - No physics here: every cell is [`steady_response`] of the
+//! - No physics here: every cell is [`MapRun::compute`] of the
 //!   [`BlockMap`]'s scenario for that cell, exactly as `rocking map`
-//!   computes it (from the configuration's initial state).
+//!   computes it (from the configuration's initial state), and which cells
+//!   are computed is the engine's schedule.
 //! - Every cell of the full grid is checked before anything runs (as the
 //!   CLI does); a refusal is one [`Reply::Invalid`] naming both keys.
-//! - Replies, in order: per level, [`Reply::Level`] (its stride and the
+//! - Replies, in order: per batch, [`Reply::Level`] (its stride and the
 //!   number of cells to compute), then one [`Reply::Cell`] per cell in
-//!   completion order; after the last level [`Reply::Done`]. The view
-//!   mirrors the schedule with its own [`Refiner`] (the schedule depends
-//!   only on the classes, which it receives), so it never needs the
-//!   thread's copy.
-//! - Refinement tells cells apart by their legend class ([`Slot`]): the
-//!   picture shows period 3 and period 6 in one colour, so a boundary
-//!   between them is not refined. A failed cell is a class of its own:
-//!   its neighbours are refined, and the view paints it as failed. Each
-//!   computed cell's exact class is still sent.
+//!   completion order, then (once the engine has recorded the batch)
+//!   [`Reply::Labels`] with each of the batch's cells' [`Label`] and, in a
+//!   basin map, [`Reply::Attractors`]; after the last batch
+//!   [`Reply::Done`]. The view mirrors the schedule with its own
+//!   [`Refiner`](crate::analysis::map_refine::Refiner) fed the same labels
+//!   (the schedule depends only on them), so it never needs the thread's
+//!   copy. Attractor numbers are known only once a batch is recorded
+//!   (the engine numbers them in index order), hence the labels after the
+//!   cells.
+//! - Refinement tells cells apart by their [`Label`]: the exact class and,
+//!   in a basin map, the attractor, as in `rocking map`. A failed cell is
+//!   a class of its own: its neighbours are refined, and the view paints
+//!   it as failed.
 //! - Cancellation: a flag checked before and after each cell. A cancelled
 //!   map finishes the cells already running (at most one per core) and
 //!   sends nothing more.
@@ -29,11 +36,11 @@
 
 use rayon::prelude::*;
 
-use super::Slot;
+use crate::analysis::attractor::Attractor;
 use crate::analysis::classify::{ClassifyOptions, Response};
-use crate::analysis::map_refine::Refiner;
-use crate::analysis::outcome_map::{Axis, BlockMap};
-use crate::analysis::steady::{Window, steady_response};
+use crate::analysis::outcome_map::{Axis, BlockMap, Label, MapPlan, MapRun};
+use crate::analysis::settle::CellResponse;
+use crate::analysis::steady::Window;
 use crate::sim::job::{Job, Link, Waker};
 use crate::sim::{Param, Scenario};
 
@@ -41,11 +48,6 @@ use crate::sim::{Param, Scenario};
 /// waits on the view; larger ones wait for it to drain (it drains every
 /// frame).
 pub const CAPACITY: usize = 4096;
-
-/// Lattice lines around a cell that must agree before it inherits their
-/// class (the [`Refiner`]'s halo): 1 catches boundaries that bulge between
-/// two lattice lines, at about twice the cells of 0 along each boundary.
-pub const HALO: usize = 1;
 
 /// What to compute.
 #[derive(Clone, Debug)]
@@ -66,17 +68,48 @@ pub struct Request {
     pub coarse: usize,
 }
 
+impl Request {
+    /// The engine's description of this map.
+    pub fn spec(&self) -> BlockMap<'_> {
+        BlockMap {
+            base: &self.base,
+            x_param: self.x_param,
+            x: &self.x,
+            y_param: self.y_param,
+            y: &self.y,
+            window: self.window,
+            classify: ClassifyOptions::default(),
+            lyapunov: None,
+        }
+    }
+
+    /// The plan the panel computes with: early stopping, refinement from
+    /// `coarse`.
+    pub fn plan(&self) -> MapPlan {
+        MapPlan {
+            early_stop: true,
+            coarse: Some(self.coarse),
+        }
+    }
+
+    /// Whether attractors are told apart (both keys are initial-state
+    /// keys), as the engine decides.
+    pub fn is_basin(&self) -> bool {
+        self.x_param.is_initial_state() && self.y_param.is_initial_state()
+    }
+}
+
 /// The class of a computed cell; `None` when its run failed.
 pub type Class = Option<Response>;
 
 /// What the map thread sends.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Reply {
-    /// A level begins: its stride and the number of cells it computes.
+    /// A batch begins: its stride and the number of cells it computes.
     Level {
         /// Lattice stride, cells (the coarse one first, then halving to 1).
         stride: usize,
-        /// Cells computed at this level.
+        /// Cells computed in this batch.
         cells: usize,
     },
     /// One cell done.
@@ -85,12 +118,28 @@ pub enum Reply {
         index: usize,
         /// Its class (`None`: the run failed, see `error`).
         class: Class,
+        /// Whether its run stopped before the end of its window (its class
+        /// was certain).
+        stopped_early: bool,
         /// Why the run failed, one line.
         error: Option<String>,
     },
+    /// The batch's cells as the engine recorded them (index, label), for
+    /// the view's mirror of the schedule. A label's attractor is its
+    /// discovery number: [`Reply::Attractors`] numbers it.
+    Labels(Vec<(usize, Label)>),
+    /// A basin map's attractors so far, numbered by their first cell in
+    /// row order as `rocking map` numbers them, and the number of each
+    /// discovery number.
+    Attractors {
+        /// The attractors, ids 1, 2, ….
+        attractors: Vec<Attractor>,
+        /// `ids[d]`: the id of discovery number `d`.
+        ids: Vec<u32>,
+    },
     /// The map was refused before anything ran, one line naming the keys.
     Invalid(String),
-    /// Every level has been sent.
+    /// Every batch has been sent.
     Done,
 }
 
@@ -106,17 +155,7 @@ pub fn start(req: Request, waker: Waker) -> Result<Mapper, String> {
 
 fn run(req: &Request, link: &Link<Reply>) {
     let send = |r: Reply| link.send(r).is_ok();
-    let classify = ClassifyOptions::default();
-    let spec = BlockMap {
-        base: &req.base,
-        x_param: req.x_param,
-        x: &req.x,
-        y_param: req.y_param,
-        y: &req.y,
-        window: req.window,
-        classify,
-        lyapunov: None,
-    };
+    let spec = req.spec();
     if let Err(e) = spec.check() {
         send(Reply::Invalid(format!(
             "{} = {}, {} = {}: {}",
@@ -124,41 +163,69 @@ fn run(req: &Request, link: &Link<Reply>) {
         )));
         return;
     }
-    let nx = req.x.n;
-    let mut refiner: Refiner<Slot> = Refiner::new(nx, req.y.n, req.coarse, HALO);
-    while let Some(cells) = refiner.next_level() {
-        let stride = refiner.stride().unwrap_or(1);
+    let mut run = MapRun::new(spec, req.plan());
+    while let Some((cells, _inherited)) = run.next_batch() {
         if !send(Reply::Level {
-            stride,
+            stride: run.stride(),
             cells: cells.len(),
         }) {
             return;
         }
-        let results: Vec<Option<(usize, Class)>> = cells
+        let engine = &run;
+        let results: Vec<Option<(usize, Option<CellResponse>)>> = cells
             .par_iter()
             .map(|&index| {
                 if link.cancelled() {
                     return None;
                 }
-                let (x, y) = (req.x.value(index % nx), req.y.value(index / nx));
-                let out = spec
-                    .scenario(x, y)
-                    .and_then(|cfg| steady_response(&cfg, &req.window, &classify, None));
+                let out = engine.compute(index);
                 if link.cancelled() {
                     return None;
                 }
-                let (class, error) = match out {
-                    Ok(s) => (Some(s.response), None),
-                    Err(e) => (None, Some(e.to_string())),
+                let reply = match &out {
+                    Ok(c) => Reply::Cell {
+                        index,
+                        class: Some(c.response),
+                        stopped_early: c.stopped_at.is_some(),
+                        error: None,
+                    },
+                    Err(e) => Reply::Cell {
+                        index,
+                        class: None,
+                        stopped_early: false,
+                        error: Some(e.to_string()),
+                    },
                 };
-                send(Reply::Cell { index, class, error }).then_some((index, class))
+                send(reply).then_some((index, out.ok()))
             })
             .collect();
         if link.cancelled() {
             return;
         }
-        for (index, class) in results.into_iter().flatten() {
-            refiner.record(index, Slot::of(class));
+        let mut computed = Vec::with_capacity(results.len());
+        for (index, cell) in results.into_iter().flatten() {
+            match cell {
+                Some(c) => computed.push((index, c)),
+                None => run.record_failed(index),
+            }
+        }
+        run.record(computed);
+        let failed = Label {
+            response: None,
+            attractor: None,
+        };
+        let labels = cells
+            .iter()
+            .map(|&index| (index, run.label(index).unwrap_or(failed)))
+            .collect();
+        if !send(Reply::Labels(labels)) {
+            return;
+        }
+        if run.is_basin() {
+            let (attractors, ids) = run.attractors();
+            if !send(Reply::Attractors { attractors, ids }) {
+                return;
+            }
         }
     }
     send(Reply::Done);

@@ -1,5 +1,6 @@
 //! The classes the outcome map tells apart, with their legend names and
-//! colours.
+//! colours, and the colours of a basin map's attractors (the figure's, from
+//! [`crate::plot::outcome_map`], so the panel and `rocking map` agree).
 
 use egui::Color32;
 
@@ -29,6 +30,13 @@ pub enum Slot {
     Failed,
 }
 
+/// The colour of attractor `id` (from 1): the one `rocking map`'s figure
+/// gives it.
+pub fn attractor_color(id: u32) -> Color32 {
+    let c = crate::plot::outcome_map::attractor_colour(id);
+    Color32::from_rgb(c.0, c.1, c.2)
+}
+
 impl Slot {
     /// Every slot, in legend order.
     pub const ALL: [Slot; 9] = [
@@ -55,6 +63,15 @@ impl Slot {
             Some(Response::Chaotic) => Slot::Chaotic,
             Some(Response::Tumbled) => Slot::Tumbled,
             Some(Response::Flight) => Slot::Flight,
+        }
+    }
+
+    /// Whether the slot is a periodic class (coloured by attractor in a
+    /// basin map).
+    pub fn is_periodic(self) -> bool {
+        match self {
+            Slot::Period1 | Slot::Period2 | Slot::PeriodK => true,
+            Slot::Rest | Slot::Quasiperiodic | Slot::Chaotic | Slot::Tumbled | Slot::Flight | Slot::Failed => false,
         }
     }
 
