@@ -54,7 +54,10 @@ fn early_stopping_never_changes_a_cells_class_across_every_class() {
         let full = steady_response(&cfg, &w, &o, None).unwrap();
         let unwatched = cell_response(&cfg, &w, &o, None, false).unwrap();
         let fast = cell_response(&cfg, &w, &o, None, true).unwrap();
-        assert_eq!(unwatched.response, full.response, "{what}: the unwatched run is the full run");
+        assert_eq!(
+            unwatched.response, full.response,
+            "{what}: the unwatched run is the full run"
+        );
         assert_eq!(unwatched.max_abs_theta, full.max_abs_theta, "{what}");
         assert_eq!(fast.response, full.response, "{what}: early stopping changed the class");
         assert_eq!(
@@ -68,7 +71,10 @@ fn early_stopping_never_changes_a_cells_class_across_every_class() {
             assert!(t < by, "{what}: stopped only at τ = {t}");
         }
         if stops.is_none() {
-            assert_eq!(fast.max_abs_theta, full.max_abs_theta, "{what}: the whole run is the full run");
+            assert_eq!(
+                fast.max_abs_theta, full.max_abs_theta,
+                "{what}: the whole run is the full run"
+            );
         }
         seen.push(full.response.name());
     }

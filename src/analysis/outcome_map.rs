@@ -14,10 +14,10 @@
 
 use rayon::prelude::*;
 
-use super::classify::{ClassifyOptions, Response};
-use super::orbit_diagram::PlanError;
 use super::attractor::{Attractor, Catalogue};
+use super::classify::{ClassifyOptions, Response};
 use super::map_refine::Refiner;
+use super::orbit_diagram::PlanError;
 use super::settle::{CellResponse, cell_response};
 use super::steady::{LyapunovFn, SteadyError, Window, check_scenario};
 use super::{Progress, ProgressFn};
@@ -194,7 +194,6 @@ impl BlockMap<'_> {
 pub fn block_map(spec: &BlockMap<'_>, progress: &ProgressFn<'_>) -> Result<Vec<Cell>, MapError<SteadyError>> {
     Ok(compute_map(spec, MapPlan::FULL, progress)?.cells)
 }
-
 
 /// How a map is computed.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
@@ -477,7 +476,6 @@ impl<'a> MapRun<'a> {
         })
     }
 }
-
 
 /// Computes the map of `spec` with `plan` on the current rayon pool.
 /// `progress` is told the number of cells, then once per cell computed

@@ -194,7 +194,10 @@ impl Figure for OutcomeMapFigure<'_> {
                 while end < nx && self.colour(j * nx + end, scale) == colour {
                     end += 1;
                 }
-                runs.push(Rectangle::new([(xe[start], ye[j]), (xe[end], ye[j + 1])], colour.filled()));
+                runs.push(Rectangle::new(
+                    [(xe[start], ye[j]), (xe[end], ye[j + 1])],
+                    colour.filled(),
+                ));
                 start = end;
             }
         }
@@ -251,7 +254,10 @@ impl Figure for OutcomeMapFigure<'_> {
             let small = (FONT, 14).into_font().color(&BLACK);
             for a in b.attractors {
                 legend_area
-                    .draw(&Rectangle::new([(10, row), (34, row + 20)], attractor_colour(a.id).filled()))
+                    .draw(&Rectangle::new(
+                        [(10, row), (34, row + 20)],
+                        attractor_colour(a.id).filled(),
+                    ))
                     .map_err(e)?;
                 legend_area
                     .draw(&Rectangle::new([(10, row), (34, row + 20)], BLACK.stroke_width(1)))
