@@ -136,11 +136,14 @@ impl Cli {
         /// Adds `A`'s arguments to subcommand `cmd`, keeping its about.
         fn augment<A: clap::Args>(cmd: clap::Command) -> clap::Command {
             use clap::builder::Resettable;
-            let reset = |text: Option<&clap::builder::StyledStr>| text.cloned().map_or(Resettable::Reset, Resettable::Value);
+            let reset =
+                |text: Option<&clap::builder::StyledStr>| text.cloned().map_or(Resettable::Reset, Resettable::Value);
             let (about, long_about) = (reset(cmd.get_about()), reset(cmd.get_long_about()));
             A::augment_args(cmd).about(about).long_about(long_about)
         }
-        let deferred: [(&str, fn(clap::Command) -> clap::Command); 8] = [
+        /// Builds one subcommand's arguments.
+        type Augment = fn(clap::Command) -> clap::Command;
+        let deferred: [(&str, Augment); 8] = [
             ("sweep", augment::<sweep::SweepArgs>),
             ("merge", augment::<merge::MergeArgs>),
             ("spectrum", augment::<spectrum::SpectrumArgs>),
@@ -150,9 +153,9 @@ impl Cli {
             ("reproduce", augment::<reproduce::ReproduceArgs>),
             ("bench", augment::<bench::BenchArgs>),
         ];
-        deferred
-            .into_iter()
-            .fold(Self::command(), |cli, (name, f)| cli.mut_subcommand(name, |c| c.defer(f)))
+        deferred.into_iter().fold(Self::command(), |cli, (name, f)| {
+            cli.mut_subcommand(name, |c| c.defer(f))
+        })
     }
 }
 
@@ -215,7 +218,10 @@ mod tests {
             assert!(about.is_some(), "{name}");
             assert_eq!(sub.get_about().map(ToString::to_string), about, "{name}");
             assert_eq!(sub.get_long_about().map(ToString::to_string), long_about, "{name}");
-            assert!(sub.get_arguments().any(|a| a.get_long() == Some("out")), "{name} has no --out");
+            assert!(
+                sub.get_arguments().any(|a| a.get_long() == Some("out")),
+                "{name} has no --out"
+            );
         }
     }
 }
