@@ -1,10 +1,9 @@
 //! The `rocking` binary: `rocking --batch …` runs headless.
 
-use clap::Parser as _;
 use rocking::cli::{self, Cli, EXIT_BAD_INPUT, EXIT_RUN_FAILED, batch::BatchError};
 
 fn main() {
-    let cli = Cli::parse();
+    let cli = Cli::parse_deferred();
     if let Some(command) = &cli.command {
         cli::interrupt::install();
         match command.run() {

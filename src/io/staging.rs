@@ -143,13 +143,19 @@ impl Staging {
         if dir.exists() && !dir.is_dir() {
             return Err(OutputError::NotADirectory(dir.display().to_string()));
         }
+        let existed = dir.is_dir();
         let home = staging_home(dir)?;
         let base = dir
             .file_name()
             .map_or_else(|| "out".into(), |n| n.to_string_lossy().into_owned());
         remove_stale(&home, &base);
-        // A run killed before `dir` existed left its folder in the parent.
-        remove_stale(&parent_of(dir), &base);
+        // A run killed before `dir` existed left its folder in the parent,
+        // which is `home` itself when `dir` does not exist yet: listed once
+        // (a folder of a sweep's thousand outputs costs a millisecond a
+        // listing).
+        if existed {
+            remove_stale(&parent_of(dir), &base);
+        }
         let staging = home.join(format!(".{base}.partial-{}", std::process::id()));
         if staging.exists() {
             std::fs::remove_dir_all(&staging).map_err(io_err(&staging))?;
