@@ -127,14 +127,22 @@ fn pulse_map(out: &Path, extra: &[&str]) -> Output {
 }
 
 #[test]
-fn spectrum_and_fragility_refuse_a_vertical_record() {
+fn spectrum_and_fragility_take_a_vertical_record_from_their_own_flags_not_from_keys() {
     let dir = tmpdir("vertical");
     let out = dir.join("out");
     let file_v = format!("excitation.file_v={KOBE}");
     let o = spectrum(&out, &["--set", &file_v, "--set", "excitation.unit_v=m/s2"]);
-    refused(&o, &["--set excitation.file_v", "H + V", "not supported yet"], &out);
+    refused(
+        &o,
+        &["--set excitation.file_v", "--record-v", "scales it with the horizontal"],
+        &out,
+    );
     let o = fragility(&out, &["--set", &file_v, "--set", "excitation.unit_v=m/s2"]);
-    refused(&o, &["--set excitation.file_v", "H + V"], &out);
+    refused(
+        &o,
+        &["--set excitation.file_v", "+ VPATH", "scales it with the horizontal"],
+        &out,
+    );
     for key in [
         "excitation.scale_v=2",
         "excitation.pga_v=0.3 g",
@@ -143,7 +151,7 @@ fn spectrum_and_fragility_refuse_a_vertical_record() {
     ] {
         let o = fragility(&out, &["--set", key]);
         let shown = key.split('=').next().unwrap_or_default();
-        refused(&o, &[&format!("--set {shown}"), "H + V"], &out);
+        refused(&o, &[&format!("--set {shown}"), "+ VPATH"], &out);
     }
     // From a config: the vertical record would be applied unscaled.
     let cfg = dir.join("hv.toml");
@@ -153,7 +161,7 @@ fn spectrum_and_fragility_refuse_a_vertical_record() {
     )
     .expect("write");
     let o = spectrum(&out, &["--config", cfg.to_str().expect("utf-8")]);
-    refused(&o, &["--config", "excitation.file_v", "H + V"], &out);
+    refused(&o, &["--config", "excitation.file_v", "--record-v"], &out);
     let _ = std::fs::remove_dir_all(&dir);
 }
 

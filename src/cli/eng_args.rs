@@ -50,9 +50,34 @@ pub struct Owns {
     /// Whether the motion is a record (a run lasts the record and
     /// `run.tail_s`); otherwise a pulse (the pulse and 50 τ).
     pub record: bool,
+    /// Where the vertical motion comes from (for messages).
+    pub vertical: &'static str,
 }
 
-/// The vertical-motion keys: a suite or spectrum is of horizontal motions.
+/// Whether an engineering command applies the vertical components its
+/// records name (`--vertical`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum VerticalArg {
+    /// Horizontal motion only: the vertical components named are not read.
+    None,
+    /// Each record's vertical component, scaled with its horizontal.
+    Record,
+}
+
+impl VerticalArg {
+    /// Flag value, as typed.
+    pub fn name(self) -> &'static str {
+        match self {
+            VerticalArg::None => "none",
+            VerticalArg::Record => "record",
+        }
+    }
+}
+
+/// The vertical-motion keys: the command takes the vertical from its own
+/// flags (a suite line's `+ VPATH`, `--record-v`), scaled with the
+/// horizontal.
 const VERTICAL_KEYS: &[&str] = &[
     "a_v", "omega_v", "phase_v", "file_v", "unit_v", "dt_v", "crc32_v", "scale_v", "pga_v",
 ];
@@ -61,15 +86,16 @@ impl Owns {
     /// Why `--set key` is refused, if it is: the engineering runs replace
     /// the block, the motion, the initial state, the run's end, its output
     /// and analyses (see `response::scenario_for`); a vertical motion
-    /// would be applied unscaled and unnamed, so it is refused until paired
-    /// H + V suites exist.
+    /// set by key would be applied unscaled and unnamed, so it comes from
+    /// the command's own flags instead.
     pub fn refusal(&self, key: &str) -> Option<String> {
         let (section, name) = key.split_once('.')?;
         let cmd = self.command;
         let why = match (section, name) {
             ("block", _) => format!("{cmd} sets every block's size itself ({}); remove it", self.sizes),
             ("excitation", n) if VERTICAL_KEYS.contains(&n) => format!(
-                "{cmd} runs horizontal motions only; paired horizontal + vertical (H + V) records are not supported yet; remove it"
+                "{cmd} takes the vertical motion from {} and scales it with the horizontal; remove it",
+                self.vertical
             ),
             ("excitation", _) => format!("{cmd} sets the motion itself ({}); remove it", self.motion),
             ("initial", _) => format!("{cmd} starts every run at rest; remove it"),
@@ -117,8 +143,9 @@ impl BaseArgs {
                 _ => "the base scene".into(),
             };
             return Err(input(anyhow!(
-                "{from}: excitation.file_v: {} runs horizontal motions only; paired horizontal + vertical (H + V) records are not supported yet; use a config without a vertical record",
-                owns.command
+                "{from}: excitation.file_v: {} takes the vertical motion from {} and scales it with the horizontal; use a config without a vertical record",
+                owns.command,
+                owns.vertical
             )));
         }
         if let Some(text) = &self.friction {

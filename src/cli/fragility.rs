@@ -25,7 +25,8 @@ use serde_json::{Value as Json, json};
 
 use super::batch::BatchError;
 use super::eng_args::{
-    BaseArgs, Owns, RecordUnitArgs, block, flag_error, input, positive_list, read_record, show, suite,
+    BaseArgs, Owns, RecordUnitArgs, SuiteEntry, VerticalArg, block, flag_error, input, positive_list, read_record,
+    show, suite,
 };
 use super::merge::MergeArgs;
 use super::sweep::{progress_bar, progress_fn, thread_pool};
@@ -64,10 +65,16 @@ pub struct FragilityArgs {
     /// name order); repeatable.
     #[arg(long = "records", value_name = "FILE|DIR")]
     pub records: Vec<PathBuf>,
-    /// A list of records, one per line: `PATH [UNIT]` (PATH relative to the
+    /// A list of records, one per line: `PATH [UNIT]`, or a horizontal and
+    /// its vertical `PATH [UNIT] + VPATH [UNIT]` (PATH relative to the
     /// list's folder, UNIT g|m/s2|cm/s2 for text files; `#` comments).
     #[arg(long, value_name = "LIST")]
     pub suite: Option<PathBuf>,
+    /// Whether to apply the vertical components the suite names, scaled by
+    /// the same factor as their horizontals: `record` (the default when
+    /// every line names one) or `none` (horizontal only).
+    #[arg(long, value_enum, value_name = "none|record")]
+    pub vertical: Option<VerticalArg>,
     /// Unit (and time step) of text records without their own.
     #[command(flatten)]
     pub reading: RecordUnitArgs,
@@ -132,6 +139,7 @@ const OWNS: Owns = Owns {
     sizes: "--block",
     motion: "--records/--suite, --unit, --dt, --im, --levels",
     record: true,
+    vertical: "the suite's `+ VPATH` lines (--vertical record)",
 };
 
 /// Scale factor above which a record's scaling is worth a warning: beyond
@@ -219,9 +227,16 @@ pub fn run(args: &FragilityArgs) -> Result<(), BatchError> {
     let shard = args.shard.as_deref().map(Shard::parse).transpose().map_err(input)?;
     let spec_read = args.reading.spec()?;
     let entries = suite(&args.records, args.suite.as_deref(), spec_read)?;
+    let vertical = vertical_choice(args.vertical, &entries)?;
     let mut records = Vec::with_capacity(entries.len());
     let mut record_json = Vec::with_capacity(entries.len());
-    for (path, spec, origin) in &entries {
+    for SuiteEntry {
+        path,
+        spec,
+        vertical: named_vertical,
+        origin,
+    } in &entries
+    {
         let named = |e: anyhow::Error| match origin {
             Some(o) => input(e.context(o.clone())),
             None => input(e.context("--records")),
@@ -242,6 +257,12 @@ pub fn run(args: &FragilityArgs) -> Result<(), BatchError> {
         for warning in record_warnings(&Drive::Record(record.clone()).name(), &record, im, intensity, &levels) {
             eprintln!("{warning}");
         }
+        let vertical_record = match named_vertical {
+            Some((path_v, spec_v)) if vertical == VerticalArg::Record => {
+                Some(read_record(path_v, spec_v).map_err(named)?)
+            }
+            _ => None,
+        };
         record_json.push(json!({
             "file": path.display().to_string(),
             "name": Drive::Record(record.clone()).name(),
@@ -250,11 +271,26 @@ pub fn run(args: &FragilityArgs) -> Result<(), BatchError> {
             "pgv_m_s": peaks.pgv_m_s,
             "pgd_m": peaks.pgd_m,
             "duration_s": record.series.duration_s(),
+            "vertical": vertical_record.as_ref().map(|v| {
+                let pv = v.series.peaks(1.0);
+                json!({
+                    "file": v.path.display().to_string(),
+                    "unit": v.unit.name(),
+                    "pga_g": pv.pga_g,
+                    "pgv_m_s": pv.pgv_m_s,
+                    "pgd_m": pv.pgd_m,
+                    "duration_s": v.series.duration_s(),
+                })
+            }),
         }));
-        records.push(SuiteRecord {
-            drive: Drive::Record(record),
-            intensity,
-        });
+        let drive = match vertical_record {
+            Some(v) => Drive::Paired {
+                horizontal: record,
+                vertical: v,
+            },
+            None => Drive::Record(record),
+        };
+        records.push(SuiteRecord { drive, intensity });
     }
     let spec = FragilitySpec {
         base: &base,
@@ -298,6 +334,21 @@ pub fn run(args: &FragilityArgs) -> Result<(), BatchError> {
     bar.finish_and_clear();
     let wall = start.elapsed().as_secs_f64();
 
+    // Each record's peak accelerations at scale 1, g.
+    let pga_h: Vec<f64> = records
+        .iter()
+        .map(|r| match &r.drive {
+            Drive::Record(h) | Drive::Paired { horizontal: h, .. } => h.series.peak_abs_g(),
+            Drive::PhysicalPulse { .. } | Drive::NormalisedPulse { .. } => 0.0,
+        })
+        .collect();
+    let pga_v: Vec<Option<f64>> = records
+        .iter()
+        .map(|r| match &r.drive {
+            Drive::Paired { vertical, .. } => Some(vertical.series.peak_abs_g()),
+            _ => None,
+        })
+        .collect();
     let rows: Vec<FragilityRunRow> = runs
         .iter()
         .zip(&indices)
@@ -323,6 +374,8 @@ pub fn run(args: &FragilityArgs) -> Result<(), BatchError> {
                     .then_some(resp.t_end_event_s)
                     .flatten()
                     .map(Num),
+                pga_h_g: Num(r.scale * pga_h[r.at.record]),
+                pga_v_g: pga_v[r.at.record].map(|v| Num(r.scale * v)),
             }
         })
         .collect();
@@ -342,6 +395,11 @@ pub fn run(args: &FragilityArgs) -> Result<(), BatchError> {
         "blocks": blocks,
         "records": record_json,
         "threshold_theta_over_alpha": args.threshold,
+        "vertical": vertical,
+        "scaling": match vertical {
+            VerticalArg::Record => "each record's horizontal and vertical components are multiplied by one factor: the level over the horizontal's intensity measure",
+            VerticalArg::None => "each record's horizontal component is multiplied by the level over its intensity measure; no vertical motion",
+        },
         "record_tail_s": base.run.record_tail_s.unwrap_or(crate::sim::scenario::RECORD_TAIL_S),
         "runs": spec.run_count(),
         "shard": Json::Null,
@@ -380,12 +438,49 @@ pub fn run(args: &FragilityArgs) -> Result<(), BatchError> {
             records.len(),
             indices.len()
         );
+        crate::say!(
+            "  {}",
+            match vertical {
+                VerticalArg::Record =>
+                    "with the vertical components, each scaled by the same factor as its horizontal (level / the horizontal's intensity)",
+                VerticalArg::None => "horizontal motion only (--vertical none)",
+            }
+        );
         for l in lines {
             crate::say!("  {l}");
         }
         crate::say!("wrote {}", args.out.display());
     }
     Ok(())
+}
+
+/// Whether the study applies vertical components: `--vertical` as given,
+/// else `record` when every record names one and `none` when none does.
+/// A suite that names a vertical for some records only must say which it
+/// means: running some records with their verticals and others without
+/// would mix two studies in one curve.
+fn vertical_choice(flag: Option<VerticalArg>, entries: &[SuiteEntry]) -> Result<VerticalArg, BatchError> {
+    let lacking = entries.iter().find(|e| e.vertical.is_none());
+    let named = entries.iter().find(|e| e.vertical.is_some());
+    let at = |e: &SuiteEntry| {
+        e.origin
+            .clone()
+            .unwrap_or_else(|| format!("--records {}", e.path.display()))
+    };
+    match (flag, lacking, named) {
+        (Some(VerticalArg::None), _, _) => Ok(VerticalArg::None),
+        (Some(VerticalArg::Record), Some(e), _) => Err(input(anyhow!(
+            "--vertical record: {} names no vertical component (write `PATH [UNIT] + VPATH [UNIT]` in a --suite list)",
+            at(e)
+        ))),
+        (Some(VerticalArg::Record), None, _) | (None, None, _) => Ok(VerticalArg::Record),
+        (None, Some(_), None) => Ok(VerticalArg::None),
+        (None, Some(e), Some(v)) => Err(input(anyhow!(
+            "{} names a vertical component but {} does not; complete the suite, or give --vertical none to run horizontals only",
+            at(v),
+            at(e)
+        ))),
+    }
 }
 
 /// Fit or error as JSON, with the band on a fine grid.

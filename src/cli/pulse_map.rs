@@ -94,6 +94,7 @@ const OWNS: Owns = Owns {
     sizes: "--b-over-h; the map depends on the block only through B/H",
     motion: "--pulse, --omega, --cycles, --amp-step/--amp-max",
     record: false,
+    vertical: "nowhere (a pulse map is of horizontal pulses)",
 };
 
 /// The config keys a map's run takes from its flags, for errors.

@@ -22,7 +22,8 @@ use serde_json::{Value as Json, json};
 
 use super::batch::BatchError;
 use super::eng_args::{
-    BaseArgs, Owns, RecordUnitArgs, flag_error, increasing, input, positive_list, read_record, search_ladder, show,
+    BaseArgs, Owns, RecordUnitArgs, VerticalArg, flag_error, increasing, input, positive_list, read_record,
+    search_ladder, show,
 };
 use super::pulse_map::MAX_OMEGA_RATIO;
 use super::sweep::{progress_bar, progress_fn, thread_pool};
@@ -86,6 +87,17 @@ pub struct SpectrumArgs {
     /// Unit and time step of a text record.
     #[command(flatten)]
     pub reading: RecordUnitArgs,
+    /// The vertical component of --record (positive upward), scaled by the
+    /// same factor as the horizontal (a --pga sets the horizontal's PGA).
+    #[arg(long = "record-v", value_name = "FILE", requires = "record")]
+    pub record_v: Option<PathBuf>,
+    /// Unit of a text --record-v (default: --unit).
+    #[arg(long = "unit-v", value_name = "UNIT", requires = "record_v")]
+    pub unit_v: Option<String>,
+    /// Whether to apply the vertical component: `record` (the default when
+    /// --record-v is given) or `none` (horizontal only, --record-v unread).
+    #[arg(long, value_enum, value_name = "none|record")]
+    pub vertical: Option<VerticalArg>,
     /// An analytic pulse instead of a record (its ω_p/p then differs from
     /// block to block); give --pulse-accel and --pulse-period.
     #[arg(long, value_enum, value_name = "SHAPE")]
@@ -165,6 +177,8 @@ struct Motion {
     scale: f64,
     /// PGA at scale 1, g.
     pga_g: f64,
+    /// The vertical component's PGA at scale 1, g, when it is applied.
+    pga_v_g: Option<f64>,
     /// Name for titles.
     name: String,
     /// Its description for spectrum.json.
@@ -200,6 +214,7 @@ fn owns(args: &SpectrumArgs) -> Owns {
             "--pulse, --pulse-accel, --pulse-period, --cycles, --scale/--pga"
         },
         record,
+        vertical: "--record-v",
     }
 }
 
@@ -215,6 +230,11 @@ fn refuse_ignored_flags(args: &SpectrumArgs) -> Result<(), BatchError> {
         ("--pulse-period", args.pulse_period.is_some()),
         ("--cycles", args.cycles.is_some()),
     ];
+    if args.vertical == Some(VerticalArg::Record) && args.record_v.is_none() {
+        return Err(input(anyhow!(
+            "--vertical record: give the vertical component with --record-v FILE (or --vertical none)"
+        )));
+    }
     if args.record.is_some() {
         if let Some((flag, _)) = pulse_flags.iter().find(|(_, given)| *given) {
             return Err(input(anyhow!("{flag}: describes a --pulse, not a --record; remove it")));
@@ -252,7 +272,7 @@ fn motion(args: &SpectrumArgs) -> Result<Motion, BatchError> {
             let spec = args.reading.spec()?;
             let record = read_record(path, &spec).map_err(|e| input(e.context("--record")))?;
             let peaks = record.series.peaks(1.0);
-            let json = json!({
+            let mut json = json!({
                 "kind": "record",
                 "file": path.display().to_string(),
                 "unit": record.unit.name(),
@@ -261,8 +281,37 @@ fn motion(args: &SpectrumArgs) -> Result<Motion, BatchError> {
                 "pga_g": peaks.pga_g,
                 "pgv_m_s": peaks.pgv_m_s,
                 "pgd_m": peaks.pgd_m,
+                "vertical": Json::Null,
             });
-            (Drive::Record(record), peaks.pga_g, json)
+            let use_vertical = args.vertical.unwrap_or(VerticalArg::Record) == VerticalArg::Record;
+            let drive = match &args.record_v {
+                Some(path_v) if use_vertical => {
+                    let mut spec_v = spec;
+                    if let Some(u) = &args.unit_v {
+                        spec_v.unit = Some(
+                            crate::model::units::AccelUnit::parse(u)
+                                .ok_or_else(|| input(anyhow!("--unit-v {u}: unknown unit (known: g, m/s2, cm/s2)")))?,
+                        );
+                    }
+                    let vertical = read_record(path_v, &spec_v).map_err(|e| input(e.context("--record-v")))?;
+                    let pv = vertical.series.peaks(1.0);
+                    json["vertical"] = json!({
+                        "file": path_v.display().to_string(),
+                        "unit": vertical.unit.name(),
+                        "samples": vertical.series.len(),
+                        "duration_s": vertical.series.duration_s(),
+                        "pga_g": pv.pga_g,
+                        "pgv_m_s": pv.pgv_m_s,
+                        "pgd_m": pv.pgd_m,
+                    });
+                    Drive::Paired {
+                        horizontal: record,
+                        vertical,
+                    }
+                }
+                _ => Drive::Record(record),
+            };
+            (drive, peaks.pga_g, json)
         }
         (None, Some(shape)) => {
             let positive = |flag: &str, v: Option<f64>| match v {
@@ -309,10 +358,15 @@ fn motion(args: &SpectrumArgs) -> Result<Motion, BatchError> {
         (None, None) => 1.0,
     };
     let name = drive.name();
+    let pga_v_g = match &drive {
+        Drive::Paired { vertical, .. } => Some(vertical.series.peak_abs_g()),
+        _ => None,
+    };
     Ok(Motion {
         drive,
         scale,
         pga_g,
+        pga_v_g,
         name,
         json,
     })
@@ -455,6 +509,13 @@ pub fn run(args: &SpectrumArgs) -> Result<(), BatchError> {
         "motion": motion.json,
         "scale": motion.scale,
         "pga_g": pga_of(motion.scale),
+        "vertical": if motion.pga_v_g.is_some() { "record" } else { "none" },
+        "pga_v_g": motion.pga_v_g.map(|v| v * motion.scale),
+        "scaling": if motion.pga_v_g.is_some() {
+            "the horizontal and vertical components are multiplied by the same scale; --pga sets the horizontal's PGA"
+        } else {
+            "the horizontal motion is multiplied by scale"
+        },
         "sizes": spec.sizes,
         "b_over_h": spec.b_over_h,
         "record_tail_s": base.run.record_tail_s.unwrap_or(crate::sim::scenario::RECORD_TAIL_S),
@@ -468,8 +529,11 @@ pub fn run(args: &SpectrumArgs) -> Result<(), BatchError> {
         "config": to_json(&base),
         "units": "lengths m, times s, accelerations g, p 1/s; peak_theta_over_alpha = max|θ|/α; scale: factor on the motion as read",
     });
+    let vertical_text = motion
+        .pga_v_g
+        .map_or_else(String::new, |v| format!(" + vertical PGA {:.3} g", v * motion.scale));
     let subtitle = format!(
-        "{}, PGA {:.3} g (scale {}); {}; overturning at θ/α = {}",
+        "{}, PGA {:.3} g{vertical_text} (scale {}); {}; overturning at θ/α = {}",
         motion.name,
         pga_of(motion.scale),
         num(motion.scale),
@@ -546,9 +610,14 @@ pub fn run(args: &SpectrumArgs) -> Result<(), BatchError> {
     })?;
     if !args.quiet {
         crate::say!(
-            "rocking spectrum under {} (PGA {:.3} g): {} blocks in {wall:.2} s",
+            "rocking spectrum under {} (PGA {:.3} g{}): {} blocks in {wall:.2} s",
             motion.name,
             pga_of(motion.scale),
+            motion.pga_v_g.map_or_else(String::new, |v| format!(
+                ", vertical PGA {:.3} g, both scaled by {}",
+                v * motion.scale,
+                num(motion.scale)
+            )),
             points.len()
         );
         for s in summary.as_array().into_iter().flatten() {

@@ -3,12 +3,14 @@
 //! named. Errors name the flag, or the list's file and line; bad input is
 //! refused before any record is read.
 //!
-//! A suite list has one record per line: `PATH [UNIT]`. PATH is relative
-//! to the list's folder; a path with spaces is written in double quotes
-//! (`"my records/a b.dat" g`) or followed by a tab (`my records/a b.dat<TAB>g`).
-//! UNIT (g, m/s2, cm/s2) applies to that text record. Blank lines and
-//! lines starting with `#` are skipped, and `#` after a space or tab starts
-//! a comment. A UTF-8 byte-order mark at the start is ignored.
+//! A suite list has one record per line: `PATH [UNIT]`, or a horizontal
+//! and its vertical component `PATH [UNIT] + VPATH [UNIT]` (the `+` a word
+//! of its own). PATH is relative to the list's folder; a path with spaces
+//! is written in double quotes (`"my records/a b.dat" g`) or followed by a
+//! tab (`my records/a b.dat<TAB>g`). UNIT (g, m/s2, cm/s2) applies to that
+//! text record. Blank lines and lines starting with `#` are skipped, and
+//! `#` after a space or tab starts a comment. A UTF-8 byte-order mark at
+//! the start is ignored.
 
 use std::io::Read as _;
 use std::path::{Path, PathBuf};
@@ -20,9 +22,32 @@ use super::eng_args::input;
 use crate::io::record::RecordSpec;
 use crate::model::units::AccelUnit;
 
-/// One record of a suite: its file, how to read it, and where it was
-/// named (`LIST:LINE` for a suite list, else `None`: `--records`).
-pub type SuiteEntry = (PathBuf, RecordSpec, Option<String>);
+/// One record of a suite: its file, how to read it, its vertical
+/// component if the suite names one, and where it was named.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SuiteEntry {
+    /// The horizontal component's file.
+    pub path: PathBuf,
+    /// How to read it.
+    pub spec: RecordSpec,
+    /// The vertical component's file and how to read it (`+ VPATH [UNIT]`
+    /// on a suite line; never from `--records`).
+    pub vertical: Option<(PathBuf, RecordSpec)>,
+    /// `LIST:LINE` for a suite list, `None` for `--records`.
+    pub origin: Option<String>,
+}
+
+impl SuiteEntry {
+    /// An entry of `--records`: a horizontal record alone.
+    fn file(path: PathBuf, spec: RecordSpec) -> Self {
+        Self {
+            path,
+            spec,
+            vertical: None,
+            origin: None,
+        }
+    }
+}
 
 /// Largest suite list read, bytes: a list holds one short line per record,
 /// so 1 MiB is some 10 000 records, more than a fragility study runs in a
@@ -45,7 +70,7 @@ pub fn suite(files: &[PathBuf], suite: Option<&Path>, spec: RecordSpec) -> Resul
         if f.is_dir() {
             folder(f, spec, &mut out)?;
         } else {
-            out.push((f.clone(), spec, None));
+            out.push(SuiteEntry::file(f.clone(), spec));
         }
     }
     if let Some(list) = suite {
@@ -71,25 +96,33 @@ pub fn suite(files: &[PathBuf], suite: Option<&Path>, spec: RecordSpec) -> Resul
 /// Where an entry was named, for messages.
 fn origin(entry: &SuiteEntry) -> String {
     entry
-        .2
+        .origin
         .clone()
-        .unwrap_or_else(|| format!("--records {}", entry.0.display()))
+        .unwrap_or_else(|| format!("--records {}", entry.path.display()))
 }
 
 /// Refuses a record named twice (the same file, however its path is
-/// written).
+/// written, as a horizontal or a vertical component).
 fn refuse_twice(entries: &[SuiteEntry]) -> Result<(), BatchError> {
-    let ids: Vec<PathBuf> = entries
+    let id = |p: &PathBuf| p.canonicalize().unwrap_or_else(|_| p.clone());
+    // (file, entry) for every component named, in order.
+    let files: Vec<(PathBuf, usize)> = entries
         .iter()
-        .map(|(p, _, _)| p.canonicalize().unwrap_or_else(|_| p.clone()))
+        .enumerate()
+        .flat_map(|(k, e)| std::iter::once((id(&e.path), k)).chain(e.vertical.as_ref().map(|(v, _)| (id(v), k))))
         .collect();
-    for (j, id) in ids.iter().enumerate() {
-        if let Some(i) = ids[..j].iter().position(|other| other == id) {
+    for (j, (file, k)) in files.iter().enumerate() {
+        if let Some((_, i)) = files[..j].iter().find(|(other, _)| other == file) {
+            let what = if i == k { "as its own vertical" } else { "twice" };
             return Err(input(anyhow!(
-                "{} and {}: the record {} is listed twice; list each record once",
-                origin(&entries[i]),
-                origin(&entries[j]),
-                entries[j].0.display()
+                "{}{}: the record {} is listed {what}; list each record once",
+                origin(&entries[*i]),
+                if i == k {
+                    String::new()
+                } else {
+                    format!(" and {}", origin(&entries[*k]))
+                },
+                file.display()
             )));
         }
     }
@@ -135,7 +168,7 @@ fn folder(dir: &Path, spec: RecordSpec, out: &mut Vec<SuiteEntry>) -> Result<(),
             names(&skipped)
         );
     }
-    out.extend(records.into_iter().map(|p| (p, spec, None)));
+    out.extend(records.into_iter().map(|p| SuiteEntry::file(p, spec)));
     Ok(())
 }
 
@@ -217,26 +250,66 @@ fn read_list(list: &Path, spec: RecordSpec, out: &mut Vec<SuiteEntry>) -> Result
     let dir = list.parent().unwrap_or(Path::new("."));
     for (i, line) in text.lines().enumerate() {
         let at = format!("{name}:{}", i + 1);
-        let Some((path, unit)) = fields(line).map_err(|e| input(anyhow!("{at}: {e}")))? else {
+        let Some(line) = suite_line(line).map_err(|e| input(anyhow!("{at}: {e}")))? else {
             continue;
         };
-        let mut s = spec;
-        if let Some(u) = unit {
-            s.unit = Some(AccelUnit::parse(u).ok_or_else(|| {
-                input(anyhow!(
-                    "{at}: unknown unit {u:?} (known: g, m/s2, cm/s2; a path with spaces goes in double quotes)"
-                ))
-            })?);
-        }
-        let p = PathBuf::from(path);
-        out.push((if p.is_absolute() { p } else { dir.join(p) }, s, Some(at)));
+        let component = |(path, unit): (&str, Option<&str>)| -> Result<(PathBuf, RecordSpec), BatchError> {
+            let mut s = spec;
+            if let Some(u) = unit {
+                s.unit = Some(AccelUnit::parse(u).ok_or_else(|| {
+                    input(anyhow!(
+                        "{at}: unknown unit {u:?} (known: g, m/s2, cm/s2; a path with spaces goes in double quotes)"
+                    ))
+                })?);
+            }
+            let p = PathBuf::from(path);
+            Ok((if p.is_absolute() { p } else { dir.join(p) }, s))
+        };
+        let (path, s) = component(line.horizontal)?;
+        let vertical = line.vertical.map(component).transpose()?;
+        out.push(SuiteEntry {
+            path,
+            spec: s,
+            vertical,
+            origin: Some(at),
+        });
     }
     Ok(())
 }
 
-/// The PATH and UNIT of one suite line, `None` for a blank or comment line
-/// (grammar in the module docs).
-fn fields(line: &str) -> Result<Option<(&str, Option<&str>)>, String> {
+/// One suite line's components: `(PATH, UNIT)` of the horizontal and of
+/// the vertical, if named.
+#[derive(Debug, PartialEq)]
+struct SuiteLine<'a> {
+    horizontal: (&'a str, Option<&'a str>),
+    vertical: Option<(&'a str, Option<&'a str>)>,
+}
+
+/// The components of one suite line, `None` for a blank or comment line.
+fn suite_line(line: &str) -> Result<Option<SuiteLine<'_>>, String> {
+    let Some((path, unit, rest)) = component(line)? else {
+        return Ok(None);
+    };
+    let vertical = match rest {
+        None => None,
+        Some(v) => match component(v)? {
+            Some((vp, vu, None)) => Some((vp, vu)),
+            Some((_, _, Some(_))) => {
+                return Err(format!("a line pairs one horizontal with one vertical: {line:?}"));
+            }
+            None => return Err(format!("`+` names no vertical record after it in {line:?}")),
+        },
+    };
+    Ok(Some(SuiteLine {
+        horizontal: (path, unit),
+        vertical,
+    }))
+}
+
+/// The PATH and UNIT at the start of `line`, and the text after a `+`
+/// word that follows them (a vertical component); `None` for a blank or
+/// comment line (grammar in the module docs).
+fn component(line: &str) -> Result<Option<(&str, Option<&str>, Option<&str>)>, String> {
     let line = line.trim();
     if line.is_empty() || line.starts_with('#') {
         return Ok(None);
@@ -250,7 +323,11 @@ fn fields(line: &str) -> Result<Option<(&str, Option<&str>)>, String> {
             return Err(format!("expected a space or tab after the closing quote in {line:?}"));
         }
         (&quoted[..end], rest)
-    } else if let Some((path, rest)) = line.split_once('\t') {
+    } else if let Some((path, rest)) = line
+        .split_once('\t')
+        // A tab after a `+` word belongs to the vertical's path.
+        .filter(|(path, _)| !path.split_whitespace().any(|w| w == "+"))
+    {
         (path.trim_end(), rest)
     } else {
         line.split_once(char::is_whitespace).unwrap_or((line, ""))
@@ -258,36 +335,93 @@ fn fields(line: &str) -> Result<Option<(&str, Option<&str>)>, String> {
     if path.is_empty() {
         return Err(format!("empty path in {line:?}"));
     }
-    let mut rest = rest.split_whitespace().take_while(|f| !f.starts_with('#'));
-    let unit = rest.next();
-    if rest.next().is_some() {
-        return Err(format!(
-            "expected `PATH [UNIT]`, found {line:?} (a path with spaces goes in double quotes or before a tab)"
-        ));
+    // The words after the path up to a comment or a `+` word; what follows
+    // the `+` is the vertical component's own PATH [UNIT].
+    let mut unit = None;
+    let mut rest = rest;
+    loop {
+        let word_start = rest.len() - rest.trim_start().len();
+        let tail = &rest[word_start..];
+        let word = tail.split(char::is_whitespace).next().unwrap_or("");
+        if word.is_empty() || word.starts_with('#') {
+            return Ok(Some((path, unit, None)));
+        }
+        if word == "+" {
+            return Ok(Some((path, unit, Some(tail[1..].trim()))));
+        }
+        if unit.is_some() {
+            return Err(format!(
+                "expected `PATH [UNIT] [+ VPATH [UNIT]]`, found {line:?} (a path with spaces goes in double quotes or before a tab)"
+            ));
+        }
+        unit = Some(word);
+        rest = &tail[word.len()..];
     }
-    Ok(Some((path, unit)))
 }
 
 #[cfg(test)]
 mod tests {
-    use super::fields;
+    use super::{SuiteLine, suite_line};
+
+    /// A line of one horizontal record.
+    fn one<'a>(path: &'a str, unit: Option<&'a str>) -> Option<SuiteLine<'a>> {
+        Some(SuiteLine {
+            horizontal: (path, unit),
+            vertical: None,
+        })
+    }
 
     #[test]
     fn suite_lines_take_quotes_tabs_and_trailing_comments() {
-        assert_eq!(fields("a.dat g").unwrap(), Some(("a.dat", Some("g"))));
-        assert_eq!(fields("  a.dat  ").unwrap(), Some(("a.dat", None)));
-        assert_eq!(
-            fields("\"a b.dat\" m/s2 # Kobe").unwrap(),
-            Some(("a b.dat", Some("m/s2")))
-        );
-        assert_eq!(fields("a b.dat\tg").unwrap(), Some(("a b.dat", Some("g"))));
-        assert_eq!(fields("a b.dat\t# no unit").unwrap(), Some(("a b.dat", None)));
-        assert_eq!(fields("a.dat # note").unwrap(), Some(("a.dat", None)));
-        assert_eq!(fields("a#1.dat g").unwrap(), Some(("a#1.dat", Some("g"))));
+        let fields = suite_line;
+        assert_eq!(fields("a.dat g").unwrap(), one("a.dat", Some("g")));
+        assert_eq!(fields("  a.dat  ").unwrap(), one("a.dat", None));
+        assert_eq!(fields("\"a b.dat\" m/s2 # Kobe").unwrap(), one("a b.dat", Some("m/s2")));
+        assert_eq!(fields("a b.dat\tg").unwrap(), one("a b.dat", Some("g")));
+        assert_eq!(fields("a b.dat\t# no unit").unwrap(), one("a b.dat", None));
+        assert_eq!(fields("a.dat # note").unwrap(), one("a.dat", None));
+        assert_eq!(fields("a.dat # note + b.dat g").unwrap(), one("a.dat", None));
+        assert_eq!(fields("a#1.dat g").unwrap(), one("a#1.dat", Some("g")));
         assert_eq!(fields("# all comment").unwrap(), None);
         assert_eq!(fields("   ").unwrap(), None);
         assert!(fields("\"a b.dat g").unwrap_err().contains("unclosed quote"));
         assert!(fields("a b.dat g").unwrap_err().contains("double quotes"));
         assert!(fields("\"a\"g").is_err());
+    }
+
+    #[test]
+    fn a_suite_line_pairs_a_horizontal_with_its_vertical_after_a_plus_word() {
+        let pair = |h: (&'static str, Option<&'static str>), v: (&'static str, Option<&'static str>)| {
+            Some(SuiteLine {
+                horizontal: h,
+                vertical: Some(v),
+            })
+        };
+        assert_eq!(
+            suite_line("h.dat g + v.dat g").unwrap(),
+            pair(("h.dat", Some("g")), ("v.dat", Some("g")))
+        );
+        assert_eq!(
+            suite_line("h.dat + v.dat cm/s2 # Kobe").unwrap(),
+            pair(("h.dat", None), ("v.dat", Some("cm/s2")))
+        );
+        assert_eq!(
+            suite_line("\"a h.dat\" m/s2 + \"a v.dat\" m/s2").unwrap(),
+            pair(("a h.dat", Some("m/s2")), ("a v.dat", Some("m/s2")))
+        );
+        assert_eq!(
+            suite_line("h.dat\tg\t+\tv w.dat\tg").unwrap(),
+            pair(("h.dat", Some("g")), ("v w.dat", Some("g")))
+        );
+        // A `+` inside a file name is part of it.
+        assert_eq!(suite_line("a+b.dat g").unwrap(), one("a+b.dat", Some("g")));
+        for bad in [
+            "h.dat g +",
+            "h.dat g + # none",
+            "h.dat + v.dat g + w.dat g",
+            "h.dat g x + v.dat",
+        ] {
+            assert!(suite_line(bad).is_err(), "{bad}");
+        }
     }
 }

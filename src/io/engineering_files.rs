@@ -175,6 +175,11 @@ pub struct FragilityRunRow {
     pub t_overturn_s: Option<Num>,
     /// Time of flight, s.
     pub t_flight_s: Option<Num>,
+    /// Peak horizontal acceleration of the motion as run (scaled), g.
+    pub pga_h_g: Num,
+    /// Peak vertical acceleration as run (scaled by the same factor), g;
+    /// empty when the run had no vertical component.
+    pub pga_v_g: Option<Num>,
 }
 
 impl Row for FragilityRunRow {
@@ -191,6 +196,8 @@ impl Row for FragilityRunRow {
         "peak_theta_over_alpha",
         "t_overturn_s",
         "t_flight_s",
+        "pga_h_g",
+        "pga_v_g",
     ];
 }
 
@@ -326,6 +333,8 @@ mod tests {
             peak_theta_over_alpha: n(0.0),
             t_overturn_s: None,
             t_flight_s: None,
+            pga_h_g: n(0.1),
+            pga_v_g: None,
         };
         assert_eq!(header_of(&r), header::<FragilityRunRow>());
         let f = FractionRow {

@@ -74,6 +74,16 @@ pub enum Drive {
     /// A recorded horizontal acceleration (times s, accelerations g),
     /// multiplied by the run's scale factor.
     Record(Record),
+    /// A recorded horizontal and vertical pair (vertical positive upward),
+    /// both multiplied by the run's one scale factor: scaling keeps the
+    /// components' ratio as recorded, so a level set by the horizontal's
+    /// intensity scales the vertical with it.
+    Paired {
+        /// The horizontal component.
+        horizontal: Record,
+        /// The vertical component, positive upward.
+        vertical: Record,
+    },
     /// An analytic pulse given in physical units: a_p·scale (g) at
     /// frequency ω_p (rad/s); its ω_p/p differs from block to block.
     PhysicalPulse {
@@ -100,10 +110,11 @@ pub enum Drive {
 }
 
 impl Drive {
-    /// Its name for outputs: the record's file stem or the pulse shape.
+    /// Its name for outputs: the (horizontal) record's file stem or the
+    /// pulse shape.
     pub fn name(&self) -> String {
         match self {
-            Drive::Record(r) => r
+            Drive::Record(r) | Drive::Paired { horizontal: r, .. } => r
                 .path
                 .file_stem()
                 .map_or_else(|| r.path.display().to_string(), |s| s.to_string_lossy().into_owned()),
@@ -192,9 +203,18 @@ pub fn scenario_for(base: &Scenario, size: BlockSize, drive: &Drive, scale: f64)
         Drive::Record(record) => {
             s.excitation.kind = ExcitationKind::Record;
             s.excitation.record_h = Some(record.clone());
+            s.excitation.record_v = None;
             s.excitation.scale_h = scale;
             // The whole record and the tail, even when the base config set
             // an explicit end: a spectrum never cuts a record short.
+            s.run.record_tail_s = Some(s.run.record_tail_s.unwrap_or(RECORD_TAIL_S));
+        }
+        Drive::Paired { horizontal, vertical } => {
+            s.excitation.kind = ExcitationKind::Record;
+            s.excitation.record_h = Some(horizontal.clone());
+            s.excitation.record_v = Some(vertical.clone());
+            s.excitation.scale_h = scale;
+            s.excitation.scale_v = scale;
             s.run.record_tail_s = Some(s.run.record_tail_s.unwrap_or(RECORD_TAIL_S));
         }
         Drive::PhysicalPulse {
