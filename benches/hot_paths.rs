@@ -250,6 +250,7 @@ fn fragility_2_records_40_levels_3_blocks() {
         records: &records,
         levels: &levels,
         blocks: &blocks,
+        im: rocking::analysis::engineering::fragility::Intensity::Pga,
     };
     let indices: Vec<usize> = (0..spec.run_count()).collect();
     let runs = run_fragility(&spec, &indices, &rocking::analysis::silent).expect("runs");

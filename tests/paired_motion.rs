@@ -210,3 +210,78 @@ fn a_spectrum_with_a_vertical_record_scales_it_with_the_horizontal_and_reports_b
     refused(&o, &["--vertical record", "--record-v"], &out);
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn the_rocking_intensity_measures_scale_each_block_by_its_own_uplift_acceleration_and_velocity() {
+    let dir = tmpdir("im");
+    step(&dir, "h.dat", 0.5);
+    // A triangle 0 → 0.5 g at 0.5 s → 0 at 1 s: PGV = 0.5 g · 1 s / 2.
+    std::fs::write(dir.join("tri.dat"), "0 0\n0.5 0.5\n1.0 0\n").expect("write");
+    std::fs::write(dir.join("suite.txt"), "h.dat g\n").expect("write");
+    let blocks = [(0.5, 2.0), (0.3, 1.5)];
+    let run = |im: &str, levels: &str, suite: &str, out: &Path| {
+        std::fs::write(dir.join("suite.txt"), suite).expect("write");
+        rocking()
+            .args(["fragility", "--im", im, "--levels", levels, "-q", "--suite"])
+            .arg(dir.join("suite.txt"))
+            .args(["--block", "0.5x2.0", "--block", "0.3x1.5", "--out"])
+            .arg(out)
+            .output()
+            .expect("runs")
+    };
+    // PGA/(g tan α) = 1 is each block's static uplift threshold, whatever
+    // its size and slenderness: a step just below stays at rest, just
+    // above rocks.
+    let out = dir.join("pga");
+    ok(&run("pga-tan-alpha", "0.99,1.01", "h.dat g\n", &out));
+    let runs = std::fs::read_to_string(out.join("runs.csv")).expect("runs");
+    let peaks: Vec<bool> = column(&runs, "peak_theta_over_alpha")
+        .iter()
+        .map(|v| v.parse::<f64>().expect("number") > 0.0)
+        .collect();
+    assert_eq!(peaks, [false, true, false, true]);
+    let scales: Vec<f64> = column(&runs, "scale")
+        .iter()
+        .map(|v| v.parse().expect("number"))
+        .collect();
+    for (k, (level, (b, h))) in [
+        (0.99, blocks[0]),
+        (1.01, blocks[0]),
+        (0.99, blocks[1]),
+        (1.01, blocks[1]),
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        let expected = level * (b / h) / 0.5;
+        assert!(
+            (scales[k] - expected).abs() < 1e-15 * expected,
+            "{} vs {expected}",
+            scales[k]
+        );
+    }
+    assert_eq!(column(&runs, "im")[0], "pga_over_g_tan_alpha");
+    // PGV·p/(g tan α): scale = level · g tan α / (PGV · p), p = √(3g/(4R)).
+    let out = dir.join("pgv");
+    ok(&run("pgv-p-tan-alpha", "2", "tri.dat g\n", &out));
+    let runs = std::fs::read_to_string(out.join("runs.csv")).expect("runs");
+    let scales: Vec<f64> = column(&runs, "scale")
+        .iter()
+        .map(|v| v.parse().expect("number"))
+        .collect();
+    let g = 9.81;
+    let pgv = 0.5 * g * 1.0 / 2.0;
+    for (k, (b, h)) in blocks.into_iter().enumerate() {
+        let p = (3.0 * g / (4.0 * 0.5 * b.hypot(h))).sqrt();
+        let expected = 2.0 * g * (b / h) / (pgv * p);
+        assert!(
+            (scales[k] - expected).abs() < 1e-12 * expected,
+            "{} vs {expected}",
+            scales[k]
+        );
+    }
+    let meta: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("fragility.json")).expect("json")).expect("json");
+    assert_eq!(meta["im"], "pgv-p-tan-alpha");
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -39,7 +39,11 @@ fn intensity(im: &str) -> PyResult<Intensity> {
     match im {
         "pga" => Ok(Intensity::Pga),
         "pgv" => Ok(Intensity::Pgv),
-        other => Err(input(format!("--im {other}: expected pga or pgv"))),
+        "pga-tan-alpha" => Ok(Intensity::PgaTanAlpha),
+        "pgv-p-tan-alpha" => Ok(Intensity::PgvPTanAlpha),
+        other => Err(input(format!(
+            "--im {other}: expected pga, pgv, pga-tan-alpha or pgv-p-tan-alpha"
+        ))),
     }
 }
 
@@ -57,10 +61,7 @@ fn suite(records: Vec<(PathBuf, Option<String>)>, im: Intensity) -> PyResult<Vec
         };
         let loaded = read_record_as(&path, &RecordSpec { unit, dt: None }).map_err(|e| record_error(&path, &e))?;
         let peaks = loaded.series.peaks(1.0);
-        let value = match im {
-            Intensity::Pga => peaks.pga_g,
-            Intensity::Pgv => peaks.pgv_m_s,
-        };
+        let value = im.record_value(&peaks);
         if !(value > 0.0 && value.is_finite()) {
             return Err(input(format!(
                 "{}: {} is 0, it cannot be scaled",
@@ -171,6 +172,7 @@ fn fragility_runs<'py>(
         records: &records,
         levels: &levels,
         blocks: &blocks,
+        im,
     };
     if spec.run_count() > MAX_RUNS {
         return Err(input(format!(
@@ -181,9 +183,9 @@ fn fragility_runs<'py>(
     // As the CLI: every block under every record at the largest level is
     // a valid scenario, before anything runs.
     let top = levels.iter().copied().fold(0.0, f64::max);
-    for &b in &blocks {
-        for r in &records {
-            scenario_for(base, b, &r.drive, top / r.intensity)
+    for (k, &b) in blocks.iter().enumerate() {
+        for (j, r) in records.iter().enumerate() {
+            scenario_for(base, b, &r.drive, spec.scale_of(k, top, j))
                 .map_err(|e| input(format!("--block {}x{}: {e}", b.width_m, b.height_m)))?;
         }
     }

@@ -53,6 +53,11 @@ pub enum ImArg {
     /// Peak ground velocity, m/s (integrated from the record as the model
     /// sees it, no baseline correction).
     Pgv,
+    /// PGA/(g tan α), dimensionless (1 = the block's static uplift
+    /// acceleration; Dimitrakopoulos & Paraskeva 2015).
+    PgaTanAlpha,
+    /// PGV·p/(g tan α), dimensionless (Dimitrakopoulos & Paraskeva 2015).
+    PgvPTanAlpha,
 }
 
 /// Points of the fitted curve in `fragility.json` and the figure.
@@ -81,8 +86,9 @@ pub struct FragilityArgs {
     /// The intensity measure the records are scaled to.
     #[arg(long, value_enum, default_value = "pga")]
     pub im: ImArg,
-    /// Intensity levels (g for PGA, m/s for PGV), each > 0:
-    /// comma-separated, or FROM:TO:N for N evenly spaced levels.
+    /// Intensity levels (g for PGA, m/s for PGV, dimensionless for the
+    /// rocking measures), each > 0: comma-separated, or FROM:TO:N for N
+    /// evenly spaced levels.
     #[arg(long, value_name = "LIST", allow_hyphen_values = true)]
     pub levels: String,
     /// A block WIDTHxHEIGHT in metres, e.g. 0.6x2.0; repeatable.
@@ -152,7 +158,14 @@ pub const LARGE_SCALE: f64 = 10.0;
 /// read (in its unit) beyond what ground motion does, which suggests a wrong
 /// unit (above [`IMPLAUSIBLE_PGA_G`], below [`IMPLAUSIBLY_SMALL_PGA_G`]), and
 /// a scale factor above [`LARGE_SCALE`] to reach the highest level.
-fn record_warnings(name: &str, record: &Record, im: Intensity, intensity: f64, levels: &[f64]) -> Vec<String> {
+fn record_warnings(
+    name: &str,
+    record: &Record,
+    im: Intensity,
+    intensity: f64,
+    levels: &[f64],
+    blocks: &[BlockSize],
+) -> Vec<String> {
     let mut out = Vec::new();
     let pga = record.series.peaks(1.0).pga_g;
     let doubt = if pga > IMPLAUSIBLE_PGA_G {
@@ -173,16 +186,20 @@ fn record_warnings(name: &str, record: &Record, im: Intensity, intensity: f64, l
         ));
     }
     let top = levels.iter().copied().fold(0.0, f64::max);
-    let scale = top / intensity;
+    let scale = blocks
+        .iter()
+        .map(|&b| top / (intensity * im.block_factor(b)))
+        .fold(0.0, f64::max);
     if scale > LARGE_SCALE {
-        let unit = match im {
-            Intensity::Pga => "g",
-            Intensity::Pgv => "m/s",
+        let unit = im.unit();
+        let level = if unit.is_empty() {
+            format!("{} {}", im.label(), num(top))
+        } else {
+            format!("{} {unit}", num(top))
         };
         out.push(format!(
-            "warning: record {name} ({}): scaled by up to {scale:.1} to reach level {} {unit} (above {LARGE_SCALE}: a weak record stands in for a much stronger one)",
+            "warning: record {name} ({}): scaled by up to {scale:.1} to reach level {level} (above {LARGE_SCALE}: a weak record stands in for a much stronger one)",
             record.path.display(),
-            num(top)
         ));
     }
     out
@@ -194,6 +211,8 @@ pub fn run(args: &FragilityArgs) -> Result<(), BatchError> {
     let im = match args.im {
         ImArg::Pga => Intensity::Pga,
         ImArg::Pgv => Intensity::Pgv,
+        ImArg::PgaTanAlpha => Intensity::PgaTanAlpha,
+        ImArg::PgvPTanAlpha => Intensity::PgvPTanAlpha,
     };
     let levels = positive_list("--levels", &args.levels)?;
     let blocks: Vec<BlockSize> = args
@@ -243,10 +262,7 @@ pub fn run(args: &FragilityArgs) -> Result<(), BatchError> {
         };
         let record = read_record(path, spec).map_err(named)?;
         let peaks = record.series.peaks(1.0);
-        let intensity = match im {
-            Intensity::Pga => peaks.pga_g,
-            Intensity::Pgv => peaks.pgv_m_s,
-        };
+        let intensity = im.record_value(&peaks);
         if !(intensity > 0.0 && intensity.is_finite()) {
             return Err(named(anyhow!(
                 "{}: {} is 0, it cannot be scaled",
@@ -254,7 +270,14 @@ pub fn run(args: &FragilityArgs) -> Result<(), BatchError> {
                 im.column()
             )));
         }
-        for warning in record_warnings(&Drive::Record(record.clone()).name(), &record, im, intensity, &levels) {
+        for warning in record_warnings(
+            &Drive::Record(record.clone()).name(),
+            &record,
+            im,
+            intensity,
+            &levels,
+            &blocks,
+        ) {
             eprintln!("{warning}");
         }
         let vertical_record = match named_vertical {
@@ -297,6 +320,7 @@ pub fn run(args: &FragilityArgs) -> Result<(), BatchError> {
         records: &records,
         levels: &levels,
         blocks: &blocks,
+        im,
     };
     if spec.run_count() > MAX_RUNS {
         return Err(input(anyhow!(
@@ -304,9 +328,10 @@ pub fn run(args: &FragilityArgs) -> Result<(), BatchError> {
             spec.run_count()
         )));
     }
-    for &b in &blocks {
-        for r in &records {
-            let scale = levels.iter().copied().fold(0.0, f64::max) / r.intensity;
+    let top = levels.iter().copied().fold(0.0, f64::max);
+    for (k, &b) in blocks.iter().enumerate() {
+        for (j, r) in records.iter().enumerate() {
+            let scale = spec.scale_of(k, top, j);
             scenario_for(&base, b, &r.drive, scale).map_err(|e| {
                 input(anyhow!(
                     "--block {}x{}: {}",
@@ -530,10 +555,7 @@ fn write_whole(
     let grid: Vec<f64> = (1..=BAND_POINTS)
         .map(|k| 1.1 * x_max * k as f64 / BAND_POINTS as f64)
         .collect();
-    let unit = match layout.im {
-        Intensity::Pga => "g",
-        Intensity::Pgv => "m/s",
-    };
+    let unit = layout.im.unit();
     let mut fraction_rows = Vec::new();
     let mut fits_json = Vec::new();
     let mut lines = Vec::new();

@@ -306,7 +306,9 @@ def fragility(
 ) -> Fragility:
     """Fragility curves, as `rocking fragility`: every block (width, height
     in m) under every record (a path, or (path, unit) for text records)
-    scaled to every intensity level (`im` "pga" in g or "pgv" in m/s); then
+    scaled to every intensity level (`im` "pga" in g, "pgv" in m/s, or the
+    dimensionless rocking measures "pga-tan-alpha", PGA/(g tan α), and
+    "pgv-p-tan-alpha", PGV·p/(g tan α), which depend on the block); then
     per block the lognormal fits of P(overturning) and P(θ/α ≥ `threshold`
     or overturning). `base` gives friction, impact law, tolerances and the
     record tail (its block and excitation are replaced); default

@@ -16,27 +16,46 @@ use rayon::prelude::*;
 use super::lognormal::{self, FitError, LevelCount, LognormalFit};
 use super::response::{BlockResponse, BlockSize, Drive, EndState, ResponseError, respond};
 use crate::analysis::{Progress, ProgressFn};
+use crate::model::excitation::record::GroundPeaks;
 use crate::sim::Scenario;
 
 /// Most runs (blocks × levels × records) of one fragility study.
 pub const MAX_RUNS: usize = 10_000_000;
 
 /// The intensity measure the records are scaled to.
+///
+/// PGA and PGV are the ground motion's own; the two rocking measures of
+/// Dimitrakopoulos & Paraskeva (2015, EESD 44:2015) are dimensionless and
+/// depend on the block: PGA/(g tan α) is the PGA in units of the uplift
+/// acceleration (1 = the static uplift threshold), PGV·p/(g tan α) the PGV
+/// in units of the velocity scale g tan α / p of rocking. Across blocks of
+/// different size and slenderness they gather the curves, which is why
+/// the literature prefers them for rocking fragility.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
-#[serde(rename_all = "lowercase")]
 pub enum Intensity {
     /// Peak ground acceleration, g.
+    #[serde(rename = "pga")]
     Pga,
     /// Peak ground velocity, m/s.
+    #[serde(rename = "pgv")]
     Pgv,
+    /// PGA/(g tan α), dimensionless.
+    #[serde(rename = "pga-tan-alpha")]
+    PgaTanAlpha,
+    /// PGV·p/(g tan α), dimensionless.
+    #[serde(rename = "pgv-p-tan-alpha")]
+    PgvPTanAlpha,
 }
 
 impl Intensity {
-    /// Name with unit, as in the outputs' columns: `pga_g`, `pgv_m_s`.
+    /// Name with unit, as in the outputs' columns: `pga_g`, `pgv_m_s`,
+    /// `pga_over_g_tan_alpha`, `pgv_p_over_g_tan_alpha`.
     pub fn column(self) -> &'static str {
         match self {
             Intensity::Pga => "pga_g",
             Intensity::Pgv => "pgv_m_s",
+            Intensity::PgaTanAlpha => "pga_over_g_tan_alpha",
+            Intensity::PgvPTanAlpha => "pgv_p_over_g_tan_alpha",
         }
     }
 
@@ -45,7 +64,44 @@ impl Intensity {
         match self {
             Intensity::Pga => "PGA (g)",
             Intensity::Pgv => "PGV (m/s)",
+            Intensity::PgaTanAlpha => "PGA / (g tan α)",
+            Intensity::PgvPTanAlpha => "PGV · p / (g tan α)",
         }
+    }
+
+    /// Unit for text (empty when dimensionless).
+    pub fn unit(self) -> &'static str {
+        match self {
+            Intensity::Pga => "g",
+            Intensity::Pgv => "m/s",
+            Intensity::PgaTanAlpha | Intensity::PgvPTanAlpha => "",
+        }
+    }
+
+    /// The record's own value this measure is built on, at scale 1: its
+    /// PGA in g or its PGV in m/s.
+    pub fn record_value(self, peaks: &GroundPeaks) -> f64 {
+        match self {
+            Intensity::Pga | Intensity::PgaTanAlpha => peaks.pga_g,
+            Intensity::Pgv | Intensity::PgvPTanAlpha => peaks.pgv_m_s,
+        }
+    }
+
+    /// The factor that turns [`record_value`](Self::record_value) into
+    /// this measure for `block`: 1 for PGA and PGV, 1/tan α for PGA/(g tan
+    /// α) (the PGA is already in g), p/(g tan α) for PGV·p/(g tan α).
+    pub fn block_factor(self, block: BlockSize) -> f64 {
+        let tan_alpha = block.width_m / block.height_m;
+        match self {
+            Intensity::Pga | Intensity::Pgv => 1.0,
+            Intensity::PgaTanAlpha => 1.0 / tan_alpha,
+            Intensity::PgvPTanAlpha => block.p_per_s() / (crate::model::geometry::G * tan_alpha),
+        }
+    }
+
+    /// Whether the measure depends on the block (the dimensionless ones).
+    pub fn per_block(self) -> bool {
+        matches!(self, Intensity::PgaTanAlpha | Intensity::PgvPTanAlpha)
     }
 }
 
@@ -54,8 +110,8 @@ impl Intensity {
 pub struct SuiteRecord {
     /// The record (a [`Drive::Record`]).
     pub drive: Drive,
-    /// Its intensity measure as recorded (scale 1), > 0, in the unit of
-    /// the study's [`Intensity`].
+    /// The value the study's [`Intensity`] is built on, as recorded
+    /// (scale 1), > 0: [`Intensity::record_value`].
     pub intensity: f64,
 }
 
@@ -70,6 +126,8 @@ pub struct FragilitySpec<'a> {
     pub levels: &'a [f64],
     /// The blocks.
     pub blocks: &'a [BlockSize],
+    /// The intensity measure of the levels.
+    pub im: Intensity,
 }
 
 /// Where run `index` sits: (block, level, record).
@@ -99,9 +157,16 @@ impl FragilitySpec<'_> {
         }
     }
 
-    /// The scale factor of a run: level / the record's own intensity.
+    /// The scale factor of a run: level / the record's own intensity for
+    /// that block.
     pub fn scale(&self, at: RunIndex) -> f64 {
-        self.levels[at.level] / self.records[at.record].intensity
+        self.scale_of(at.block, self.levels[at.level], at.record)
+    }
+
+    /// The scale factor that brings record `record` to `level` for block
+    /// `block`.
+    pub fn scale_of(&self, block: usize, level: f64, record: usize) -> f64 {
+        level / (self.records[record].intensity * self.im.block_factor(self.blocks[block]))
     }
 }
 
@@ -308,6 +373,7 @@ mod tests {
             records: &records,
             levels: &levels,
             blocks: &blocks,
+            im: Intensity::Pga,
         };
         assert_eq!(spec.run_count(), 12);
         assert_eq!(
