@@ -39,9 +39,10 @@ use crate::analysis::engineering::{BlockSize, Drive, EndState};
 use crate::analysis::orbit_diagram::Shard;
 use crate::io::config::to_json;
 use crate::io::csv::{self, Num};
-use crate::io::engineering_files::{FractionRow, FragilityRunRow};
+use crate::io::engineering_files::{FractionRow, FragilityRunRow, IncrementalRow};
 use crate::io::output;
 use crate::plot::fragility::{FragilityCurve, FragilityFigure, FragilityPanel};
+use crate::plot::incremental::{IncrementalCurve, IncrementalFigure, IncrementalPanel};
 use crate::plot::labels::{friction_text, num};
 use crate::sim::scenario::{IMPLAUSIBLE_PGA_G, IMPLAUSIBLY_SMALL_PGA_G, Record, readable_g};
 
@@ -130,6 +131,8 @@ struct Layout {
     records: usize,
     threshold: f64,
     friction: String,
+    /// The overturning angle θ/α (`run.tumble_theta`).
+    overturn_at: f64,
 }
 
 impl Layout {
@@ -411,6 +414,7 @@ pub fn run(args: &FragilityArgs) -> Result<(), BatchError> {
         records: records.len(),
         threshold: args.threshold,
         friction: friction_text(&base),
+        overturn_at: base.run.tumble_theta,
     };
     let common = json!({
         "command": "rocking fragility",
@@ -657,14 +661,72 @@ fn write_whole(
             },
         ],
     };
+    let (incremental_rows, incremental_fig) = incremental(layout, &rows, layout.overturn_at);
     super::write::staged(out, |staging| {
         staging.text("runs.csv", &csv::to_string(rows))?;
         staging.text("fractions.csv", &csv::to_string(fraction_rows))?;
+        staging.text("incremental.csv", &csv::to_string(incremental_rows))?;
+        super::write::figure(staging, "incremental", &incremental_fig)?;
         staging.text("fragility.json", &(serde_json::to_string_pretty(&meta)? + "\n"))?;
         super::write::figure(staging, "fragility", &fig)?;
         Ok(())
     })?;
     Ok(lines)
+}
+
+/// Each record's incremental curve for each block (its runs in increasing
+/// level) from the study's rows (in run order: block, level, record), as
+/// rows of `incremental.csv` and the figure; overturned runs are drawn at
+/// `overturn_at` (θ/α).
+fn incremental(layout: &Layout, rows: &[FragilityRunRow], overturn_at: f64) -> (Vec<IncrementalRow>, IncrementalFigure) {
+    let (nl, nr) = (layout.levels.len(), layout.records);
+    let at = |b: usize, l: usize, r: usize| rows.get((b * nl + l) * nr + r);
+    let mut out = Vec::with_capacity(rows.len());
+    let mut panels = Vec::with_capacity(layout.blocks.len());
+    for (b, block) in layout.blocks.iter().enumerate() {
+        let mut curves = Vec::with_capacity(nr);
+        for r in 0..nr {
+            let mut points = Vec::with_capacity(nl);
+            let mut label = String::new();
+            for l in 0..nl {
+                let Some(row) = at(b, l, r) else { continue };
+                label.clone_from(&row.record);
+                let end = EndState::from_name(&row.end).unwrap_or(EndState::Moving);
+                points.push((row.level.0, row.peak_theta_over_alpha.0, end));
+                out.push(IncrementalRow {
+                    block: b as u64,
+                    width_m: row.width_m,
+                    height_m: row.height_m,
+                    record: row.record.clone(),
+                    im: row.im.clone(),
+                    level: row.level,
+                    peak_theta_over_alpha: row.peak_theta_over_alpha,
+                    end: row.end.clone(),
+                });
+            }
+            curves.push(IncrementalCurve { label, points });
+        }
+        panels.push(IncrementalPanel {
+            caption: format!("{} × {} m", num(block.width_m), num(block.height_m)),
+            curves,
+        });
+    }
+    let fig = IncrementalFigure {
+        title: format!(
+            "Incremental curves: peak rotation of each block under each of {} records",
+            layout.records
+        ),
+        subtitle: format!(
+            "{}; one line per record, × overturned (drawn at θ/α = {}), ▲ flight",
+            layout.friction,
+            num(overturn_at)
+        ),
+        y_label: layout.im.label().to_string(),
+        y_max: layout.levels.iter().copied().fold(0.0, f64::max),
+        overturn_at,
+        panels,
+    };
+    (out, fig)
 }
 
 /// Whether `dirs` are fragility shards (the first holds a
@@ -757,6 +819,10 @@ fn layout_of(common: &Json, path: &Path) -> anyhow::Result<Layout> {
         .as_f64()
         .ok_or_else(|| anyhow!("{}: bad threshold_theta_over_alpha", path.display()))?;
     let friction = field("friction")?.as_str().unwrap_or_default().to_string();
+    let overturn_at = field("config")?
+        .pointer("/run/tumble_theta")
+        .and_then(Json::as_f64)
+        .ok_or_else(|| anyhow!("{}: config has no run.tumble_theta", path.display()))?;
     let layout = Layout {
         im,
         levels,
@@ -764,6 +830,7 @@ fn layout_of(common: &Json, path: &Path) -> anyhow::Result<Layout> {
         records,
         threshold,
         friction,
+        overturn_at,
     };
     if field("runs")?.as_u64() != Some(layout.runs() as u64) {
         bail!("{}: runs disagrees with blocks × levels × records", path.display());

@@ -201,6 +201,42 @@ impl Row for FragilityRunRow {
     ];
 }
 
+/// A row of `incremental.csv`: one record's run at one level, for one
+/// block (block outer, record, level inner: each record's incremental
+/// curve in order).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct IncrementalRow {
+    /// Block number, from 0.
+    pub block: u64,
+    /// Width B, m.
+    pub width_m: Num,
+    /// Height H, m.
+    pub height_m: Num,
+    /// Record name (file stem).
+    pub record: String,
+    /// Intensity measure (the column name of `runs.csv`'s `im`).
+    pub im: String,
+    /// Intensity level.
+    pub level: Num,
+    /// Peak |θ|/α.
+    pub peak_theta_over_alpha: Num,
+    /// rest, moving, overturned or flight.
+    pub end: String,
+}
+
+impl Row for IncrementalRow {
+    const HEADER: &'static [&'static str] = &[
+        "block",
+        "width_m",
+        "height_m",
+        "record",
+        "im",
+        "level",
+        "peak_theta_over_alpha",
+        "end",
+    ];
+}
+
 /// A row of `fractions.csv`: one block at one level.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct FractionRow {

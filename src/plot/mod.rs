@@ -14,6 +14,7 @@
 
 pub mod bifurcation;
 pub mod fragility;
+pub mod incremental;
 pub mod labels;
 pub mod marks;
 pub mod outcome_map;
