@@ -379,8 +379,9 @@ def __dir__() -> list[str]:
 
 
 def __getattr__(name: str) -> Any:
-    # `rocking.dask` is imported on first use: dask stays optional.
-    if name == "dask":
+    # `rocking.dask` and `rocking.records` are imported on first use: dask
+    # and the packages that hold record sets stay optional.
+    if name in ("dask", "records"):
         import importlib
 
         return importlib.import_module(".dask", __name__)
