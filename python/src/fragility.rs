@@ -47,20 +47,58 @@ fn intensity(im: &str) -> PyResult<Intensity> {
     }
 }
 
-/// Reads the suite: each record in its unit (text files need one; an AT2
-/// header states its own), with its intensity at scale 1.
-fn suite(records: Vec<(PathBuf, Option<String>)>, im: Intensity) -> PyResult<Vec<SuiteRecord>> {
+/// A record as Python gives it: (path, unit, vertical path, vertical
+/// unit), the optional parts `None`.
+pub type RecordArg = (PathBuf, Option<String>, Option<PathBuf>, Option<String>);
+
+/// Reads one component in its unit (text files need one; an AT2 header
+/// states its own).
+fn component(path: &PathBuf, unit: Option<&str>) -> PyResult<Record> {
+    let unit = match unit {
+        None => None,
+        Some(text) => Some(
+            AccelUnit::parse(text)
+                .ok_or_else(|| input(format!("--unit {text}: unknown unit (known: g, m/s2, cm/s2)")))?,
+        ),
+    };
+    let loaded = read_record_as(path, &RecordSpec { unit, dt: None }).map_err(|e| record_error(path, &e))?;
+    Ok(Record {
+        path: path.clone(),
+        series: loaded.series,
+        unit: loaded.unit,
+        dt: None,
+        crc32: loaded.crc32,
+    })
+}
+
+/// Whether the study applies the verticals: `vertical` as given ("none",
+/// "record"), else when every record names one; a suite naming verticals
+/// for some records only must say which study it means (as the CLI).
+fn vertical_choice(vertical: Option<&str>, records: &[RecordArg]) -> PyResult<bool> {
+    let lacking = records.iter().position(|r| r.2.is_none());
+    let named = records.iter().position(|r| r.2.is_some());
+    match (vertical, lacking, named) {
+        (Some("none"), _, _) => Ok(false),
+        (Some("record"), Some(i), _) => Err(input(format!(
+            "vertical=\"record\": records[{i}] names no vertical component (give (path, unit, vertical_path, vertical_unit))"
+        ))),
+        (Some("record"), None, _) | (None, None, _) => Ok(true),
+        (None, Some(_), None) => Ok(false),
+        (None, Some(i), Some(j)) => Err(input(format!(
+            "records[{j}] names a vertical component but records[{i}] does not; complete the suite, or give vertical=\"none\" to run horizontals only"
+        ))),
+        (Some(other), _, _) => Err(input(format!("vertical={other:?}: expected \"none\" or \"record\""))),
+    }
+}
+
+/// Reads the suite: each record in its unit, with its vertical when
+/// `with_vertical`, and the value its intensity measure is built on at
+/// scale 1.
+fn suite(records: Vec<RecordArg>, im: Intensity, with_vertical: bool) -> PyResult<Vec<SuiteRecord>> {
     let mut out = Vec::with_capacity(records.len());
-    for (path, unit) in records {
-        let unit = match unit.as_deref() {
-            None => None,
-            Some(text) => Some(
-                AccelUnit::parse(text)
-                    .ok_or_else(|| input(format!("--unit {text}: unknown unit (known: g, m/s2, cm/s2)")))?,
-            ),
-        };
-        let loaded = read_record_as(&path, &RecordSpec { unit, dt: None }).map_err(|e| record_error(&path, &e))?;
-        let peaks = loaded.series.peaks(1.0);
+    for (path, unit, path_v, unit_v) in records {
+        let record = component(&path, unit.as_deref())?;
+        let peaks = record.series.peaks(1.0);
         let value = im.record_value(&peaks);
         if !(value > 0.0 && value.is_finite()) {
             return Err(input(format!(
@@ -69,15 +107,15 @@ fn suite(records: Vec<(PathBuf, Option<String>)>, im: Intensity) -> PyResult<Vec
                 im.column()
             )));
         }
-        let record = Record {
-            path: path.clone(),
-            series: loaded.series,
-            unit: loaded.unit,
-            dt: None,
-            crc32: loaded.crc32,
+        let drive = match path_v {
+            Some(pv) if with_vertical => Drive::Paired {
+                horizontal: record,
+                vertical: component(&pv, unit_v.as_deref())?,
+            },
+            _ => Drive::Record(record),
         };
         out.push(SuiteRecord {
-            drive: Drive::Record(record),
+            drive,
             intensity: value,
         });
     }
@@ -92,22 +130,23 @@ fn suite(records: Vec<(PathBuf, Option<String>)>, im: Intensity) -> PyResult<Vec
 /// `levels` of `im` ("pga" in g, "pgv" in m/s), on the scene's friction,
 /// impact law and tolerances: runs.csv's columns.
 #[pyfunction]
-#[pyo3(signature = (scene, records, levels, blocks, *, im="pga", threads=None, indices=None, check_only=false, progress=None))]
+#[pyo3(signature = (scene, records, levels, blocks, *, im="pga", vertical=None, threads=None, indices=None, check_only=false, progress=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn _fragility_runs<'py>(
     py: Python<'py>,
     scene: &Scene,
-    records: Vec<(PathBuf, Option<String>)>,
+    records: Vec<RecordArg>,
     levels: Vec<f64>,
     blocks: Vec<(f64, f64)>,
     im: &str,
+    vertical: Option<&str>,
     threads: Option<usize>,
     indices: Option<Vec<usize>>,
     check_only: bool,
     progress: Option<Py<PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     fragility_runs(
-        py, scene, records, levels, blocks, im, threads, indices, check_only, progress,
+        py, scene, records, levels, blocks, im, vertical, threads, indices, check_only, progress,
     )
     .map_err(|e| with_python_args(e, FRAGILITY_ARGS))
 }
@@ -116,10 +155,11 @@ pub fn _fragility_runs<'py>(
 fn fragility_runs<'py>(
     py: Python<'py>,
     scene: &Scene,
-    records: Vec<(PathBuf, Option<String>)>,
+    records: Vec<RecordArg>,
     levels: Vec<f64>,
     blocks: Vec<(f64, f64)>,
     im: &str,
+    vertical: Option<&str>,
     threads: Option<usize>,
     indices: Option<Vec<usize>>,
     check_only: bool,
@@ -152,7 +192,7 @@ fn fragility_runs<'py>(
     }
     let canonical: Vec<PathBuf> = records
         .iter()
-        .map(|(p, _)| p.canonicalize().unwrap_or_else(|_| p.clone()))
+        .map(|(p, _, _, _)| p.canonicalize().unwrap_or_else(|_| p.clone()))
         .collect();
     for (j, p) in canonical.iter().enumerate() {
         if let Some(i) = canonical[..j].iter().position(|q| q == p) {
@@ -166,7 +206,8 @@ fn fragility_runs<'py>(
         .into_iter()
         .map(|(width_m, height_m)| BlockSize { width_m, height_m })
         .collect();
-    let records = suite(records, im)?;
+    let with_vertical = vertical_choice(vertical, &records)?;
+    let records = suite(records, im, with_vertical)?;
     let spec = FragilitySpec {
         base,
         records: &records,

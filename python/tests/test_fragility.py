@@ -109,3 +109,32 @@ def test_a_record_level_or_block_given_twice_is_refused_naming_both() -> None:
         rocking.fragility([(ELCENTRO, "g")], [0.1, 0.2, 0.1], BLOCKS)
     with pytest.raises(rocking.ConfigError, match=r"blocks\[0\] and blocks\[1\] are both 0.6 x 2 m"):
         rocking.fragility([(ELCENTRO, "g")], LEVELS, [(0.6, 2.0), (0.6, 2)])
+
+
+def _step(path: Path, level: float) -> Path:
+    """A step record: 0 at t = 0, `level` g from 1 ms on, for 2 s."""
+    path.write_text(f"0 0\n0.001 {level}\n2.0 {level}\n")
+    return path
+
+
+def test_paired_vertical_records_run_as_the_clis_and_move_the_uplift_threshold(cli, tmp_path: Path) -> None:
+    # a_h = s g, a_v = -0.4 s g: the 0.5 x 2 m block (tan α = 0.25) lifts
+    # off where s > 0.25 (1 - 0.4 s), i.e. s > 0.2273, and at s > 0.25
+    # without the vertical; 0.24 lies between.
+    h = _step(tmp_path / "h.dat", 1.0)
+    v = _step(tmp_path / "v.dat", -0.4)
+    levels = [0.20, 0.24, 0.26]
+    with_v = rocking.fragility([(h, "g", v, "g")], levels, [(0.5, 2.0)])
+    assert [p > 0 for p in with_v.runs["peak_theta_over_alpha"]] == [False, True, True]
+    without = rocking.fragility([(h, "g", v, "g")], levels, [(0.5, 2.0)], vertical="none")
+    assert [p > 0 for p in without.runs["peak_theta_over_alpha"]] == [False, False, True]
+    suite = tmp_path / "suite.txt"
+    suite.write_text("h.dat g + v.dat g\n")
+    out = tmp_path / "out"
+    cli.ok("fragility", "--suite", str(suite), "--levels", "0.20,0.24,0.26", "--block", "0.5x2.0", "--out", str(out), "-q")
+    rows = read_csv(out / "runs.csv")
+    assert list(with_v.runs["peak_theta_over_alpha"].astype(float)) == floats(rows, "peak_theta_over_alpha")
+    with pytest.raises(rocking.ConfigError, match=r"records\[0\] names a vertical component but records\[1\] does not"):
+        rocking.fragility([(h, "g", v, "g"), (ELCENTRO, "g")], levels, [(0.5, 2.0)])
+    with pytest.raises(rocking.ConfigError, match=r'vertical="record": records\[1\] names no vertical'):
+        rocking.fragility([(h, "g", v, "g"), (ELCENTRO, "g")], levels, [(0.5, 2.0)], vertical="record")

@@ -282,14 +282,24 @@ def lyapunov(scene: Scene | str, method: str | None = None) -> Lyapunov:
 
 
 
-def _records(records: Any) -> list[tuple[str, str | None]]:
-    """Records as (path, unit or None): a path alone, or (path, unit)."""
+def _records(records: Any) -> list[tuple[str, str | None, str | None, str | None]]:
+    """Records as (path, unit, vertical path, vertical unit), each optional
+    part None: a path alone, (path, unit), or (path, unit, vpath, vunit)
+    pairing a horizontal with its vertical component."""
     out = []
-    for r in records:
+    for k, r in enumerate(records):
         if isinstance(r, tuple):
-            out.append((str(r[0]), r[1]))
+            if len(r) == 2:
+                out.append((str(r[0]), r[1], None, None))
+            elif len(r) == 4:
+                out.append((str(r[0]), r[1], None if r[2] is None else str(r[2]), r[3]))
+            else:
+                raise ConfigError(
+                    f"records[{k}]: expected a path, (path, unit) or (path, unit, vertical_path, vertical_unit), "
+                    f"got a tuple of {len(r)}"
+                )
         else:
-            out.append((str(r), None))
+            out.append((str(r), None, None, None))
     return out
 
 
@@ -300,6 +310,7 @@ def fragility(
     *,
     base: Scene | None = None,
     im: str = "pga",
+    vertical: str | None = None,
     threshold: float = 0.5,
     threads: int | None = None,
     progress: Progress = None,
@@ -310,7 +321,12 @@ def fragility(
     dimensionless rocking measures "pga-tan-alpha", PGA/(g tan α), and
     "pgv-p-tan-alpha", PGV·p/(g tan α), which depend on the block); then
     per block the lognormal fits of P(overturning) and P(θ/α ≥ `threshold`
-    or overturning). `base` gives friction, impact law, tolerances and the
+    or overturning). A record given as (path, unit, vertical_path,
+    vertical_unit) pairs a horizontal with its vertical component, both
+    scaled by one factor (the level over the horizontal's intensity);
+    `vertical` "record" applies the verticals, "none" runs horizontals only,
+    and None (the default) applies them when every record names one, as
+    `rocking fragility --vertical`. `base` gives friction, impact law, tolerances and the
     record tail (its block and excitation are replaced); default
     `Scene.defaults()`, the CLI's base without --preset. `progress`: see
     the module's help. Ctrl-C stops it between chunks of runs."""
@@ -319,7 +335,9 @@ def fragility(
     blocks = [(float(w), float(h)) for w, h in blocks]
     given = list(records)
     with _Reporter(progress, "fragility") as report:
-        data = _rocking._fragility_runs(s, _records(given), levels, blocks, im=im, threads=threads, progress=report)
+        data = _rocking._fragility_runs(
+            s, _records(given), levels, blocks, im=im, vertical=vertical, threads=threads, progress=report
+        )
     return Fragility._assemble([data], len(blocks), levels, threshold)._keep(
         base=s, records=given, record_names=list(data["records"]), blocks=blocks
     )
