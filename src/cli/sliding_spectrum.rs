@@ -376,6 +376,7 @@ pub fn run(args: &SlidingSpectrumArgs) -> Result<(), BatchError> {
             base.impact.law.name()
         ),
         pga_g: Some(pga),
+        tan_alpha: Some(size.width_m / size.height_m),
         curves: vec![
             curve(
                 BlockKind::SlideOnly,
@@ -383,7 +384,7 @@ pub fn run(args: &SlidingSpectrumArgs) -> Result<(), BatchError> {
             ),
             curve(
                 BlockKind::Given,
-                format!("block {block_text} (rocks, slides, overturns)"),
+                format!("block {block_text} (may also rock and overturn)"),
             ),
         ],
     };

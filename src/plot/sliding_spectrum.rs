@@ -4,7 +4,8 @@
 //! block). A run that overturned is marked by a cross of its series'
 //! colour at its peak before overturning (it has no residual), flight by a
 //! black triangle; a grey vertical line marks μ = PGA/g, above which the
-//! slide-only block never slips.
+//! slide-only block never slips, and one in the given block's colour
+//! μ = tan α, above which that block cannot slide flat (it rocks first).
 
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -39,6 +40,9 @@ pub struct SlidingFigure {
     pub subtitle: String,
     /// PGA of the motion as run, g (the vertical line μ = PGA/g), if known.
     pub pga_g: Option<f64>,
+    /// tan α of the given block (the vertical line μ = tan α in its
+    /// colour, above which it cannot slide flat: it rocks first).
+    pub tan_alpha: Option<f64>,
     /// The curves (slide-only first).
     pub curves: Vec<SlidingCurve>,
 }
@@ -116,6 +120,19 @@ impl Figure for SlidingFigure {
                     .map_err(e)?
                     .label(format!("μ = PGA/g = {pga:.3}: the slide-only block never slips above"))
                     .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], MARK.stroke_width(2)));
+            }
+            if let Some(t) = self.tan_alpha.filter(|v| v.is_finite() && *v > x0 && *v < x1) {
+                let c = colour(1);
+                chart
+                    .draw_series(std::iter::once(PathElement::new(
+                        vec![(t, y0), (t, y1)],
+                        c.mix(0.45).stroke_width(2),
+                    )))
+                    .map_err(e)?
+                    .label(format!(
+                        "μ = tan α = {t:.3}: the block rocks rather than slides flat above"
+                    ))
+                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], c.mix(0.45).stroke_width(2)));
             }
             let mut any_overturned = false;
             let mut any_flight = false;
@@ -204,6 +221,7 @@ mod tests {
             title: "Sliding spectrum".into(),
             subtitle: "μ_k = μ_s".into(),
             pga_g: Some(0.35),
+            tan_alpha: Some(0.222),
             curves: vec![
                 SlidingCurve {
                     label: "slide-only".into(),
