@@ -152,8 +152,11 @@ fn sliding<'py>(
     spec.check().map_err(|e| match e {
         SlidingSpecError::Mu(m) => input(format!("--mu: {m}")),
         SlidingSpecError::KineticRatio(r) => input(format!("--kinetic-ratio {r}: must be in (0, 1] (μ_k ≤ μ_s)")),
-        SlidingSpecError::TooStrong { what, value, .. } => input(format!(
-            "{what} {value} reaches {SLIDE_ONLY_B_OVER_H}, where the block that cannot rock could rock"
+        SlidingSpecError::FrictionTooLarge(mu_k) => input(format!(
+            "--mu: μ_k = {mu_k} reaches {SLIDE_ONLY_B_OVER_H}, where the block that cannot rock could tip; give coefficients below it"
+        )),
+        SlidingSpecError::MotionTooStrong(pga) => input(format!(
+            "--scale/--pga: PGA {pga} g reaches {SLIDE_ONLY_B_OVER_H} g, where the block that cannot rock could lift; give a smaller scale"
         )),
         other @ (SlidingSpecError::NormalisedPulse | SlidingSpecError::Scenario { .. }) => input(other),
     })?;

@@ -249,16 +249,14 @@ fn spec_error(e: SlidingSpecError) -> BatchError {
         SlidingSpecError::KineticRatio(r) => {
             input(anyhow!("--kinetic-ratio {}: must be in (0, 1] (μ_k ≤ μ_s)", show(r)))
         }
-        SlidingSpecError::TooStrong {
-            what: "μ_k", value, ..
-        } => input(anyhow!(
+        SlidingSpecError::FrictionTooLarge(mu_k) => input(anyhow!(
             "--mu: μ_k = {} reaches {}, where the block that cannot rock could tip; give coefficients below it",
-            show(value),
+            show(mu_k),
             show(SLIDE_ONLY_B_OVER_H)
         )),
-        SlidingSpecError::TooStrong { value, .. } => input(anyhow!(
+        SlidingSpecError::MotionTooStrong(pga) => input(anyhow!(
             "--scale/--pga: PGA {} g reaches {} g, where the block that cannot rock could lift; give a smaller scale",
-            show(value),
+            show(pga),
             show(SLIDE_ONLY_B_OVER_H)
         )),
         other @ (SlidingSpecError::NormalisedPulse | SlidingSpecError::Scenario { .. }) => input(anyhow!(other)),

@@ -110,19 +110,13 @@ pub enum SlidingSpecError {
     /// block's slenderness: the two blocks would feel different motions.
     #[error("a normalised pulse scales with each block's slenderness; give a record or a pulse in g")]
     NormalisedPulse,
-    /// The motion or the friction is so strong that the slide-only
-    /// realisation could rock ([`SLIDE_ONLY_B_OVER_H`]).
-    #[error(
-        "{what} {value} reaches tan α = {limit} of the slide-only block, which could then rock; no ground motion or friction is that large"
-    )]
-    TooStrong {
-        /// What: `PGA (g)` or `μ_k`.
-        what: &'static str,
-        /// Its value.
-        value: f64,
-        /// tan α of the slide-only block.
-        limit: f64,
-    },
+    /// The motion's PGA (g) reaches tan α of the slide-only block
+    /// ([`SLIDE_ONLY_B_OVER_H`]), which could then lift.
+    #[error("PGA {0} g reaches tan α = 1000 of the slide-only block, which could then lift")]
+    MotionTooStrong(f64),
+    /// A μ_k reaches tan α of the slide-only block, which could then tip.
+    #[error("μ_k = {0} reaches tan α = 1000 of the slide-only block, which could then tip")]
+    FrictionTooLarge(f64),
     /// A block's scenario is invalid.
     #[error("{kind} block: {error}", kind = kind.name())]
     Scenario {
@@ -235,21 +229,12 @@ impl SlidingSpec<'_> {
             return Err(SlidingSpecError::KineticRatio(self.kinetic_ratio));
         }
         let pga = self.pga_g().ok_or(SlidingSpecError::NormalisedPulse)?;
-        let limit = SLIDE_ONLY_B_OVER_H;
-        if pga >= limit {
-            return Err(SlidingSpecError::TooStrong {
-                what: "PGA (g)",
-                value: pga,
-                limit,
-            });
+        if pga >= SLIDE_ONLY_B_OVER_H {
+            return Err(SlidingSpecError::MotionTooStrong(pga));
         }
         let mu_k_max = self.mu.iter().map(|&m| self.kinetic(m)).fold(0.0, f64::max);
-        if mu_k_max >= limit {
-            return Err(SlidingSpecError::TooStrong {
-                what: "μ_k",
-                value: mu_k_max,
-                limit,
-            });
+        if mu_k_max >= SLIDE_ONLY_B_OVER_H {
+            return Err(SlidingSpecError::FrictionTooLarge(mu_k_max));
         }
         for kind in BlockKind::ALL {
             for &mu in &self.mu {
@@ -409,7 +394,7 @@ mod tests {
         ));
         assert!(matches!(
             spec(vec![2000.0], 1.0, &drive),
-            Err(SlidingSpecError::TooStrong { .. })
+            Err(SlidingSpecError::FrictionTooLarge(_))
         ));
         let normalised = Drive::NormalisedPulse {
             shape: crate::sim::scenario::ShapeKind::OneSine,
