@@ -18,6 +18,7 @@ mod map;
 mod memory;
 mod scene;
 mod simulate;
+mod sliding;
 mod spectrum;
 mod study;
 
@@ -45,5 +46,6 @@ fn _rocking(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(fragility::_fragility_runs, m)?)?;
     m.add_function(wrap_pyfunction!(fragility::_fragility_fits, m)?)?;
     m.add_function(wrap_pyfunction!(spectrum::_spectrum, m)?)?;
+    m.add_function(wrap_pyfunction!(sliding::_sliding_spectrum, m)?)?;
     Ok(())
 }

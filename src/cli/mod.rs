@@ -24,6 +24,7 @@ pub mod merge;
 pub mod progress;
 pub mod pulse_map;
 pub mod reproduce;
+pub mod sliding_spectrum;
 pub mod spectrum;
 pub mod suite;
 pub mod sweep;
@@ -93,6 +94,10 @@ pub enum Command {
     /// under one record or pulse, optionally each block's smallest
     /// overturning scale (spectrum.csv, spectrum.json, spectrum.png/svg).
     Spectrum(spectrum::SpectrumArgs),
+    /// Sliding spectrum: peak and residual sliding displacement against the
+    /// friction coefficient under one record or pulse, for a block that
+    /// cannot rock and for the given block (sliding_spectrum.csv/json/png/svg).
+    SlidingSpectrum(sliding_spectrum::SlidingSpectrumArgs),
     /// Pulse overturning map: the smallest a_p/(g tan α) that overturns a
     /// block against ω_p/p, for one-sine, one-cosine and type-C pulses
     /// (pulse_map.csv/json/png/svg).
@@ -143,10 +148,11 @@ impl Cli {
         }
         /// Builds one subcommand's arguments.
         type Augment = fn(clap::Command) -> clap::Command;
-        let deferred: [(&str, Augment); 8] = [
+        let deferred: [(&str, Augment); 9] = [
             ("sweep", augment::<sweep::SweepArgs>),
             ("merge", augment::<merge::MergeArgs>),
             ("spectrum", augment::<spectrum::SpectrumArgs>),
+            ("sliding-spectrum", augment::<sliding_spectrum::SlidingSpectrumArgs>),
             ("pulse-map", augment::<pulse_map::PulseMapArgs>),
             ("fragility", augment::<fragility::FragilityArgs>),
             ("map", augment::<map::MapArgs>),
@@ -170,6 +176,7 @@ impl Command {
             Command::Merge(args) if fragility::are_fragility_shards(&args.shards) => fragility::merge(args),
             Command::Merge(args) => merge::run(args),
             Command::Spectrum(args) => spectrum::run(args),
+            Command::SlidingSpectrum(args) => sliding_spectrum::run(args),
             Command::PulseMap(args) => pulse_map::run(args),
             Command::Fragility(args) => fragility::run(args),
             Command::Map(args) if args.output.lyapunov => map::run_with(args, Some(&lyapunov::largest_for_scenario)),
@@ -210,7 +217,7 @@ mod tests {
                 )
             })
             .collect();
-        assert_eq!(before.len(), 8);
+        assert_eq!(before.len(), 9);
         cmd.build();
         cmd.clone().debug_assert();
         for (name, about, long_about) in before {

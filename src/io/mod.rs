@@ -14,6 +14,7 @@ pub mod output;
 pub mod presets;
 pub mod record;
 pub mod shipped;
+pub mod sliding_files;
 pub mod staging;
 pub mod sweep_files;
 

@@ -22,6 +22,7 @@ pub mod poincare;
 pub mod pulse_map;
 pub mod rich;
 pub mod rocking_spectrum;
+pub mod sliding_spectrum;
 pub mod spectrum;
 #[cfg(test)]
 pub(crate) mod svg_text;

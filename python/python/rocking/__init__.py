@@ -33,7 +33,7 @@ import time
 from typing import Any, Callable, Union
 
 from . import _rocking
-from ._results import SPECTRUM, Fragility, Lyapunov, OutcomeMap, RockingSpectrum, Run, Sweep
+from ._results import SLIDING, SPECTRUM, Fragility, Lyapunov, OutcomeMap, RockingSpectrum, Run, SlidingSpectrum, Sweep
 from ._rocking import ConfigError, RecordError, RunError, Scene, __version__, presets
 from ._table import Table, table
 
@@ -47,6 +47,7 @@ __all__ = [
     "Run",
     "RunError",
     "Scene",
+    "SlidingSpectrum",
     "Sweep",
     "Table",
     "__version__",
@@ -55,6 +56,7 @@ __all__ = [
     "outcome_map",
     "presets",
     "simulate",
+    "sliding_spectrum",
     "spectrum",
     "sweep",
 ]
@@ -389,6 +391,49 @@ def spectrum(
         )
     return RockingSpectrum(table(data, SPECTRUM), float(data["pga_g_record"]))._keep(
         base=s, record=record, sizes=tuple(sizes), size=size, b_over_h=tuple(float(v) for v in b_over_h), scale=scale, pga=pga
+    )
+
+
+def sliding_spectrum(
+    record: Any,
+    mu: Any,
+    *,
+    unit: str | None = None,
+    block: tuple[float, float] | None = None,
+    kinetic_ratio: float = 1.0,
+    scale: float | None = None,
+    pga: float | None = None,
+    base: Scene | None = None,
+    threads: int | None = None,
+    progress: Progress = None,
+) -> SlidingSpectrum:
+    """The sliding spectrum of a record, as `rocking sliding-spectrum
+    --record`: the peak and residual sliding displacement (m) at each
+    friction coefficient of `mu` (μ_s, increasing; μ_k = `kinetic_ratio`
+    μ_s) of the block that cannot rock (rigid-plastic sliding) and of
+    `block` = (width, height) in m (default: the base scene's block), under
+    the record (in `unit` for text files) scaled by `scale` or to `pga`
+    (g). `base` as for `fragility` (its friction and excitation are
+    replaced). `progress`: see the module's help (counted in coefficients).
+    Ctrl-C stops it between chunks of coefficients."""
+    s = base if base is not None else Scene.defaults()
+    mu = [float(v) for v in mu]
+    given = None if block is None else (float(block[0]), float(block[1]))
+    with _Reporter(progress, "sliding_spectrum") as report:
+        data = _rocking._sliding_spectrum(
+            s,
+            str(record),
+            mu,
+            unit=unit,
+            block=given,
+            kinetic_ratio=float(kinetic_ratio),
+            scale=scale,
+            pga=pga,
+            threads=threads,
+            progress=report,
+        )
+    return SlidingSpectrum(table(data, SLIDING), float(data["pga_g_record"]), float(data["scale"]))._keep(
+        base=s, record=record, mu=tuple(mu), unit=unit, block=given, kinetic_ratio=float(kinetic_ratio), scale=scale, pga=pga
     )
 
 

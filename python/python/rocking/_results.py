@@ -652,3 +652,48 @@ class RockingSpectrum(_Inputs):
 
     def __repr__(self) -> str:
         return f"rocking.RockingSpectrum({len(self.blocks)} blocks)"
+
+
+SLIDING = (
+    "block", "width_m", "height_m", "mu", "mu_k", "end", "peak_sliding_m", "residual_sliding_m", "has_residual",
+    "peak_theta_over_alpha", "t_overturn_s", "t_flight_s",
+)
+
+
+class SlidingSpectrum(_Inputs):
+    """A sliding spectrum, as `rocking sliding-spectrum --record` computes it.
+
+    `rows` has sliding_spectrum.csv's columns, one row per block and
+    friction coefficient, the block that cannot rock (`block ==
+    "slide-only"`, rigid-plastic sliding) first, then the given block
+    (`"block"`), μ increasing. Displacements in m; `residual_sliding_m` is
+    NaN where `has_residual` is false (the block overturned or flew);
+    `width_m`/`height_m` are NaN on the slide-only rows, `t_overturn_s` and
+    `t_flight_s` NaN unless the run ended so. Its inputs: `base`, `record`,
+    `mu`, `unit`, `block`, `kinetic_ratio`, `scale`, `pga`.
+    """
+
+    def __init__(self, rows: Table, pga_g_record: float, scale: float) -> None:
+        #: One row per block and μ.
+        self.rows = rows
+        #: The record's PGA as read (scale 1), g.
+        self.pga_g_record = pga_g_record
+        #: The scale factor the record was run at.
+        self.scale_used = scale
+
+    @property
+    def slide_only(self) -> Table:
+        """The rows of the block that cannot rock."""
+        return self.rows[np.asarray(self.rows["block"]) == "slide-only"]
+
+    @property
+    def given(self) -> Table:
+        """The rows of the given block."""
+        return self.rows[np.asarray(self.rows["block"]) == "block"]
+
+    def to_pandas(self) -> Any:
+        """sliding_spectrum.csv as a `pandas.DataFrame`. Needs pandas."""
+        return self.rows.to_pandas()
+
+    def __repr__(self) -> str:
+        return f"rocking.SlidingSpectrum({len(self.rows) // 2} coefficients)"

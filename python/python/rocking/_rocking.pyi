@@ -144,3 +144,16 @@ def _spectrum(
     threads: int | None = None,
     progress: Callable[[int, int], Any] | None = None,
 ) -> dict[str, Any]: ...
+def _sliding_spectrum(
+    scene: Scene,
+    record: str,
+    mu: list[float],
+    *,
+    unit: str | None = None,
+    block: tuple[float, float] | None = None,
+    kinetic_ratio: float = 1.0,
+    scale: float | None = None,
+    pga: float | None = None,
+    threads: int | None = None,
+    progress: Callable[[int, int], Any] | None = None,
+) -> dict[str, Any]: ...

@@ -1,6 +1,6 @@
 //! The engineer's analyses of a free-standing block under earthquakes and
-//! pulses: rocking spectra, overturning scales, pulse overturning maps and
-//! fragility curves (docs/engineering.md).
+//! pulses: rocking spectra, overturning scales, pulse overturning maps,
+//! fragility curves and sliding spectra (docs/engineering.md).
 //!
 //! Contract:
 //! - Each analysis is a set of independent runs of one block under one
@@ -20,5 +20,6 @@ pub mod overturn_scale;
 pub mod pulse_map;
 pub mod response;
 pub mod rocking_spectrum;
+pub mod sliding_spectrum;
 
 pub use response::{BlockResponse, BlockSize, Drive, EndState};
