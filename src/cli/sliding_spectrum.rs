@@ -117,6 +117,7 @@ fn owns(args: &SlidingSpectrumArgs) -> Owns {
             "--pulse, --pulse-accel, --pulse-period, --cycles, --scale/--pga"
         },
         record,
+        vertical: "nowhere: a sliding spectrum is of horizontal motion (use --batch with excitation.file_v for one run)",
     }
 }
 

@@ -206,7 +206,7 @@ impl SlidingSpec<'_> {
     /// Peak ground acceleration of the motion as run (scaled), g.
     pub fn pga_g(&self) -> Option<f64> {
         match self.drive {
-            Drive::Record(r) => Some(r.series.peaks(self.scale).pga_g),
+            Drive::Record(r) | Drive::Paired { horizontal: r, .. } => Some(r.series.peaks(self.scale).pga_g),
             Drive::PhysicalPulse { a_p_g, .. } => Some(self.scale * a_p_g),
             Drive::NormalisedPulse { .. } => None,
         }
