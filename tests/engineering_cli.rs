@@ -326,6 +326,9 @@ fn fragility_is_byte_identical_across_threads_and_shards_merged() {
         "fragility.json",
         "fragility.svg",
         "fragility.png",
+        "incremental.csv",
+        "incremental.svg",
+        "incremental.png",
     ] {
         let a = std::fs::read(one.join(f)).unwrap();
         assert!(
