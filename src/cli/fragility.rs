@@ -717,7 +717,7 @@ fn incremental(layout: &Layout, rows: &[FragilityRunRow], overturn_at: f64) -> (
             layout.records
         ),
         subtitle: format!(
-            "{}; one line per record, × overturned (drawn at θ/α = {}), ▲ flight",
+            "{}; one line per record; cross: overturned (drawn at θ/α = {}), triangle: flight",
             layout.friction,
             num(overturn_at)
         ),
