@@ -233,7 +233,7 @@ fn read_record(keys: &RecordKeys<'_>, source: &Source) -> Result<Option<Record>,
         }
         return Ok(None);
     };
-    let spec = RecordSpec { unit, dt };
+    let spec = RecordSpec { unit, dt, channel: None };
     let (path, loaded) = match shipped::name_of(p) {
         Some(name) => {
             let bytes = shipped::get(name).ok_or_else(|| {
@@ -256,7 +256,10 @@ fn read_record(keys: &RecordKeys<'_>, source: &Source) -> Result<Option<Record>,
     };
     let loaded = loaded.map_err(|e| {
         let key = match e {
-            RecordError::NoUnit { .. } | RecordError::HeaderNoUnit { .. } | RecordError::UnitConflict { .. } => {
+            RecordError::NoUnit { .. }
+            | RecordError::HeaderNoUnit { .. }
+            | RecordError::NoHeaderUnit { .. }
+            | RecordError::UnitConflict { .. } => {
                 keys.key("unit")
             }
             RecordError::NoStep { .. } | RecordError::StatedStep { .. } | RecordError::Columns { expected: 1, .. } => {

@@ -421,6 +421,7 @@ fn one_column_records_need_a_step_and_take_comments_and_semicolons() {
     let spec = RecordSpec {
         unit: Some(AccelUnit::CentimetresPerSecond2),
         dt: Some(0.005),
+        channel: None,
     };
     let r = read_as("one.txt", content, spec).unwrap();
     assert_eq!(r.format, RecordFormat::OneColumn);
@@ -444,6 +445,7 @@ fn one_column_records_need_a_step_and_take_comments_and_semicolons() {
         let spec = RecordSpec {
             unit: Some(AccelUnit::G),
             dt: Some(dt),
+            channel: None,
         };
         let m = read_as("dt.txt", "0.1\n0.2\n", spec).unwrap_err().to_string();
         assert!(m.contains("dt.txt: invalid time step"), "{m}");
@@ -479,6 +481,7 @@ fn time_steps_outside_1e_5_to_10_s_are_refused_in_every_format() {
         let spec = RecordSpec {
             unit: Some(AccelUnit::G),
             dt: Some(dt),
+            channel: None,
         };
         let m = read_as("dt.txt", "0.1\n0.2\n", spec).unwrap_err().to_string();
         assert!(m.contains(&format!("dt.txt: invalid time step {dt:?} s")), "{m}");
