@@ -115,7 +115,8 @@ fn check_valid(cfg: &Scenario) {
             serde_json::Value::Null => {
                 assert!(
                     [
-                        "file_h", "file_v", "unit_h", "unit_v", "dt_h", "dt_v", "crc32_h", "crc32_v", "x_dot",
+                        "file_h", "file_v", "unit_h", "unit_v", "dt_h", "dt_v", "crc32_h", "crc32_v", "channel_h",
+                        "channel_v", "x_dot",
                         "tau_end", "tail_s"
                     ]
                     .contains(&key),

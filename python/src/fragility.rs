@@ -74,6 +74,7 @@ fn suite(records: Vec<(PathBuf, Option<String>)>, im: Intensity) -> PyResult<Vec
             unit: loaded.unit,
             dt: None,
             crc32: loaded.crc32,
+            channel: None,
         };
         out.push(SuiteRecord {
             drive: Drive::Record(record),

@@ -112,6 +112,7 @@ fn spectrum<'py>(
         unit: loaded.unit,
         dt: None,
         crc32: loaded.crc32,
+        channel: None,
     });
     if scale.is_some() && pga.is_some() {
         return Err(input("--scale and --pga: give one"));

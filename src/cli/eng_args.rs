@@ -196,6 +196,7 @@ pub fn read_record(path: &Path, spec: &RecordSpec) -> anyhow::Result<Record> {
         unit: loaded.unit,
         dt: spec.dt,
         crc32: loaded.crc32,
+        channel: spec.channel,
     })
 }
 
