@@ -481,3 +481,28 @@ fn the_suite_sniffer_knows_cosmos_and_esm_by_name_and_by_header() {
     // A header of `KEY: value` lines without the ESM keys is not ESM.
     assert!(!has_record_header(Path::new("notes.asc"), "TITLE: notes\nAUTHOR: me\n"));
 }
+
+#[test]
+fn a_config_chooses_a_cosmos_channel_and_its_summary_repeats_the_choice() {
+    use crate::io::config;
+    let file = Path::new(RECORDS).join(CE23837_V1C).display().to_string();
+    let sets = |extra: &[&str]| {
+        let mut sets = vec!["excitation.kind=\"record\"".to_owned(), format!("excitation.file_h={file:?}")];
+        sets.extend(extra.iter().map(|s| s.to_string()));
+        sets
+    };
+    let s = config::load(None, None, &sets(&["excitation.channel_h=2"])).unwrap();
+    let record = s.excitation.record_h.as_ref().unwrap();
+    assert_eq!(record.channel, Some(2));
+    // Channel 2 is the vertical (Up), whose header states 0.048757 g.
+    assert_eq!(peak_and_time(&record.series).0, raw_channel(&text_of(CE23837_V1C), 2).peak);
+    let json = config::to_json(&s);
+    assert_eq!(json["excitation"]["channel_h"], 2);
+    assert!(json["excitation"]["channel_v"].is_null());
+    let e = config::load(None, None, &sets(&[])).unwrap_err().to_string();
+    assert!(e.starts_with("excitation.channel_h: ") && e.contains("holds 3 channels"), "{e}");
+    let e = config::load(None, None, &sets(&["excitation.channel_h=0"])).unwrap_err().to_string();
+    assert_eq!(e, "excitation.channel_h: 0: channels are counted from 1");
+    let e = config::load(None, None, &["excitation.channel_v=1".to_owned()]).unwrap_err().to_string();
+    assert!(e.starts_with("excitation.channel_v: needs excitation.file_v"), "{e}");
+}
