@@ -141,7 +141,8 @@ fn parse_channel(
     })?;
     let text_lines = text_line_count(first)
         .ok_or_else(|| cosmos(file, start + 1, "cannot read \"with N text lines\" from the first line"))?;
-    let integers = header_block(file, lines, start + text_lines, "INTEGER-HEADER")?;
+    // Saturating: the counts come from an untrusted header.
+    let integers = header_block(file, lines, start.saturating_add(text_lines), "INTEGER-HEADER")?;
     let reals = header_block(file, lines, integers.next, "REAL-HEADER")?;
     let data_at = skip_comments(file, lines, reals.next)?;
     let data_line = lines[data_at];
@@ -323,7 +324,7 @@ fn header_block(file: &str, lines: &[&str], index: usize, label: &str) -> Result
             &format!("expected \"N {what} values follow on M lines\", found {:?}", excerpt(line)),
         ));
     };
-    if index + on >= lines.len() {
+    if index.checked_add(on).is_none_or(|last| last >= lines.len()) {
         return Err(cosmos(
             file,
             lines.len(),
@@ -332,7 +333,8 @@ fn header_block(file: &str, lines: &[&str], index: usize, label: &str) -> Result
     }
     let layout = FixedWidth::after_format(line);
     let block = &lines[index + 1..=index + on];
-    let mut values = Vec::with_capacity(count);
+    // Capacity capped: the count comes from an untrusted header.
+    let mut values = Vec::with_capacity(count.min(1 << 10));
     for (k, text) in block.iter().enumerate() {
         let line_no = count_line + 1 + k;
         values.extend(line_values(file, line_no, text, layout)?.into_iter().map(|v| (v, line_no)));
@@ -365,7 +367,7 @@ fn skip_comments(file: &str, lines: &[&str], index: usize) -> Result<usize, Reco
             &format!("expected \"N Comment line(s) follow\", found {:?}", excerpt(line)),
         ));
     };
-    let data_at = index + 1 + count;
+    let data_at = index.saturating_add(1).saturating_add(count);
     match lines.get(data_at) {
         Some(data) if !is_data_line(data) => Ok(data_at),
         Some(_) => Err(cosmos(

@@ -311,7 +311,7 @@ proptest! {
     #[test]
     fn arbitrary_bytes_never_panic(
         content in prop::collection::vec(any::<u8>(), 0..600),
-        ext in prop::sample::select(vec!["at2", "AT2", "txt", "csv", ""]),
+        ext in prop::sample::select(vec!["at2", "AT2", "txt", "csv", "", "V2", "v1c", "ASC"]),
     ) {
         let file = TempFile::new(&format!("fuzz.{ext}"), &content);
         let _ = file.read();
@@ -320,7 +320,7 @@ proptest! {
     #[test]
     fn arbitrary_token_soup_never_panics(
         content in tokens_file(),
-        ext in prop::sample::select(vec!["at2", "txt"]),
+        ext in prop::sample::select(vec!["at2", "txt", "V2"]),
     ) {
         let file = TempFile::new(&format!("soup.{ext}"), &content);
         if let Ok(s) = file.read() {
