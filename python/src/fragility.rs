@@ -55,7 +55,15 @@ fn suite(records: Vec<(PathBuf, Option<String>)>, im: Intensity) -> PyResult<Vec
                     .ok_or_else(|| input(format!("--unit {text}: unknown unit (known: g, m/s2, cm/s2)")))?,
             ),
         };
-        let loaded = read_record_as(&path, &RecordSpec { unit, dt: None, channel: None }).map_err(|e| record_error(&path, &e))?;
+        let loaded = read_record_as(
+            &path,
+            &RecordSpec {
+                unit,
+                dt: None,
+                channel: None,
+            },
+        )
+        .map_err(|e| record_error(&path, &e))?;
         let peaks = loaded.series.peaks(1.0);
         let value = match im {
             Intensity::Pga => peaks.pga_g,

@@ -34,6 +34,8 @@ use quantity::{Dimension, Quantity};
 use raw::{Coefficient, Count, Finite, RawConfig};
 
 /// Every section and key the config accepts.
+// Not formatted: rustfmt would put each key of a long name on its own line.
+#[rustfmt::skip]
 pub const KNOWN_KEYS: &[(&str, &[&str])] = &[
     ("block", &["width", "height"]),
     ("friction", &["static", "kinetic"]),
@@ -272,9 +274,7 @@ fn read_record(keys: &RecordKeys<'_>, source: &Source) -> Result<Option<Record>,
             RecordError::NoUnit { .. }
             | RecordError::HeaderNoUnit { .. }
             | RecordError::NoHeaderUnit { .. }
-            | RecordError::UnitConflict { .. } => {
-                keys.key("unit")
-            }
+            | RecordError::UnitConflict { .. } => keys.key("unit"),
             RecordError::NoStep { .. } | RecordError::StatedStep { .. } | RecordError::Columns { expected: 1, .. } => {
                 keys.key("dt")
             }

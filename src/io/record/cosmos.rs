@@ -184,9 +184,7 @@ fn parse_channel(
         return Err(cosmos(
             file,
             line,
-            &format!(
-                "integer-header value {INT_UNIT} says the unit is {header}, the data line {data_no} says {unit}"
-            ),
+            &format!("integer-header value {INT_UNIT} says the unit is {header}, the data line {data_no} says {unit}"),
         ));
     }
     let unit = match (named, stated) {
@@ -321,7 +319,10 @@ fn header_block(file: &str, lines: &[&str], index: usize, label: &str) -> Result
         return Err(cosmos(
             file,
             count_line,
-            &format!("expected \"N {what} values follow on M lines\", found {:?}", excerpt(line)),
+            &format!(
+                "expected \"N {what} values follow on M lines\", found {:?}",
+                excerpt(line)
+            ),
         ));
     };
     if index.checked_add(on).is_none_or(|last| last >= lines.len()) {
@@ -337,7 +338,11 @@ fn header_block(file: &str, lines: &[&str], index: usize, label: &str) -> Result
     let mut values = Vec::with_capacity(count.min(1 << 10));
     for (k, text) in block.iter().enumerate() {
         let line_no = count_line + 1 + k;
-        values.extend(line_values(file, line_no, text, layout)?.into_iter().map(|v| (v, line_no)));
+        values.extend(
+            line_values(file, line_no, text, layout)?
+                .into_iter()
+                .map(|v| (v, line_no)),
+        );
     }
     if values.len() != count {
         return Err(cosmos(
@@ -373,7 +378,10 @@ fn skip_comments(file: &str, lines: &[&str], index: usize) -> Result<usize, Reco
         Some(_) => Err(cosmos(
             file,
             data_at + 1,
-            &format!("expected the data line after the {count} comment line(s) of line {}", index + 1),
+            &format!(
+                "expected the data line after the {count} comment line(s) of line {}",
+                index + 1
+            ),
         )),
         None => Err(cosmos(file, lines.len(), "the file ends before the data line")),
     }
@@ -438,7 +446,10 @@ mod tests {
     #[test]
     fn data_lines_name_their_unit_by_code_or_by_name() {
         let cases = [
-            ("13400 acceleration pts, approx  67 secs, units=g.     (02)Format=(8f9.6)", Ok(Some(AccelUnit::G))),
+            (
+                "13400 acceleration pts, approx  67 secs, units=g.     (02)Format=(8f9.6)",
+                Ok(Some(AccelUnit::G)),
+            ),
             (
                 "42000 acceleration pts, approx  210 secs, units=cm/sec2(04),Format=(1E15.6)",
                 Ok(Some(AccelUnit::CentimetresPerSecond2)),
@@ -451,9 +462,18 @@ mod tests {
                 "12725 acceleration pts, approx 63 secs, units=cm/s^2,Format=(8F10.5)",
                 Ok(Some(AccelUnit::CentimetresPerSecond2)),
             ),
-            ("100 acceleration pts, approx 1 secs, units=in/s/s (07), Format=(8F10.5)", Err(())),
-            ("100 acceleration pts, approx 1 secs, units=g (04), Format=(8F10.5)", Err(())),
-            ("100 acceleration pts, approx 1 secs, units=counts (50),Format=(10I8)", Err(())),
+            (
+                "100 acceleration pts, approx 1 secs, units=in/s/s (07), Format=(8F10.5)",
+                Err(()),
+            ),
+            (
+                "100 acceleration pts, approx 1 secs, units=g (04), Format=(8F10.5)",
+                Err(()),
+            ),
+            (
+                "100 acceleration pts, approx 1 secs, units=counts (50),Format=(10I8)",
+                Err(()),
+            ),
             ("100 acceleration pts, approx 1 secs, Format=(10I8)", Ok(None)),
         ];
         for (line, unit) in cases {
@@ -489,8 +509,14 @@ mod tests {
             data_type("Corrected acceleration    (Format v01.20 with 13 text lines)"),
             Some(RecordFormat::CosmosV2)
         );
-        assert_eq!(data_type("Raw acceleration counts   (Format v01.20 with 13 text lines)"), None);
-        assert_eq!(data_type("Corrected velocity        (Format v01.20 with 13 text lines)"), None);
+        assert_eq!(
+            data_type("Raw acceleration counts   (Format v01.20 with 13 text lines)"),
+            None
+        );
+        assert_eq!(
+            data_type("Corrected velocity        (Format v01.20 with 13 text lines)"),
+            None
+        );
         assert_eq!(
             text_line_count("Corrected acceleration    (Format v01.20 with 13 text lines)"),
             Some(13)

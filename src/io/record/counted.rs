@@ -24,7 +24,11 @@ impl FixedWidth {
         let upper = line.to_ascii_uppercase();
         let rest = &upper[upper.find("FORMAT")? + "FORMAT".len()..];
         let rest = rest.trim_start().strip_prefix('=')?.trim_start().strip_prefix('(')?;
-        let inner: String = rest.chars().take_while(|c| *c != ')').filter(|c| !c.is_whitespace()).collect();
+        let inner: String = rest
+            .chars()
+            .take_while(|c| *c != ')')
+            .filter(|c| !c.is_whitespace())
+            .collect();
         let digits = |s: &str| s.chars().take_while(char::is_ascii_digit).count();
         let n = digits(&inner);
         let per_line = if n == 0 { 1 } else { inner[..n].parse().ok()? };
@@ -59,7 +63,10 @@ impl FixedWidth {
 /// exponent letters (E, D) and separators. A line with other letters ends
 /// a data block (`End-of-data for Chan 1`, `13400 velocity pts, ...`).
 pub(super) fn is_data_line(line: &str) -> bool {
-    !line.trim().is_empty() && !line.chars().any(|c| c.is_ascii_alphabetic() && !matches!(c, 'e' | 'E' | 'd' | 'D'))
+    !line.trim().is_empty()
+        && !line
+            .chars()
+            .any(|c| c.is_ascii_alphabetic() && !matches!(c, 'e' | 'E' | 'd' | 'D'))
 }
 
 /// The numbers on one line: split at whitespace, commas and semicolons, or,
@@ -129,7 +136,10 @@ pub(super) fn read_block(
         let line = if index < lines.len() {
             index + 1
         } else {
-            lines.iter().rposition(|l| !l.trim().is_empty()).map_or(lines.len(), |i| i + 1)
+            lines
+                .iter()
+                .rposition(|l| !l.trim().is_empty())
+                .map_or(lines.len(), |i| i + 1)
         };
         return Err(RecordError::DataCount {
             file: file.to_owned(),

@@ -50,7 +50,10 @@ pub(super) fn parse_esm(
     lines: &[&str],
     stated: Option<AccelUnit>,
 ) -> Result<(Series, AccelUnit), RecordError> {
-    let header_end = lines.iter().position(|l| header_field(l).is_none()).unwrap_or(lines.len());
+    let header_end = lines
+        .iter()
+        .position(|l| header_field(l).is_none())
+        .unwrap_or(lines.len());
     let header = &lines[..header_end];
     let find = |key: &str| {
         header.iter().enumerate().find_map(|(i, l)| match header_field(l) {

@@ -45,14 +45,24 @@ struct Raw {
 
 fn raw_channel(text: &str, k: usize) -> Raw {
     let lines: Vec<&str> = text.lines().collect();
-    let start = lines.iter().enumerate().filter(|(_, l)| l.contains("(Format v")).nth(k - 1).unwrap().0;
+    let start = lines
+        .iter()
+        .enumerate()
+        .filter(|(_, l)| l.contains("(Format v"))
+        .nth(k - 1)
+        .unwrap()
+        .0;
     let real_at = start + lines[start..].iter().position(|l| l.contains("Real-header")).unwrap();
     let real_lines: usize = lines[real_at].split_whitespace().nth(5).unwrap().parse().unwrap();
     let reals: Vec<f64> = lines[real_at + 1..=real_at + real_lines]
         .iter()
         .flat_map(|l| l.split_whitespace().map(|v| v.parse::<f64>().unwrap()))
         .collect();
-    let data_at = start + lines[start..].iter().position(|l| l.contains("acceleration pts")).unwrap();
+    let data_at = start
+        + lines[start..]
+            .iter()
+            .position(|l| l.contains("acceleration pts"))
+            .unwrap();
     let count: usize = lines[data_at].split_whitespace().next().unwrap().parse().unwrap();
     let values: Vec<f64> = lines[data_at + 1..]
         .iter()
@@ -137,23 +147,35 @@ fn a_cosmos_file_of_three_channels_is_refused_without_a_stated_channel() {
     assert!(matches!(e, RecordError::Channels { count: 3, .. }));
     let m = e.to_string();
     assert!(
-        m.ends_with(
-            "CE23837.V1C: holds 3 channels (1: 360 deg; 2: Up; 3: 90 deg); state which one to read (1 to 3)"
-        ),
+        m.ends_with("CE23837.V1C: holds 3 channels (1: 360 deg; 2: Up; 3: 90 deg); state which one to read (1 to 3)"),
         "{m}"
     );
     let m = read_record_as(&path, &channel(4)).unwrap_err().to_string();
-    assert!(m.ends_with("CE23837.V1C: no channel 4: the file holds 3 (1: 360 deg; 2: Up; 3: 90 deg)"), "{m}");
+    assert!(
+        m.ends_with("CE23837.V1C: no channel 4: the file holds 3 (1: 360 deg; 2: Up; 3: 90 deg)"),
+        "{m}"
+    );
     // A one-channel file reads as channel 1, and no other.
     let v2 = Path::new(RECORDS).join(AKBMR_V2C);
     assert_eq!(read_record_as(&v2, &channel(1)).unwrap().series.len(), 42000);
     assert!(matches!(
         read_record_as(&v2, &channel(2)).unwrap_err(),
-        RecordError::NoSuchChannel { channel: 2, count: 1, .. }
+        RecordError::NoSuchChannel {
+            channel: 2,
+            count: 1,
+            ..
+        }
     ));
-    let m = read_text("one.txt", "0 0.1\n0.01 0.2\n", RecordSpec { unit: Some(AccelUnit::G), ..channel(2) })
-        .unwrap_err()
-        .to_string();
+    let m = read_text(
+        "one.txt",
+        "0 0.1\n0.01 0.2\n",
+        RecordSpec {
+            unit: Some(AccelUnit::G),
+            ..channel(2)
+        },
+    )
+    .unwrap_err()
+    .to_string();
     assert_eq!(m, "one.txt: channel 2 stated, but a two-column file holds one channel");
 }
 
@@ -161,7 +183,10 @@ fn a_cosmos_file_of_three_channels_is_refused_without_a_stated_channel() {
 fn a_stated_unit_must_agree_with_the_cosmos_data_line() {
     let text = text_of(AKBMR_V2C);
     let e = read_text("bmr.V2c", &text, RecordSpec::stated(AccelUnit::G)).unwrap_err();
-    assert_eq!(e.to_string(), "bmr.V2c:53: the header says the unit is cm/s2, but g was stated");
+    assert_eq!(
+        e.to_string(),
+        "bmr.V2c:53: the header says the unit is cm/s2, but g was stated"
+    );
     let agreed = read_text("bmr.V2c", &text, RecordSpec::stated(AccelUnit::CentimetresPerSecond2)).unwrap();
     assert_eq!(agreed.series.len(), 42000);
 }
@@ -171,7 +196,11 @@ fn cosmos_velocity_counts_and_other_units_are_refused_naming_their_line() {
     let text = text_of(AKBMR_V2C);
     let cases = [
         // A velocity block where the acceleration belongs.
-        ("acceleration pts", "velocity     pts", "bmr.V2c:53: not an acceleration record"),
+        (
+            "acceleration pts",
+            "velocity     pts",
+            "bmr.V2c:53: not an acceleration record",
+        ),
         // The header's physical parameter (integer value 2): velocity.
         (
             "       2       1       4     120",
@@ -185,7 +214,11 @@ fn cosmos_velocity_counts_and_other_units_are_refused_naming_their_line() {
             "bmr.V2c:1: not an acceleration record",
         ),
         // A unit that is not g or cm/s² (in/s², code 07).
-        ("units=cm/sec2(04)", "units=in/s/s(07)", "bmr.V2c:53: not an acceleration record"),
+        (
+            "units=cm/sec2(04)",
+            "units=in/s/s(07)",
+            "bmr.V2c:53: not an acceleration record",
+        ),
         // The data line and the integer header disagree on the unit.
         (
             "units=cm/sec2(04)",
@@ -219,20 +252,31 @@ fn a_truncated_cosmos_file_and_a_wrong_count_name_their_lines() {
     let lines: Vec<&str> = text.lines().collect();
     // Cut after 1000 of the 42000 values (data from line 54).
     let cut = lines[..53 + 1000].join("\n");
-    let m = read_text("bmr.V2c", &cut, RecordSpec::default()).unwrap_err().to_string();
+    let m = read_text("bmr.V2c", &cut, RecordSpec::default())
+        .unwrap_err()
+        .to_string();
     assert_eq!(m, "bmr.V2c:1053: 1000 values where line 53 announces 42000");
     // One value announced more than the file holds: the block ends at the
     // End-of-data line, 42054.
     let more = text.replacen("   42000 acceleration", "   42001 acceleration", 1);
-    let m = read_text("bmr.V2c", &more, RecordSpec::default()).unwrap_err().to_string();
+    let m = read_text("bmr.V2c", &more, RecordSpec::default())
+        .unwrap_err()
+        .to_string();
     assert_eq!(m, "bmr.V2c:42054: 42000 values where line 53 announces 42001");
     let fewer = text.replacen("   42000 acceleration", "   41999 acceleration", 1);
-    let m = read_text("bmr.V2c", &fewer, RecordSpec::default()).unwrap_err().to_string();
+    let m = read_text("bmr.V2c", &fewer, RecordSpec::default())
+        .unwrap_err()
+        .to_string();
     assert_eq!(m, "bmr.V2c:42054: 42000 values where line 53 announces 41999");
     // A header block that ends early.
     let short_header = lines[..20].join("\n");
-    let m = read_text("bmr.V2c", &short_header, RecordSpec::default()).unwrap_err().to_string();
-    assert!(m.starts_with("bmr.V2c:20: COSMOS header: the file ends inside the integer-header"), "{m}");
+    let m = read_text("bmr.V2c", &short_header, RecordSpec::default())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        m.starts_with("bmr.V2c:20: COSMOS header: the file ends inside the integer-header"),
+        "{m}"
+    );
 }
 
 #[test]
@@ -244,15 +288,22 @@ fn an_unknown_cosmos_step_and_a_non_cosmos_v2_are_refused_naming_their_line() {
         "    -999.000000    -999.000000     210.000000",
         1,
     );
-    let m = read_text("bmr.V2c", &unknown, RecordSpec::default()).unwrap_err().to_string();
+    let m = read_text("bmr.V2c", &unknown, RecordSpec::default())
+        .unwrap_err()
+        .to_string();
     assert!(
         m.starts_with("bmr.V2c:38: COSMOS header: real-header value 62 (the sampling interval, ms) is unknown"),
         "{m}"
     );
     // A CSMIP (DMG) file carries .V2 too; it is not read as anything else.
     let dmg = "CORRECTED ACCELEROGRAM 18-0829-0233 CE23837\n  .0050 secs\n";
-    let m = read_text("CE23837.V2", dmg, RecordSpec::default()).unwrap_err().to_string();
-    assert!(m.starts_with("CE23837.V2:1: COSMOS header: no line says \"(Format v...)\""), "{m}");
+    let m = read_text("CE23837.V2", dmg, RecordSpec::default())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        m.starts_with("CE23837.V2:1: COSMOS header: no line says \"(Format v...)\""),
+        "{m}"
+    );
 }
 
 #[test]
@@ -405,23 +456,35 @@ fn esm_refusals_name_their_line() {
         ),
         (
             esm_file("ACCELERATION", "cm/s^2", 4, &ok),
-            format!("e.ASC:{}: 3 values where line {ESM_NDATA_LINE} announces 4", ESM_FIRST_VALUE_LINE + 2),
+            format!(
+                "e.ASC:{}: 3 values where line {ESM_NDATA_LINE} announces 4",
+                ESM_FIRST_VALUE_LINE + 2
+            ),
         ),
         (
             esm_file("ACCELERATION", "cm/s^2", 2, &ok),
-            format!("e.ASC:{}: 3 values where line {ESM_NDATA_LINE} announces 2", ESM_FIRST_VALUE_LINE + 2),
+            format!(
+                "e.ASC:{}: 3 values where line {ESM_NDATA_LINE} announces 2",
+                ESM_FIRST_VALUE_LINE + 2
+            ),
         ),
         (
-            esm_file("ACCELERATION", "cm/s^2", 3, &ok).replace("SAMPLING_INTERVAL_S: 0.005000", "SAMPLING_INTERVAL_S: 0"),
+            esm_file("ACCELERATION", "cm/s^2", 3, &ok)
+                .replace("SAMPLING_INTERVAL_S: 0.005000", "SAMPLING_INTERVAL_S: 0"),
             format!("e.ASC:{ESM_DT_LINE}: invalid time step DT = 0.0 s"),
         ),
         (
             esm_file("ACCELERATION", "cm/s^2", 3, &ok).replace("NDATA: 3\n", ""),
-            format!("e.ASC:{}: the header (ending here) has no NDATA line", ESM_FIRST_VALUE_LINE - 2),
+            format!(
+                "e.ASC:{}: the header (ending here) has no NDATA line",
+                ESM_FIRST_VALUE_LINE - 2
+            ),
         ),
     ];
     for (text, expected) in cases {
-        let m = read_text("e.ASC", &text, RecordSpec::default()).unwrap_err().to_string();
+        let m = read_text("e.ASC", &text, RecordSpec::default())
+            .unwrap_err()
+            .to_string();
         assert!(m.starts_with(&expected), "{m}\nexpected: {expected}");
     }
     // A stated unit: must agree with the header's, and supplies an empty one.
@@ -429,7 +492,10 @@ fn esm_refusals_name_their_line() {
     let m = read_text("e.ASC", &text, RecordSpec::stated(AccelUnit::MetresPerSecond2))
         .unwrap_err()
         .to_string();
-    assert_eq!(m, format!("e.ASC:{ESM_UNITS_LINE}: the header says the unit is cm/s2, but m/s2 was stated"));
+    assert_eq!(
+        m,
+        format!("e.ASC:{ESM_UNITS_LINE}: the header says the unit is cm/s2, but m/s2 was stated")
+    );
     let empty = esm_file("ACCELERATION", "", 3, &ok);
     let r = read_text("e.ASC", &empty, RecordSpec::stated(AccelUnit::G)).unwrap();
     assert_eq!(r.series.accel_g(), &ok);
@@ -476,7 +542,10 @@ fn the_suite_sniffer_knows_cosmos_and_esm_by_name_and_by_header() {
     for name in ["a.V2", "a.v1", "a.V1C", "a.v2c", "a.AT2"] {
         assert!(has_record_header(Path::new(name), ""), "{name}");
     }
-    assert!(!has_record_header(Path::new("README.md"), "# Records\nThese are records.\n"));
+    assert!(!has_record_header(
+        Path::new("README.md"),
+        "# Records\nThese are records.\n"
+    ));
     assert!(!has_record_header(Path::new("list.txt"), "0 0.1\n0.01 0.2\n"));
     // A header of `KEY: value` lines without the ESM keys is not ESM.
     assert!(!has_record_header(Path::new("notes.asc"), "TITLE: notes\nAUTHOR: me\n"));
@@ -487,7 +556,10 @@ fn a_config_chooses_a_cosmos_channel_and_its_summary_repeats_the_choice() {
     use crate::io::config;
     let file = Path::new(RECORDS).join(CE23837_V1C).display().to_string();
     let sets = |extra: &[&str]| {
-        let mut sets = vec!["excitation.kind=\"record\"".to_owned(), format!("excitation.file_h={file:?}")];
+        let mut sets = vec![
+            "excitation.kind=\"record\"".to_owned(),
+            format!("excitation.file_h={file:?}"),
+        ];
         sets.extend(extra.iter().map(|s| s.to_string()));
         sets
     };
@@ -495,15 +567,25 @@ fn a_config_chooses_a_cosmos_channel_and_its_summary_repeats_the_choice() {
     let record = s.excitation.record_h.as_ref().unwrap();
     assert_eq!(record.channel, Some(2));
     // Channel 2 is the vertical (Up), whose header states 0.048757 g.
-    assert_eq!(peak_and_time(&record.series).0, raw_channel(&text_of(CE23837_V1C), 2).peak);
+    assert_eq!(
+        peak_and_time(&record.series).0,
+        raw_channel(&text_of(CE23837_V1C), 2).peak
+    );
     let json = config::to_json(&s);
     assert_eq!(json["excitation"]["channel_h"], 2);
     assert!(json["excitation"]["channel_v"].is_null());
     let e = config::load(None, None, &sets(&[])).unwrap_err().to_string();
-    assert!(e.starts_with("excitation.channel_h: ") && e.contains("holds 3 channels"), "{e}");
-    let e = config::load(None, None, &sets(&["excitation.channel_h=0"])).unwrap_err().to_string();
+    assert!(
+        e.starts_with("excitation.channel_h: ") && e.contains("holds 3 channels"),
+        "{e}"
+    );
+    let e = config::load(None, None, &sets(&["excitation.channel_h=0"]))
+        .unwrap_err()
+        .to_string();
     assert_eq!(e, "excitation.channel_h: 0: channels are counted from 1");
-    let e = config::load(None, None, &["excitation.channel_v=1".to_owned()]).unwrap_err().to_string();
+    let e = config::load(None, None, &["excitation.channel_v=1".to_owned()])
+        .unwrap_err()
+        .to_string();
     assert!(e.starts_with("excitation.channel_v: needs excitation.file_v"), "{e}");
 }
 
