@@ -193,6 +193,7 @@ fn shipped_record(name: &str, unit: rocking::model::units::AccelUnit) -> rocking
         unit: loaded.unit,
         dt: None,
         crc32: loaded.crc32,
+        channel: None,
     }
 }
 

@@ -34,6 +34,7 @@ fn el_centro() -> Drive {
         &RecordSpec {
             unit: Some(AccelUnit::G),
             dt: None,
+            channel: None,
         },
     )
     .unwrap();
@@ -43,6 +44,7 @@ fn el_centro() -> Drive {
         unit: loaded.unit,
         dt: None,
         crc32: loaded.crc32,
+        channel: None,
     })
 }
 

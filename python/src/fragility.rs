@@ -61,13 +61,19 @@ fn component(path: &PathBuf, unit: Option<&str>) -> PyResult<Record> {
                 .ok_or_else(|| input(format!("--unit {text}: unknown unit (known: g, m/s2, cm/s2)")))?,
         ),
     };
-    let loaded = read_record_as(path, &RecordSpec { unit, dt: None }).map_err(|e| record_error(path, &e))?;
+    let spec = RecordSpec {
+        unit,
+        dt: None,
+        channel: None,
+    };
+    let loaded = read_record_as(path, &spec).map_err(|e| record_error(path, &e))?;
     Ok(Record {
         path: path.clone(),
         series: loaded.series,
         unit: loaded.unit,
         dt: None,
         crc32: loaded.crc32,
+        channel: None,
     })
 }
 

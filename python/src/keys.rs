@@ -201,6 +201,18 @@ pub const KEY_DOCS: &[KeyDoc] = &[
     },
     KeyDoc {
         section: "excitation",
+        name: "channel_h",
+        bare: Bare::Plain,
+        doc: "channel of the horizontal record file, from 1, where a COSMOS file holds several (an integer)",
+    },
+    KeyDoc {
+        section: "excitation",
+        name: "channel_v",
+        bare: Bare::Plain,
+        doc: "channel of the vertical record file, from 1, where a COSMOS file holds several (an integer)",
+    },
+    KeyDoc {
+        section: "excitation",
         name: "scale_h",
         bare: Bare::Plain,
         doc: "factor on the horizontal record (dimensionless)",

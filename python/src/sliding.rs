@@ -104,7 +104,15 @@ fn sliding<'py>(
                 .ok_or_else(|| input(format!("--unit {text}: unknown unit (known: g, m/s2, cm/s2)")))?,
         ),
     };
-    let loaded = read_record_as(&record, &RecordSpec { unit, dt: None }).map_err(|e| record_error(&record, &e))?;
+    let loaded = read_record_as(
+        &record,
+        &RecordSpec {
+            unit,
+            dt: None,
+            channel: None,
+        },
+    )
+    .map_err(|e| record_error(&record, &e))?;
     let pga_g = loaded.series.peaks(1.0).pga_g;
     if pga_g <= 0.0 {
         return Err(input("--record: the record is all zeros (PGA 0 g)"));
@@ -115,6 +123,7 @@ fn sliding<'py>(
         unit: loaded.unit,
         dt: None,
         crc32: loaded.crc32,
+        channel: None,
     });
     if scale.is_some() && pga.is_some() {
         return Err(input("--scale and --pga: give one"));

@@ -178,6 +178,11 @@ pub struct RecordUnitArgs {
     /// Time step of one-column text records, s (sample k at k·dt).
     #[arg(long, value_name = "S")]
     pub dt: Option<f64>,
+    /// The channel to read, from 1, of COSMOS files that hold several (a
+    /// station's components one after the other); such a file is refused
+    /// without it.
+    #[arg(long, value_name = "N")]
+    pub channel: Option<usize>,
 }
 
 impl RecordUnitArgs {
@@ -190,7 +195,14 @@ impl RecordUnitArgs {
                     .ok_or_else(|| input(anyhow!("--unit {text}: unknown unit (known: g, m/s2, cm/s2)")))?,
             ),
         };
-        Ok(RecordSpec { unit, dt: self.dt })
+        if self.channel == Some(0) {
+            return Err(input(anyhow!("--channel 0: channels are counted from 1")));
+        }
+        Ok(RecordSpec {
+            unit,
+            dt: self.dt,
+            channel: self.channel,
+        })
     }
 }
 
@@ -198,10 +210,11 @@ impl RecordUnitArgs {
 /// missing step --dt, anything else the file and line.
 pub fn read_record(path: &Path, spec: &RecordSpec) -> anyhow::Result<Record> {
     let loaded = read_record_as(path, spec).map_err(|e| match e {
-        RecordError::NoUnit { .. } | RecordError::HeaderNoUnit { .. } => {
+        RecordError::NoUnit { .. } | RecordError::HeaderNoUnit { .. } | RecordError::NoHeaderUnit { .. } => {
             anyhow!("{e} (give the unit with --unit g|m/s2|cm/s2)")
         }
         RecordError::NoStep { .. } | RecordError::StatedStep { .. } => anyhow!("{e} (--dt)"),
+        RecordError::Channels { .. } | RecordError::NoSuchChannel { .. } => anyhow!("{e} (--channel N)"),
         other => anyhow!(other),
     })?;
     Ok(Record {
@@ -210,6 +223,7 @@ pub fn read_record(path: &Path, spec: &RecordSpec) -> anyhow::Result<Record> {
         unit: loaded.unit,
         dt: spec.dt,
         crc32: loaded.crc32,
+        channel: spec.channel,
     })
 }
 

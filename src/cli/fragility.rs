@@ -678,7 +678,11 @@ fn write_whole(
 /// level) from the study's rows (in run order: block, level, record), as
 /// rows of `incremental.csv` and the figure; overturned runs are drawn at
 /// `overturn_at` (θ/α).
-fn incremental(layout: &Layout, rows: &[FragilityRunRow], overturn_at: f64) -> (Vec<IncrementalRow>, IncrementalFigure) {
+fn incremental(
+    layout: &Layout,
+    rows: &[FragilityRunRow],
+    overturn_at: f64,
+) -> (Vec<IncrementalRow>, IncrementalFigure) {
     let (nl, nr) = (layout.levels.len(), layout.records);
     let at = |b: usize, l: usize, r: usize| rows.get((b * nl + l) * nr + r);
     let mut out = Vec::with_capacity(rows.len());

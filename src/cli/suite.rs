@@ -195,6 +195,9 @@ fn looks_like_record(path: &Path) -> bool {
         return true;
     }
     let text = String::from_utf8_lossy(&bytes);
+    if crate::io::record::has_record_header(path, &text) {
+        return true;
+    }
     let lines: Vec<&str> = text.lines().collect();
     if lines.get(3).is_some_and(|l| l.to_ascii_uppercase().contains("NPTS")) {
         return true;

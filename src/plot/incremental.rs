@@ -117,7 +117,11 @@ impl Figure for IncrementalFigure {
             for (i, curve) in panel.curves.iter().enumerate() {
                 let c = colour(i);
                 let at = |&(level, peak, end): &(f64, f64, EndState)| {
-                    let x = if end.survived() { peak.min(self.overturn_at) } else { self.overturn_at };
+                    let x = if end.survived() {
+                        peak.min(self.overturn_at)
+                    } else {
+                        self.overturn_at
+                    };
                     (x, level)
                 };
                 let points: Vec<((f64, f64), EndState)> = curve

@@ -222,6 +222,9 @@ pub struct Record {
     /// CRC-32 of the file's bytes (`excitation.crc32_h`, written to
     /// `summary.json` so that a rerun notices a changed file).
     pub crc32: u32,
+    /// The channel read, from 1, of a COSMOS file that holds several
+    /// (`excitation.channel_h`); `None` for a file of one.
+    pub channel: Option<usize>,
 }
 
 impl Record {
@@ -266,6 +269,7 @@ impl Record {
             unit,
             dt,
             crc32: hasher.finalize(),
+            channel: None,
         }
     }
 

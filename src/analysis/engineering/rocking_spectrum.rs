@@ -261,6 +261,7 @@ mod tests {
             unit: crate::model::units::AccelUnit::G,
             dt: None,
             crc32: 0,
+            channel: None,
         })
     }
 

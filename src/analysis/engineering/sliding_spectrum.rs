@@ -324,6 +324,7 @@ mod tests {
             unit: crate::model::units::AccelUnit::G,
             dt: None,
             crc32: 0,
+            channel: None,
         })
     }
 

@@ -106,7 +106,8 @@ impl FileAsk {
     }
 
     /// The file filter: its name and extensions. None for a record
-    /// (records come as .AT2, .dat, .txt, .acc, .csv, …) and a folder.
+    /// (records come as .AT2, .V1, .V2, .V2c, .ASC, .dat, .txt, .acc, .csv,
+    /// …) and a folder.
     fn filter(self) -> Option<(&'static str, &'static [&'static str])> {
         match self {
             Self::OpenScene => Some(("scene", &["toml", "json"])),

@@ -176,14 +176,14 @@ pub const GROUPS: &[(&str, &[Key])] = &[
                 key: "excitation.file_h",
                 label: "record (h)",
                 unit: "",
-                help: "Horizontal record: PEER .AT2, two columns (time in s, acceleration) or one column with dt_h. Required for kind = record. File menu: Open record… picks one.",
+                help: "Horizontal record: PEER .AT2, COSMOS .V1/.V2, ESM .ASC, two columns (time in s, acceleration) or one column with dt_h. Required for kind = record. File menu: Open record… picks one.",
                 kind: Kind::Text,
             },
             Key {
                 key: "excitation.unit_h",
                 label: "unit (h)",
                 unit: "",
-                help: "Unit of the horizontal record's accelerations: g, m/s2 or cm/s2. Required for text records; an AT2 header states its own.",
+                help: "Unit of the horizontal record's accelerations: g, m/s2 or cm/s2. Required for text records; an AT2, COSMOS or ESM header states its own.",
                 kind: Kind::Choice(&["g", "m/s2", "cm/s2"]),
             },
             num(

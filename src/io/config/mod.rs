@@ -34,6 +34,8 @@ use quantity::{Dimension, Quantity};
 use raw::{Coefficient, Count, Finite, RawConfig};
 
 /// Every section and key the config accepts.
+// Not formatted: rustfmt would put each key of a long name on its own line.
+#[rustfmt::skip]
 pub const KNOWN_KEYS: &[(&str, &[&str])] = &[
     ("block", &["width", "height"]),
     ("friction", &["static", "kinetic"]),
@@ -42,7 +44,8 @@ pub const KNOWN_KEYS: &[(&str, &[&str])] = &[
         "excitation",
         &[
             "kind", "a_h", "a_v", "omega_h", "omega_v", "phase_h", "phase_v", "shape", "cycles", "file_h", "file_v",
-            "unit_h", "unit_v", "dt_h", "dt_v", "crc32_h", "crc32_v", "scale_h", "scale_v", "pga_h", "pga_v",
+            "unit_h", "unit_v", "dt_h", "dt_v", "crc32_h", "crc32_v", "channel_h", "channel_v", "scale_h", "scale_v",
+            "pga_h", "pga_v",
         ],
     ),
     ("initial", &["theta", "theta_dot", "x_dot"]),
@@ -186,14 +189,15 @@ fn file_error(file: &str, message: impl std::fmt::Display) -> ConfigError {
     }
 }
 
-/// One component's record keys: `file`, `unit`, `dt` and `pga`, named
-/// with their suffix (`_h` or `_v`).
+/// One component's record keys: `file`, `unit`, `dt`, `crc32` and
+/// `channel`, named with their suffix (`_h` or `_v`).
 struct RecordKeys<'a> {
     suffix: &'static str,
     file: Option<&'a str>,
     unit: Option<&'a str>,
     dt: Option<Quantity>,
     crc32: Option<&'a str>,
+    channel: Option<u64>,
 }
 
 impl RecordKeys<'_> {
@@ -221,11 +225,22 @@ fn read_record(keys: &RecordKeys<'_>, source: &Source) -> Result<Option<Record>,
         .dt
         .map(|q| q.resolve(&keys.key("dt"), Dimension::Seconds, &Geometry::new(1.0, 1.0)))
         .transpose()?;
+    // Channels are counted from 1, as COSMOS numbers them.
+    let channel = match keys.channel {
+        None => None,
+        Some(n) => Some(
+            usize::try_from(n)
+                .ok()
+                .filter(|&n| n >= 1)
+                .ok_or_else(|| ConfigError::key(&keys.key("channel"), format!("{n}: channels are counted from 1")))?,
+        ),
+    };
     let Some(p) = keys.file else {
         for (name, given) in [
             ("unit", unit.is_some()),
             ("dt", dt.is_some()),
             ("crc32", keys.crc32.is_some()),
+            ("channel", channel.is_some()),
         ] {
             if given {
                 return Err(ConfigError::key(&keys.key(name), format!("needs {}", keys.key("file"))));
@@ -233,7 +248,7 @@ fn read_record(keys: &RecordKeys<'_>, source: &Source) -> Result<Option<Record>,
         }
         return Ok(None);
     };
-    let spec = RecordSpec { unit, dt };
+    let spec = RecordSpec { unit, dt, channel };
     let (path, loaded) = match shipped::name_of(p) {
         Some(name) => {
             let bytes = shipped::get(name).ok_or_else(|| {
@@ -256,11 +271,15 @@ fn read_record(keys: &RecordKeys<'_>, source: &Source) -> Result<Option<Record>,
     };
     let loaded = loaded.map_err(|e| {
         let key = match e {
-            RecordError::NoUnit { .. } | RecordError::HeaderNoUnit { .. } | RecordError::UnitConflict { .. } => {
-                keys.key("unit")
-            }
+            RecordError::NoUnit { .. }
+            | RecordError::HeaderNoUnit { .. }
+            | RecordError::NoHeaderUnit { .. }
+            | RecordError::UnitConflict { .. } => keys.key("unit"),
             RecordError::NoStep { .. } | RecordError::StatedStep { .. } | RecordError::Columns { expected: 1, .. } => {
                 keys.key("dt")
+            }
+            RecordError::Channels { .. } | RecordError::NoSuchChannel { .. } | RecordError::OneChannel { .. } => {
+                keys.key("channel")
             }
             _ => keys.key("file"),
         };
@@ -303,6 +322,7 @@ fn read_record(keys: &RecordKeys<'_>, source: &Source) -> Result<Option<Record>,
         unit: loaded.unit,
         dt,
         crc32: loaded.crc32,
+        channel,
     }))
 }
 
@@ -320,6 +340,7 @@ fn given_or_read(
         ("unit", keys.unit.is_some()),
         ("dt", keys.dt.is_some()),
         ("crc32", keys.crc32.is_some()),
+        ("channel", keys.channel.is_some()),
     ];
     if let Some((name, _)) = named.iter().find(|(_, set)| *set) {
         return Err(ConfigError::key(
@@ -465,6 +486,7 @@ pub fn from_table_with(table: &Table, source: &Source, memory: [Option<&Record>;
         unit: x.unit_h.as_deref(),
         dt: x.dt_h,
         crc32: x.crc32_h.as_deref(),
+        channel: x.channel_h.map(|Count(n)| n),
     };
     let keys_v = RecordKeys {
         suffix: "_v",
@@ -472,6 +494,7 @@ pub fn from_table_with(table: &Table, source: &Source, memory: [Option<&Record>;
         unit: x.unit_v.as_deref(),
         dt: x.dt_v,
         crc32: x.crc32_v.as_deref(),
+        channel: x.channel_v.map(|Count(n)| n),
     };
     let [memory_h, memory_v] = memory;
     let record_h = given_or_read(&keys_h, source, memory_h)?;
@@ -600,6 +623,7 @@ pub fn to_json(s: &Scenario) -> Json {
     let unit = |r: &Option<Record>| file(r).map(|r| r.unit.name());
     let dt = |r: &Option<Record>| file(r).and_then(|r| r.dt);
     let crc = |r: &Option<Record>| file(r).map(|r| format!("{:08x}", r.crc32));
+    let channel = |r: &Option<Record>| file(r).and_then(|r| r.channel);
     // A record that decides the run's length writes its tail and no end;
     // any other run writes its end (and no tail, which would conflict).
     let (tau_end, tail_s) = match (s.record_end_tau(), s.run.record_tail_s) {
@@ -624,6 +648,7 @@ pub fn to_json(s: &Scenario) -> Json {
             "unit_h": unit(&x.record_h), "unit_v": unit(&x.record_v),
             "dt_h": dt(&x.record_h), "dt_v": dt(&x.record_v),
             "crc32_h": crc(&x.record_h), "crc32_v": crc(&x.record_v),
+            "channel_h": channel(&x.record_h), "channel_v": channel(&x.record_v),
             "scale_h": x.scale_h, "scale_v": x.scale_v,
         },
         "initial": { "theta": s.initial.theta, "theta_dot": s.initial.theta_dot, "x_dot": s.initial.x_dot },

@@ -89,6 +89,8 @@ pub struct RawExcitation {
     pub dt_v: Option<Quantity>,
     pub crc32_h: Option<String>,
     pub crc32_v: Option<String>,
+    pub channel_h: Option<Count>,
+    pub channel_v: Option<Count>,
     pub scale_h: Option<Finite>,
     pub scale_v: Option<Finite>,
     pub pga_h: Option<Quantity>,

@@ -1,16 +1,21 @@
-//! Reading ground-acceleration records from files: PEER NGA `.AT2`,
-//! two-column `time accel` text and one-column text with a stated time step,
-//! parsed into the model's [`Series`] (accelerations in g).
+//! Reading ground-acceleration records from files: PEER NGA `.AT2`, COSMOS
+//! V1/V2 (CESMD, USGS), ESM ASCII, two-column `time accel` text and
+//! one-column text with a stated time step, parsed into the model's
+//! [`Series`] (accelerations in g).
 //!
 //! Contract:
 //! - Units: times in seconds (s). Accelerations are converted to g here,
-//!   once, from the unit an AT2 header states or the caller states
-//!   ([`RecordSpec::unit`]); a text record whose unit nobody states is
+//!   once, from the unit a header states (AT2, COSMOS, ESM) or the caller
+//!   states ([`RecordSpec::unit`]); a text record whose unit nobody states is
 //!   refused ([`RecordError::NoUnit`]), and a stated unit that contradicts
-//!   an AT2 header is an error ([`RecordError::UnitConflict`]): guessing
+//!   a header is an error ([`RecordError::UnitConflict`]): guessing
 //!   units is how objects get mis-designed.
-//! - Formats: see [`read_record`] for the exact grammar of each (`at2` and
-//!   `columns` parse them; the helpers here are shared by both).
+//! - Formats: see [`read_record_as`] for the exact grammar of each (`at2`,
+//!   `cosmos`, `esm` and `columns` parse them; `counted` reads the blocks
+//!   whose length a header announces; the helpers here are shared).
+//! - Channels: a COSMOS file may hold a station's components one after the
+//!   other; one of several is read only when the caller names it
+//!   ([`RecordSpec::channel`]), never taken silently.
 //! - Errors: malformed input is never repaired silently. Every problem is a
 //!   one-line [`RecordError`] naming the file and, where one applies, the
 //!   1-based line. Reading never panics, whatever the file holds.
@@ -21,6 +26,11 @@
 
 mod at2;
 mod columns;
+mod cosmos;
+mod counted;
+mod esm;
+#[cfg(test)]
+mod real_files;
 #[cfg(test)]
 mod tests;
 
@@ -30,6 +40,8 @@ use crate::model::excitation::record::{MAX_ABS_ACCEL_G, MAX_STEP_S, MIN_STEP_S, 
 use crate::model::units::AccelUnit;
 use at2::parse_at2;
 use columns::parse_columns;
+use cosmos::parse_cosmos;
+use esm::parse_esm;
 
 /// Why a record could not be read. Every message is one line and names the
 /// file as given to [`read_record`] and, where one applies, the 1-based line.
@@ -246,6 +258,94 @@ pub enum RecordError {
         /// Number of values in the file.
         found: usize,
     },
+    /// A COSMOS header that does not follow the format (a count line that
+    /// cannot be read, a block that ends early, an unknown time step).
+    #[error("{file}:{line}: COSMOS header: {what}")]
+    Cosmos {
+        /// The path as given.
+        file: String,
+        /// 1-based line number.
+        line: usize,
+        /// What is wrong.
+        what: String,
+    },
+    /// An ESM header without a key the record needs.
+    #[error("{file}:{line}: the header (ending here) has no {key} line")]
+    MissingKey {
+        /// The path as given.
+        file: String,
+        /// 1-based line where the header ends.
+        line: usize,
+        /// The key, as the format writes it (`NDATA`).
+        key: &'static str,
+    },
+    /// A header value that is not what its key needs (a count that is not
+    /// a whole number).
+    #[error("{file}:{line}: cannot read the header value {text:?}")]
+    BadValue {
+        /// The path as given.
+        file: String,
+        /// 1-based line number.
+        line: usize,
+        /// The header line (shortened).
+        text: String,
+    },
+    /// A COSMOS or ESM header whose unit is empty, with none stated.
+    #[error("{file}:{line}: the header states no unit; state it (g, m/s2 or cm/s2)")]
+    NoHeaderUnit {
+        /// The path as given.
+        file: String,
+        /// 1-based line where the unit belongs.
+        line: usize,
+    },
+    /// A file of several channels (a station's three components), and no
+    /// channel stated: taking one silently could take the wrong one.
+    #[error("{file}: holds {count} channels ({names}); state which one to read (1 to {count})")]
+    Channels {
+        /// The path as given.
+        file: String,
+        /// How many channels the file holds.
+        count: usize,
+        /// `1: 360 deg; 2: Up; 3: 90 deg`.
+        names: String,
+    },
+    /// A stated channel the file does not hold.
+    #[error("{file}: no channel {channel}: the file holds {count} ({names})")]
+    NoSuchChannel {
+        /// The path as given.
+        file: String,
+        /// The channel stated, 1-based.
+        channel: usize,
+        /// How many channels the file holds.
+        count: usize,
+        /// `1: 360 deg; 2: Up; 3: 90 deg`.
+        names: String,
+    },
+    /// A channel other than 1 stated for a format that holds one series.
+    #[error("{file}: channel {channel} stated, but a {format} file holds one channel")]
+    OneChannel {
+        /// The path as given.
+        file: String,
+        /// The channel stated, 1-based.
+        channel: usize,
+        /// The format's name.
+        format: &'static str,
+    },
+    /// A block of values longer or shorter than its header announces (a
+    /// truncated file, a count mismatch).
+    #[error("{file}:{line}: {found} values where line {announced_at} announces {expected}")]
+    DataCount {
+        /// The path as given.
+        file: String,
+        /// 1-based line where the block ended.
+        line: usize,
+        /// The count announced.
+        expected: usize,
+        /// The values found.
+        found: usize,
+        /// 1-based line of the announcement.
+        announced_at: usize,
+    },
     /// Fewer than 2 samples: no interval to interpolate over.
     #[error("{file}: need at least 2 samples, found {found}")]
     TooFewSamples {
@@ -271,14 +371,21 @@ pub struct RecordSpec {
     /// Time step, s, of a one-column file (sample k at k·dt). When set the
     /// file must have one value per line; when not, two (time, accel).
     pub dt: Option<f64>,
+    /// The channel to read, 1-based, from a COSMOS file that holds several
+    /// (a station's components one after the other). `None` reads a file
+    /// of one channel and refuses one of several
+    /// ([`RecordError::Channels`]); the other formats hold one channel, so
+    /// only 1 may be stated for them.
+    pub channel: Option<usize>,
 }
 
 impl RecordSpec {
-    /// A record in `unit`, two-column or AT2.
+    /// A record in `unit`, of one channel.
     pub fn stated(unit: AccelUnit) -> Self {
         Self {
             unit: Some(unit),
             dt: None,
+            channel: None,
         }
     }
 }
@@ -288,6 +395,12 @@ impl RecordSpec {
 pub enum RecordFormat {
     /// PEER NGA `.AT2`.
     At2,
+    /// COSMOS V1: uncorrected acceleration.
+    CosmosV1,
+    /// COSMOS V2: corrected acceleration.
+    CosmosV2,
+    /// ESM ASCII (`.ASC`).
+    Esm,
     /// Two columns: time (s) and acceleration.
     TwoColumn,
     /// One column of accelerations at a stated time step.
@@ -295,10 +408,14 @@ pub enum RecordFormat {
 }
 
 impl RecordFormat {
-    /// The format's name in outputs: `at2`, `two-column`, `one-column`.
+    /// The format's name in outputs: `at2`, `cosmos-v1`, `cosmos-v2`,
+    /// `esm`, `two-column`, `one-column`.
     pub fn name(self) -> &'static str {
         match self {
             RecordFormat::At2 => "at2",
+            RecordFormat::CosmosV1 => "cosmos-v1",
+            RecordFormat::CosmosV2 => "cosmos-v2",
+            RecordFormat::Esm => "esm",
             RecordFormat::TwoColumn => "two-column",
             RecordFormat::OneColumn => "one-column",
         }
@@ -321,7 +438,7 @@ pub struct LoadedRecord {
 /// Reads a ground-acceleration record from `path`, converting its
 /// accelerations from their unit to g.
 ///
-/// Three formats are recognised:
+/// Five formats are recognised, chosen by extension, else by header:
 /// - **PEER NGA `.AT2`**, chosen when the extension is `.at2` (any case) or
 ///   the 4th line is not a comment and contains `NPTS`. Four header lines: a
 ///   title, the event/station, the series description (it must be an
@@ -331,6 +448,23 @@ pub struct LoadedRecord {
 ///   trailing `SEC` optional) or `  5590   0.00500   NPTS, DT`. Then
 ///   exactly NPTS values in free format (whitespace, commas or semicolons;
 ///   E or Fortran D exponents, e.g. `-.1234567E-02`). Sample k is at k·DT s.
+/// - **COSMOS V1/V2** (v1.20), chosen when the extension is `.v1`, `.v2`,
+///   `.v1c` or `.v2c` (any case) or the first line says `(Format v`. Per
+///   channel: the text header (its first line `Uncorrected acceleration` or
+///   `Corrected acceleration`, with the count of text lines), the integer
+///   and real headers (each after a line `N ...-header values follow on M
+///   lines, Format= (...)`), the comment lines, then a data line `NPTS
+///   acceleration pts, ..., units=UNIT (CODE), Format=(...)` and NPTS
+///   values (separated by spaces, or in the stated fixed-width fields).
+///   The unit is the data line's (code 02 = g, 04 or 10 = cm/s²); the time
+///   step is real-header value 62 (ms). Velocity or displacement blocks
+///   after the acceleration are not read; a first block or a header
+///   parameter (integer-header value 2) other than acceleration is refused.
+///   A file of several channels needs `spec.channel`.
+/// - **ESM ASCII** (`.ASC`), chosen when the first line is `KEY: value` and
+///   a `SAMPLING_INTERVAL_S:` line follows: `NDATA` values at
+///   `SAMPLING_INTERVAL_S` s in `UNITS`; a `DATA_TYPE` other than
+///   `ACCELERATION` is refused.
 /// - **Two-column text** (no `spec.dt`): `time_s accel` per line.
 /// - **One-column text** (`spec.dt` set): one acceleration per line, sample
 ///   k at k·dt s.
@@ -348,8 +482,10 @@ pub struct LoadedRecord {
 /// NPTS/DT, NPTS = 0, not an acceleration), a time step (stated, DT or
 /// between two times) outside [[`MIN_STEP_S`], [`MAX_STEP_S`]] s, a unit
 /// nobody states or
-/// that contradicts the header, a one-column file without a time step, a
-/// count of values other than NPTS, a wrong number of columns, a field that
+/// that contradicts the header, a file that is not an acceleration, a
+/// COSMOS file of several channels with none stated (or a channel it does
+/// not hold), a one-column file without a time step, a
+/// count of values other than the header's, a wrong number of columns, a field that
 /// is not a finite number, a negative or non-increasing time,
 /// |a| > [`MAX_ABS_ACCEL_G`] g, or fewer than 2 samples. Never panics.
 pub fn read_record_as(path: &Path, spec: &RecordSpec) -> Result<LoadedRecord, RecordError> {
@@ -381,7 +517,7 @@ pub fn read_record_as(path: &Path, spec: &RecordSpec) -> Result<LoadedRecord, Re
 }
 
 /// Reads a record from its bytes, as [`read_record_as`] reads a file's:
-/// `name` is the name errors give and whose extension (`.at2`) chooses the
+/// `name` is the name errors give and whose extension (`.at2`, `.v2`, ...) chooses the
 /// format, as a file's path does. For the records shipped in the binary
 /// (`io::shipped`).
 ///
@@ -406,32 +542,97 @@ pub fn read_record_bytes(name: &str, bytes: &[u8], spec: &RecordSpec) -> Result<
     if lines.iter().all(|line| line.trim().is_empty()) {
         return Err(RecordError::Empty { file });
     }
-    let at2_extension = path
-        .extension()
-        .and_then(|ext| ext.to_str())
-        .is_some_and(|ext| ext.eq_ignore_ascii_case("at2"));
-    let at2_header = lines
-        .get(3)
-        .is_some_and(|line| !is_comment(line.trim()) && line.to_ascii_uppercase().contains("NPTS"));
-    if at2_extension || at2_header {
-        let (series, unit) = parse_at2(&file, &lines, spec.unit)?;
-        return Ok(LoadedRecord {
-            series,
-            unit,
-            format: RecordFormat::At2,
-            crc32,
+    let (series, unit, format) = match detect(path, &lines) {
+        Detected::At2 => {
+            let (series, unit) = parse_at2(&file, &lines, spec.unit)?;
+            (series, unit, RecordFormat::At2)
+        }
+        Detected::Cosmos => parse_cosmos(&file, &lines, spec.unit, spec.channel)?,
+        Detected::Esm => {
+            let (series, unit) = parse_esm(&file, &lines, spec.unit)?;
+            (series, unit, RecordFormat::Esm)
+        }
+        Detected::Text => {
+            let Some(unit) = spec.unit else {
+                return Err(RecordError::NoUnit { file });
+            };
+            let (series, format) = parse_columns(&file, &lines, unit, spec.dt)?;
+            (series, unit, format)
+        }
+    };
+    // COSMOS chose its channel; the other formats hold one, channel 1.
+    let one_channel = !matches!(format, RecordFormat::CosmosV1 | RecordFormat::CosmosV2);
+    if let Some(channel) = spec.channel
+        && channel != 1
+        && one_channel
+    {
+        return Err(RecordError::OneChannel {
+            file,
+            channel,
+            format: format.name(),
         });
     }
-    let Some(unit) = spec.unit else {
-        return Err(RecordError::NoUnit { file });
-    };
-    let (series, format) = parse_columns(&file, &lines, unit, spec.dt)?;
     Ok(LoadedRecord {
         series,
         unit,
         format,
         crc32,
     })
+}
+
+/// The grammar a file is read with.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Detected {
+    /// PEER NGA `.AT2`.
+    At2,
+    /// COSMOS V1 or V2.
+    Cosmos,
+    /// ESM ASCII.
+    Esm,
+    /// One or two columns of text.
+    Text,
+}
+
+/// The extensions COSMOS files carry (any case): `.v1`, `.v2` and CESMD's
+/// `.v1c`, `.v2c`. A CSMIP (DMG) file may carry `.v1`/`.v2` too; the COSMOS
+/// reader refuses it, naming line 1, rather than reading it as text.
+const COSMOS_EXTENSIONS: [&str; 4] = ["v1", "v2", "v1c", "v2c"];
+
+/// Chooses the grammar: by extension (`.at2`; `.v1`, `.v2`, `.v1c`,
+/// `.v2c`), else by the header: an AT2 count line (4th line with `NPTS`), a
+/// COSMOS first line (`(Format v...`), an ESM header (`KEY: value` lines
+/// with `SAMPLING_INTERVAL_S:`); text otherwise.
+fn detect(path: &Path, lines: &[&str]) -> Detected {
+    let extension = path.extension().and_then(|ext| ext.to_str()).unwrap_or_default();
+    if extension.eq_ignore_ascii_case("at2") {
+        return Detected::At2;
+    }
+    if COSMOS_EXTENSIONS.iter().any(|e| extension.eq_ignore_ascii_case(e)) {
+        return Detected::Cosmos;
+    }
+    let first = lines.iter().find(|l| !l.trim().is_empty()).copied().unwrap_or_default();
+    if cosmos::is_cosmos_start(first) {
+        return Detected::Cosmos;
+    }
+    if esm::is_esm(lines) {
+        return Detected::Esm;
+    }
+    let at2_header = lines
+        .get(3)
+        .is_some_and(|line| !is_comment(line.trim()) && line.to_ascii_uppercase().contains("NPTS"));
+    if at2_header { Detected::At2 } else { Detected::Text }
+}
+
+/// Whether a file named `path` whose first bytes are `head` is a record in
+/// a format with a header (AT2, COSMOS, ESM), by its extension or its
+/// header lines, as [`read_record_as`] chooses the format. For tools that
+/// sort records from other files in a folder.
+pub fn has_record_header(path: &Path, head: &str) -> bool {
+    let lines: Vec<&str> = head
+        .split('\n')
+        .map(|line| line.strip_suffix('\r').unwrap_or(line))
+        .collect();
+    detect(path, &lines) != Detected::Text
 }
 
 /// Whether a trimmed text line is a comment.

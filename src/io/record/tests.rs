@@ -311,7 +311,7 @@ proptest! {
     #[test]
     fn arbitrary_bytes_never_panic(
         content in prop::collection::vec(any::<u8>(), 0..600),
-        ext in prop::sample::select(vec!["at2", "AT2", "txt", "csv", ""]),
+        ext in prop::sample::select(vec!["at2", "AT2", "txt", "csv", "", "V2", "v1c", "ASC"]),
     ) {
         let file = TempFile::new(&format!("fuzz.{ext}"), &content);
         let _ = file.read();
@@ -320,7 +320,7 @@ proptest! {
     #[test]
     fn arbitrary_token_soup_never_panics(
         content in tokens_file(),
-        ext in prop::sample::select(vec!["at2", "txt"]),
+        ext in prop::sample::select(vec!["at2", "txt", "V2"]),
     ) {
         let file = TempFile::new(&format!("soup.{ext}"), &content);
         if let Ok(s) = file.read() {
@@ -421,6 +421,7 @@ fn one_column_records_need_a_step_and_take_comments_and_semicolons() {
     let spec = RecordSpec {
         unit: Some(AccelUnit::CentimetresPerSecond2),
         dt: Some(0.005),
+        channel: None,
     };
     let r = read_as("one.txt", content, spec).unwrap();
     assert_eq!(r.format, RecordFormat::OneColumn);
@@ -444,6 +445,7 @@ fn one_column_records_need_a_step_and_take_comments_and_semicolons() {
         let spec = RecordSpec {
             unit: Some(AccelUnit::G),
             dt: Some(dt),
+            channel: None,
         };
         let m = read_as("dt.txt", "0.1\n0.2\n", spec).unwrap_err().to_string();
         assert!(m.contains("dt.txt: invalid time step"), "{m}");
@@ -479,6 +481,7 @@ fn time_steps_outside_1e_5_to_10_s_are_refused_in_every_format() {
         let spec = RecordSpec {
             unit: Some(AccelUnit::G),
             dt: Some(dt),
+            channel: None,
         };
         let m = read_as("dt.txt", "0.1\n0.2\n", spec).unwrap_err().to_string();
         assert!(m.contains(&format!("dt.txt: invalid time step {dt:?} s")), "{m}");
