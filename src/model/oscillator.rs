@@ -308,10 +308,16 @@ impl PiecewiseResponse {
         &self.u_dot
     }
 
-    /// The interval holding `t`: `Some(i)` for t in [t_i, t_{i+1}) (the last
-    /// index for t at or after the last sample), `None` before the first.
+    /// The interval holding `t`: `Some(i)` for t in [t_i, t_{i+1}), and for
+    /// the last sample itself the interval that ends there (where the
+    /// ground still has its last value, as [`Series::accel_at`] says); the
+    /// last index after the last sample; `None` before the first.
     pub fn interval(&self, t: f64) -> Option<usize> {
-        self.times.partition_point(|&ti| ti <= t).checked_sub(1)
+        let i = self.times.partition_point(|&ti| ti <= t);
+        if i == self.times.len() && self.times.last() == Some(&t) {
+            return i.checked_sub(2);
+        }
+        i.checked_sub(1)
     }
 
     /// The ground acceleration a0 at the start of interval `i` and its
