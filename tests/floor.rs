@@ -334,3 +334,39 @@ fn a_floor_under_a_pulse_or_with_a_bad_period_is_refused_naming_the_key() {
         assert_eq!(err.trim_end().lines().count(), 1, "{err}");
     }
 }
+
+#[test]
+fn two_modes_given_as_tables_add_their_participations_as_derived() {
+    // a_f = a_g + Σ Γ_kφ_k ü_k, with ü_k = −a_g − 2ζω u̇_k − ω² u_k from the
+    // independent recurrence, for the config's [[floor.mode]] tables.
+    use rocking::io::config;
+    let text = format!(
+        "[block]\nwidth = 0.6\nheight = 2.0\n\n[excitation]\nkind = \"record\"\nfile_h = \"{ELCENTRO}\"\nunit_h = \"g\"\nscale_h = 1.5\n\n[[floor.mode]]\nperiod = \"0.9 s\"\ndamping = 0.05\nparticipation = 1.27\n\n[[floor.mode]]\nperiod = \"0.3 s\"\ndamping = 0.03\nparticipation = -0.42\n"
+    );
+    let table = config::parse_toml(&text, "two-modes.toml").expect("toml");
+    let scenario = config::from_table(&table, &config::Source::default()).expect("scenario");
+    let model = scenario.model().expect("model");
+    let p = scenario.geometry().p;
+    let series = elcentro();
+    let scaled = Series::new(series.times_s().to_vec(), series.accel_g().iter().map(|a| 1.5 * a).collect()).unwrap();
+    let modes = [(0.9, 0.05, 1.27), (0.3, 0.03, -0.42)];
+    let states: Vec<Vec<(f64, f64)>> = modes.iter().map(|&(t, z, _)| chopra_states(t, z, &scaled)).collect();
+    let (t, a) = (scaled.times_s(), scaled.accel_g());
+    let mut worst = 0.0_f64;
+    for i in 0..t.len() {
+        let mut expected = a[i];
+        for (k, &(period, zeta, gamma)) in modes.iter().enumerate() {
+            let w = std::f64::consts::TAU / period;
+            let (u, v) = states[k][i];
+            expected += gamma * (-a[i] - 2.0 * zeta * w * v - w * w * u);
+        }
+        worst = worst.max((model.excitation.forcing(p * t[i]).a - expected).abs());
+    }
+    assert!(worst < 1e-10, "{worst:e}");
+    // A missing participation with several modes is refused, naming it.
+    let bad = text.replace("participation = -0.42\n", "");
+    let err = config::from_table(&config::parse_toml(&bad, "bad.toml").unwrap(), &config::Source::default())
+        .expect_err("refused")
+        .to_string();
+    assert!(err.contains("floor.mode[1].participation"), "{err}");
+}
