@@ -370,3 +370,45 @@ fn two_modes_given_as_tables_add_their_participations_as_derived() {
         .to_string();
     assert!(err.contains("floor.mode[1].participation"), "{err}");
 }
+
+#[test]
+fn a_harmonic_floors_rate_and_peaks_agree_with_its_acceleration() {
+    // The closed-form rate (used by the tangent Lyapunov method) against
+    // central differences of the acceleration, and the continuous-time
+    // peaks between the densely sampled maximum and the contact-force bound.
+    let (p, psi) = (2.2, 0.25);
+    let h = Harmonic {
+        a_h: 2.0,
+        a_v: 0.5,
+        omega_h: 3.0,
+        omega_v: 3.0,
+        phase_h: 0.3,
+        phase_v: 0.3,
+        psi,
+    };
+    let modes = vec![
+        FloorMode {
+            oscillator: Oscillator::new(0.8, 0.05).unwrap(),
+            participation: 1.1,
+        },
+        FloorMode {
+            oscillator: Oscillator::new(0.25, 0.04).unwrap(),
+            participation: -0.3,
+        },
+    ];
+    let floor = FloorExcitation::harmonic(h, modes, p);
+    for tau in [0.1, 1.7, 12.3, 40.0] {
+        let e = 1e-5;
+        let fd = (floor.accel(tau + e).0 - floor.accel(tau - e).0) / (2.0 * e);
+        let (rate, rate_v) = floor.accel_rate(tau).unwrap();
+        assert!((fd - rate).abs() < 1e-6 * (1.0 + rate.abs()), "τ = {tau}: {fd} vs {rate}");
+        let fdv = (floor.accel(tau + e).1 - floor.accel(tau - e).1) / (2.0 * e);
+        assert!((fdv - rate_v).abs() < 1e-6, "{fdv} vs {rate_v}");
+    }
+    let tau_end = 60.0;
+    let peaks = floor.peaks(tau_end);
+    let dense = (0..=600_000).fold(0.0_f64, |m, j| m.max(floor.accel(tau_end * j as f64 / 600_000.0).0.abs()));
+    assert!(peaks.pga_g >= dense - 1e-12 && peaks.pga_g <= dense * (1.0 + 1e-6), "{} vs {dense}", peaks.pga_g);
+    let bound = Excitation::Floor(Box::new(floor)).peak_accel().unwrap().0;
+    assert!(peaks.pga_g <= bound, "{} > bound {bound}", peaks.pga_g);
+}
