@@ -40,8 +40,11 @@ fn chopra_step(period: f64, zeta: f64, (u, v): (f64, f64), a0: f64, a1: f64, dt:
     let (s, c) = ((wd * dt).sin(), (wd * dt).cos());
     let a = e * (zeta / sq * s + c);
     let b = e * (s / wd);
-    let cc = (2.0 * zeta / (w * dt) + e * (((1.0 - 2.0 * zeta * zeta) / (wd * dt) - zeta / sq) * s - (1.0 + 2.0 * zeta / (w * dt)) * c)) / k;
-    let d = (1.0 - 2.0 * zeta / (w * dt) + e * ((2.0 * zeta * zeta - 1.0) / (wd * dt) * s + 2.0 * zeta / (w * dt) * c)) / k;
+    let cc = (2.0 * zeta / (w * dt)
+        + e * (((1.0 - 2.0 * zeta * zeta) / (wd * dt) - zeta / sq) * s - (1.0 + 2.0 * zeta / (w * dt)) * c))
+        / k;
+    let d =
+        (1.0 - 2.0 * zeta / (w * dt) + e * ((2.0 * zeta * zeta - 1.0) / (wd * dt) * s + 2.0 * zeta / (w * dt) * c)) / k;
     let a_ = -e * (w / sq * s);
     let b_ = e * (c - zeta / sq * s);
     let c_ = (-1.0 / dt + e * ((w / sq + zeta / (dt * sq)) * s + c / dt)) / k;
@@ -178,7 +181,10 @@ fn a_rigid_floor_gives_the_ground_motion() {
         }
         assert!(worst <= bound, "T = {period}: {worst:e} > {bound:e}");
         // It shrinks with T until rounding (1e-14 g) is all that is left.
-        assert!(worst < previous / 5.0 || worst < 1e-13, "T = {period}: {worst:e} does not shrink");
+        assert!(
+            worst < previous / 5.0 || worst < 1e-13,
+            "T = {period}: {worst:e} does not shrink"
+        );
         previous = worst;
     }
     assert!(previous < 1e-4, "{previous:e} g");
@@ -263,7 +269,10 @@ fn tmpdir(name: &str) -> PathBuf {
 fn batch(out: &Path, args: &[&str]) -> (std::process::Output, Option<Value>) {
     let mut all = vec!["--batch", "--quiet", "--out", out.to_str().expect("utf-8")];
     all.extend_from_slice(args);
-    let o = Command::new(env!("CARGO_BIN_EXE_rocking")).args(&all).output().expect("runs");
+    let o = Command::new(env!("CARGO_BIN_EXE_rocking"))
+        .args(&all)
+        .output()
+        .expect("runs");
     let summary = std::fs::read_to_string(out.join("summary.json"))
         .ok()
         .map(|t| serde_json::from_str(&t).expect("json"));
@@ -292,7 +301,10 @@ fn a_config_with_a_floor_runs_batch_and_reports_the_floor_peaks() {
     let series = elcentro();
     let states = chopra_states(0.5, 0.05, &series);
     let over_samples = states.iter().fold(0.0_f64, |m, s| m.max(absolute(0.5, 0.05, *s).abs()));
-    assert!(pga >= over_samples - 1e-12 && pga <= over_samples * 1.05, "{pga} vs {over_samples}");
+    assert!(
+        pga >= over_samples - 1e-12 && pga <= over_samples * 1.05,
+        "{pga} vs {over_samples}"
+    );
     // Continuous time: 64 points inside every interval by the recurrence
     // bound the peak from below, and from above within the interpolation
     // error M₂ w²/8 (M₂ ≤ ω² |a_f| ≤ ω² · 2 PGA, w = 0.02 s / 64).
@@ -309,7 +321,10 @@ fn a_config_with_a_floor_runs_batch_and_reports_the_floor_peaks() {
     }
     let w = std::f64::consts::TAU / 0.5;
     let slack = w * w * 2.0 * pga * (0.02_f64 / 64.0).powi(2) / 8.0;
-    assert!(pga >= dense - 1e-12 && pga <= dense + slack, "{pga} vs {dense} (+{slack:e})");
+    assert!(
+        pga >= dense - 1e-12 && pga <= dense + slack,
+        "{pga} vs {dense} (+{slack:e})"
+    );
     assert!(pgv > 0.0 && pgv.is_finite());
     // The config written back repeats the floor.
     assert_eq!(s["config"]["floor"]["period"].as_f64(), Some(0.5));
@@ -321,9 +336,22 @@ fn a_config_with_a_floor_runs_batch_and_reports_the_floor_peaks() {
 fn a_floor_under_a_pulse_or_with_a_bad_period_is_refused_naming_the_key() {
     let dir = tmpdir("refused");
     for (sets, key) in [
-        (vec!["--set", "excitation.kind=pulse", "--set", "excitation.a_h=2", "--set", "floor.period=0.5"], "floor:"),
+        (
+            vec![
+                "--set",
+                "excitation.kind=pulse",
+                "--set",
+                "excitation.a_h=2",
+                "--set",
+                "floor.period=0.5",
+            ],
+            "floor:",
+        ),
         (vec!["--set", "floor.period=0"], "floor.period"),
-        (vec!["--set", "floor.period=0.5", "--set", "floor.damping=1.2"], "floor.damping"),
+        (
+            vec!["--set", "floor.period=0.5", "--set", "floor.damping=1.2"],
+            "floor.damping",
+        ),
         (vec!["--set", "floor.damping=0.05"], "floor.period"),
     ] {
         let out = dir.join("out");
@@ -348,7 +376,11 @@ fn two_modes_given_as_tables_add_their_participations_as_derived() {
     let model = scenario.model().expect("model");
     let p = scenario.geometry().p;
     let series = elcentro();
-    let scaled = Series::new(series.times_s().to_vec(), series.accel_g().iter().map(|a| 1.5 * a).collect()).unwrap();
+    let scaled = Series::new(
+        series.times_s().to_vec(),
+        series.accel_g().iter().map(|a| 1.5 * a).collect(),
+    )
+    .unwrap();
     let modes = [(0.9, 0.05, 1.27), (0.3, 0.03, -0.42)];
     let states: Vec<Vec<(f64, f64)>> = modes.iter().map(|&(t, z, _)| chopra_states(t, z, &scaled)).collect();
     let (t, a) = (scaled.times_s(), scaled.accel_g());
@@ -365,9 +397,12 @@ fn two_modes_given_as_tables_add_their_participations_as_derived() {
     assert!(worst < 1e-10, "{worst:e}");
     // A missing participation with several modes is refused, naming it.
     let bad = text.replace("participation = -0.42\n", "");
-    let err = config::from_table(&config::parse_toml(&bad, "bad.toml").unwrap(), &config::Source::default())
-        .expect_err("refused")
-        .to_string();
+    let err = config::from_table(
+        &config::parse_toml(&bad, "bad.toml").unwrap(),
+        &config::Source::default(),
+    )
+    .expect_err("refused")
+    .to_string();
     assert!(err.contains("floor.mode[1].participation"), "{err}");
 }
 
@@ -401,14 +436,23 @@ fn a_harmonic_floors_rate_and_peaks_agree_with_its_acceleration() {
         let e = 1e-5;
         let fd = (floor.accel(tau + e).0 - floor.accel(tau - e).0) / (2.0 * e);
         let (rate, rate_v) = floor.accel_rate(tau).unwrap();
-        assert!((fd - rate).abs() < 1e-6 * (1.0 + rate.abs()), "τ = {tau}: {fd} vs {rate}");
+        assert!(
+            (fd - rate).abs() < 1e-6 * (1.0 + rate.abs()),
+            "τ = {tau}: {fd} vs {rate}"
+        );
         let fdv = (floor.accel(tau + e).1 - floor.accel(tau - e).1) / (2.0 * e);
         assert!((fdv - rate_v).abs() < 1e-6, "{fdv} vs {rate_v}");
     }
     let tau_end = 60.0;
     let peaks = floor.peaks(tau_end);
-    let dense = (0..=600_000).fold(0.0_f64, |m, j| m.max(floor.accel(tau_end * j as f64 / 600_000.0).0.abs()));
-    assert!(peaks.pga_g >= dense - 1e-12 && peaks.pga_g <= dense * (1.0 + 1e-6), "{} vs {dense}", peaks.pga_g);
+    let dense = (0..=600_000).fold(0.0_f64, |m, j| {
+        m.max(floor.accel(tau_end * j as f64 / 600_000.0).0.abs())
+    });
+    assert!(
+        peaks.pga_g >= dense - 1e-12 && peaks.pga_g <= dense * (1.0 + 1e-6),
+        "{} vs {dense}",
+        peaks.pga_g
+    );
     let bound = Excitation::Floor(Box::new(floor)).peak_accel().unwrap().0;
     assert!(peaks.pga_g <= bound, "{} > bound {bound}", peaks.pga_g);
 }

@@ -71,9 +71,8 @@ impl Oscillator {
         self.zeta
     }
 
-    /// The same oscillator in another time unit: `factor` time units of
-    /// this one per new unit (τ = p t: a period in s becomes one in τ with
-    /// factor 1/p, i.e. ω_τ = ω_s / p).
+    /// The same oscillator in a time unit `new_units_per_old` times finer
+    /// (τ = p t: an oscillator in s becomes one in τ with p, ω_τ = ω_s / p).
     pub fn rescaled(&self, new_units_per_old: f64) -> Self {
         Self {
             omega: self.omega / new_units_per_old,
@@ -154,7 +153,10 @@ impl Oscillator {
     /// The steady state under `amplitude · sin(Ω t + phase)`: u = Im[U
     /// e^{i(Ωt+φ)}] with U = −amplitude / (ω² − Ω² + 2iζωΩ).
     fn steady_state(&self, amplitude: f64, big_omega: f64, phase: f64, t: f64) -> Response {
-        let (dr, di) = (self.omega * self.omega - big_omega * big_omega, 2.0 * self.sigma() * big_omega);
+        let (dr, di) = (
+            self.omega * self.omega - big_omega * big_omega,
+            2.0 * self.sigma() * big_omega,
+        );
         let d2 = dr * dr + di * di;
         // U = −A (dr − i di)/|D|².
         let (ur, ui) = (-amplitude * dr / d2, amplitude * di / d2);

@@ -643,7 +643,11 @@ impl Scenario {
         };
         let mut modes = Vec::with_capacity(floor.modes.len());
         for (k, m) in floor.modes.iter().enumerate() {
-            let key = if floor.as_tables { format!("floor.mode[{k}].period") } else { "floor.period".to_string() };
+            let key = if floor.as_tables {
+                format!("floor.mode[{k}].period")
+            } else {
+                "floor.period".to_string()
+            };
             let oscillator = Oscillator::new(m.period_s, m.damping)
                 .ok_or_else(|| ScenarioError::new(key, "needs a period > 0 s and a damping in [0, 1)"))?;
             modes.push(FloorMode {

@@ -4,8 +4,9 @@
 
 use super::run::Method;
 use super::scenario::{
-    AMPLITUDE_LIMIT, ExcitationKind, MAX_FLOOR_PARTICIPATION, MAX_FLOOR_PERIOD_S, MAX_HISTORY_ROWS, MIN_FLOOR_PERIOD_S, MAX_SIZE_M, MIN_PSI, MIN_SIZE_M, MIN_SPECTRUM_SAMPLES,
-    MU_K_LIMIT, PAPER_SPECTRUM_END, Scenario, ScenarioError, SpectrumRange,
+    AMPLITUDE_LIMIT, ExcitationKind, MAX_FLOOR_PARTICIPATION, MAX_FLOOR_PERIOD_S, MAX_HISTORY_ROWS, MAX_SIZE_M,
+    MIN_FLOOR_PERIOD_S, MIN_PSI, MIN_SIZE_M, MIN_SPECTRUM_SAMPLES, MU_K_LIMIT, PAPER_SPECTRUM_END, Scenario,
+    ScenarioError, SpectrumRange,
 };
 use crate::model::excitation::pulse;
 

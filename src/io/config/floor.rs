@@ -32,7 +32,10 @@ pub fn resolve(raw: &Option<RawFloor>, geo: &Geometry) -> Result<Option<FloorSpe
                 ));
             }
             if modes.is_empty() {
-                return Err(ConfigError::key("floor.mode", "needs at least one [[floor.mode]] table"));
+                return Err(ConfigError::key(
+                    "floor.mode",
+                    "needs at least one [[floor.mode]] table",
+                ));
             }
             let mut out = Vec::with_capacity(modes.len());
             for (k, m) in modes.iter().enumerate() {

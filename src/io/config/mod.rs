@@ -652,9 +652,7 @@ pub fn to_json(s: &Scenario) -> Json {
 /// `[floor]` as the config writes it back: one mode's keys, or the
 /// `[[floor.mode]]` tables as they were given.
 fn floor_json(floor: &crate::sim::scenario::FloorSpec) -> Json {
-    let mode = |m: &crate::sim::scenario::FloorModeSpec| {
-        json!({ "period": m.period_s, "damping": m.damping, "participation": m.participation })
-    };
+    let mode = |m: &crate::sim::scenario::FloorModeSpec| json!({ "period": m.period_s, "damping": m.damping, "participation": m.participation });
     match floor.modes.as_slice() {
         [one] if !floor.as_tables => mode(one),
         modes => json!({ "mode": modes.iter().map(mode).collect::<Vec<_>>() }),

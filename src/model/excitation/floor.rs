@@ -43,7 +43,10 @@ enum Ground {
         modes: Vec<(PiecewiseResponse, f64)>,
     },
     /// Harmonic ground motion; each mode's closed form in τ.
-    Harmonic { harmonic: Harmonic, modes: Vec<(HarmonicResponse, f64)> },
+    Harmonic {
+        harmonic: Harmonic,
+        modes: Vec<(HarmonicResponse, f64)>,
+    },
 }
 
 /// A ground motion filtered through a building to one of its floors.
@@ -199,9 +202,7 @@ impl FloorExcitation {
             .fold(f64::INFINITY, |m, mode| m.min(self.p / mode.oscillator.omega()));
         match &self.ground {
             Ground::Record { .. } => modes,
-            Ground::Harmonic { harmonic, .. } => {
-                modes.min(super::Excitation::Harmonic(*harmonic).time_scale())
-            }
+            Ground::Harmonic { harmonic, .. } => modes.min(super::Excitation::Harmonic(*harmonic).time_scale()),
         }
     }
 
@@ -244,7 +245,7 @@ impl FloorExcitation {
     /// share is below `level_g` divided by the number of modes. `end_tau`
     /// for harmonic ground (which never stops) or a zero level.
     pub fn quiet_after(&self, end_tau: f64, level_g: f64) -> f64 {
-        let Ground::Record { record, modes } = &self.ground else {
+        let Ground::Record { modes, .. } = &self.ground else {
             return end_tau;
         };
         if level_g <= 0.0 || modes.is_empty() {
@@ -266,7 +267,6 @@ impl FloorExcitation {
                 quiet_s = quiet_s.max(t_end + (amp / share).ln() / sigma);
             }
         }
-        let _ = record;
         quiet_s * self.p
     }
 
@@ -320,16 +320,27 @@ impl FloorExcitation {
                         })
                         .collect();
                     let bound = |order: i32, s0: f64| -> f64 {
-                        amps.iter().map(|(r, sigma, w)| r * (-sigma * s0).exp() * w.powi(order)).sum()
+                        amps.iter()
+                            .map(|(r, sigma, w)| r * (-sigma * s0).exp() * w.powi(order))
+                            .sum()
                     };
                     let v0 = v_g;
                     let accel = |s: f64| {
                         let t = t0 + s;
-                        a0 + k * s + modes.iter().map(|(r, gamma)| gamma * r.at_in(Some(i), t).u_ddot).sum::<f64>()
+                        a0 + k * s
+                            + modes
+                                .iter()
+                                .map(|(r, gamma)| gamma * r.at_in(Some(i), t).u_ddot)
+                                .sum::<f64>()
                     };
                     let velocity = |s: f64| {
                         let t = t0 + s;
-                        v0 + a0 * s + 0.5 * k * s * s + modes.iter().map(|(r, gamma)| gamma * r.at_in(Some(i), t).u_dot).sum::<f64>()
+                        v0 + a0 * s
+                            + 0.5 * k * s * s
+                            + modes
+                                .iter()
+                                .map(|(r, gamma)| gamma * r.at_in(Some(i), t).u_dot)
+                                .sum::<f64>()
                     };
                     pga = max_abs_smooth(accel, |s0, _| bound(2, s0), h, pga, PEAK_REL);
                     pgv = max_abs_smooth(velocity, |s0, _| k.abs() + bound(1, s0), h, pgv, PEAK_REL);
@@ -348,14 +359,15 @@ impl FloorExcitation {
                 let piece = std::f64::consts::FRAC_PI_4 / fastest;
                 let count = (tau_end / piece).ceil().max(1.0);
                 let piece = tau_end / count;
-                let accel = |tau: f64| hm.accel(tau).0 + modes.iter().map(|(r, gamma)| gamma * r.at(tau).u_ddot).sum::<f64>();
+                let accel =
+                    |tau: f64| hm.accel(tau).0 + modes.iter().map(|(r, gamma)| gamma * r.at(tau).u_ddot).sum::<f64>();
                 // v_g from rest at τ = 0: (A/Ω)(cos φ − cos(Ωτ + φ)).
                 let velocity = |tau: f64| {
                     amp / w * (ph.cos() - (w * tau + ph).cos())
                         + modes.iter().map(|(r, gamma)| gamma * r.at(tau).u_dot).sum::<f64>()
                 };
                 let bound = |order: i32| -> f64 {
-                    let (mut b, _) = (amp.abs() * w.powi(order), 0);
+                    let mut b = amp.abs() * w.powi(order);
                     for (r, gamma) in modes {
                         let (ur, ui) = r.steady_accel_ratio();
                         let wm = r.oscillator().omega();
