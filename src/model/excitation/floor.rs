@@ -21,6 +21,8 @@
 //!   seconds (the record's time) and read at t = τ/p.
 //! - Pulses are not filtered: the config refuses `[floor]` with a pulse.
 
+use std::sync::atomic::{AtomicUsize, Ordering};
+
 use super::Harmonic;
 use super::record::RecordExcitation;
 use crate::model::oscillator::{HarmonicResponse, Oscillator, PiecewiseResponse, max_abs_smooth};
@@ -41,12 +43,161 @@ enum Ground {
     Record {
         record: Box<RecordExcitation>,
         modes: Vec<(PiecewiseResponse, f64)>,
+        fast: Box<FastRecord>,
     },
     /// Harmonic ground motion; each mode's closed form in τ.
     Harmonic {
         harmonic: Harmonic,
         modes: Vec<(HarmonicResponse, f64)>,
     },
+}
+
+/// The floor acceleration under a record, tabulated for evaluation: on
+/// interval i, a_f(s) = a_g(s) + Σ_k e^{−σ_k s}(c_ki cos ω_dk s + d_ki sin
+/// ω_dk s), the modes' free parts with Γφ folded in (their particular
+/// parts have ü = 0). The same closed form as [`PiecewiseResponse::at_in`],
+/// with the per-call divisions and the second search of the record done
+/// once: the integrator evaluates the forcing at every stage of every step.
+#[derive(Debug)]
+struct FastRecord {
+    /// Sample times, s.
+    times: Vec<f64>,
+    /// Scaled ground acceleration at the samples, g.
+    accel: Vec<f64>,
+    /// Per mode: σ = ζω and ω_d (rad/s), and (c, d) per interval; the last
+    /// entry is the ring-down after the last sample.
+    modes: Vec<(f64, f64, Vec<(f64, f64)>)>,
+    /// The number of samples at or before the last time asked for: the
+    /// integrator asks at the stages of one step, then of the next, so the
+    /// answer is this or the next one far more often than not, and checking
+    /// them first saves the binary search (whose dependent loads are most of
+    /// a record's forcing cost). Only a hint: every use checks it, so any
+    /// value is safe, and relaxed ordering suffices when threads share it.
+    hint: AtomicUsize,
+}
+
+impl Clone for FastRecord {
+    fn clone(&self) -> Self {
+        Self {
+            times: self.times.clone(),
+            accel: self.accel.clone(),
+            modes: self.modes.clone(),
+            hint: AtomicUsize::new(self.hint.load(Ordering::Relaxed)),
+        }
+    }
+}
+
+impl PartialEq for FastRecord {
+    /// The same tables; the search hint is no part of the value.
+    fn eq(&self, other: &Self) -> bool {
+        self.times == other.times && self.accel == other.accel && self.modes == other.modes
+    }
+}
+
+impl FastRecord {
+    /// The number of samples at or before `t` (`partition_point(t_i <= t)`),
+    /// trying the hint and the sample after it before a binary search.
+    #[inline]
+    fn count_at_or_before(&self, t: f64) -> usize {
+        let n = self.times.len();
+        let fits = |c: usize| {
+            (c == 0 || self.times.get(c - 1).is_some_and(|&ti| ti <= t))
+                && (c == n || self.times.get(c).is_some_and(|&ti| ti > t))
+        };
+        let h = self.hint.load(Ordering::Relaxed);
+        let c = if fits(h) {
+            h
+        } else if h < n && fits(h + 1) {
+            h + 1
+        } else {
+            self.times.partition_point(|&ti| ti <= t)
+        };
+        self.hint.store(c, Ordering::Relaxed);
+        c
+    }
+
+    fn new(responses: &[(PiecewiseResponse, f64)], record: &RecordExcitation) -> Self {
+        let series = record.horizontal();
+        let times = series.times_s().to_vec();
+        let accel: Vec<f64> = series.accel_g().iter().map(|a| a * record.scale_h()).collect();
+        let n = times.len();
+        let modes = responses
+            .iter()
+            .map(|(r, gamma)| {
+                let osc = r.oscillator();
+                let (w, z) = (osc.omega(), osc.zeta());
+                let (sigma, wd) = (z * w, w * (1.0 - z * z).sqrt());
+                let coef = (0..n)
+                    .map(|i| {
+                        let (u, v) = (
+                            r.u().get(i).copied().unwrap_or(0.0),
+                            r.u_dot().get(i).copied().unwrap_or(0.0),
+                        );
+                        let k = match (times.get(i..i + 2), accel.get(i..i + 2)) {
+                            (Some(t), Some(a)) => (a[1] - a[0]) / (t[1] - t[0]),
+                            _ => 0.0,
+                        };
+                        let a0 = if i + 1 < n {
+                            accel.get(i).copied().unwrap_or(0.0)
+                        } else {
+                            0.0
+                        };
+                        // The free part's start: u − α, u̇ − β (Oscillator::particular).
+                        let beta = -k / (w * w);
+                        let alpha = -(a0 + 2.0 * sigma * beta) / (w * w);
+                        let (x0, y0) = (u - alpha, v - beta);
+                        let c = -2.0 * sigma * y0 - w * w * x0;
+                        let d = (-2.0 * sigma * c - w * w * y0 + sigma * c) / wd;
+                        (gamma * c, gamma * d)
+                    })
+                    .collect();
+                (sigma, wd, coef)
+            })
+            .collect();
+        Self {
+            times,
+            accel,
+            modes,
+            hint: AtomicUsize::new(0),
+        }
+    }
+
+    /// a_f/g at `t` s: 0 before the first sample, the ground at rest and the
+    /// building ringing down after the last.
+    #[inline]
+    fn accel(&self, t: f64) -> f64 {
+        let n = self.times.len();
+        if t.is_nan() {
+            return f64::NAN;
+        }
+        let mut i = self.count_at_or_before(t);
+        if i == 0 {
+            return 0.0;
+        }
+        // The last sample belongs to the interval that ends there
+        // (PiecewiseResponse::interval).
+        if i == n && self.times.last() == Some(&t) {
+            i -= 1;
+        }
+        let i = i - 1;
+        let (Some(&t0), Some(&a0)) = (self.times.get(i), self.accel.get(i)) else {
+            return 0.0;
+        };
+        // The same interpolation as Series::accel_at.
+        let a_g = match (self.times.get(i + 1), self.accel.get(i + 1)) {
+            (Some(&t1), Some(&a1)) => a0 + (a1 - a0) * ((t - t0) / (t1 - t0)),
+            _ => 0.0,
+        };
+        let s = t - t0;
+        let mut rel = 0.0;
+        for (sigma, wd, coef) in &self.modes {
+            if let Some(&(c, d)) = coef.get(i) {
+                let (sn, cs) = (wd * s).sin_cos();
+                rel += (-sigma * s).exp() * (c * cs + d * sn);
+            }
+        }
+        a_g + rel
+    }
 }
 
 /// A ground motion filtered through a building to one of its floors.
@@ -77,7 +228,7 @@ impl FloorExcitation {
     /// The floor of a building with `modes` under a record.
     pub fn record(record: RecordExcitation, modes: Vec<FloorMode>) -> Self {
         let p = record.p_per_s();
-        let responses = modes
+        let responses: Vec<(PiecewiseResponse, f64)> = modes
             .iter()
             .map(|m| {
                 (
@@ -86,10 +237,12 @@ impl FloorExcitation {
                 )
             })
             .collect();
+        let fast = Box::new(FastRecord::new(&responses, &record));
         Self {
             ground: Ground::Record {
                 record: Box::new(record),
                 modes: responses,
+                fast,
             },
             p,
             modes,
@@ -138,15 +291,12 @@ impl FloorExcitation {
     #[inline]
     pub fn accel(&self, tau: f64) -> (f64, f64) {
         match &self.ground {
-            Ground::Record { record, modes } => {
-                let (a_g, a_v) = record.accel(tau);
-                let t = tau / record.p_per_s();
-                let Some((first, _)) = modes.first() else {
-                    return (a_g, a_v);
+            Ground::Record { record, fast, .. } => {
+                let a_v = match record.vertical() {
+                    Some(_) => record.accel(tau).1,
+                    None => 0.0,
                 };
-                let i = first.interval(t);
-                let rel: f64 = modes.iter().map(|(r, gamma)| gamma * r.at_in(i, t).u_ddot).sum();
-                (a_g + rel, a_v)
+                (fast.accel(tau / record.p_per_s()), a_v)
             }
             Ground::Harmonic { harmonic, modes } => {
                 let (a_g, a_v) = harmonic.accel(tau);
@@ -282,7 +432,7 @@ impl FloorExcitation {
         let g = crate::model::geometry::G;
         let p_per_s = self.p;
         match &self.ground {
-            Ground::Record { record, modes } => {
+            Ground::Record { record, modes, .. } => {
                 let series = record.horizontal();
                 let scale = record.scale_h();
                 let (times, acc) = (series.times_s(), series.accel_g());
