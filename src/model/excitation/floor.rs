@@ -64,9 +64,8 @@ struct FastRecord {
     times: Vec<f64>,
     /// Scaled ground acceleration at the samples, g.
     accel: Vec<f64>,
-    /// Per mode: σ = ζω and ω_d (rad/s), and (c, d) per interval; the last
-    /// entry is the ring-down after the last sample.
-    modes: Vec<(f64, f64, Vec<(f64, f64)>)>,
+    /// Per mode: σ, ω_d and the coefficients per interval.
+    modes: Vec<ModeTable>,
     /// The number of samples at or before the last time asked for: the
     /// integrator asks at the stages of one step, then of the next, so the
     /// answer is this or the next one far more often than not, and checking
@@ -74,6 +73,18 @@ struct FastRecord {
     /// a record's forcing cost). Only a hint: every use checks it, so any
     /// value is safe, and relaxed ordering suffices when threads share it.
     hint: AtomicUsize,
+}
+
+/// One mode's free-vibration coefficients on every sample interval.
+#[derive(Clone, Debug, PartialEq)]
+struct ModeTable {
+    /// σ = ζω, 1/s.
+    sigma: f64,
+    /// ω_d = ω√(1 − ζ²), rad/s.
+    wd: f64,
+    /// (Γφ c, Γφ d) per interval; the last entry is the ring-down after
+    /// the last sample.
+    coef: Vec<(f64, f64)>,
 }
 
 impl Clone for FastRecord {
@@ -151,7 +162,7 @@ impl FastRecord {
                         (gamma * c, gamma * d)
                     })
                     .collect();
-                (sigma, wd, coef)
+                ModeTable { sigma, wd, coef }
             })
             .collect();
         Self {
@@ -190,10 +201,10 @@ impl FastRecord {
         };
         let s = t - t0;
         let mut rel = 0.0;
-        for (sigma, wd, coef) in &self.modes {
-            if let Some(&(c, d)) = coef.get(i) {
-                let (sn, cs) = (wd * s).sin_cos();
-                rel += (-sigma * s).exp() * (c * cs + d * sn);
+        for m in &self.modes {
+            if let Some(&(c, d)) = m.coef.get(i) {
+                let (sn, cs) = (m.wd * s).sin_cos();
+                rel += (-m.sigma * s).exp() * (c * cs + d * sn);
             }
         }
         a_g + rel
