@@ -435,8 +435,10 @@ impl FloorExcitation {
     /// continuous time, from τ = 0 to `tau_end`, the velocity integrated
     /// exactly from rest (v_f = v_g + Σ Γ u̇_k, v_g the exact integral of
     /// the piecewise-linear or harmonic ground). Found by branch and bound on
-    /// each sample interval (or on [0, τ_end] in pieces of 1/8 of the fastest
-    /// period, for harmonic ground) with the closed-form bounds on the
+    /// each sample interval (or, for harmonic ground, on pieces of 1/8 of
+    /// the fastest period up to τ_end or until the transients are below
+    /// 1e-14 of the ground's amplitude and two forcing periods more, which
+    /// then repeat for ever) with the closed-form bounds on the
     /// second derivative, to a relative 1e-12: exact in the engineer's sense,
     /// not a maximum over samples.
     pub fn peaks(&self, tau_end: f64) -> FloorPeaks {
@@ -517,9 +519,28 @@ impl FloorExcitation {
                 let amp = hm.a_h * hm.psi;
                 let (w, ph) = (hm.omega_h, hm.phase_h);
                 let fastest = modes.iter().fold(w, |m, (r, _)| m.max(r.oscillator().omega()));
+                // Once every transient is below 1e-14 of the ground's
+                // amplitude the motion repeats with the ground's period, so
+                // two more periods hold every later peak: a long run costs
+                // no more than that.
+                let settle = modes.iter().fold(0.0_f64, |m, (r, gamma)| {
+                    let osc = r.oscillator();
+                    let sigma = osc.zeta() * osc.omega();
+                    let ratio = gamma.abs() * r.transient_accel_bound() / (1e-14 * amp.abs()).max(f64::MIN_POSITIVE);
+                    if ratio > 1.0 && sigma > 0.0 {
+                        m.max(ratio.ln() / sigma)
+                    } else {
+                        m
+                    }
+                });
+                let horizon = if w > 0.0 {
+                    tau_end.min(settle + 2.0 * std::f64::consts::TAU / w)
+                } else {
+                    tau_end
+                };
                 let piece = std::f64::consts::FRAC_PI_4 / fastest;
-                let count = (tau_end / piece).ceil().max(1.0);
-                let piece = tau_end / count;
+                let count = (horizon / piece).ceil().max(1.0);
+                let piece = horizon / count;
                 let accel =
                     |tau: f64| hm.accel(tau).0 + modes.iter().map(|(r, gamma)| gamma * r.at(tau).u_ddot).sum::<f64>();
                 // v_g from rest at τ = 0: (A/Ω)(cos φ − cos(Ωτ + φ)).
