@@ -354,6 +354,29 @@ pub const KEY_DOCS: &[KeyDoc] = &[
         name: "spectrum_window",
         bare: Bare::NotANumber,
         doc: "\"paper\" or \"all\"",
+    },    KeyDoc {
+        section: "floor",
+        name: "period",
+        bare: Bare::Plain,
+        doc: "period of the building mode under the block: s, or \"500 ms\"",
+    },
+    KeyDoc {
+        section: "floor",
+        name: "damping",
+        bare: Bare::Plain,
+        doc: "damping ratio of the building mode, fraction of critical (default 0.05)",
+    },
+    KeyDoc {
+        section: "floor",
+        name: "participation",
+        bare: Bare::Plain,
+        doc: "participation Gamma*phi of the mode at the floor, dimensionless (default 1)",
+    },
+    KeyDoc {
+        section: "floor",
+        name: "mode",
+        bare: Bare::NotANumber,
+        doc: "several modes: a list of {period, damping, participation} tables",
     },
 ];
 

@@ -30,6 +30,10 @@ pub const PRESETS: &[(&str, &str)] = &[
     ("fig19", include_str!("../../assets/presets/fig19.toml")),
     ("kobe-rack", include_str!("../../assets/presets/kobe-rack.toml")),
     (
+        "kobe-rack-5th-floor",
+        include_str!("../../assets/presets/kobe-rack-5th-floor.toml"),
+    ),
+    (
         "elcentro-statue",
         include_str!("../../assets/presets/elcentro-statue.toml"),
     ),

@@ -10,6 +10,7 @@ pub mod excitation;
 pub mod geometry;
 pub mod impact;
 pub mod mode;
+pub mod oscillator;
 pub mod params;
 pub mod series;
 pub mod state;

@@ -196,7 +196,7 @@ impl ForcingSeries {
                     }
                 }
             }
-            Excitation::Pulse(_) | Excitation::Record(_) => return false,
+            Excitation::Pulse(_) | Excitation::Record(_) | Excitation::Floor(_) => return false,
         }
         true
     }

@@ -91,8 +91,9 @@ pub fn tangent_dim(mode: Mode) -> usize {
 }
 
 /// Rate of change of the base acceleration, `(da/dτ, da_v/dτ)` per unit g,
-/// for excitations whose derivative is known in closed form (harmonic and
-/// none); `None` for pulses and records.
+/// for excitations whose derivative is known in closed form (harmonic, a
+/// floor under harmonic ground motion, and none); `None` for pulses and
+/// records.
 pub fn forcing_rate(excitation: &Excitation, tau: f64) -> Option<Forcing> {
     match excitation {
         Excitation::None => Some(Forcing { a: 0.0, av: 0.0 }),
@@ -100,6 +101,7 @@ pub fn forcing_rate(excitation: &Excitation, tau: f64) -> Option<Forcing> {
             a: h.a_h * h.psi * h.omega_h * (h.omega_h * tau + h.phase_h).cos(),
             av: h.a_v * h.psi * h.omega_v * (h.omega_v * tau + h.phase_v).cos(),
         }),
+        Excitation::Floor(f) => f.accel_rate(tau).map(|(a, av)| Forcing { a, av }),
         Excitation::Pulse(_) | Excitation::Record(_) => None,
     }
 }

@@ -9,6 +9,7 @@ use serde::Serialize;
 use super::run::{Outcome, RunResult};
 use super::scenario::{ExcitationKind, LawKind, Scenario};
 use crate::model::excitation::record::GroundPeaks;
+use crate::model::excitation::{Excitation, FloorPeaks};
 
 /// How a run ended, in the words an engineer uses.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
@@ -107,6 +108,11 @@ pub struct Physical {
     pub record_h: Option<RecordPeaks>,
     /// The vertical record, if any.
     pub record_v: Option<RecordPeaks>,
+    /// The floor the block stood on (`[floor]`): its peak horizontal
+    /// acceleration and velocity over continuous time, for the scaled
+    /// motion the block felt, from τ = 0 to the run's planned end (the
+    /// whole record and its tail). `None` without `[floor]`.
+    pub floor: Option<FloorPeaks>,
     /// The impact law used (`impact.law`'s name), so that an answer never
     /// hides which law produced it.
     pub impact_law: &'static str,
@@ -165,6 +171,10 @@ impl Physical {
             record_complete: s.record_complete(),
             record_h: peaks(&s.excitation.record_h, s.excitation.scale_h),
             record_v: peaks(&s.excitation.record_v, s.excitation.scale_v),
+            floor: match s.excitation() {
+                Ok(Excitation::Floor(f)) => Some(f.peaks(s.tau_end())),
+                _ => None,
+            },
             impact_law: s.impact.law.name(),
             impact_r: (s.impact.law != LawKind::Impulse).then(|| s.impact_r()),
             friction_static: s.block.mu_s.is_finite().then_some(s.block.mu_s),
@@ -201,7 +211,10 @@ impl Physical {
         let input = match &self.record_h {
             Some(r) => {
                 let name = super::scenario::record_file_name(&r.file);
-                format!(" ({name}, PGA {:.2} g)", r.peaks.pga_g)
+                match &self.floor {
+                    Some(f) => format!(" ({name}, PGA {:.2} g, floor PGA {:.2} g)", r.peaks.pga_g, f.pga_g),
+                    None => format!(" ({name}, PGA {:.2} g)", r.peaks.pga_g),
+                }
             }
             None => String::new(),
         };

@@ -352,7 +352,7 @@ impl BaseMotion {
                 omega: h.omega_h,
                 phase: h.phase_h,
             },
-            E::Pulse(_) | E::Record(_) => BaseMotion::Integrated {
+            E::Pulse(_) | E::Record(_) | E::Floor(_) => BaseMotion::Integrated {
                 tau: tau0,
                 a: excitation.forcing(tau0).a,
                 velocity: 0.0,

@@ -22,7 +22,10 @@ use super::run::{InitialState, Method, RunOptions};
 use crate::integrate::Tolerances;
 use crate::integrate::hybrid::Limits;
 use crate::model::excitation::record::Series;
-use crate::model::excitation::{Excitation, Harmonic, Pulse, PulsePair, PulseShape, RecordExcitation};
+use crate::model::excitation::{
+    Excitation, FloorExcitation, FloorMode, Harmonic, Pulse, PulsePair, PulseShape, RecordExcitation,
+};
+use crate::model::oscillator::Oscillator;
 use crate::model::units::AccelUnit;
 use crate::model::{FlightPolicy, Geometry, ImpactLaw, Model};
 
@@ -412,6 +415,59 @@ impl SpectrumRange {
 /// τ at which the paper's spectrum window ends.
 pub const PAPER_SPECTRUM_END: f64 = 28.384;
 
+/// Default damping ratio of a building mode (`floor.damping`): 5 % of
+/// critical, the damping design spectra are written for (ASCE 7-22
+/// §11.4, Eurocode 8 §3.2.2.2) and the usual value for reinforced-concrete
+/// and steel buildings shaken near their design level.
+pub const FLOOR_DAMPING: f64 = 0.05;
+
+/// Default participation Γφ of a single building mode at the floor
+/// (`floor.participation`): 1, the floor as the mass of a one-storey
+/// building, which makes the floor acceleration the oscillator's absolute
+/// acceleration a_f = −2ζωu̇ − ω²u (the floor-spectrum convention). A
+/// uniform shear building has (4/π) sin(πz/2H) at height z (docs/model.md,
+/// "Floor motion"); give that for a floor of a taller building.
+pub const FLOOR_PARTICIPATION: f64 = 1.0;
+
+/// Shortest building period accepted, s (`floor.period`): 0.01 s is a
+/// 100 Hz mode, above any frequency ground shaking carries (about
+/// 0.1–30 Hz), so such a floor is rigid; leave `[floor]` out instead. A
+/// shorter period would also force the integrator's steps down to 1/ω.
+pub const MIN_FLOOR_PERIOD_S: f64 = 0.01;
+
+/// Longest building period accepted, s: the tallest buildings have
+/// fundamental periods under about 10 s; 20 s is a typo or a wrong unit.
+pub const MAX_FLOOR_PERIOD_S: f64 = 20.0;
+
+/// Largest |Γφ| accepted (`floor.participation`): a uniform shear
+/// building's first mode has 4/π ≈ 1.27 at its roof and higher modes less;
+/// 10 is a typo, not a building.
+pub const MAX_FLOOR_PARTICIPATION: f64 = 10.0;
+
+/// One mode of the building the block stands in (`[floor]` or one
+/// `[[floor.mode]]`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FloorModeSpec {
+    /// Period T, s, in [[`MIN_FLOOR_PERIOD_S`], [`MAX_FLOOR_PERIOD_S`]].
+    pub period_s: f64,
+    /// Damping ratio ζ, fraction of critical, in (0, 1). Default
+    /// [`FLOOR_DAMPING`].
+    pub damping: f64,
+    /// Γφ at the floor. Default [`FLOOR_PARTICIPATION`].
+    pub participation: f64,
+}
+
+/// The building between the ground and the block (`[floor]`): the block
+/// feels the ground's horizontal motion filtered through these modes.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FloorSpec {
+    /// The modes (at least one).
+    pub modes: Vec<FloorModeSpec>,
+    /// Whether they were given as `[[floor.mode]]` tables (for the config
+    /// written back).
+    pub as_tables: bool,
+}
+
 /// What a batch run computes besides the run itself.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Analyses {
@@ -442,6 +498,8 @@ pub struct Scenario {
     pub run: RunSpec,
     /// What a batch run adds.
     pub analyses: Analyses,
+    /// The building the block stands in; `None`: on the ground.
+    pub floor: Option<FloorSpec>,
 }
 
 impl Default for Scenario {
@@ -503,6 +561,7 @@ impl Default for Scenario {
                 spectrum: false,
                 spectrum_window: SpectrumRange::All,
             },
+            floor: None,
         }
     }
 }
@@ -577,9 +636,46 @@ impl Scenario {
         }
     }
 
-    /// The excitation. Fails only for a pulse the model refuses (the error
-    /// names the amplitude's key).
+    /// The excitation the block feels: the ground's ([`Scenario::ground_excitation`])
+    /// filtered through the building of `[floor]` if there is one. Fails
+    /// for a pulse the model refuses (the error names the amplitude's key)
+    /// and for a pulse under `[floor]`.
     pub fn excitation(&self) -> Result<Excitation, ScenarioError> {
+        let ground = self.ground_excitation()?;
+        let Some(floor) = &self.floor else {
+            return Ok(ground);
+        };
+        let mut modes = Vec::with_capacity(floor.modes.len());
+        for (k, m) in floor.modes.iter().enumerate() {
+            let key = if floor.as_tables {
+                format!("floor.mode[{k}].period")
+            } else {
+                "floor.period".to_string()
+            };
+            let oscillator = Oscillator::new(m.period_s, m.damping)
+                .ok_or_else(|| ScenarioError::new(key, "needs a period > 0 s and a damping in [0, 1)"))?;
+            modes.push(FloorMode {
+                oscillator,
+                participation: m.participation,
+            });
+        }
+        Ok(match ground {
+            Excitation::None => Excitation::None,
+            Excitation::Harmonic(h) => {
+                Excitation::Floor(Box::new(FloorExcitation::harmonic(h, modes, self.geometry().p)))
+            }
+            Excitation::Record(r) => Excitation::Floor(Box::new(FloorExcitation::record(*r, modes))),
+            Excitation::Pulse(_) | Excitation::Floor(_) => {
+                return Err(ScenarioError::new(
+                    "floor",
+                    "filters records and harmonic ground motion only; a pulse stands for near-fault ground motion, remove [floor] or use excitation.kind = \"record\"",
+                ));
+            }
+        })
+    }
+
+    /// The ground's excitation, without the building of `[floor]`.
+    pub fn ground_excitation(&self) -> Result<Excitation, ScenarioError> {
         let geo = self.geometry();
         let x = &self.excitation;
         Ok(match x.kind {
@@ -657,6 +753,23 @@ impl Scenario {
         Some(h.max(v) * self.geometry().p)
     }
 
+    /// For a record, the τ after which a block at rest stays at rest for
+    /// ever: the record's end, or on a floor the later time at which the
+    /// building's ringing down can no longer lift or slide the block
+    /// ([`FloorExcitation::quiet_after`] at min(B/H, μ_s) g, the vertical
+    /// being at rest then). `None` for other kinds.
+    pub fn rest_after_tau(&self) -> Option<f64> {
+        let end = self.record_end_tau()?;
+        if self.floor.is_none() {
+            return Some(end);
+        }
+        let level = (self.block.width / self.block.height).min(self.block.mu_s);
+        match self.excitation() {
+            Ok(Excitation::Floor(f)) => Some(end.max(f.quiet_after(end, level))),
+            _ => Some(end),
+        }
+    }
+
     /// Where the run ends, τ: `run.tau_end`, or for a record whose length
     /// decides ([`RunSpec::record_tail_s`]) the record's end plus the tail.
     pub fn tau_end(&self) -> f64 {
@@ -714,7 +827,7 @@ impl Scenario {
         RunOptions {
             tau_end: self.tau_end(),
             rest_after: match self.run.record_tail_s {
-                Some(_) => self.record_end_tau(),
+                Some(_) => self.rest_after_tau(),
                 None => None,
             },
             method: self.run.method(),

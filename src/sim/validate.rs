@@ -4,8 +4,9 @@
 
 use super::run::Method;
 use super::scenario::{
-    AMPLITUDE_LIMIT, ExcitationKind, MAX_HISTORY_ROWS, MAX_SIZE_M, MIN_PSI, MIN_SIZE_M, MIN_SPECTRUM_SAMPLES,
-    MU_K_LIMIT, PAPER_SPECTRUM_END, Scenario, ScenarioError, SpectrumRange,
+    AMPLITUDE_LIMIT, ExcitationKind, MAX_FLOOR_PARTICIPATION, MAX_FLOOR_PERIOD_S, MAX_HISTORY_ROWS, MAX_SIZE_M,
+    MIN_FLOOR_PERIOD_S, MIN_PSI, MIN_SIZE_M, MIN_SPECTRUM_SAMPLES, MU_K_LIMIT, PAPER_SPECTRUM_END, Scenario,
+    ScenarioError, SpectrumRange,
 };
 use crate::model::excitation::pulse;
 
@@ -30,7 +31,51 @@ impl Scenario {
         self.validate_excitation()?;
         self.validate_run()?;
         self.validate_initial()?;
-        self.validate_analyses()
+        self.validate_analyses()?;
+        self.validate_floor()
+    }
+
+    fn validate_floor(&self) -> Result<(), ScenarioError> {
+        let Some(floor) = &self.floor else {
+            return Ok(());
+        };
+        if floor.modes.is_empty() {
+            return Err(ScenarioError::new("floor.mode", "needs at least one mode"));
+        }
+        for (k, m) in floor.modes.iter().enumerate() {
+            let key = |name: &str| {
+                if floor.as_tables {
+                    format!("floor.mode[{k}].{name}")
+                } else {
+                    format!("floor.{name}")
+                }
+            };
+            check(
+                &key("period"),
+                (MIN_FLOOR_PERIOD_S..=MAX_FLOOR_PERIOD_S).contains(&m.period_s),
+                "in [0.01, 20] s (a stiffer floor is rigid: leave [floor] out)",
+                m.period_s,
+            )?;
+            check(
+                &key("damping"),
+                m.damping > 0.0 && m.damping < 1.0,
+                "in (0, 1), a fraction of critical (0.05 is 5 %)",
+                m.damping,
+            )?;
+            check(
+                &key("participation"),
+                m.participation.abs() <= MAX_FLOOR_PARTICIPATION,
+                "in [-10, 10] (Γφ of the mode at the floor)",
+                m.participation,
+            )?;
+        }
+        if self.excitation.kind == ExcitationKind::Pulse {
+            return Err(ScenarioError::new(
+                "floor",
+                "filters records and harmonic ground motion only, not pulses: remove [floor] or change excitation.kind",
+            ));
+        }
+        Ok(())
     }
 
     fn validate_block(&self) -> Result<(), ScenarioError> {

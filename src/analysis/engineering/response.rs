@@ -250,7 +250,7 @@ fn set_pulse(s: &mut Scenario, shape: ShapeKind, cycles: u32, a_h: f64, omega: f
     s.excitation.a_v = 0.0;
     let duration = match s.excitation()? {
         Excitation::Pulse(pair) => pair.horizontal.duration(),
-        Excitation::None | Excitation::Harmonic(_) | Excitation::Record(_) => 0.0,
+        Excitation::None | Excitation::Harmonic(_) | Excitation::Record(_) | Excitation::Floor(_) => 0.0,
     };
     s.run.tau_end = duration + PULSE_TAIL_TAU;
     Ok(())

@@ -17,6 +17,7 @@ use serde_json::{Value as Json, json};
 use toml::Table;
 
 mod error;
+mod floor;
 mod quantity;
 mod raw;
 mod set;
@@ -71,6 +72,7 @@ pub const KNOWN_KEYS: &[(&str, &[&str])] = &[
         "analysis",
         &["lyapunov", "lyapunov_method", "spectrum", "spectrum_window"],
     ),
+    ("floor", &["period", "damping", "participation", "mode"]),
 ];
 
 /// Where a config came from, for resolving relative record paths.
@@ -566,6 +568,7 @@ pub fn from_table_with(table: &Table, source: &Source, memory: [Option<&Record>;
         spectrum: a.spectrum.unwrap_or(da.spectrum),
         spectrum_window: a.spectrum_window.unwrap_or(da.spectrum_window),
     };
+    let floor = floor::resolve(&raw.floor, &geo)?;
     let scenario = Scenario {
         block,
         impact,
@@ -573,6 +576,7 @@ pub fn from_table_with(table: &Table, source: &Source, memory: [Option<&Record>;
         initial,
         run,
         analyses,
+        floor,
     };
     scenario.validate()?;
     Ok(scenario)
@@ -631,7 +635,7 @@ pub fn to_json(s: &Scenario) -> Json {
         _ => (Some(s.run.tau_end), None),
     };
     let x = &s.excitation;
-    json!({
+    let mut config = json!({
         "block": { "width": s.block.width, "height": s.block.height },
         "friction": { "static": num(s.block.mu_s), "kinetic": num(s.block.kinetic()) },
         "impact": {
@@ -663,7 +667,21 @@ pub fn to_json(s: &Scenario) -> Json {
             "lyapunov": s.analyses.lyapunov, "lyapunov_method": s.analyses.lyapunov_method.name(),
             "spectrum": s.analyses.spectrum, "spectrum_window": s.analyses.spectrum_window.name(),
         },
-    })
+    });
+    if let (Some(floor), Some(out)) = (&s.floor, config.as_object_mut()) {
+        out.insert("floor".to_string(), floor_json(floor));
+    }
+    config
+}
+
+/// `[floor]` as the config writes it back: one mode's keys, or the
+/// `[[floor.mode]]` tables as they were given.
+fn floor_json(floor: &crate::sim::scenario::FloorSpec) -> Json {
+    let mode = |m: &crate::sim::scenario::FloorModeSpec| json!({ "period": m.period_s, "damping": m.damping, "participation": m.participation });
+    match floor.modes.as_slice() {
+        [one] if !floor.as_tables => mode(one),
+        modes => json!({ "mode": modes.iter().map(mode).collect::<Vec<_>>() }),
+    }
 }
 
 /// The literature's base scene with `sets` applied: every key not given

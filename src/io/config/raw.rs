@@ -35,6 +35,27 @@ pub struct RawConfig {
     pub run: RawRun,
     /// `[analysis]`.
     pub analysis: RawAnalysis,
+    /// `[floor]`: the building the block stands in, if any.
+    pub floor: Option<RawFloor>,
+}
+
+/// `[floor]`: one building mode's keys, or `[[floor.mode]]` tables.
+#[derive(Debug, Default, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct RawFloor {
+    pub period: Option<Quantity>,
+    pub damping: Option<Finite>,
+    pub participation: Option<Finite>,
+    pub mode: Option<Vec<RawFloorMode>>,
+}
+
+/// One `[[floor.mode]]` table.
+#[derive(Debug, Default, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct RawFloorMode {
+    pub period: Option<Quantity>,
+    pub damping: Option<Finite>,
+    pub participation: Option<Finite>,
 }
 
 /// `[block]`: width and height (bare: metres).

@@ -7,10 +7,12 @@
 //! [`Excitation::next_breakpoint`] so the integrator steps onto them instead
 //! of across them.
 
+pub mod floor;
 pub mod pulse;
 pub mod record;
 
 use super::dynamics::Forcing;
+pub use floor::{FloorExcitation, FloorMode, FloorPeaks};
 pub use pulse::{Pulse, PulseShape};
 pub use record::{RecordExcitation, Series};
 
@@ -74,6 +76,9 @@ pub enum Excitation {
     Pulse(PulsePair),
     /// Recorded ground motion.
     Record(Box<RecordExcitation>),
+    /// A record or harmonic ground motion filtered through a building to
+    /// the floor the block stands on (horizontal only).
+    Floor(Box<FloorExcitation>),
 }
 
 impl Excitation {
@@ -85,6 +90,7 @@ impl Excitation {
             Excitation::Harmonic(h) => h.accel(tau),
             Excitation::Pulse(p) => (p.horizontal.accel(tau), p.vertical.map_or(0.0, |v| v.accel(tau))),
             Excitation::Record(r) => r.accel(tau),
+            Excitation::Floor(f) => f.accel(tau),
         };
         Forcing { a, av }
     }
@@ -104,6 +110,7 @@ impl Excitation {
                 best
             }
             Excitation::Record(r) => r.next_breakpoint(tau),
+            Excitation::Floor(f) => f.next_breakpoint(tau),
         }
     }
 
@@ -114,7 +121,8 @@ impl Excitation {
     /// slip from rest) are sampled several times per radian of forcing
     /// phase, and screens steps cheaply only when they are no longer than
     /// this. A record is linear between its samples, and steps stop at every
-    /// sample, so it needs neither.
+    /// sample, so it needs neither; a floor oscillates inside a sample
+    /// interval, so its time scale is 1/ω of its fastest mode (in τ).
     pub fn time_scale(&self) -> f64 {
         let inv = |omega: f64| if omega > 0.0 { 1.0 / omega } else { f64::INFINITY };
         match self {
@@ -125,17 +133,20 @@ impl Excitation {
                 th.min(tv)
             }
             Excitation::Pulse(p) => inv(p.horizontal.omega()),
+            Excitation::Floor(f) => f.time_scale(),
         }
     }
 
     /// The largest |a_h/g| and |a_v/g| the excitation ever reaches, where
-    /// that is known in closed form (none and harmonic); `None` otherwise.
+    /// that is known in closed form (none, harmonic, and a floor under
+    /// harmonic ground motion, where it is a bound); `None` otherwise.
     /// Used to bound contact forces over a step.
     pub fn peak_accel(&self) -> Option<(f64, f64)> {
         match self {
             Excitation::None => Some((0.0, 0.0)),
             Excitation::Harmonic(h) => Some(((h.a_h * h.psi).abs(), (h.a_v * h.psi).abs())),
             Excitation::Pulse(_) | Excitation::Record(_) => None,
+            Excitation::Floor(f) => f.peak_accel(),
         }
     }
 
@@ -143,6 +154,7 @@ impl Excitation {
     pub fn forcing_period(&self) -> Option<f64> {
         match self {
             Excitation::Harmonic(h) if h.omega_h > 0.0 => Some(std::f64::consts::TAU / h.omega_h),
+            Excitation::Floor(f) => f.forcing_period(),
             Excitation::None | Excitation::Harmonic(_) | Excitation::Pulse(_) | Excitation::Record(_) => None,
         }
     }

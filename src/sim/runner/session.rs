@@ -507,7 +507,7 @@ impl Session {
             // the record lasts for ever. So does rest on a base that never
             // moves: a free-rocking block at rest ends the run there, and
             // the app keeps its picture (the spiral into the origin).
-            rest_after: scenario.record_end_tau().or(still_base.then_some(tau0)),
+            rest_after: scenario.rest_after_tau().or(still_base.then_some(tau0)),
             last_event: tau0,
             still_base,
             peaks,
