@@ -285,3 +285,42 @@ fn the_rocking_intensity_measures_scale_each_block_by_its_own_uplift_acceleratio
     assert_eq!(meta["im"], "pgv-p-tan-alpha");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn sa_scales_each_record_by_its_pseudo_spectral_acceleration_at_the_stated_period() {
+    let dir = tmpdir("sa");
+    // A step of 0.3 g from t = 0 held for 2 s: an oscillator from rest
+    // overshoots to u = (a/ω²)(1 + e^{−ζπ/√(1−ζ²)}) at t = π/ω_d (0.25 s
+    // at T = 0.5 s, well inside the record), so Sa = a (1 + e^{−ζπ/√(1−ζ²)}).
+    std::fs::write(dir.join("step.dat"), "0 0.3\n2.0 0.3\n").expect("write");
+    std::fs::write(dir.join("suite.txt"), "step.dat g\n").expect("write");
+    let zeta: f64 = 0.05;
+    let sa = 0.3 * (1.0 + (-zeta * std::f64::consts::PI / (1.0 - zeta * zeta).sqrt()).exp());
+    let out = dir.join("out");
+    let run = |out: &Path, extra: &[&str]| {
+        rocking()
+            .args(["fragility", "--levels", "0.2,0.5", "--block", "0.5x2.0", "-q", "--suite"])
+            .arg(dir.join("suite.txt"))
+            .arg("--out")
+            .arg(out)
+            .args(extra)
+            .output()
+            .expect("runs")
+    };
+    ok(&run(&out, &["--im", "sa", "--sa-period", "0.5"]));
+    let meta: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("fragility.json")).expect("json")).expect("json");
+    let got = meta["records"][0]["sa_g"].as_f64().expect("sa_g");
+    assert!((got - sa).abs() < 1e-12, "{got} vs {sa}");
+    assert_eq!(meta["im"], "sa");
+    assert_eq!(meta["sa_period_s"], 0.5);
+    let runs = std::fs::read_to_string(out.join("runs.csv")).expect("runs");
+    let scales: Vec<f64> = column(&runs, "scale").iter().map(|v| v.parse().expect("number")).collect();
+    assert!((scales[1] - 0.5 / sa).abs() < 1e-12, "{}", scales[1]);
+    assert_eq!(column(&runs, "im")[0], "sa_g");
+    let bad = dir.join("bad");
+    refused(&run(&bad, &["--im", "sa"]), &["--im sa", "--sa-period"], &bad);
+    refused(&run(&bad, &["--sa-period", "1"]), &["--sa-period 1", "only with --im sa"], &bad);
+    refused(&run(&bad, &["--im", "sa", "--sa-period", "-1"]), &["--sa-period -1"], &bad);
+    let _ = std::fs::remove_dir_all(&dir);
+}

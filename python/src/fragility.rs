@@ -41,8 +41,9 @@ fn intensity(im: &str) -> PyResult<Intensity> {
         "pgv" => Ok(Intensity::Pgv),
         "pga-tan-alpha" => Ok(Intensity::PgaTanAlpha),
         "pgv-p-tan-alpha" => Ok(Intensity::PgvPTanAlpha),
+        "sa" => Ok(Intensity::Sa),
         other => Err(input(format!(
-            "--im {other}: expected pga, pgv, pga-tan-alpha or pgv-p-tan-alpha"
+            "--im {other}: expected pga, pgv, pga-tan-alpha, pgv-p-tan-alpha or sa"
         ))),
     }
 }
@@ -100,12 +101,16 @@ fn vertical_choice(vertical: Option<&str>, records: &[RecordArg]) -> PyResult<bo
 /// Reads the suite: each record in its unit, with its vertical when
 /// `with_vertical`, and the value its intensity measure is built on at
 /// scale 1.
-fn suite(records: Vec<RecordArg>, im: Intensity, with_vertical: bool) -> PyResult<Vec<SuiteRecord>> {
+fn suite(
+    records: Vec<RecordArg>,
+    im: Intensity,
+    sa_period: Option<f64>,
+    with_vertical: bool,
+) -> PyResult<Vec<SuiteRecord>> {
     let mut out = Vec::with_capacity(records.len());
     for (path, unit, path_v, unit_v) in records {
         let record = component(&path, unit.as_deref())?;
-        let peaks = record.series.peaks(1.0);
-        let value = im.record_value(&peaks);
+        let value = im.record_value(&record.series, sa_period).unwrap_or(0.0);
         if !(value > 0.0 && value.is_finite()) {
             return Err(input(format!(
                 "{}: {} is 0, it cannot be scaled",
@@ -136,7 +141,7 @@ fn suite(records: Vec<RecordArg>, im: Intensity, with_vertical: bool) -> PyResul
 /// `levels` of `im` ("pga" in g, "pgv" in m/s), on the scene's friction,
 /// impact law and tolerances: runs.csv's columns.
 #[pyfunction]
-#[pyo3(signature = (scene, records, levels, blocks, *, im="pga", vertical=None, threads=None, indices=None, check_only=false, progress=None))]
+#[pyo3(signature = (scene, records, levels, blocks, *, im="pga", sa_period=None, vertical=None, threads=None, indices=None, check_only=false, progress=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn _fragility_runs<'py>(
     py: Python<'py>,
@@ -145,6 +150,7 @@ pub fn _fragility_runs<'py>(
     levels: Vec<f64>,
     blocks: Vec<(f64, f64)>,
     im: &str,
+    sa_period: Option<f64>,
     vertical: Option<&str>,
     threads: Option<usize>,
     indices: Option<Vec<usize>>,
@@ -152,7 +158,7 @@ pub fn _fragility_runs<'py>(
     progress: Option<Py<PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     fragility_runs(
-        py, scene, records, levels, blocks, im, vertical, threads, indices, check_only, progress,
+        py, scene, records, levels, blocks, im, sa_period, vertical, threads, indices, check_only, progress,
     )
     .map_err(|e| with_python_args(e, FRAGILITY_ARGS))
 }
@@ -165,6 +171,7 @@ fn fragility_runs<'py>(
     levels: Vec<f64>,
     blocks: Vec<(f64, f64)>,
     im: &str,
+    sa_period: Option<f64>,
     vertical: Option<&str>,
     threads: Option<usize>,
     indices: Option<Vec<usize>>,
@@ -213,7 +220,22 @@ fn fragility_runs<'py>(
         .map(|(width_m, height_m)| BlockSize { width_m, height_m })
         .collect();
     let with_vertical = vertical_choice(vertical, &records)?;
-    let records = suite(records, im, with_vertical)?;
+    let sa_period = match (im, sa_period) {
+        (Intensity::Sa, None) => return Err(input("im=\"sa\": give the period with sa_period= (seconds)")),
+        (Intensity::Sa, Some(t))
+            if rocking::model::oscillator::Oscillator::new(
+                t,
+                rocking::analysis::engineering::fragility::SA_DAMPING,
+            )
+            .is_none() =>
+        {
+            return Err(input(format!("sa_period={t}: must be a period > 0 (s)")));
+        }
+        (Intensity::Sa, Some(t)) => Some(t),
+        (_, Some(t)) => return Err(input(format!("sa_period={t}: only with im=\"sa\""))),
+        (_, None) => None,
+    };
+    let records = suite(records, im, sa_period, with_vertical)?;
     let spec = FragilitySpec {
         base,
         records: &records,

@@ -354,7 +354,8 @@ pub const KEY_DOCS: &[KeyDoc] = &[
         name: "spectrum_window",
         bare: Bare::NotANumber,
         doc: "\"paper\" or \"all\"",
-    },    KeyDoc {
+    },
+    KeyDoc {
         section: "floor",
         name: "period",
         bare: Bare::Plain,

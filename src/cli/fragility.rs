@@ -59,6 +59,9 @@ pub enum ImArg {
     PgaTanAlpha,
     /// PGV·p/(g tan α), dimensionless (Dimitrakopoulos & Paraskeva 2015).
     PgvPTanAlpha,
+    /// Sa(T, 5 %), g: the record's pseudo-spectral acceleration at the
+    /// period --sa-period, exact for the piecewise-linear record.
+    Sa,
 }
 
 /// Points of the fitted curve in `fragility.json` and the figure.
@@ -87,6 +90,9 @@ pub struct FragilityArgs {
     /// The intensity measure the records are scaled to.
     #[arg(long, value_enum, default_value = "pga")]
     pub im: ImArg,
+    /// The period T of `--im sa`, s (Sa at 5 % damping).
+    #[arg(long, value_name = "S", allow_negative_numbers = true)]
+    pub sa_period: Option<f64>,
     /// Intensity levels (g for PGA, m/s for PGV, dimensionless for the
     /// rocking measures), each > 0: comma-separated, or FROM:TO:N for N
     /// evenly spaced levels.
@@ -133,6 +139,8 @@ struct Layout {
     friction: String,
     /// The overturning angle θ/α (`run.tumble_theta`).
     overturn_at: f64,
+    /// The period of `--im sa`, s.
+    sa_period: Option<f64>,
 }
 
 impl Layout {
@@ -216,6 +224,30 @@ pub fn run(args: &FragilityArgs) -> Result<(), BatchError> {
         ImArg::Pgv => Intensity::Pgv,
         ImArg::PgaTanAlpha => Intensity::PgaTanAlpha,
         ImArg::PgvPTanAlpha => Intensity::PgvPTanAlpha,
+        ImArg::Sa => Intensity::Sa,
+    };
+    let sa_period = match (im, args.sa_period) {
+        (Intensity::Sa, None) => {
+            return Err(input(anyhow!("--im sa: give the period with --sa-period S (seconds)")));
+        }
+        (Intensity::Sa, Some(t))
+            if !(t > 0.0 && t.is_finite())
+                || crate::model::oscillator::Oscillator::new(
+                    t,
+                    crate::analysis::engineering::fragility::SA_DAMPING,
+                )
+                .is_none() =>
+        {
+            return Err(input(anyhow!("--sa-period {}: must be a period > 0 (s)", show(t))));
+        }
+        (Intensity::Sa, Some(t)) => Some(t),
+        (_, Some(t)) => {
+            return Err(input(anyhow!(
+                "--sa-period {}: only with --im sa; remove it or give --im sa",
+                show(t)
+            )));
+        }
+        (_, None) => None,
     };
     let levels = positive_list("--levels", &args.levels)?;
     let blocks: Vec<BlockSize> = args
@@ -265,7 +297,7 @@ pub fn run(args: &FragilityArgs) -> Result<(), BatchError> {
         };
         let record = read_record(path, spec).map_err(named)?;
         let peaks = record.series.peaks(1.0);
-        let intensity = im.record_value(&peaks);
+        let intensity = im.record_value(&record.series, sa_period).unwrap_or(0.0);
         if !(intensity > 0.0 && intensity.is_finite()) {
             return Err(named(anyhow!(
                 "{}: {} is 0, it cannot be scaled",
@@ -296,6 +328,7 @@ pub fn run(args: &FragilityArgs) -> Result<(), BatchError> {
             "pga_g": peaks.pga_g,
             "pgv_m_s": peaks.pgv_m_s,
             "pgd_m": peaks.pgd_m,
+            "sa_g": sa_period.map(|_| intensity),
             "duration_s": record.series.duration_s(),
             "vertical": vertical_record.as_ref().map(|v| {
                 let pv = v.series.peaks(1.0);
@@ -415,11 +448,14 @@ pub fn run(args: &FragilityArgs) -> Result<(), BatchError> {
         threshold: args.threshold,
         friction: friction_text(&base),
         overturn_at: base.run.tumble_theta,
+        sa_period,
     };
     let common = json!({
         "command": "rocking fragility",
         "version": env!("CARGO_PKG_VERSION"),
         "im": im,
+        "sa_period_s": sa_period,
+        "sa_damping": sa_period.map(|_| crate::analysis::engineering::fragility::SA_DAMPING),
         "levels": levels,
         "blocks": blocks,
         "records": record_json,
@@ -648,7 +684,7 @@ fn write_whole(
             "{}; markers: fraction of records, lines: lognormal MLE, shaded: 95 % band (Fisher information, delta method)",
             layout.friction
         ),
-        x_label: layout.im.label().to_string(),
+        x_label: layout.im.label_at(layout.sa_period),
         x_max: 1.1 * x_max,
         panels: vec![
             FragilityPanel {
@@ -725,7 +761,7 @@ fn incremental(
             layout.friction,
             num(overturn_at)
         ),
-        y_label: layout.im.label().to_string(),
+        y_label: layout.im.label_at(layout.sa_period),
         y_max: layout.levels.iter().copied().fold(0.0, f64::max),
         overturn_at,
         panels,
@@ -827,6 +863,7 @@ fn layout_of(common: &Json, path: &Path) -> anyhow::Result<Layout> {
         .pointer("/run/tumble_theta")
         .and_then(Json::as_f64)
         .ok_or_else(|| anyhow!("{}: config has no run.tumble_theta", path.display()))?;
+    let sa_period = common.get("sa_period_s").and_then(Json::as_f64);
     let layout = Layout {
         im,
         levels,
@@ -835,6 +872,7 @@ fn layout_of(common: &Json, path: &Path) -> anyhow::Result<Layout> {
         threshold,
         friction,
         overturn_at,
+        sa_period,
     };
     if field("runs")?.as_u64() != Some(layout.runs() as u64) {
         bail!("{}: runs disagrees with blocks × levels × records", path.display());

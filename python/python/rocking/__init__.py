@@ -312,6 +312,7 @@ def fragility(
     *,
     base: Scene | None = None,
     im: str = "pga",
+    sa_period: float | None = None,
     vertical: str | None = None,
     threshold: float = 0.5,
     threads: int | None = None,
@@ -321,7 +322,8 @@ def fragility(
     in m) under every record (a path, or (path, unit) for text records)
     scaled to every intensity level (`im` "pga" in g, "pgv" in m/s, or the
     dimensionless rocking measures "pga-tan-alpha", PGA/(g tan α), and
-    "pgv-p-tan-alpha", PGV·p/(g tan α), which depend on the block); then
+    "pgv-p-tan-alpha", PGV·p/(g tan α), which depend on the block, or "sa",
+    Sa(T, 5 %) in g at the period `sa_period` in s); then
     per block the lognormal fits of P(overturning) and P(θ/α ≥ `threshold`
     or overturning). A record given as (path, unit, vertical_path,
     vertical_unit) pairs a horizontal with its vertical component, both
@@ -338,7 +340,15 @@ def fragility(
     given = list(records)
     with _Reporter(progress, "fragility") as report:
         data = _rocking._fragility_runs(
-            s, _records(given), levels, blocks, im=im, vertical=vertical, threads=threads, progress=report
+            s,
+            _records(given),
+            levels,
+            blocks,
+            im=im,
+            sa_period=sa_period,
+            vertical=vertical,
+            threads=threads,
+            progress=report,
         )
     return Fragility._assemble([data], len(blocks), levels, threshold)._keep(
         base=s, records=given, record_names=list(data["records"]), blocks=blocks

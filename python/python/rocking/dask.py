@@ -183,6 +183,7 @@ def fragility(
     *,
     base: Scene | None = None,
     im: str = "pga",
+    sa_period: float | None = None,
     vertical: str | None = None,
     threshold: float = 0.5,
     chunks: int | None = None,
@@ -198,10 +199,10 @@ def fragility(
     levels = [float(v) for v in levels]
     blocks = [(float(w), float(h)) for w, h in blocks]
     args = (_records(given), levels, blocks)
-    count = int(_rocking._fragility_runs(s, *args, im=im, vertical=vertical, check_only=True)["count"])
+    count = int(_rocking._fragility_runs(s, *args, im=im, sa_period=sa_period, vertical=vertical, check_only=True)["count"])
     n = chunks if chunks is not None else 4 * _worker_threads(client)
     n = max(1, min(int(n), count))
-    options: dict[str, Any] = {"im": im, "vertical": vertical, "threads": threads_per_task}
+    options: dict[str, Any] = {"im": im, "sa_period": sa_period, "vertical": vertical, "threads": threads_per_task}
     parts = [list(range(k, count, n)) for k in range(n)]
     futures = client.map(_fragility_task, parts, scene=s, args=args, options=options, pure=False)
     parts = client.gather(futures)

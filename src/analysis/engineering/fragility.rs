@@ -16,7 +16,8 @@ use rayon::prelude::*;
 use super::lognormal::{self, FitError, LevelCount, LognormalFit};
 use super::response::{BlockResponse, BlockSize, Drive, EndState, ResponseError, respond};
 use crate::analysis::{Progress, ProgressFn};
-use crate::model::excitation::record::GroundPeaks;
+use crate::model::excitation::record::Series;
+use crate::model::oscillator::pseudo_acceleration;
 use crate::sim::Scenario;
 
 /// Most runs (blocks × levels × records) of one fragility study.
@@ -45,7 +46,17 @@ pub enum Intensity {
     /// PGV·p/(g tan α), dimensionless.
     #[serde(rename = "pgv-p-tan-alpha")]
     PgvPTanAlpha,
+    /// Sa(T, 5 %), the pseudo-spectral acceleration of the record at the
+    /// study's period T ([`FragilitySpec`]'s caller states it), g.
+    #[serde(rename = "sa")]
+    Sa,
 }
+
+/// Damping ratio of the Sa intensity measure: 5 % of critical, the
+/// convention of design spectra and ground-motion models, so that a
+/// fragility in Sa(T, 5 %) reads against a hazard curve in the same
+/// measure.
+pub const SA_DAMPING: f64 = 0.05;
 
 impl Intensity {
     /// Name with unit, as in the outputs' columns: `pga_g`, `pgv_m_s`,
@@ -56,6 +67,7 @@ impl Intensity {
             Intensity::Pgv => "pgv_m_s",
             Intensity::PgaTanAlpha => "pga_over_g_tan_alpha",
             Intensity::PgvPTanAlpha => "pgv_p_over_g_tan_alpha",
+            Intensity::Sa => "sa_g",
         }
     }
 
@@ -66,24 +78,36 @@ impl Intensity {
             Intensity::Pgv => "PGV (m/s)",
             Intensity::PgaTanAlpha => "PGA / (g tan α)",
             Intensity::PgvPTanAlpha => "PGV · p / (g tan α)",
+            Intensity::Sa => "Sa(T, 5 %) (g)",
+        }
+    }
+
+    /// Axis label with unit and, for Sa, the period `sa_period_s` (s).
+    pub fn label_at(self, sa_period_s: Option<f64>) -> String {
+        match (self, sa_period_s) {
+            (Intensity::Sa, Some(t)) => format!("Sa(T = {t} s, 5 %) (g)"),
+            _ => self.label().to_string(),
         }
     }
 
     /// Unit for text (empty when dimensionless).
     pub fn unit(self) -> &'static str {
         match self {
-            Intensity::Pga => "g",
+            Intensity::Pga | Intensity::Sa => "g",
             Intensity::Pgv => "m/s",
             Intensity::PgaTanAlpha | Intensity::PgvPTanAlpha => "",
         }
     }
 
     /// The record's own value this measure is built on, at scale 1: its
-    /// PGA in g or its PGV in m/s.
-    pub fn record_value(self, peaks: &GroundPeaks) -> f64 {
+    /// PGA in g, its PGV in m/s, or its Sa(T, 5 %) in g at the period
+    /// `sa_period_s` (s; `None` for Sa without a period, or a period the
+    /// oscillator refuses). `series` is the (horizontal) record.
+    pub fn record_value(self, series: &Series, sa_period_s: Option<f64>) -> Option<f64> {
         match self {
-            Intensity::Pga | Intensity::PgaTanAlpha => peaks.pga_g,
-            Intensity::Pgv | Intensity::PgvPTanAlpha => peaks.pgv_m_s,
+            Intensity::Pga | Intensity::PgaTanAlpha => Some(series.peak_abs_g()),
+            Intensity::Pgv | Intensity::PgvPTanAlpha => Some(series.peaks(1.0).pgv_m_s),
+            Intensity::Sa => pseudo_acceleration(series, 1.0, sa_period_s?, SA_DAMPING),
         }
     }
 
@@ -93,7 +117,7 @@ impl Intensity {
     pub fn block_factor(self, block: BlockSize) -> f64 {
         let tan_alpha = block.width_m / block.height_m;
         match self {
-            Intensity::Pga | Intensity::Pgv => 1.0,
+            Intensity::Pga | Intensity::Pgv | Intensity::Sa => 1.0,
             Intensity::PgaTanAlpha => 1.0 / tan_alpha,
             Intensity::PgvPTanAlpha => block.p_per_s() / (crate::model::geometry::G * tan_alpha),
         }
