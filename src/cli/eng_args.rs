@@ -389,6 +389,30 @@ pub fn flag_error(e: &ScenarioError, flags: &[(&str, &str)]) -> String {
     }
 }
 
+/// One line saying the block stands on a floor, for the engineering
+/// commands' printed answers, when the base scene has `[floor]`: the
+/// levels and scales are the ground motion's, and the block feels it
+/// filtered through the building.
+pub fn floor_note(base: &Scenario) -> Option<String> {
+    let floor = base.floor.as_ref()?;
+    let modes: Vec<String> = floor
+        .modes
+        .iter()
+        .map(|m| {
+            format!(
+                "T = {} s, ζ = {} %, Γφ = {}",
+                show(m.period_s),
+                show(100.0 * m.damping),
+                show(m.participation)
+            )
+        })
+        .collect();
+    Some(format!(
+        "on a floor ([floor]: {}): the levels and scales are the ground motion's, filtered through the building to the block",
+        modes.join("; ")
+    ))
+}
+
 /// Bad input.
 pub fn input(e: impl Into<anyhow::Error>) -> BatchError {
     BatchError::Input(e.into())

@@ -511,6 +511,9 @@ pub fn run(args: &FragilityArgs) -> Result<(), BatchError> {
                 VerticalArg::None => "horizontal motion only (--vertical none)",
             }
         );
+        if let Some(note) = super::eng_args::floor_note(&base) {
+            crate::say!("  {note}");
+        }
         for l in lines {
             crate::say!("  {l}");
         }

@@ -620,6 +620,9 @@ pub fn run(args: &SpectrumArgs) -> Result<(), BatchError> {
             )),
             points.len()
         );
+        if let Some(note) = super::eng_args::floor_note(&base) {
+            crate::say!("  {note}");
+        }
         for s in summary.as_array().into_iter().flatten() {
             crate::say!("  {}", s["text"].as_str().unwrap_or_default());
         }
