@@ -503,14 +503,15 @@ pub fn run(args: &FragilityArgs) -> Result<(), BatchError> {
             records.len(),
             indices.len()
         );
-        crate::say!(
-            "  {}",
-            match vertical {
-                VerticalArg::Record =>
-                    "with the vertical components, each scaled by the same factor as its horizontal (level / the horizontal's intensity)",
-                VerticalArg::None => "horizontal motion only (--vertical none)",
+        match vertical {
+            VerticalArg::Record => crate::say!(
+                "  with the vertical components, each scaled by the same factor as its horizontal (level / the horizontal's intensity)"
+            ),
+            VerticalArg::None if entries.iter().any(|e| e.vertical.is_some()) => {
+                crate::say!("  horizontal motion only: the vertical components the suite names are not read (--vertical none)")
             }
-        );
+            VerticalArg::None => {}
+        }
         if let Some(note) = super::eng_args::floor_note(&base) {
             crate::say!("  {note}");
         }
