@@ -65,10 +65,16 @@ impl Fortran {
         }
     }
 
-    /// Half a unit of the last decimal written: the largest rounding error
-    /// of an `F` value (relative to the mantissa for `E`).
-    pub fn half_unit(self) -> f64 {
-        0.5 * 10f64.powi(-(self.decimals as i32))
+    /// The largest rounding error of `value` written in this format: half a
+    /// unit of its last decimal, which for an `E` field scales with the
+    /// value's decade.
+    pub fn rounding(self, value: f64) -> f64 {
+        let half_unit = 0.5 * 10f64.powi(-(self.decimals as i32));
+        if self.exponent && value != 0.0 {
+            half_unit * 10f64.powf(value.abs().log10().floor())
+        } else {
+            half_unit
+        }
     }
 
     fn descriptor(self) -> String {

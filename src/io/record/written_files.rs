@@ -105,18 +105,6 @@ fn three_channels() -> (Vec<Channel>, CosmosText) {
     (channels, text)
 }
 
-/// The rounding of a value `v` written in `format`: half a unit of its
-/// last decimal, relative to its magnitude for an `E` field.
-fn rounding(format: Fortran, exponent: bool) -> impl Fn(f64) -> f64 {
-    move |v: f64| {
-        if exponent {
-            format.half_unit() * 10f64.powf(v.abs().log10().floor()).max(f64::MIN_POSITIVE)
-        } else {
-            format.half_unit()
-        }
-    }
-}
-
 #[test]
 fn each_channel_of_a_written_cosmos_v1_file_reads_as_written() {
     let (channels, file) = three_channels();
@@ -124,15 +112,7 @@ fn each_channel_of_a_written_cosmos_v1_file_reads_as_written() {
         let r = read_text("three.V1C", &file.text, channel(k + 1)).unwrap();
         assert_eq!(r.format, RecordFormat::CosmosV1);
         assert_eq!(r.unit, AccelUnit::G, "the data line's units=g. (02)");
-        let exponent = k == 2;
-        assert_reads_as_written(
-            c.name,
-            &r,
-            &c.values,
-            c.step_ms / 1000.0,
-            1.0,
-            rounding(c.format, exponent),
-        );
+        assert_reads_as_written(c.name, &r, &c.values, c.step_ms / 1000.0, 1.0, |v| c.format.rounding(v));
     }
     // The second channel's negative values touch the value before them.
     let ChannelLines {
@@ -199,7 +179,7 @@ fn a_written_cosmos_v2_file_reads_in_cm_s2_converted_to_g() {
     assert_eq!(r.unit, AccelUnit::CentimetresPerSecond2, "units=cm/sec2(04)");
     // 1 g = 981 cm/s² in this model (g = 9.81 m/s²).
     assert_reads_as_written("V2", &r, &c.values, 0.005, 1.0 / 981.0, |v| {
-        rounding(c.format, true)(v) / 981.0
+        c.format.rounding(v) / 981.0
     });
     assert!((r.series.duration_s() - 2999.0 * 0.005).abs() < 1e-12);
 }
@@ -457,7 +437,7 @@ fn cosmos_values_written_without_spaces_are_cut_at_their_stated_width() {
         .count();
     assert!(glued > 5, "{glued} lines with touching values");
     let r = read_text("glued.v1", &file.text, RecordSpec::default()).unwrap();
-    assert_reads_as_written("glued", &r, &c.values, 0.005, 1.0, |_| c.format.half_unit());
+    assert_reads_as_written("glued", &r, &c.values, 0.005, 1.0, |v| c.format.rounding(v));
 }
 
 #[test]
