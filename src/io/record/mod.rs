@@ -27,12 +27,16 @@
 mod at2;
 mod columns;
 mod cosmos;
+#[cfg(test)]
+mod cosmos_text;
 mod counted;
 mod esm;
 #[cfg(test)]
 mod real_files;
 #[cfg(test)]
 mod tests;
+#[cfg(test)]
+mod written_files;
 
 use std::path::Path;
 
