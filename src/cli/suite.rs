@@ -309,10 +309,14 @@ fn suite_line(line: &str) -> Result<Option<SuiteLine<'_>>, String> {
     }))
 }
 
+/// A component's PATH, its UNIT, and the text after a `+` word that
+/// follows them.
+type Fields<'a> = (&'a str, Option<&'a str>, Option<&'a str>);
+
 /// The PATH and UNIT at the start of `line`, and the text after a `+`
 /// word that follows them (a vertical component); `None` for a blank or
 /// comment line (grammar in the module docs).
-fn component(line: &str) -> Result<Option<(&str, Option<&str>, Option<&str>)>, String> {
+fn component(line: &str) -> Result<Option<Fields<'_>>, String> {
     let line = line.trim();
     if line.is_empty() || line.starts_with('#') {
         return Ok(None);
