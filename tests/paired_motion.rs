@@ -299,7 +299,15 @@ fn sa_scales_each_record_by_its_pseudo_spectral_acceleration_at_the_stated_perio
     let out = dir.join("out");
     let run = |out: &Path, extra: &[&str]| {
         rocking()
-            .args(["fragility", "--levels", "0.2,0.5", "--block", "0.5x2.0", "-q", "--suite"])
+            .args([
+                "fragility",
+                "--levels",
+                "0.2,0.5",
+                "--block",
+                "0.5x2.0",
+                "-q",
+                "--suite",
+            ])
             .arg(dir.join("suite.txt"))
             .arg("--out")
             .arg(out)
@@ -315,12 +323,23 @@ fn sa_scales_each_record_by_its_pseudo_spectral_acceleration_at_the_stated_perio
     assert_eq!(meta["im"], "sa");
     assert_eq!(meta["sa_period_s"], 0.5);
     let runs = std::fs::read_to_string(out.join("runs.csv")).expect("runs");
-    let scales: Vec<f64> = column(&runs, "scale").iter().map(|v| v.parse().expect("number")).collect();
+    let scales: Vec<f64> = column(&runs, "scale")
+        .iter()
+        .map(|v| v.parse().expect("number"))
+        .collect();
     assert!((scales[1] - 0.5 / sa).abs() < 1e-12, "{}", scales[1]);
     assert_eq!(column(&runs, "im")[0], "sa_g");
     let bad = dir.join("bad");
     refused(&run(&bad, &["--im", "sa"]), &["--im sa", "--sa-period"], &bad);
-    refused(&run(&bad, &["--sa-period", "1"]), &["--sa-period 1", "only with --im sa"], &bad);
-    refused(&run(&bad, &["--im", "sa", "--sa-period", "-1"]), &["--sa-period -1"], &bad);
+    refused(
+        &run(&bad, &["--sa-period", "1"]),
+        &["--sa-period 1", "only with --im sa"],
+        &bad,
+    );
+    refused(
+        &run(&bad, &["--im", "sa", "--sa-period", "-1"]),
+        &["--sa-period -1"],
+        &bad,
+    );
     let _ = std::fs::remove_dir_all(&dir);
 }

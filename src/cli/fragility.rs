@@ -508,7 +508,9 @@ pub fn run(args: &FragilityArgs) -> Result<(), BatchError> {
                 "  with the vertical components, each scaled by the same factor as its horizontal (level / the horizontal's intensity)"
             ),
             VerticalArg::None if entries.iter().any(|e| e.vertical.is_some()) => {
-                crate::say!("  horizontal motion only: the vertical components the suite names are not read (--vertical none)")
+                crate::say!(
+                    "  horizontal motion only: the vertical components the suite names are not read (--vertical none)"
+                )
             }
             VerticalArg::None => {}
         }
