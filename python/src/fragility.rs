@@ -6,7 +6,7 @@
 //! record inner), so any subset (a Dask chunk, a CLI shard) computes the
 //! same rows; the fits are computed from all rows at the end.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use anyhow::anyhow;
 use numpy::IntoPyArray as _;
@@ -54,7 +54,7 @@ pub type RecordArg = (PathBuf, Option<String>, Option<PathBuf>, Option<String>);
 
 /// Reads one component in its unit (text files need one; an AT2 header
 /// states its own).
-fn component(path: &PathBuf, unit: Option<&str>) -> PyResult<Record> {
+fn component(path: &Path, unit: Option<&str>) -> PyResult<Record> {
     let unit = match unit {
         None => None,
         Some(text) => Some(
@@ -69,7 +69,7 @@ fn component(path: &PathBuf, unit: Option<&str>) -> PyResult<Record> {
     };
     let loaded = read_record_as(path, &spec).map_err(|e| record_error(path, &e))?;
     Ok(Record {
-        path: path.clone(),
+        path: path.to_path_buf(),
         series: loaded.series,
         unit: loaded.unit,
         dt: None,
