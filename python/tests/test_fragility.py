@@ -138,3 +138,16 @@ def test_paired_vertical_records_run_as_the_clis_and_move_the_uplift_threshold(c
         rocking.fragility([(h, "g", v, "g"), (ELCENTRO, "g")], levels, [(0.5, 2.0)])
     with pytest.raises(rocking.ConfigError, match=r'vertical="record": records\[1\] names no vertical'):
         rocking.fragility([(h, "g", v, "g"), (ELCENTRO, "g")], levels, [(0.5, 2.0)], vertical="record")
+
+
+def test_sa_levels_scale_each_record_by_its_pseudo_spectral_acceleration(cli, tmp_path: Path) -> None:
+    # A 0.3 g step from t = 0: Sa(T, 5 %) = 0.3 (1 + exp(-ζπ/√(1-ζ²))) for a
+    # period whose first overshoot lies inside the record.
+    step = tmp_path / "step.dat"
+    step.write_text("0 0.3\n2.0 0.3\n")
+    zeta = 0.05
+    sa = 0.3 * (1 + np.exp(-zeta * np.pi / np.sqrt(1 - zeta * zeta)))
+    f = rocking.fragility([(step, "g")], [0.2, 0.5], [(0.5, 2.0)], im="sa", sa_period=0.5)
+    assert abs(float(f.runs["scale"][1]) - 0.5 / sa) < 1e-12
+    with pytest.raises(rocking.ConfigError, match="sa_period"):
+        rocking.fragility([(step, "g")], [0.2], [(0.5, 2.0)], im="sa")
