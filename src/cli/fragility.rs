@@ -74,9 +74,10 @@ pub struct FragilityArgs {
     /// name order); repeatable.
     #[arg(long = "records", value_name = "FILE|DIR")]
     pub records: Vec<PathBuf>,
-    /// A list of records, one per line: `PATH [UNIT]`, or a horizontal and
-    /// its vertical `PATH [UNIT] + VPATH [UNIT]` (PATH relative to the
-    /// list's folder, UNIT g|m/s2|cm/s2 for text files; `#` comments).
+    /// A list of records, one per line: `PATH [UNIT] [channel=N]`, or a
+    /// horizontal and its vertical `PATH [UNIT] + VPATH [UNIT]` (PATH
+    /// relative to the list's folder, UNIT g|m/s2|cm/s2 for text files,
+    /// channel=N of a COSMOS file of several; `#` comments).
     #[arg(long, value_name = "LIST")]
     pub suite: Option<PathBuf>,
     /// Whether to apply the vertical components the suite names, scaled by

@@ -3,9 +3,11 @@
 //! named. Errors name the flag, or the list's file and line; bad input is
 //! refused before any record is read.
 //!
-//! A suite list has one record per line: `PATH [UNIT]`, or a horizontal
-//! and its vertical component `PATH [UNIT] + VPATH [UNIT]` (the `+` a word
-//! of its own). PATH is relative to the list's folder; a path with spaces
+//! A suite list has one record per line: `PATH [UNIT] [channel=N]`, or a
+//! horizontal and its vertical component `PATH [UNIT] [channel=N] + VPATH
+//! [UNIT] [channel=N]` (the `+` a word of its own; `channel=N` picks one
+//! channel, from 1, of a COSMOS file that holds several, so that a station's
+//! one file gives both components). PATH is relative to the list's folder; a path with spaces
 //! is written in double quotes (`"my records/a b.dat" g`) or followed by a
 //! tab (`my records/a b.dat<TAB>g`). UNIT (g, m/s2, cm/s2) applies to that
 //! text record. Blank lines and lines starting with `#` are skipped, and
@@ -101,18 +103,21 @@ fn origin(entry: &SuiteEntry) -> String {
         .unwrap_or_else(|| format!("--records {}", entry.path.display()))
 }
 
-/// Refuses a record named twice (the same file, however its path is
-/// written, as a horizontal or a vertical component).
+/// Refuses a record named twice (the same file and channel, however its
+/// path is written, as a horizontal or a vertical component). A file read
+/// without a stated channel holds one, so it is channel 1.
 fn refuse_twice(entries: &[SuiteEntry]) -> Result<(), BatchError> {
-    let id = |p: &PathBuf| p.canonicalize().unwrap_or_else(|_| p.clone());
-    // (file, entry) for every component named, in order.
-    let files: Vec<(PathBuf, usize)> = entries
+    let id = |p: &PathBuf, s: &RecordSpec| (p.canonicalize().unwrap_or_else(|_| p.clone()), s.channel.unwrap_or(1));
+    // ((file, channel), entry) for every component named, in order.
+    let files: Vec<((PathBuf, usize), usize)> = entries
         .iter()
         .enumerate()
-        .flat_map(|(k, e)| std::iter::once((id(&e.path), k)).chain(e.vertical.as_ref().map(|(v, _)| (id(v), k))))
+        .flat_map(|(k, e)| {
+            std::iter::once((id(&e.path, &e.spec), k)).chain(e.vertical.as_ref().map(|(v, s)| (id(v, s), k)))
+        })
         .collect();
-    for (j, (file, k)) in files.iter().enumerate() {
-        if let Some((_, i)) = files[..j].iter().find(|(other, _)| other == file) {
+    for (j, ((file, _), k)) in files.iter().enumerate() {
+        if let Some((_, i)) = files[..j].iter().find(|(other, _)| *other == files[j].0) {
             let what = if i == k { "as its own vertical" } else { "twice" };
             return Err(input(anyhow!(
                 "{}{}: the record {} is listed {what}; list each record once",
@@ -256,8 +261,12 @@ fn read_list(list: &Path, spec: RecordSpec, out: &mut Vec<SuiteEntry>) -> Result
         let Some(line) = suite_line(line).map_err(|e| input(anyhow!("{at}: {e}")))? else {
             continue;
         };
-        let component = |(path, unit): (&str, Option<&str>)| -> Result<(PathBuf, RecordSpec), BatchError> {
+        let component = |c: Component<'_>| -> Result<(PathBuf, RecordSpec), BatchError> {
+            let (path, unit) = (c.path, c.unit);
             let mut s = spec;
+            if c.channel.is_some() {
+                s.channel = c.channel;
+            }
             if let Some(u) = unit {
                 s.unit = Some(AccelUnit::parse(u).ok_or_else(|| {
                     input(anyhow!(
@@ -284,34 +293,38 @@ fn read_list(list: &Path, spec: RecordSpec, out: &mut Vec<SuiteEntry>) -> Result
 /// the vertical, if named.
 #[derive(Debug, PartialEq)]
 struct SuiteLine<'a> {
-    horizontal: (&'a str, Option<&'a str>),
-    vertical: Option<(&'a str, Option<&'a str>)>,
+    horizontal: Component<'a>,
+    vertical: Option<Component<'a>>,
+}
+
+/// One component of a suite line: PATH, UNIT and channel.
+#[derive(Debug, PartialEq)]
+struct Component<'a> {
+    path: &'a str,
+    unit: Option<&'a str>,
+    channel: Option<usize>,
 }
 
 /// The components of one suite line, `None` for a blank or comment line.
 fn suite_line(line: &str) -> Result<Option<SuiteLine<'_>>, String> {
-    let Some((path, unit, rest)) = component(line)? else {
+    let Some((horizontal, rest)) = component(line)? else {
         return Ok(None);
     };
     let vertical = match rest {
         None => None,
         Some(v) => match component(v)? {
-            Some((vp, vu, None)) => Some((vp, vu)),
-            Some((_, _, Some(_))) => {
+            Some((c, None)) => Some(c),
+            Some((_, Some(_))) => {
                 return Err(format!("a line pairs one horizontal with one vertical: {line:?}"));
             }
             None => return Err(format!("`+` names no vertical record after it in {line:?}")),
         },
     };
-    Ok(Some(SuiteLine {
-        horizontal: (path, unit),
-        vertical,
-    }))
+    Ok(Some(SuiteLine { horizontal, vertical }))
 }
 
-/// A component's PATH, its UNIT, and the text after a `+` word that
-/// follows them.
-type Fields<'a> = (&'a str, Option<&'a str>, Option<&'a str>);
+/// A component, and the text after a `+` word that follows it.
+type Fields<'a> = (Component<'a>, Option<&'a str>);
 
 /// The PATH and UNIT at the start of `line`, and the text after a `+`
 /// word that follows them (a vertical component); `None` for a blank or
@@ -342,38 +355,65 @@ fn component(line: &str) -> Result<Option<Fields<'_>>, String> {
     if path.is_empty() {
         return Err(format!("empty path in {line:?}"));
     }
-    // The words after the path up to a comment or a `+` word; what follows
-    // the `+` is the vertical component's own PATH [UNIT].
-    let mut unit = None;
+    // The words after the path up to a comment or a `+` word: at most one
+    // UNIT and one `channel=N`; what follows the `+` is the vertical
+    // component's own.
+    let mut c = Component {
+        path,
+        unit: None,
+        channel: None,
+    };
     let mut rest = rest;
+    let too_many = || {
+        format!(
+            "expected `PATH [UNIT] [channel=N] [+ VPATH [UNIT] [channel=N]]`, found {line:?} (a path with spaces goes in double quotes or before a tab)"
+        )
+    };
     loop {
         let word_start = rest.len() - rest.trim_start().len();
         let tail = &rest[word_start..];
         let word = tail.split(char::is_whitespace).next().unwrap_or("");
         if word.is_empty() || word.starts_with('#') {
-            return Ok(Some((path, unit, None)));
+            return Ok(Some((c, None)));
         }
         if word == "+" {
-            return Ok(Some((path, unit, Some(tail[1..].trim()))));
+            return Ok(Some((c, Some(tail[1..].trim()))));
         }
-        if unit.is_some() {
-            return Err(format!(
-                "expected `PATH [UNIT] [+ VPATH [UNIT]]`, found {line:?} (a path with spaces goes in double quotes or before a tab)"
-            ));
+        if let Some(n) = word.strip_prefix("channel=") {
+            if c.channel.is_some() {
+                return Err(too_many());
+            }
+            c.channel = Some(
+                n.parse::<usize>()
+                    .ok()
+                    .filter(|&n| n >= 1)
+                    .ok_or_else(|| format!("{word}: a channel is a whole number from 1"))?,
+            );
+        } else if c.unit.is_some() {
+            return Err(too_many());
+        } else {
+            c.unit = Some(word);
         }
-        unit = Some(word);
         rest = &tail[word.len()..];
     }
 }
 
 #[cfg(test)]
 mod tests {
-    use super::{SuiteLine, suite_line};
+    use super::{Component, SuiteLine, suite_line};
+
+    fn c<'a>(path: &'a str, unit: Option<&'a str>) -> Component<'a> {
+        Component {
+            path,
+            unit,
+            channel: None,
+        }
+    }
 
     /// A line of one horizontal record.
     fn one<'a>(path: &'a str, unit: Option<&'a str>) -> Option<SuiteLine<'a>> {
         Some(SuiteLine {
-            horizontal: (path, unit),
+            horizontal: c(path, unit),
             vertical: None,
         })
     }
@@ -400,8 +440,8 @@ mod tests {
     fn a_suite_line_pairs_a_horizontal_with_its_vertical_after_a_plus_word() {
         let pair = |h: (&'static str, Option<&'static str>), v: (&'static str, Option<&'static str>)| {
             Some(SuiteLine {
-                horizontal: h,
-                vertical: Some(v),
+                horizontal: c(h.0, h.1),
+                vertical: Some(c(v.0, v.1)),
             })
         };
         assert_eq!(
@@ -430,5 +470,72 @@ mod tests {
         ] {
             assert!(suite_line(bad).is_err(), "{bad}");
         }
+    }
+
+    #[test]
+    fn a_channel_word_picks_each_component_of_one_multichannel_file() {
+        let line = suite_line("st.v2 channel=1 + st.v2 channel=2").unwrap().unwrap();
+        assert_eq!(
+            line.horizontal,
+            Component {
+                path: "st.v2",
+                unit: None,
+                channel: Some(1)
+            }
+        );
+        assert_eq!(line.vertical.map(|v| (v.path, v.channel)), Some(("st.v2", Some(2))));
+        let line = suite_line("st.v2 g channel=3").unwrap().unwrap();
+        assert_eq!((line.horizontal.unit, line.horizontal.channel), (Some("g"), Some(3)));
+        for bad in [
+            "st.v2 channel=0",
+            "st.v2 channel=x",
+            "st.v2 channel=1 channel=2",
+            "st.v2 g cm/s2",
+        ] {
+            assert!(suite_line(bad).is_err(), "{bad}");
+        }
+    }
+}
+
+#[cfg(test)]
+mod channel_tests {
+    use super::*;
+    use crate::io::record::cosmos_text::{Channel, cosmos_file, damped_sine};
+    use crate::io::record::read_record_as;
+
+    #[test]
+    fn one_station_file_gives_a_suite_line_its_horizontal_and_its_vertical_by_channel() {
+        let dir = std::env::temp_dir().join(format!("rocking-suite-channels-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        let h = damped_sine(1500, 0.005, 0.105, 1.3, 0.8);
+        let v = damped_sine(1200, 0.005, 0.0488, 4.1, 1.5);
+        let file = cosmos_file(
+            &[
+                Channel::v1("360 deg", 5.0, h.clone()),
+                Channel::v1("Up", 5.0, v.clone()),
+            ],
+            true,
+        );
+        std::fs::write(dir.join("st.v1"), file.text).unwrap();
+        let list = dir.join("suite.txt");
+        std::fs::write(&list, "st.v1 channel=1 + st.v1 channel=2\n").unwrap();
+        let entries = suite(&[], Some(&list), RecordSpec::default()).unwrap();
+        assert_eq!(entries.len(), 1);
+        let (vp, vs) = entries[0].vertical.clone().unwrap();
+        let horizontal = read_record_as(&entries[0].path, &entries[0].spec).unwrap();
+        let vertical = read_record_as(&vp, &vs).unwrap();
+        // Each channel's peak as written (the writer rounds to 6 decimals).
+        let peak = |x: &[f64]| x.iter().fold(0.0_f64, |m, a| m.max(a.abs()));
+        assert!((horizontal.series.peak_abs_g() - peak(&h)).abs() < 1e-6);
+        assert!((vertical.series.peak_abs_g() - peak(&v)).abs() < 1e-6);
+        // The same channel on both sides is one record listed twice.
+        std::fs::write(&list, "st.v1 channel=1 + st.v1 channel=1\n").unwrap();
+        let e = match suite(&[], Some(&list), RecordSpec::default()) {
+            Err(BatchError::Input(e)) => e.to_string(),
+            other => panic!("{other:?}"),
+        };
+        assert!(e.contains("suite.txt:1") && e.contains("its own vertical"), "{e}");
+        let _ = std::fs::remove_dir_all(&dir);
     }
 }

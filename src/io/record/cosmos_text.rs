@@ -19,13 +19,13 @@
 use crate::model::units::AccelUnit;
 
 /// The value COSMOS writes where a header value is unknown.
-pub(super) const UNKNOWN: f64 = -999.0;
+pub(crate) const UNKNOWN: f64 = -999.0;
 
 /// A Fortran edit descriptor for the values of a block: `per_line` fields
 /// of `width` characters, `F` (fixed) or `E` (exponent) with `decimals`
 /// digits after the point.
 #[derive(Clone, Copy, Debug)]
-pub(super) struct Fortran {
+pub(crate) struct Fortran {
     per_line: usize,
     exponent: bool,
     width: usize,
@@ -118,7 +118,7 @@ impl Fortran {
 
 /// One channel of a COSMOS file.
 #[derive(Clone, Debug)]
-pub(super) struct Channel {
+pub(crate) struct Channel {
     /// V2 (`Corrected acceleration`) or V1 (`Uncorrected acceleration`).
     pub corrected: bool,
     /// The channel's name on its 9th text line (`360 deg`, `Up`).
@@ -179,7 +179,7 @@ impl Channel {
 
 /// Where one channel's parts landed: 1-based line numbers.
 #[derive(Clone, Copy, Debug)]
-pub(super) struct ChannelLines {
+pub(crate) struct ChannelLines {
     /// The first text line (`... (Format v01.20 with 13 text lines)`).
     pub first: usize,
     /// `100 Integer-header values follow on 10 lines`.
@@ -198,7 +198,7 @@ pub(super) struct ChannelLines {
 }
 
 /// A COSMOS file as written, and where its channels' parts are.
-pub(super) struct CosmosText {
+pub(crate) struct CosmosText {
     pub text: String,
     pub channels: Vec<ChannelLines>,
 }
@@ -214,7 +214,7 @@ fn unit_code(unit: AccelUnit) -> (u32, &'static str) {
 
 /// Writes `channels` one after the other, lines ended by CRLF (as CESMD's
 /// files are) when `crlf`.
-pub(super) fn cosmos_file(channels: &[Channel], crlf: bool) -> CosmosText {
+pub(crate) fn cosmos_file(channels: &[Channel], crlf: bool) -> CosmosText {
     let mut lines: Vec<String> = Vec::new();
     let mut at = Vec::new();
     for (k, c) in channels.iter().enumerate() {
@@ -339,7 +339,7 @@ fn trapezoid(values: &[f64], dt: f64) -> Vec<f64> {
 
 /// A damped sine sampled at `k·dt` s: `amplitude·exp(−decay·t)·sin(2π·hz·t)`,
 /// the analytic record of the tests. Its first lobe is its largest.
-pub(super) fn damped_sine(n: usize, dt: f64, amplitude: f64, hz: f64, decay: f64) -> Vec<f64> {
+pub(crate) fn damped_sine(n: usize, dt: f64, amplitude: f64, hz: f64, decay: f64) -> Vec<f64> {
     (0..n)
         .map(|k| {
             let t = k as f64 * dt;

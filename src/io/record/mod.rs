@@ -28,7 +28,7 @@ mod at2;
 mod columns;
 mod cosmos;
 #[cfg(test)]
-mod cosmos_text;
+pub(crate) mod cosmos_text;
 mod counted;
 mod esm;
 #[cfg(test)]
