@@ -177,6 +177,8 @@ pub const FRAGILITY_ARGS: &[(&str, &str)] = &[
 
 /// The Python arguments of `rocking.spectrum`, by CLI flag.
 pub const SPECTRUM_ARGS: &[(&str, &str)] = &[
+    ("--record-v", "record_v"),
+    ("--unit-v", "unit_v"),
     ("--record", "record"),
     ("--unit", "unit"),
     ("--size", "size"),

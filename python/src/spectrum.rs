@@ -36,7 +36,7 @@ fn input(message: impl std::fmt::Display) -> PyErr {
 /// `search_step … search_max` and refined to `rel_tol`. Checked with the
 /// CLI's messages; Ctrl-C is checked between B/H ratios.
 #[pyfunction]
-#[pyo3(signature = (scene, record, sizes, *, unit=None, size="r", b_over_h=vec![0.25], scale=None, pga=None, overturn_scale=false, search_step=0.1, search_max=5.0, rel_tol=1e-3, threads=None, progress=None))]
+#[pyo3(signature = (scene, record, sizes, *, unit=None, record_v=None, unit_v=None, size="r", b_over_h=vec![0.25], scale=None, pga=None, overturn_scale=false, search_step=0.1, search_max=5.0, rel_tol=1e-3, threads=None, progress=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn _spectrum<'py>(
     py: Python<'py>,
@@ -44,6 +44,8 @@ pub fn _spectrum<'py>(
     record: PathBuf,
     sizes: (f64, f64, usize),
     unit: Option<&str>,
+    record_v: Option<PathBuf>,
+    unit_v: Option<&str>,
     size: &str,
     b_over_h: Vec<f64>,
     scale: Option<f64>,
@@ -61,6 +63,8 @@ pub fn _spectrum<'py>(
         record,
         sizes,
         unit,
+        record_v,
+        unit_v,
         size,
         b_over_h,
         scale,
@@ -82,6 +86,8 @@ fn spectrum<'py>(
     record: PathBuf,
     sizes: (f64, f64, usize),
     unit: Option<&str>,
+    record_v: Option<PathBuf>,
+    unit_v: Option<&str>,
     size: &str,
     b_over_h: Vec<f64>,
     scale: Option<f64>,
@@ -114,14 +120,45 @@ fn spectrum<'py>(
     if pga_g <= 0.0 {
         return Err(input("--record: the record is all zeros (PGA 0 g)"));
     }
-    let drive = Drive::Record(Record {
+    let horizontal = Record {
         path: record.clone(),
         series: loaded.series,
         unit: loaded.unit,
         dt: None,
         crc32: loaded.crc32,
         channel: None,
-    });
+    };
+    // The vertical (positive upward), scaled by the same factor as the
+    // horizontal, as `rocking spectrum --record-v`.
+    let drive = match record_v {
+        None => Drive::Record(horizontal),
+        Some(path_v) => {
+            let unit_v = match unit_v {
+                None => unit,
+                Some(text) => Some(
+                    AccelUnit::parse(text)
+                        .ok_or_else(|| input(format!("--unit-v {text}: unknown unit (known: g, m/s2, cm/s2)")))?,
+                ),
+            };
+            let spec = RecordSpec {
+                unit: unit_v,
+                dt: None,
+                channel: None,
+            };
+            let v = read_record_as(&path_v, &spec).map_err(|e| record_error(&path_v, &e))?;
+            Drive::Paired {
+                horizontal,
+                vertical: Record {
+                    path: path_v,
+                    series: v.series,
+                    unit: v.unit,
+                    dt: None,
+                    crc32: v.crc32,
+                    channel: None,
+                },
+            }
+        }
+    };
     if scale.is_some() && pga.is_some() {
         return Err(input("--scale and --pga: give one"));
     }

@@ -38,3 +38,18 @@ def test_bad_sizes_are_refused_with_the_clis_message_naming_python_arguments(cli
     with pytest.raises(rocking.ConfigError) as e:
         rocking.spectrum(KOBE, (3.0, 0.2, 50), unit="m/s2")
     assert str(e.value) == expected
+
+
+def test_a_vertical_record_runs_with_the_horizontal_scaled_by_the_same_factor(tmp_path) -> None:
+    # a_h = 0.24 g, a_v = -0.096 g (the vertical step at -0.4 times the
+    # horizontal): the 0.5 x 2 m block (tan α = 0.25) lifts off only with
+    # the vertical, since 0.24 > 0.25 (1 - 0.096) but 0.24 < 0.25.
+    h = tmp_path / "h.dat"
+    v = tmp_path / "v.dat"
+    h.write_text("0 0\n0.001 1.0\n2.0 1.0\n")
+    v.write_text("0 0\n0.001 -0.4\n2.0 -0.4\n")
+    common = dict(unit="g", size="h", b_over_h=[0.25], pga=0.24)
+    with_v = rocking.spectrum(h, (2.0, 2.0, 1), record_v=v, **common)
+    without = rocking.spectrum(h, (2.0, 2.0, 1), **common)
+    assert float(with_v.blocks["peak_theta_over_alpha"][0]) > 0.0
+    assert float(without.blocks["peak_theta_over_alpha"][0]) == 0.0

@@ -360,6 +360,8 @@ def spectrum(
     sizes: tuple[float, float, int],
     *,
     unit: str | None = None,
+    record_v: Any = None,
+    unit_v: str | None = None,
     size: str = "r",
     b_over_h: Any = (0.25,),
     scale: float | None = None,
@@ -376,7 +378,9 @@ def spectrum(
     the peak θ/α (and end: rest, moving, overturned, flight) of blocks of
     `sizes = (from_m, to_m, count)` log-spaced half-diagonals R (`size="r"`)
     or heights H (`"h"`) for each B/H in `b_over_h`, under the record (in
-    `unit` for text files) scaled by `scale` or to `pga` (g); with
+    `unit` for text files) scaled by `scale` or to `pga` (g), with its
+    vertical component `record_v` (in `unit_v`, default `unit`) scaled by
+    the same factor when given; with
     `overturn_scale`, each block's smallest overturning scale factor.
     `base` as for `fragility`. `progress`: see the module's help (counted
     in blocks, reported between B/H ratios). Ctrl-C stops it between B/H
@@ -388,6 +392,8 @@ def spectrum(
             str(record),
             tuple(sizes),
             unit=unit,
+            record_v=None if record_v is None else str(record_v),
+            unit_v=unit_v,
             size=size,
             b_over_h=[float(v) for v in b_over_h],
             scale=scale,
