@@ -671,6 +671,21 @@ fn issue_14_the_kobe_rack_shows_seconds_degrees_its_record_and_the_overturn_bann
 }
 
 #[test]
+fn the_kobe_rack_on_the_5th_floor_overturns_when_batch_says_and_its_trace_is_the_floors() {
+    // --batch --preset kobe-rack-5th-floor: overturned at t = 5.68 s, floor
+    // PGA 0.73 g over the ground's 0.69 g. The trace is the floor motion
+    // the block feels, titled so, not the ground's.
+    let mut h = fixed_lazy("kobe-rack-5th-floor", &[], 30.0);
+    h.run();
+    let _ = h.get_by_label("Floor acceleration: kobe-1995.dat · floor PGA 0.73 g (ground 0.69 g)");
+    let _ = h.get_by_label("OVERTURNED at t = 5.68 s");
+    assert!(
+        h.query_by_label("Ground acceleration: kobe-1995.dat · PGA 0.69 g")
+            .is_none()
+    );
+}
+
+#[test]
 fn issue_14_a_record_run_at_rest_after_the_record_says_survived_with_its_peaks() {
     // The statue rocks to 4.86° (0.39 α) without sliding and is at rest
     // long before El Centro's 53.74 s end (the batch run's answer).

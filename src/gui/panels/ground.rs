@@ -26,6 +26,10 @@ pub struct RecordLabel {
     pub scale: f64,
     /// Length of the record, s (time of its last sample).
     pub duration_s: f64,
+    /// The floor's peak horizontal acceleration, g, when the block stands
+    /// on a floor (`[floor]`): the trace is then the floor's motion, which
+    /// the simulation's samples carry, not the ground's.
+    pub floor_pga_g: Option<f64>,
 }
 
 impl RecordLabel {
@@ -37,20 +41,39 @@ impl RecordLabel {
         }
         let r = x.record_h.as_ref()?;
         let name = r.file_name();
+        let floor_pga_g = match scenario.excitation() {
+            Ok(crate::model::Excitation::Floor(f)) => Some(f.peaks(scenario.tau_end()).pga_g),
+            _ => None,
+        };
         Some(Self {
             name,
             pga_g: r.series.peaks(x.scale_h).pga_g,
             scale: x.scale_h,
             duration_s: r.series.duration_s(),
+            floor_pga_g,
         })
     }
 
-    /// `kobe-1995.dat · PGA 0.69 g` (and the scale when it is not 1).
+    /// `kobe-1995.dat · PGA 0.69 g` (and the scale when it is not 1); on a
+    /// floor, the floor's PGA with the ground's after it.
     pub fn title(&self) -> String {
-        if self.scale == 1.0 {
-            format!("{} · PGA {:.2} g", self.name, self.pga_g)
+        let name = if self.scale == 1.0 {
+            self.name.clone()
         } else {
-            format!("{} × {} · PGA {:.2} g", self.name, self.scale, self.pga_g)
+            format!("{} × {}", self.name, self.scale)
+        };
+        match self.floor_pga_g {
+            None => format!("{name} · PGA {:.2} g", self.pga_g),
+            Some(f) => format!("{name} · floor PGA {:.2} g (ground {:.2} g)", f, self.pga_g),
+        }
+    }
+
+    /// What the trace is: the ground's acceleration, or the floor's.
+    pub fn what(&self) -> &'static str {
+        if self.floor_pga_g.is_some() {
+            "Floor acceleration"
+        } else {
+            "Ground acceleration"
         }
     }
 }
@@ -74,7 +97,7 @@ pub fn ground_plot(
     now: f64,
     scales: &Scales,
 ) {
-    ui.label(egui::RichText::new(format!("Ground acceleration: {}", label.title())).strong());
+    ui.label(egui::RichText::new(format!("{}: {}", label.what(), label.title())).strong());
     let t_record = scales.time(scales.tau_of_seconds(label.duration_s));
     let t_now = scales.time(now);
     // 2 % past the record's end, as the time history's window for a record
@@ -90,7 +113,7 @@ pub fn ground_plot(
     );
     view.work += view.scratch.len() as u64;
     let pts = view.scratch.clone();
-    let pga = label.pga_g;
+    let pga = label.floor_pga_g.unwrap_or(label.pga_g);
     axes::titled(axes::readable(Plot::new("ground")), ui, scales.time_label(), "a_h [g]")
         .include_x(0.0)
         .include_x(t1)
