@@ -91,6 +91,32 @@ fn changing_a_parameter_resets_the_simulation_with_it() {
 }
 
 #[test]
+fn a_floor_period_typed_in_the_panel_puts_the_block_on_a_floor_and_the_sliders_follow() {
+    let mut h = live(true, Speed::RealTime(1.0));
+    h.step();
+    assert!(h.state().config().floor.is_none(), "the default scene is on the ground");
+    h.get_by_label("Floor").click();
+    h.step();
+    assert!(
+        h.query_by_label("ζ floor slider").is_none(),
+        "no floor, no slider to drag one into being"
+    );
+    set_field(&mut h, "T floor", "0.5");
+    let floor = h.state().config().floor.clone().expect("a floor");
+    assert_eq!(floor.modes.len(), 1);
+    assert_eq!(floor.modes[0].period_s, 0.5);
+    assert_eq!(floor.modes[0].damping, 0.05, "the default damping");
+    assert_eq!(h.state().run_id(), RunId(2), "a new run on the floor");
+    let _ = h.get_by_label("ζ floor slider");
+    set_field(&mut h, "ζ floor", "2");
+    assert_eq!(
+        h.state().config().floor.as_ref().map(|f| f.modes[0].damping),
+        Some(0.05),
+        "refused"
+    );
+}
+
+#[test]
 fn an_invalid_value_is_refused_with_a_message_naming_the_key() {
     let mut h = live(true, Speed::RealTime(1.0));
     h.step();

@@ -239,6 +239,29 @@ pub const GROUPS: &[(&str, &[Key])] = &[
         ],
     ),
     (
+        "Floor",
+        &[
+            num(
+                "floor.period",
+                "T floor",
+                "s",
+                "The block stands on a floor of a building: the period of the building mode that moves it, 0.01–20 s. Empty: on the ground. Records and harmonic motion are filtered exactly; the vertical is not. Several modes: [[floor.mode]] tables in a config file.",
+            ),
+            num(
+                "floor.damping",
+                "ζ floor",
+                "",
+                "Damping ratio of the building mode, 0 < ζ < 1. Default 0.05 (5 %, a typical building).",
+            ),
+            num(
+                "floor.participation",
+                "Γφ",
+                "",
+                "The mode's participation factor times its shape at the floor, |Γφ| ≤ 10. Default 1 (a one-storey building); about 0.9 at mid-height of a uniform shear building.",
+            ),
+        ],
+    ),
+    (
         "Initial state",
         &[
             num(
@@ -338,6 +361,8 @@ pub fn applies(key: &str, kind: ExcitationKind) -> bool {
     let name = match key.split_once('.') {
         Some(("excitation", name)) => name,
         Some(("run", "tail_s")) => return kind == K::Record,
+        // A floor filters records and harmonic motion; a pulse refuses it.
+        Some(("floor", _)) => return matches!(kind, K::Record | K::Harmonic),
         _ => return true,
     };
     match name {
@@ -466,6 +491,10 @@ pub fn slider_range(key: &str) -> Option<SliderRange> {
         "excitation.phase_h" | "excitation.phase_v" => lin(0.0, std::f64::consts::TAU, 0.1),
         "excitation.pga_h" | "excitation.pga_v" => lin(0.0, 2.0, 0.05),
         "excitation.scale_h" | "excitation.scale_v" => lin(0.0, 5.0, 0.1),
+        // From a stiff low-rise (0.05 s) to a tall tower (5 s).
+        "floor.period" => log(0.05, 5.0, 0.05),
+        "floor.damping" => lin(0.0, 0.3, 0.01),
+        "floor.participation" => lin(0.0, 2.0, 0.05),
         "initial.theta" => lin(-1.0, 1.0, 0.05),
         "initial.theta_dot" | "initial.x_dot" => lin(-3.0, 3.0, 0.1),
         _ => None,
@@ -715,7 +744,12 @@ fn text_field(
 ) -> Option<Commit> {
     let typing = edits.typing.get(k.key).cloned();
     let mut text = typing.unwrap_or_else(|| shown.to_string());
-    let hint = if stated { "" } else { "default" };
+    let hint = match (stated, k.key) {
+        (true, _) => "",
+        // No period: no floor, the block on the ground.
+        (false, "floor.period") => "ground",
+        (false, _) => "default",
+    };
     // Sized exactly: beside a slider in a grid cell, a field that may
     // shrink to what the cell had last frame would stay too narrow to read.
     let height = ui.spacing().interact_size.y;
