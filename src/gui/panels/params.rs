@@ -610,7 +610,11 @@ pub fn show(
     let json = crate::io::config::to_json(cfg);
     for (group, keys) in GROUPS {
         egui::CollapsingHeader::new(*group)
-            .default_open(matches!(*group, "Block" | "Friction" | "Excitation" | "Initial state"))
+            // The floor opens where the scene stands on one.
+            .default_open(
+                matches!(*group, "Block" | "Friction" | "Excitation" | "Initial state")
+                    || (*group == "Floor" && cfg.floor.is_some()),
+            )
             .show(ui, |ui| {
                 egui::Grid::new(*group)
                     .num_columns(3)
