@@ -122,6 +122,11 @@ fn a_suite_with_and_without_its_vertical_differs_only_where_the_vertical_moves_t
     assert_eq!(meta["vertical"], "record");
     assert_eq!(meta["records"][0]["vertical"]["pga_g"], 0.4);
     assert!(meta["scaling"].as_str().unwrap_or_default().contains("one factor"));
+    // The figures say the verticals ran.
+    for svg in ["fragility.svg", "incremental.svg"] {
+        let text = std::fs::read_to_string(with.join(svg)).expect("svg");
+        assert!(text.contains("with each record") && text.contains("vertical"), "{svg}");
+    }
 
     let without = dir.join("without");
     ok(&fragility(&dir, &without, &["--vertical", "none"]));

@@ -142,6 +142,20 @@ struct Layout {
     overturn_at: f64,
     /// The period of `--im sa`, s.
     sa_period: Option<f64>,
+    /// Whether the records' vertical components ran.
+    vertical: bool,
+}
+
+impl Layout {
+    /// The motion and contact for a figure's subtitle: the friction, and
+    /// whether the verticals ran.
+    fn conditions(&self) -> String {
+        if self.vertical {
+            format!("{}, with each record's vertical", self.friction)
+        } else {
+            self.friction.clone()
+        }
+    }
 }
 
 impl Layout {
@@ -450,6 +464,7 @@ pub fn run(args: &FragilityArgs) -> Result<(), BatchError> {
         friction: friction_text(&base),
         overturn_at: base.run.tumble_theta,
         sa_period,
+        vertical: vertical == VerticalArg::Record,
     };
     let common = json!({
         "command": "rocking fragility",
@@ -689,7 +704,7 @@ fn write_whole(
         ),
         subtitle: format!(
             "{}; markers: fraction of records, lines: lognormal MLE, shaded: 95 % band (Fisher information, delta method)",
-            layout.friction
+            layout.conditions()
         ),
         x_label: layout.im.label_at(layout.sa_period),
         x_max: 1.1 * x_max,
@@ -765,7 +780,7 @@ fn incremental(
         ),
         subtitle: format!(
             "{}; one line per record; cross: overturned (drawn at θ/α = {}), triangle: flight",
-            layout.friction,
+            layout.conditions(),
             num(overturn_at)
         ),
         y_label: layout.im.label_at(layout.sa_period),
@@ -871,6 +886,7 @@ fn layout_of(common: &Json, path: &Path) -> anyhow::Result<Layout> {
         .and_then(Json::as_f64)
         .ok_or_else(|| anyhow!("{}: config has no run.tumble_theta", path.display()))?;
     let sa_period = common.get("sa_period_s").and_then(Json::as_f64);
+    let vertical = common.get("vertical").and_then(Json::as_str) == Some("record");
     let layout = Layout {
         im,
         levels,
@@ -880,6 +896,7 @@ fn layout_of(common: &Json, path: &Path) -> anyhow::Result<Layout> {
         friction,
         overturn_at,
         sa_period,
+        vertical,
     };
     if field("runs")?.as_u64() != Some(layout.runs() as u64) {
         bail!("{}: runs disagrees with blocks × levels × records", path.display());

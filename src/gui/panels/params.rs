@@ -842,7 +842,8 @@ mod tests {
             }
         }
         // B, H, four friction coefficients, r, e, two amplitudes, two
-        // frequencies, two phases, two PGAs, two scales, Θ₀, Θ'₀, X'₀.
-        assert_eq!(sliders, 21);
+        // frequencies, two phases, two PGAs, two scales, the floor's
+        // period, damping and participation, Θ₀, Θ'₀, X'₀.
+        assert_eq!(sliders, 24);
     }
 }
