@@ -18,6 +18,8 @@
 //! - Errors: samples that break a [`Series`] invariant are rejected with a
 //!   [`SeriesError`], never repaired.
 
+use std::sync::atomic::{AtomicUsize, Ordering};
+
 /// Largest |acceleration| accepted from a record, in g.
 ///
 /// The largest peak ground acceleration ever recorded is about 4 g, so a value
@@ -53,12 +55,37 @@ pub fn step_in_range(step_s: f64) -> bool {
 /// Always holds at least 2 samples, all finite, with |a| <= [`MAX_ABS_ACCEL_G`].
 /// Built by [`Series::new`] or [`read_record`](crate::io::record::read_record),
 /// which enforce these invariants.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Debug)]
 pub struct Series {
     /// Sample times, s; strictly increasing, first >= 0.
     times_s: Vec<f64>,
     /// Accelerations at those times, in g.
     accel_g: Vec<f64>,
+    /// Where the last lookup landed ([`Series::count_at_or_before`]): an
+    /// integrator asks for times in order, mostly inside one interval or
+    /// the next, and a binary search over thousands of samples for each of
+    /// them was about half a record run's forcing cost. Only a hint: every
+    /// use checks it, so any value gives the same answers. Atomic so that a
+    /// series shared between threads stays `Sync`; each thread's runs hold
+    /// their own copy.
+    hint: AtomicUsize,
+}
+
+impl Clone for Series {
+    fn clone(&self) -> Self {
+        Self {
+            times_s: self.times_s.clone(),
+            accel_g: self.accel_g.clone(),
+            hint: AtomicUsize::new(self.hint.load(Ordering::Relaxed)),
+        }
+    }
+}
+
+/// The same samples; the search hint is no part of the value.
+impl PartialEq for Series {
+    fn eq(&self, other: &Self) -> bool {
+        self.times_s == other.times_s && self.accel_g == other.accel_g
+    }
 }
 
 /// Why [`Series::new`] rejected its samples. Indices are 0-based.
@@ -144,7 +171,11 @@ impl Series {
             }
             previous = Some(time);
         }
-        Ok(Self { times_s, accel_g })
+        Ok(Self {
+            times_s,
+            accel_g,
+            hint: AtomicUsize::new(0),
+        })
     }
 
     /// Builds a series from samples the caller has already checked against
@@ -158,7 +189,11 @@ impl Series {
             Self::new(times_s.clone(), accel_g.clone()).is_ok(),
             "record samples break a Series invariant"
         );
-        Self { times_s, accel_g }
+        Self {
+            times_s,
+            accel_g,
+            hint: AtomicUsize::new(0),
+        }
     }
 
     /// Sample times, s (strictly increasing, first >= 0).
@@ -213,7 +248,7 @@ impl Series {
             return f64::NAN;
         }
         // Number of samples at or before t_s.
-        let i = self.times_s.partition_point(|&t| t <= t_s);
+        let i = self.count_at_or_before(t_s);
         let Some(before) = i.checked_sub(1) else {
             return 0.0; // before the first sample
         };
@@ -236,8 +271,30 @@ impl Series {
         if t_s.is_nan() {
             return None;
         }
-        let i = self.times_s.partition_point(|&t| t <= t_s);
+        let i = self.count_at_or_before(t_s);
         self.times_s.get(i).copied()
+    }
+
+    /// The number of samples at or before `t_s` (`partition_point(t_i <=
+    /// t_s)`), trying the last answer and the one after it before a binary
+    /// search. `t_s` is not NaN.
+    #[inline]
+    fn count_at_or_before(&self, t_s: f64) -> usize {
+        let n = self.times_s.len();
+        let fits = |c: usize| {
+            (c == 0 || self.times_s.get(c - 1).is_some_and(|&t| t <= t_s))
+                && (c == n || self.times_s.get(c).is_some_and(|&t| t > t_s))
+        };
+        let h = self.hint.load(Ordering::Relaxed);
+        let c = if fits(h) {
+            h
+        } else if h < n && fits(h + 1) {
+            h + 1
+        } else {
+            self.times_s.partition_point(|&t| t <= t_s)
+        };
+        self.hint.store(c, Ordering::Relaxed);
+        c
     }
 }
 
