@@ -81,7 +81,7 @@ pub fn assignment(typed: &str, section: &str, name: &str, norm: bool, value: &Bo
             ));
         }
         (Some(n), false) if bare == Some(Bare::Normalised) => {
-            let (unit, meaning) = normalised_meaning(name).unwrap_or(("", "normalised units"));
+            let (unit, meaning) = normalised_meaning(section, name).unwrap_or(("", "normalised units"));
             let shown = number_literal(n);
             return Err(key_error(
                 &dotted,

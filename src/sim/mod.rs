@@ -7,6 +7,7 @@
 //! knows nothing of files, config keys read from text, or windows.
 
 pub mod answer;
+pub mod catalogue;
 mod collect;
 pub mod job;
 pub mod method;

@@ -106,36 +106,10 @@ impl Param {
         matches!(self, Param::Theta0 | Param::ThetaDot0 | Param::XDot0)
     }
 
-    /// The config key it is written and shown as, e.g. `excitation.a_v`.
+    /// The config key it is written and shown as, e.g. `excitation.a_v`:
+    /// its entry's in the catalogue, where the key is declared.
     pub fn key(self) -> &'static str {
-        match self {
-            Param::Width => "block.width",
-            Param::Height => "block.height",
-            Param::MuS => "friction.static",
-            Param::MuK => "friction.kinetic",
-            Param::ImpactR => "impact.r",
-            Param::ImpactE => "impact.e",
-            Param::ImpactMuS => "impact.static",
-            Param::ImpactMuK => "impact.kinetic",
-            Param::Ah => "excitation.a_h",
-            Param::Av => "excitation.a_v",
-            Param::OmegaH => "excitation.omega_h",
-            Param::OmegaV => "excitation.omega_v",
-            Param::PhaseH => "excitation.phase_h",
-            Param::PhaseV => "excitation.phase_v",
-            Param::ScaleH => "excitation.scale_h",
-            Param::ScaleV => "excitation.scale_v",
-            Param::Theta0 => "initial.theta",
-            Param::ThetaDot0 => "initial.theta_dot",
-            Param::XDot0 => "initial.x_dot",
-            Param::TauEnd => "run.tau_end",
-            Param::Rtol => "run.rtol",
-            Param::Atol => "run.atol",
-            Param::Step => "run.step",
-            Param::OutputDt => "run.output_dt",
-            Param::TumbleTheta => "run.tumble_theta",
-            Param::ZenoEps => "run.zeno_eps",
-        }
+        super::catalogue::spec_of(self).key
     }
 
     /// Sets the parameter (no validation: call [`Scenario::validate`]).

@@ -2,13 +2,34 @@
 //! file's sections so that the first broken rule is the one reported. Every
 //! message names the key as the user writes it and says what is allowed.
 
+use super::catalogue::{self, KeySpec};
+use super::param::Param;
 use super::run::Method;
 use super::scenario::{
-    AMPLITUDE_LIMIT, ExcitationKind, MAX_FLOOR_PARTICIPATION, MAX_FLOOR_PERIOD_S, MAX_HISTORY_ROWS, MAX_SIZE_M,
-    MIN_FLOOR_PERIOD_S, MIN_PSI, MIN_SIZE_M, MIN_SPECTRUM_SAMPLES, MU_K_LIMIT, PAPER_SPECTRUM_END, Scenario,
-    ScenarioError, SpectrumRange,
+    ExcitationKind, MAX_FLOOR_PARTICIPATION, MAX_FLOOR_PERIOD_S, MAX_HISTORY_ROWS, MIN_FLOOR_PERIOD_S, MIN_PSI,
+    MIN_SPECTRUM_SAMPLES, MU_K_LIMIT, PAPER_SPECTRUM_END, Scenario, ScenarioError, SpectrumRange,
 };
 use crate::model::excitation::pulse;
+
+/// `value` checked against the range the catalogue declares for `p`.
+fn within(p: Param, value: f64) -> Result<(), ScenarioError> {
+    within_spec(catalogue::spec_of(p), value)
+}
+
+/// `value` checked against the range the catalogue declares for `key`.
+fn within_key(key: &str, value: f64) -> Result<(), ScenarioError> {
+    match catalogue::spec(key) {
+        Some(spec) => within_spec(spec, value),
+        None => Ok(()),
+    }
+}
+
+fn within_spec(spec: &KeySpec, value: f64) -> Result<(), ScenarioError> {
+    match spec.range {
+        Some(range) => check(spec.key, (range.ok)(value), range.allowed, value),
+        None => Ok(()),
+    }
+}
 
 /// `Ok` if `ok`, else "`key`: `value` is out of range: must be `allowed`".
 fn check(key: &str, ok: bool, allowed: &str, value: f64) -> Result<(), ScenarioError> {
@@ -80,12 +101,8 @@ impl Scenario {
 
     fn validate_block(&self) -> Result<(), ScenarioError> {
         let b = &self.block;
-        // Sizes from 0.1 mm to 10 km: beyond them ψ, p or 1/p leave the
-        // range where the run's numbers (τ = p t, amplitudes in ψg) mean
-        // anything, or overflow (docs/model.md §1.1).
-        let size = |x: f64| (MIN_SIZE_M..=MAX_SIZE_M).contains(&x);
-        check("block.width", size(b.width), "in [1e-4, 1e4] metres", b.width)?;
-        check("block.height", size(b.height), "in [1e-4, 1e4] metres", b.height)?;
+        within(Param::Width, b.width)?;
+        within(Param::Height, b.height)?;
         let psi = self.geometry().psi;
         check(
             "block.width",
@@ -93,7 +110,7 @@ impl Scenario {
             "at least 1e-6 of block.height (a slenderness ψ = atan(B/H) below 1e-6 rad makes every amplitude in ψg vanish)",
             b.width,
         )?;
-        check("friction.static", b.mu_s >= 0.0, ">= 0 or inf", b.mu_s)?;
+        within(Param::MuS, b.mu_s)?;
         let mu_k = b.kinetic();
         // An absent kinetic coefficient takes the static one; an error about
         // it must then say so, or the user is told about a key never written.
@@ -125,12 +142,12 @@ impl Scenario {
 
     fn validate_impact(&self) -> Result<(), ScenarioError> {
         let r = self.impact_r();
-        check("impact.r", (0.0..=1.0).contains(&r), "in [0, 1]", r)?;
+        within(Param::ImpactR, r)?;
         let e = self.impact.e;
-        check("impact.e", (0.0..=1.0).contains(&e), "in [0, 1]", e)?;
+        within(Param::ImpactE, e)?;
         let (mu_s, mu_k) = (self.impact_mu_s(), self.impact_mu_k());
-        check("impact.static", mu_s >= 0.0, ">= 0 or inf", mu_s)?;
-        check("impact.kinetic", mu_k >= 0.0, ">= 0 or inf", mu_k)?;
+        within(Param::ImpactMuS, mu_s)?;
+        within(Param::ImpactMuK, mu_k)?;
         check(
             "impact.kinetic",
             mu_k < MU_K_LIMIT || mu_s.is_infinite(),
@@ -147,43 +164,13 @@ impl Scenario {
 
     fn validate_excitation(&self) -> Result<(), ScenarioError> {
         let x = &self.excitation;
-        check(
-            "excitation.a_h",
-            x.a_h.abs() <= AMPLITUDE_LIMIT,
-            "a finite amplitude |A_h| <= 1e6 (units of ψg)",
-            x.a_h,
-        )?;
-        check(
-            "excitation.a_v",
-            x.a_v.abs() <= AMPLITUDE_LIMIT,
-            "a finite amplitude |A_v| <= 1e6 (units of ψg)",
-            x.a_v,
-        )?;
-        check(
-            "excitation.omega_h",
-            (1e-6..=1e6).contains(&x.omega_h),
-            "in [1e-6, 1e6] (units of p; the forcing period 2π/Ω is then at most 6.3e6 τ)",
-            x.omega_h,
-        )?;
+        within(Param::Ah, x.a_h)?;
+        within(Param::Av, x.a_v)?;
+        within(Param::OmegaH, x.omega_h)?;
         let omega_v = x.omega_v();
-        check(
-            "excitation.omega_v",
-            (1e-6..=1e6).contains(&omega_v),
-            "in [1e-6, 1e6] (units of p; the forcing period 2π/Ω is then at most 6.3e6 τ)",
-            omega_v,
-        )?;
-        check(
-            "excitation.phase_h",
-            x.phase_h.abs() <= 1e6,
-            "|Φ_h| <= 1e6 rad",
-            x.phase_h,
-        )?;
-        check(
-            "excitation.phase_v",
-            x.phase_v.abs() <= 1e6,
-            "|Φ_v| <= 1e6 rad",
-            x.phase_v,
-        )?;
+        within(Param::OmegaV, omega_v)?;
+        within(Param::PhaseH, x.phase_h)?;
+        within(Param::PhaseV, x.phase_v)?;
         if !(1..=pulse::MAX_TYPE_C_CYCLES).contains(&x.cycles) {
             return Err(ScenarioError::new(
                 "excitation.cycles",
@@ -194,18 +181,8 @@ impl Scenario {
                 ),
             ));
         }
-        check(
-            "excitation.scale_h",
-            x.scale_h.abs() <= 1e3,
-            "|scale| <= 1000",
-            x.scale_h,
-        )?;
-        check(
-            "excitation.scale_v",
-            x.scale_v.abs() <= 1e3,
-            "|scale| <= 1000",
-            x.scale_v,
-        )?;
+        within(Param::ScaleH, x.scale_h)?;
+        within(Param::ScaleV, x.scale_v)?;
         // A zero factor makes the record no excitation at all, which no one
         // means to ask for (a block at rest needs no run); a negative one
         // flips the record's sign, the other polarity a rocking block
@@ -229,23 +206,11 @@ impl Scenario {
 
     fn validate_run(&self) -> Result<(), ScenarioError> {
         let r = &self.run;
-        // Below these the error control asks for more than double
-        // precision can give and the step size underflows.
-        check(
-            "run.rtol",
-            r.rtol >= 1e-16 && r.rtol < 1.0,
-            "in [1e-16, 1) (below 1e-16, less than double precision's rounding)",
-            r.rtol,
-        )?;
-        check(
-            "run.atol",
-            r.atol >= 1e-20 && r.atol < 1.0,
-            "in [1e-20, 1) (below 1e-20 the step size underflows near rest)",
-            r.atol,
-        )?;
-        check("run.step", r.step > 0.0 && r.step < 1.0, "in (0, 1)", r.step)?;
+        within(Param::Rtol, r.rtol)?;
+        within(Param::Atol, r.atol)?;
+        within(Param::Step, r.step)?;
         if let Some(tail) = r.record_tail_s {
-            check("run.tail_s", (0.0..=1e6).contains(&tail), "in [0, 1e6] (seconds)", tail)?;
+            within_key("run.tail_s", tail)?;
         }
         let tau_end = self.tau_end();
         let end_key = if self.record_end_tau().is_some() && r.record_tail_s.is_some() {
@@ -254,12 +219,7 @@ impl Scenario {
             "run.tau_end"
         };
         check(end_key, tau_end > 0.0 && tau_end <= 1e9, "in (0, 1e9]", tau_end)?;
-        check(
-            "run.output_dt",
-            r.output_dt >= 0.0 && r.output_dt.is_finite(),
-            ">= 0 (0 writes no history)",
-            r.output_dt,
-        )?;
+        within(Param::OutputDt, r.output_dt)?;
         if r.output_dt > 0.0 && tau_end / r.output_dt > MAX_HISTORY_ROWS {
             return Err(ScenarioError::new(
                 "run.output_dt",
@@ -276,12 +236,7 @@ impl Scenario {
             &format!("in (0, π/(2ψ) = {side}]"),
             r.tumble_theta,
         )?;
-        check(
-            "run.zeno_eps",
-            (0.0..1.0).contains(&r.zeno_eps),
-            "in [0, 1)",
-            r.zeno_eps,
-        )?;
+        within(Param::ZenoEps, r.zeno_eps)?;
         if r.max_steps == 0 {
             return Err(ScenarioError::new("run.max_steps", "must be >= 1"));
         }

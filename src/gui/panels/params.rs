@@ -19,8 +19,10 @@
 //! compute), where a drag explores around the motion being watched.
 
 use std::collections::HashMap;
+use std::sync::LazyLock;
 
 use crate::sim::Scenario;
+use crate::sim::catalogue::{self, Group, KeySpec, Value};
 use crate::sim::protocol::StartFrom;
 use crate::sim::scenario::ExcitationKind;
 
@@ -50,330 +52,39 @@ pub struct Key {
     pub kind: Kind,
 }
 
-const fn num(key: &'static str, label: &'static str, unit: &'static str, help: &'static str) -> Key {
-    Key {
-        key,
-        label,
-        unit,
-        help,
-        kind: Kind::Number,
+impl Key {
+    /// The panel's view of a catalogue entry.
+    fn of(spec: &'static KeySpec) -> Self {
+        Key {
+            key: spec.key,
+            label: spec.symbol,
+            unit: spec.unit,
+            help: spec.doc,
+            kind: match spec.value {
+                Value::Choice(options) => Kind::Choice(options),
+                Value::Path => Kind::Text,
+                _ => Kind::Number,
+            },
+        }
     }
 }
 
-/// The groups of the panel, in order, with their keys (all of
-/// `io::config::KNOWN_KEYS`).
-pub const GROUPS: &[(&str, &[Key])] = &[
-    (
-        "Block",
-        &[
-            num("block.width", "B", "m", "Width B > 0. Default 1 (the paper's block)."),
-            num("block.height", "H", "m", "Height H > 0. Default 4 (the paper's block)."),
-        ],
-    ),
-    (
-        "Friction",
-        &[
-            num(
-                "friction.static",
-                "μ_s",
-                "",
-                "Static friction coefficient ≥ 0, or inf for no sliding (the paper's sec. 4.1). Default inf.",
-            ),
-            num(
-                "friction.kinetic",
-                "μ_k",
-                "",
-                "Kinetic friction coefficient, 0 ≤ μ_k ≤ μ_s. Default μ_s.",
-            ),
-        ],
-    ),
-    (
-        "Impact",
-        &[
-            Key {
-                key: "impact.law",
-                label: "law",
-                unit: "",
-                help: "housner: Θ'(after) = (1 − 1.5 sin²ψ) Θ'(before), slip stopped; corner-momentum: angular momentum about the striking corner, pre-impact slip included; ratio: Θ'(after) = r Θ'(before); impulse: the paper's eqs. 17–27.",
-                kind: Kind::Choice(&["housner", "corner-momentum", "ratio", "impulse"]),
-            },
-            num(
-                "impact.r",
-                "r",
-                "",
-                "Angular-velocity ratio for law = ratio, in [0, 1]. Default Housner's 1 − 1.5 sin²ψ.",
-            ),
-            num(
-                "impact.e",
-                "e",
-                "",
-                "Vertical restitution of the striking corner for law = impulse, in [0, 1]. Default 0.",
-            ),
-            num(
-                "impact.static",
-                "impact μ_s",
-                "",
-                "Static friction at impact (impulse law), ≥ 0 or inf. Default μ_s.",
-            ),
-            num(
-                "impact.kinetic",
-                "impact μ_k",
-                "",
-                "Kinetic friction at impact (impulse law), ≤ impact μ_s. Default μ_k.",
-            ),
-        ],
-    ),
-    (
-        "Excitation",
-        &[
-            Key {
-                key: "excitation.kind",
-                label: "kind",
-                unit: "",
-                help: "harmonic, pulse, record (a ground-motion file) or none. Default harmonic.",
-                kind: Kind::Choice(&["harmonic", "pulse", "record", "none"]),
-            },
-            num(
-                "excitation.a_h",
-                "A_h",
-                "ψg",
-                "Horizontal amplitude: a_h/g = A_h ψ sin(Ω_h τ + Φ_h); |A_h| ≤ 1e6. Default 0.",
-            ),
-            num(
-                "excitation.a_v",
-                "A_v",
-                "ψg",
-                "Vertical amplitude: a_v/g = A_v ψ sin(Ω_v τ + Φ_v); |A_v| ≤ 1e6. Default 0.",
-            ),
-            num(
-                "excitation.omega_h",
-                "Ω_h",
-                "p",
-                "Horizontal frequency in units of p, in (0, 1e6]. Default 8 (the paper's).",
-            ),
-            num(
-                "excitation.omega_v",
-                "Ω_v",
-                "p",
-                "Vertical frequency in units of p, in (0, 1e6]. Default Ω_h.",
-            ),
-            num("excitation.phase_h", "Φ_h", "rad", "Horizontal phase. Default 0."),
-            num("excitation.phase_v", "Φ_v", "rad", "Vertical phase. Default 0."),
-            Key {
-                key: "excitation.shape",
-                label: "pulse shape",
-                unit: "",
-                help: "Pulse shape: one-sine (Makris type A), one-cosine (type B), type-c, rectangular (a_p for π/ω) or half-sine (a_p sin ωτ for π/ω). Default one-sine.",
-                kind: Kind::Choice(&["one-sine", "one-cosine", "type-c", "rectangular", "half-sine"]),
-            },
-            num(
-                "excitation.cycles",
-                "cycles",
-                "",
-                "n of a type-C_n pulse, 1..=20. Default 1.",
-            ),
-            Key {
-                key: "excitation.file_h",
-                label: "record (h)",
-                unit: "",
-                help: "Horizontal record: PEER .AT2, COSMOS .V1/.V2, ESM .ASC, two columns (time in s, acceleration) or one column with dt_h. Required for kind = record. File menu: Open record… picks one.",
-                kind: Kind::Text,
-            },
-            Key {
-                key: "excitation.unit_h",
-                label: "unit (h)",
-                unit: "",
-                help: "Unit of the horizontal record's accelerations: g, m/s2 or cm/s2. Required for text records; an AT2, COSMOS or ESM header states its own.",
-                kind: Kind::Choice(&["g", "m/s2", "cm/s2"]),
-            },
-            num(
-                "excitation.dt_h",
-                "dt (h)",
-                "s",
-                "Time step of a one-column horizontal record, s (> 0). Leave empty for files that hold their times.",
-            ),
-            num(
-                "excitation.scale_h",
-                "scale_h",
-                "",
-                "Factor on the horizontal record, |scale| ≤ 1000. Default 1. Give either this or the target PGA.",
-            ),
-            num(
-                "excitation.pga_h",
-                "PGA (h)",
-                "g",
-                "Scale the horizontal record to this peak ground acceleration, g (e.g. 0.35). Give either this or scale_h.",
-            ),
-            Key {
-                key: "excitation.file_v",
-                label: "record (v)",
-                unit: "",
-                help: "Optional vertical record.",
-                kind: Kind::Text,
-            },
-            Key {
-                key: "excitation.unit_v",
-                label: "unit (v)",
-                unit: "",
-                help: "Unit of the vertical record's accelerations: g, m/s2 or cm/s2.",
-                kind: Kind::Choice(&["g", "m/s2", "cm/s2"]),
-            },
-            num(
-                "excitation.dt_v",
-                "dt (v)",
-                "s",
-                "Time step of a one-column vertical record, s (> 0).",
-            ),
-            num(
-                "excitation.scale_v",
-                "scale_v",
-                "",
-                "Factor on the vertical record, |scale| ≤ 1000. Default 1.",
-            ),
-            num(
-                "excitation.pga_v",
-                "PGA (v)",
-                "g",
-                "Scale the vertical record to this peak acceleration, g. Give either this or scale_v.",
-            ),
-        ],
-    ),
-    (
-        "Floor",
-        &[
-            num(
-                "floor.period",
-                "T floor",
-                "s",
-                "The block stands on a floor of a building: the period of the building mode that moves it, 0.01–20 s. Empty: on the ground. Records and harmonic motion are filtered exactly; the vertical is not. Several modes: [[floor.mode]] tables in a config file.",
-            ),
-            num(
-                "floor.damping",
-                "ζ floor",
-                "",
-                "Damping ratio of the building mode, 0 < ζ < 1. Default 0.05 (5 %, a typical building).",
-            ),
-            num(
-                "floor.participation",
-                "Γφ",
-                "",
-                "The mode's participation factor times its shape at the floor, |Γφ| ≤ 10. Default 1 (a one-storey building); about 0.9 at mid-height of a uniform shear building.",
-            ),
-        ],
-    ),
-    (
-        "Initial state",
-        &[
-            num(
-                "initial.theta",
-                "Θ₀",
-                "ψ",
-                "Θ at τ = 0, |Θ| < tumble angle. Default 0 (flat). Click the phase portrait to set Θ₀ and Θ'₀.",
-            ),
-            num("initial.theta_dot", "Θ'₀", "ψ p", "Θ' at τ = 0. Default 0."),
-            num(
-                "initial.x_dot",
-                "X'₀",
-                "R p",
-                "X' of the centre of mass at τ = 0. Default: no slip of the contact corner.",
-            ),
-        ],
-    ),
-    (
-        "Solver",
-        &[
-            Key {
-                key: "run.method",
-                label: "method",
-                unit: "",
-                help: "taylor (default at rtol ≤ 1e-6: high-order series, fastest at tight tolerances), dop853 (default at looser rtol), dopri5, or ralston (the paper's fixed-step RK2).",
-                kind: Kind::Choice(&["dop853", "dopri5", "ralston", "taylor"]),
-            },
-            num("run.rtol", "rtol", "", "Relative tolerance, in (0, 1). Default 1e-10."),
-            num("run.atol", "atol", "", "Absolute tolerance, in (0, 1). Default 1e-12."),
-            num(
-                "run.step",
-                "step",
-                "τ",
-                "Fixed step of ralston, in (0, 1). Default 0.004 (the paper's).",
-            ),
-            num(
-                "run.tumble_theta",
-                "Θ tumble",
-                "ψ",
-                "|Θ| at which the block has tumbled, in (0, π/(2ψ)]. Default 1.",
-            ),
-            Key {
-                key: "run.flight",
-                label: "flight",
-                unit: "",
-                help: "stop: a vanishing normal force ends the run (default); ignore: integrate on, as the paper did.",
-                kind: Kind::Choice(&["stop", "ignore"]),
-            },
-            num(
-                "run.zeno_eps",
-                "zeno ε",
-                "ψ p",
-                "Impact accumulation threshold on |Θ'|, in [0, 1). Default 1e-5.",
-            ),
-            num(
-                "run.tau_end",
-                "τ end",
-                "τ",
-                "End of a batch run, in (0, 1e9]. The live view runs on until paused. Default 800.",
-            ),
-            num(
-                "run.t_end",
-                "t end",
-                "s",
-                "End of a batch run in seconds (instead of τ end). A record run lasts the record plus the tail unless this is set.",
-            ),
-            num(
-                "run.tail_s",
-                "tail",
-                "s",
-                "A record run goes on after the record until the block is at rest, at most this long. Default 30 s.",
-            ),
-            num(
-                "run.output_dt",
-                "output dt",
-                "τ",
-                "History spacing of a batch run; 0 writes none. Default 0.02.",
-            ),
-            num("run.max_steps", "max steps", "", "Most steps in one run. Default 1e9."),
-            num(
-                "run.max_events",
-                "max events",
-                "",
-                "Most events in one run. Default 1e8.",
-            ),
-        ],
-    ),
-];
+/// The groups of the panel, in order, with their keys: the catalogue's
+/// entries that have a place in the panel ([`catalogue::panel_keys`]).
+pub static GROUPS: LazyLock<Vec<(&'static str, Vec<Key>)>> = LazyLock::new(|| {
+    Group::ALL
+        .into_iter()
+        .map(|g| (g.title(), catalogue::panel_keys(g).into_iter().map(Key::of).collect()))
+        .collect()
+});
 
 /// Whether `key` (`section.key`) means anything for an excitation of
-/// `kind`: harmonic scenes use amplitudes, frequencies and phases; pulses
-/// amplitudes, frequencies and the shape; records their files, units,
-/// steps, scales and the tail after the record. Every other key applies
-/// to every kind.
+/// `kind`, as its catalogue entry says: harmonic scenes use amplitudes,
+/// frequencies and phases; pulses amplitudes, frequencies and the shape;
+/// records their files, units, steps, scales and the tail after the record.
+/// Every other key applies to every kind.
 pub fn applies(key: &str, kind: ExcitationKind) -> bool {
-    use ExcitationKind as K;
-    let name = match key.split_once('.') {
-        Some(("excitation", name)) => name,
-        Some(("run", "tail_s")) => return kind == K::Record,
-        // A floor filters records and harmonic motion; a pulse refuses it.
-        Some(("floor", _)) => return matches!(kind, K::Record | K::Harmonic),
-        _ => return true,
-    };
-    match name {
-        "a_h" | "a_v" | "omega_h" | "omega_v" => matches!(kind, K::Harmonic | K::Pulse),
-        "phase_h" | "phase_v" => kind == K::Harmonic,
-        "shape" | "cycles" => kind == K::Pulse,
-        "file_h" | "file_v" | "unit_h" | "unit_v" | "dt_h" | "dt_v" | "scale_h" | "scale_v" | "pga_h" | "pga_v" => {
-            kind == K::Record
-        }
-        _ => true,
-    }
+    catalogue::spec(key).is_none_or(|s| s.applies.to(kind))
 }
 
 /// The range of a key's slider: from `min` to `max` in the key's unit,
@@ -452,53 +163,19 @@ impl SliderRange {
     }
 }
 
-const fn lin(min: f64, max: f64, step: f64) -> Option<SliderRange> {
-    Some(SliderRange {
-        min,
-        max,
-        log: false,
-        step,
-    })
-}
-
-const fn log(min: f64, max: f64, step: f64) -> Option<SliderRange> {
-    Some(SliderRange {
-        min,
-        max,
-        log: true,
-        step,
-    })
-}
-
 /// The slider of `key`, for the continuous parameters; `None` for the
 /// rest (integers, choices, files, solver settings, record time steps),
-/// which are typed only. The ranges cover every shipped preset and the
-/// paper's figures with room to explore; the field beside takes any valid
-/// value beyond them.
+/// which are typed only. The spans are the catalogue's: they cover every
+/// shipped preset and the paper's figures with room to explore; the field
+/// beside takes any valid value beyond them.
 pub fn slider_range(key: &str) -> Option<SliderRange> {
-    match key {
-        // 5 cm (a statuette) to 10 m (a tall tank): three decades of size.
-        "block.width" | "block.height" => log(0.05, 10.0, 0.1),
-        // Dry friction coefficients of real contacts lie below 1.5; `inf`
-        // (no sliding) stays typed only.
-        "friction.static" | "friction.kinetic" | "impact.static" | "impact.kinetic" => lin(0.0, 2.0, 0.05),
-        "impact.r" | "impact.e" => lin(0.0, 1.0, 0.02),
-        // Uplift needs A_h > tan ψ/ψ ≈ 1 (ψ g); 5 is five times that and
-        // above every preset (the paper's bifurcations run to A_v = 3).
-        "excitation.a_h" | "excitation.a_v" => lin(0.0, 5.0, 0.1),
-        // From slow rocking to far above the block's own frequencies.
-        "excitation.omega_h" | "excitation.omega_v" => log(0.5, 30.0, 0.05),
-        "excitation.phase_h" | "excitation.phase_v" => lin(0.0, std::f64::consts::TAU, 0.1),
-        "excitation.pga_h" | "excitation.pga_v" => lin(0.0, 2.0, 0.05),
-        "excitation.scale_h" | "excitation.scale_v" => lin(0.0, 5.0, 0.1),
-        // From a stiff low-rise (0.05 s) to a tall tower (5 s).
-        "floor.period" => log(0.05, 5.0, 0.05),
-        "floor.damping" => lin(0.0, 0.3, 0.01),
-        "floor.participation" => lin(0.0, 2.0, 0.05),
-        "initial.theta" => lin(-1.0, 1.0, 0.05),
-        "initial.theta_dot" | "initial.x_dot" => lin(-3.0, 3.0, 0.1),
-        _ => None,
-    }
+    let span = catalogue::spec(key)?.slider?;
+    Some(SliderRange {
+        min: span.min,
+        max: span.max,
+        log: span.log,
+        step: span.step,
+    })
 }
 
 /// A slider's value as the text to apply: four significant digits, which
@@ -608,7 +285,7 @@ pub fn show(
         }
     });
     let json = crate::io::config::to_json(cfg);
-    for (group, keys) in GROUPS {
+    for (group, keys) in GROUPS.iter() {
         egui::CollapsingHeader::new(*group)
             // The floor opens where the scene stands on one.
             .default_open(

@@ -30,50 +30,18 @@ use crate::io::shipped;
 use crate::model::units::AccelUnit;
 use crate::model::{FlightPolicy, Geometry};
 use crate::sim::scenario::{Analyses, Block, ExcitationSpec, Impact, Record, RunSpec};
-use crate::sim::{InitialState, Param, Scenario};
+use crate::sim::{InitialState, Param, Scenario, catalogue};
 use quantity::{Dimension, Quantity};
 use raw::{Coefficient, Count, Finite, RawConfig};
 
-/// Every section and key the config accepts.
-// Not formatted: rustfmt would put each key of a long name on its own line.
-#[rustfmt::skip]
-pub const KNOWN_KEYS: &[(&str, &[&str])] = &[
-    ("block", &["width", "height"]),
-    ("friction", &["static", "kinetic"]),
-    ("impact", &["law", "r", "e", "static", "kinetic"]),
-    (
-        "excitation",
-        &[
-            "kind", "a_h", "a_v", "omega_h", "omega_v", "phase_h", "phase_v", "shape", "cycles", "file_h", "file_v",
-            "unit_h", "unit_v", "dt_h", "dt_v", "crc32_h", "crc32_v", "channel_h", "channel_v", "scale_h", "scale_v",
-            "pga_h", "pga_v",
-        ],
-    ),
-    ("initial", &["theta", "theta_dot", "x_dot"]),
-    (
-        "run",
-        &[
-            "tau_end",
-            "t_end",
-            "tail_s",
-            "method",
-            "rtol",
-            "atol",
-            "step",
-            "output_dt",
-            "tumble_theta",
-            "flight",
-            "zeno_eps",
-            "max_steps",
-            "max_events",
-        ],
-    ),
-    (
-        "analysis",
-        &["lyapunov", "lyapunov_method", "spectrum", "spectrum_window"],
-    ),
-    ("floor", &["period", "damping", "participation", "mode"]),
-];
+/// Every section and its keys, in the config file's order: the
+/// catalogue's ([`crate::sim::catalogue`]), where each key is declared.
+pub static KNOWN_KEYS: std::sync::LazyLock<Vec<(&'static str, Vec<&'static str>)>> = std::sync::LazyLock::new(|| {
+    catalogue::sections()
+        .into_iter()
+        .map(|s| (s, catalogue::keys_of(s)))
+        .collect()
+});
 
 /// Where a config came from, for resolving relative record paths.
 #[derive(Clone, Debug, Default)]
@@ -468,7 +436,14 @@ pub fn from_table_with(table: &Table, source: &Source, memory: [Option<&Record>;
     }
     .validate()?;
     let geo = block.geometry();
-    let q = |key: &str, x: Option<Quantity>, dim: Dimension| x.map(|x| x.resolve(key, dim, &geo)).transpose();
+    // A parameter's key and dimension are the catalogue's.
+    let q = |p: Param, x: Option<Quantity>| {
+        let spec = catalogue::spec_of(p);
+        let dim = spec
+            .dimension()
+            .expect("a quantity key's entry has a dimension (tested)");
+        x.map(|x| x.resolve(spec.key, dim, &geo)).transpose()
+    };
     let impact = Impact {
         law: raw.impact.law.unwrap_or(d.impact.law),
         r: num(raw.impact.r),
@@ -505,12 +480,12 @@ pub fn from_table_with(table: &Table, source: &Source, memory: [Option<&Record>;
     let scale_v = record_scale(&keys_v, record_v.as_ref(), x.scale_v, x.pga_v, &geo, dx.scale_v)?;
     let excitation = ExcitationSpec {
         kind: x.kind.unwrap_or(dx.kind),
-        a_h: q("excitation.a_h", x.a_h, Dimension::Amplitude)?.unwrap_or(dx.a_h),
-        a_v: q("excitation.a_v", x.a_v, Dimension::Amplitude)?.unwrap_or(dx.a_v),
-        omega_h: q("excitation.omega_h", x.omega_h, Dimension::Frequency)?.unwrap_or(dx.omega_h),
-        omega_v: q("excitation.omega_v", x.omega_v, Dimension::Frequency)?,
-        phase_h: q("excitation.phase_h", x.phase_h, Dimension::Phase)?.unwrap_or(dx.phase_h),
-        phase_v: q("excitation.phase_v", x.phase_v, Dimension::Phase)?.unwrap_or(dx.phase_v),
+        a_h: q(Param::Ah, x.a_h)?.unwrap_or(dx.a_h),
+        a_v: q(Param::Av, x.a_v)?.unwrap_or(dx.a_v),
+        omega_h: q(Param::OmegaH, x.omega_h)?.unwrap_or(dx.omega_h),
+        omega_v: q(Param::OmegaV, x.omega_v)?,
+        phase_h: q(Param::PhaseH, x.phase_h)?.unwrap_or(dx.phase_h),
+        phase_v: q(Param::PhaseV, x.phase_v)?.unwrap_or(dx.phase_v),
         shape: x.shape.unwrap_or(dx.shape),
         cycles,
         record_h,
@@ -531,7 +506,10 @@ pub fn from_table_with(table: &Table, source: &Source, memory: [Option<&Record>;
         (None, Some(t)) => Some(t.resolve("run.t_end", Dimension::Seconds, &geo)? * geo.p),
         (None, None) => None,
     };
-    let tail_s = q("run.tail_s", r.tail_s, Dimension::Seconds)?;
+    let tail_s = r
+        .tail_s
+        .map(|t| t.resolve("run.tail_s", Dimension::Seconds, &geo))
+        .transpose()?;
     if tail_s.is_some() && tau_end.is_some() {
         return Err(ConfigError::key(
             "run.tail_s",
@@ -543,9 +521,9 @@ pub fn from_table_with(table: &Table, source: &Source, memory: [Option<&Record>;
         method: r.method,
         rtol: num(r.rtol).unwrap_or(dr.rtol),
         atol: num(r.atol).unwrap_or(dr.atol),
-        step: q("run.step", r.step, Dimension::Tau)?.unwrap_or(dr.step),
-        output_dt: q("run.output_dt", r.output_dt, Dimension::Tau)?.unwrap_or(dr.output_dt),
-        tumble_theta: q("run.tumble_theta", r.tumble_theta, Dimension::Rotation)?.unwrap_or(dr.tumble_theta),
+        step: q(Param::Step, r.step)?.unwrap_or(dr.step),
+        output_dt: q(Param::OutputDt, r.output_dt)?.unwrap_or(dr.output_dt),
+        tumble_theta: q(Param::TumbleTheta, r.tumble_theta)?.unwrap_or(dr.tumble_theta),
         flight: r.flight.map_or(dr.flight, FlightPolicy::from),
         zeno_eps: num(r.zeno_eps).unwrap_or(dr.zeno_eps),
         max_steps: count(r.max_steps).unwrap_or(dr.max_steps),
@@ -556,10 +534,9 @@ pub fn from_table_with(table: &Table, source: &Source, memory: [Option<&Record>;
         },
     };
     let initial = InitialState {
-        theta: q("initial.theta", raw.initial.theta, Dimension::Rotation)?.unwrap_or(d.initial.theta),
-        theta_dot: q("initial.theta_dot", raw.initial.theta_dot, Dimension::AngularVelocity)?
-            .unwrap_or(d.initial.theta_dot),
-        x_dot: q("initial.x_dot", raw.initial.x_dot, Dimension::Velocity)?,
+        theta: q(Param::Theta0, raw.initial.theta)?.unwrap_or(d.initial.theta),
+        theta_dot: q(Param::ThetaDot0, raw.initial.theta_dot)?.unwrap_or(d.initial.theta_dot),
+        x_dot: q(Param::XDot0, raw.initial.x_dot)?,
     };
     let (a, da) = (&raw.analysis, &d.analyses);
     let analyses = Analyses {
