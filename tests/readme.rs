@@ -117,3 +117,19 @@ fn examples_are_read_from_console_blocks_only() {
     assert_eq!(ex[0].expected, "one\ntwo\n");
     assert_eq!(ex[1].expected, "");
 }
+
+/// The README's table of configuration keys is the catalogue's, row for
+/// row: a key added, renamed or re-documented in the catalogue fails here
+/// until the README says the same.
+#[test]
+fn the_readme_key_table_is_the_catalogues() {
+    let readme = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("README.md")).expect("README.md");
+    let (begin, end) = ("<!-- keys: made from the catalogue -->\n", "<!-- keys end -->");
+    let start = readme.find(begin).expect("the README marks its key table") + begin.len();
+    let stop = start + readme[start..].find(end).expect("the key table's end mark");
+    let expected = rocking::sim::catalogue::markdown_table();
+    assert!(
+        readme[start..stop] == expected,
+        "README.md's key table differs from the catalogue's; it should read:\n{expected}"
+    );
+}

@@ -257,17 +257,19 @@ pub fn panel_keys(group: Group) -> Vec<&'static KeySpec> {
     keys
 }
 
-/// The README's table of keys, one row a key: the key, how a value is
-/// written, and its doc line.
+/// The README's table of keys, one row a key: the key, its units (what a
+/// bare number means) or how it is written, and its doc line.
 pub fn markdown_table() -> String {
     let mut out = String::from("| key | value | meaning, range, default |\n|---|---|---|\n");
     for k in CATALOGUE {
-        let doc = if k.doc.is_empty() { k.meaning } else { k.doc };
+        // A quantity's units and what its bare number means (the config's
+        // rule); any other value as it is written.
+        let value = k.dimension().map_or(k.written, Dimension::fits);
         out.push_str(&format!(
             "| `{}` | {} | {} |\n",
             k.key,
-            k.written.replace('|', "\\|"),
-            doc.replace('|', "\\|")
+            value.replace('|', "\\|"),
+            k.doc.replace('|', "\\|")
         ));
     }
     out

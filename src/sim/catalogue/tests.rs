@@ -95,5 +95,8 @@ fn every_key_has_words_for_each_surface() {
 fn markdown_table_has_a_row_a_key() {
     let t = markdown_table();
     assert_eq!(t.lines().count(), CATALOGUE.len() + 2);
-    assert!(t.contains("| `excitation.a_v` | as a_h | Vertical amplitude"), "{t}");
+    assert!(
+        t.contains("| `excitation.a_v` | an acceleration: g, m/s2, cm/s2 (gal), g*tan(alpha) (bare: units of psi*g) | Vertical amplitude"),
+        "{t}"
+    );
 }
