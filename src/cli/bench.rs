@@ -5,7 +5,7 @@ use std::path::PathBuf;
 use anyhow::Context as _;
 use clap::Args;
 
-use super::batch::BatchError;
+use super::error::BatchError;
 use crate::bench::{self, BenchOptions};
 use crate::io::staging::Staging;
 use crate::plot::Figure as _;
