@@ -19,9 +19,9 @@ mod validate;
 
 pub use answer::{EndState, Physical};
 pub use collect::{HistoryRow, Keep, SectionRow, Sink, Tallies};
+pub use method::{Method, TAYLOR_DEFAULT_RTOL};
 pub use param::Param;
 pub use run::{
-    EnergyAudit, InitialState, Method, Outcome, RunOptions, RunResult, SimError, TAYLOR_DEFAULT_RTOL, initial_mode,
-    simulate, simulate_into,
+    EnergyAudit, InitialState, Outcome, RunOptions, RunResult, SimError, initial_mode, simulate, simulate_into,
 };
 pub use scenario::{Scenario, ScenarioError};

@@ -2,7 +2,7 @@
 //! file's sections so that the first broken rule is the one reported. Every
 //! message names the key as the user writes it and says what is allowed.
 
-use super::run::Method;
+use super::method::Method;
 use super::scenario::{
     AMPLITUDE_LIMIT, ExcitationKind, MAX_FLOOR_PARTICIPATION, MAX_FLOOR_PERIOD_S, MAX_HISTORY_ROWS, MAX_SIZE_M,
     MIN_FLOOR_PERIOD_S, MIN_PSI, MIN_SIZE_M, MIN_SPECTRUM_SAMPLES, MU_K_LIMIT, PAPER_SPECTRUM_END, Scenario,
