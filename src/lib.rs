@@ -17,7 +17,8 @@
 //!
 //! and the Python package (`python/`) sits on top, beside `cli`. One arrow
 //! points back, in test code only: `sim`'s session tests load the shipped
-//! presets through `io`.
+//! presets through `io`. `tests/layers.rs` checks the order, and that no two
+//! sibling files import from each other, from the source text.
 //!
 //! - [`integrate`]: methods only, knowing nothing of blocks — the steppers
 //!   (DOP853, DOPRI5, Taylor, Ralston), root finding and the hybrid driver
