@@ -9,19 +9,26 @@
 //!
 //! ## Layers
 //!
-//! Dependencies point one way; each layer imports only those to its left:
+//! Dependencies point one way; each layer imports only those to its left
+//! (as the `use crate::…` lines of each folder say):
 //!
-//! [`model`] → [`integrate`] → [`sim`] → [`analysis`] → ([`io`], [`plot`],
-//! [`reproduce`], `cli`, `gui`)
+//! [`integrate`] → [`model`] → [`sim`] → [`analysis`] → [`io`] → [`plot`]
+//! → (`bench`, [`reproduce`]) → (`cli`, `gui`)
 //!
+//! and the Python package (`python/`) sits on top, beside `cli`. One arrow
+//! points back, in test code only: `sim`'s session tests load the shipped
+//! presets through `io`. `tests/layers.rs` checks the order, and that no two
+//! sibling files import from each other, from the source text.
+//!
+//! - [`integrate`]: methods only, knowing nothing of blocks — the steppers
+//!   (DOP853, DOPRI5, Taylor, Ralston), root finding and the hybrid driver
+//!   with its [`HybridSystem`](integrate::hybrid::HybridSystem) trait.
 //! - [`model`]: equations only — geometry, modes, dynamics, impact laws,
 //!   energy, the excitations (a record is a series of samples; reading
-//!   files is [`io::record`]'s), and the block as a
-//!   [`HybridSystem`](integrate::hybrid::HybridSystem).
-//! - [`integrate`]: methods only, knowing nothing of blocks — the steppers
-//!   (DOP853, DOPRI5, Taylor, Ralston), root finding and the hybrid driver.
-//!   (The model implements the driver's trait, so `model` names
-//!   `integrate`'s trait, never its methods.)
+//!   files is [`io::record`]'s), and the block as a `HybridSystem`. It
+//!   imports `integrate` for that trait, the driver's jump and error types
+//!   and the Taylor method's largest order (which sizes the block's
+//!   series), never a stepper.
 //! - [`sim`]: the typed, validated [`Scenario`](sim::Scenario) and
 //!   [`Param`](sim::Param), one run ([`sim::simulate`]), the simulation
 //!   thread of the app ([`sim::runner`]) and the background-job type it and
@@ -32,8 +39,9 @@
 //! - [`io`]: the config file (TOML, presets, `--set`, `summary.json`) read
 //!   into a scenario — the only place that knows the string keys —,
 //!   records, and the output files written whole or not at all.
-//! - [`plot`] draws figures; [`reproduce`] recomputes the paper's figures
-//!   and writes the report.
+//! - [`plot`] draws figures from the analyses' results; `bench` measures
+//!   the methods (work–precision) and [`reproduce`] recomputes the paper's
+//!   figures and writes the report, both drawing through `plot`.
 //! - `cli` (the `rocking` binary's commands) and `gui` (the desktop app,
 //!   feature `gui`) sit on top.
 //!

@@ -1,6 +1,6 @@
 //! The `rocking` binary: `rocking --batch …` runs headless.
 
-use rocking::cli::{self, Cli, EXIT_BAD_INPUT, EXIT_RUN_FAILED, batch::BatchError};
+use rocking::cli::{self, Cli, EXIT_BAD_INPUT, EXIT_RUN_FAILED, error::BatchError};
 
 fn main() {
     let cli = Cli::parse_deferred();

@@ -17,8 +17,10 @@
 //! - Long analyses report progress through a callback ([`ProgressFn`]);
 //!   they know no progress-bar library.
 //!
-//! Layers: `model → integrate → sim → analysis → (cli, gui)`. A parameter
-//! is varied through a typed [`Param`](crate::sim::Param), never by name.
+//! Layers: `integrate → model → sim → analysis → io → …` (the crate docs
+//! list them all): this layer imports `integrate`, `model` and `sim`, and
+//! nothing to the right of it. A parameter is varied through a typed
+//! [`Param`](crate::sim::Param), never by name.
 
 pub mod attractor;
 pub mod classify;

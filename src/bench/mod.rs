@@ -20,6 +20,7 @@ use crate::integrate::hybrid::Limits;
 use crate::io::csv::{self, Num, Row};
 use crate::model::excitation::Excitation;
 use crate::model::{EventKind, FlightPolicy, Geometry, Harmonic, ImpactLaw, Model};
+use crate::plot::work_precision::WorkPoint;
 use crate::sim::{InitialState, Method, RunOptions, RunResult, SimError, simulate};
 
 /// A benchmark scene.
@@ -135,6 +136,18 @@ pub struct Record {
     pub impact_time_error: Option<f64>,
     /// Impacts in this run.
     pub impacts: u64,
+}
+
+impl Record {
+    /// The record as the work–precision figure draws it.
+    pub fn point(&self) -> WorkPoint<'_> {
+        WorkPoint {
+            scene: &self.scene,
+            method: &self.method,
+            wall_s: self.wall_s,
+            error: self.error,
+        }
+    }
 }
 
 /// The reference of a scene and its self-check.

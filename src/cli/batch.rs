@@ -3,6 +3,7 @@
 use anyhow::Context as _;
 
 use super::Cli;
+use super::error::BatchError;
 use crate::analysis::lyapunov::{self, Lyapunov, LyapunovError, LyapunovOptions, Method};
 use crate::io::csv::{self, Num, Row};
 use crate::io::output::{self, RunFiles};
@@ -17,15 +18,6 @@ const HISTORY_BYTES_PER_ROW: f64 = 160.0;
 /// Steps per second of `ralston`, for the estimate printed before a long
 /// run: 1.2·10⁷ measured (fig4, τ 4·10⁴, release build), rounded down.
 const RALSTON_STEPS_PER_S: f64 = 1e7;
-
-/// How a batch run failed, with the exit code it maps to.
-#[derive(Debug)]
-pub enum BatchError {
-    /// Bad input: exit 2.
-    Input(anyhow::Error),
-    /// The run itself failed: exit 1.
-    Run(anyhow::Error),
-}
 
 /// Runs `--batch` as described by `cli`. Nothing is written unless the run
 /// succeeds.

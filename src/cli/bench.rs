@@ -5,8 +5,8 @@ use std::path::PathBuf;
 use anyhow::Context as _;
 use clap::Args;
 
-use super::batch::BatchError;
-use crate::bench::{self, BenchOptions};
+use super::error::BatchError;
+use crate::bench::{self, BenchOptions, Record};
 use crate::io::staging::Staging;
 use crate::plot::Figure as _;
 use crate::plot::work_precision::WorkPrecisionFigure;
@@ -96,8 +96,9 @@ pub fn run(args: &BenchArgs) -> Result<(), BatchError> {
         .text("work_precision.csv", &bench::to_csv(&records))
         .context("writing")
         .map_err(BatchError::Run)?;
+    let points: Vec<_> = records.iter().map(Record::point).collect();
     let fig = WorkPrecisionFigure {
-        records: &records,
+        points: &points,
         scenes: scenes.iter().map(|s| s.name.to_string()).collect(),
     };
     fig.write_png(&staging.path("work_precision.png"))

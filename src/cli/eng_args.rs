@@ -8,7 +8,7 @@ use std::path::Path;
 use anyhow::anyhow;
 
 use super::args::SceneArgs;
-use super::batch::BatchError;
+use super::error::BatchError;
 use crate::analysis::engineering::overturn_scale::ladder;
 use crate::io::config;
 use crate::io::record::{RecordError, RecordSpec, read_record_as};
@@ -364,8 +364,6 @@ pub fn block(flag: &str, text: &str) -> Result<(f64, f64), BatchError> {
         ))),
     }
 }
-
-pub use super::suite::{SuiteEntry, suite};
 
 /// A number for a message: as typed when it is of everyday size
 /// (`0.35`, `120`), else in scientific form (`1e-300`, `2.5e12`), so no

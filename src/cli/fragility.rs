@@ -23,12 +23,12 @@ use std::time::Instant;
 use anyhow::{Context as _, anyhow, bail};
 use serde_json::{Value as Json, json};
 
-use super::batch::BatchError;
 use super::eng_args::{
-    BaseArgs, Owns, RecordUnitArgs, SuiteEntry, VerticalArg, block, flag_error, input, positive_list, read_record,
-    show, suite,
+    BaseArgs, Owns, RecordUnitArgs, VerticalArg, block, flag_error, input, positive_list, read_record, show,
 };
+use super::error::BatchError;
 use super::merge::MergeArgs;
+use super::suite::{SuiteEntry, suite};
 use super::sweep::{progress_bar, progress_fn, thread_pool};
 use crate::analysis::engineering::fragility::{
     FragilitySpec, Intensity, LevelSummary, MAX_RUNS, SuiteRecord, fit_block, run_fragility, summarise,

@@ -27,7 +27,7 @@ use anyhow::{Context as _, anyhow};
 use serde_json::json;
 
 use super::args::{SceneArgs, StudyArgs, StudyOutput};
-use super::batch::BatchError;
+use super::error::BatchError;
 use super::sweep::{progress_bar, progress_fn, thread_pool};
 use crate::analysis::classify::{ClassifyOptions, Response};
 use crate::analysis::outcome_map::{Axis, BlockMap, COARSE_CELLS, Cell, MapPlan, compute_map};

@@ -16,7 +16,7 @@ use std::path::{Path, PathBuf};
 use anyhow::{Context as _, anyhow, bail};
 use serde_json::Value as Json;
 
-use super::batch::BatchError;
+use super::error::BatchError;
 use super::sweep::SweepMeta;
 use crate::analysis::classify::{ClassifyOptions, Response};
 use crate::analysis::orbit_diagram::{Continuation, Grid, Shard};

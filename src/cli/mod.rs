@@ -17,6 +17,7 @@ pub mod args;
 pub mod batch;
 pub mod bench;
 pub mod eng_args;
+pub mod error;
 pub mod fragility;
 pub mod interrupt;
 pub mod map;
@@ -167,7 +168,7 @@ impl Cli {
 
 impl Command {
     /// Runs the subcommand.
-    pub fn run(&self) -> Result<(), batch::BatchError> {
+    pub fn run(&self) -> Result<(), error::BatchError> {
         match self {
             Command::Sweep(args) if args.output.lyapunov => {
                 sweep::run_with(args, Some(&lyapunov::largest_for_scenario))
@@ -189,10 +190,10 @@ impl Command {
 
 /// Prints `error: …` for a failed command and returns its exit code
 /// ([`EXIT_BAD_INPUT`] or [`EXIT_RUN_FAILED`]).
-pub fn report(e: &batch::BatchError) -> i32 {
+pub fn report(e: &error::BatchError) -> i32 {
     let (e, code) = match e {
-        batch::BatchError::Input(e) => (e, EXIT_BAD_INPUT),
-        batch::BatchError::Run(e) => (e, EXIT_RUN_FAILED),
+        error::BatchError::Input(e) => (e, EXIT_BAD_INPUT),
+        error::BatchError::Run(e) => (e, EXIT_RUN_FAILED),
     };
     eprintln!("error: {e:#}");
     code

@@ -14,8 +14,8 @@ use std::time::Instant;
 use anyhow::{Context as _, anyhow};
 use serde_json::json;
 
-use super::batch::BatchError;
 use super::eng_args::{BaseArgs, Owns, flag_error, increasing, input, positive_list, search_ladder, show};
+use super::error::BatchError;
 use super::sweep::{progress_bar, progress_fn, thread_pool};
 use crate::analysis::engineering::BlockSize;
 use crate::analysis::engineering::Drive;

@@ -13,9 +13,10 @@ use std::time::Instant;
 
 use anyhow::{Context as _, anyhow};
 
-use super::batch::BatchError;
+use super::error::BatchError;
 use super::sweep::{progress_bar, progress_fn, thread_pool};
-use crate::io::output::{self, OutputError};
+use crate::io::output;
+use crate::io::output_error::OutputError;
 use crate::io::staging::Staging;
 use crate::reproduce::paper::parse_figure;
 use crate::reproduce::write::{Sink, write_all};

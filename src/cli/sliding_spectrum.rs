@@ -22,8 +22,8 @@ use anyhow::{Context as _, anyhow};
 use serde_json::{Value as Json, json};
 
 use super::args::SceneArgs;
-use super::batch::BatchError;
 use super::eng_args::{BaseArgs, Owns, RecordUnitArgs, block, input, positive_list, read_record, show};
+use super::error::BatchError;
 use super::pulse_map::MAX_OMEGA_RATIO;
 use super::spectrum::PulseArg;
 use super::sweep::{progress_bar, progress_fn, thread_pool};

@@ -20,11 +20,11 @@ use std::time::Instant;
 use anyhow::{Context as _, anyhow};
 use serde_json::{Value as Json, json};
 
-use super::batch::BatchError;
 use super::eng_args::{
     BaseArgs, Owns, RecordUnitArgs, VerticalArg, flag_error, increasing, input, positive_list, read_record,
     search_ladder, show,
 };
+use super::error::BatchError;
 use super::pulse_map::MAX_OMEGA_RATIO;
 use super::sweep::{progress_bar, progress_fn, thread_pool};
 use crate::analysis::engineering::overturn_scale::Failing as _;

@@ -19,8 +19,8 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{Context as _, anyhow};
 
-use super::batch::BatchError;
 use super::eng_args::input;
+use super::error::BatchError;
 use crate::io::record::RecordSpec;
 use crate::model::units::AccelUnit;
 

@@ -22,7 +22,7 @@ use indicatif::ProgressBar;
 use serde_json::{Value as Json, json};
 
 use super::args::{SceneArgs, StudyArgs, StudyOutput};
-use super::batch::BatchError;
+use super::error::BatchError;
 use crate::analysis::Progress;
 use crate::analysis::classify::{ClassifyOptions, Response};
 use crate::analysis::orbit_diagram::{BlockSweep, Continuation, Grid, Plan, Shard, block_sweep, response_ranges};

@@ -5,7 +5,7 @@ use std::path::Path;
 
 use anyhow::Context as _;
 
-use super::batch::BatchError;
+use super::error::BatchError;
 use crate::io::staging::Staging;
 use crate::plot::Figure;
 
@@ -23,7 +23,7 @@ pub fn staged(out: &Path, write: impl FnOnce(&mut Staging) -> anyhow::Result<()>
 /// full disk, a name too long, no permission: any I/O error, exit 2), or
 /// else of the computation that renders them (exit 1).
 pub fn output_error(e: anyhow::Error) -> BatchError {
-    use crate::io::output::OutputError;
+    use crate::io::output_error::OutputError;
     let io = e.chain().any(|c| {
         c.downcast_ref::<std::io::Error>().is_some()
             || matches!(

@@ -11,6 +11,7 @@ pub mod config;
 pub mod csv;
 pub mod engineering_files;
 pub mod output;
+pub mod output_error;
 pub mod presets;
 pub mod record;
 pub mod shipped;

@@ -15,6 +15,7 @@ use serde_json::json;
 
 use super::config::to_json;
 use super::csv::{self, Num, Row};
+use super::output_error::{OutputError, io_err};
 use super::staging::{self, Staging};
 use crate::model::geometry::G;
 use crate::model::system::EventRecord;
@@ -378,34 +379,6 @@ pub fn resolved_json(cfg: &Scenario) -> serde_json::Value {
             "tumble_theta": rotation(cfg.run.tumble_theta),
         },
     })
-}
-
-/// Errors writing outputs.
-#[derive(Debug, thiserror::Error)]
-pub enum OutputError {
-    /// A file system operation failed. The cause is in the message and
-    /// deliberately not a `source`, so that a chain printed on one line
-    /// says it once.
-    #[error("{path}: {error}")]
-    Io {
-        /// The path involved.
-        path: String,
-        /// The error.
-        error: std::io::Error,
-    },
-    /// The output path exists and is not a directory.
-    #[error("{0}: exists and is not a directory")]
-    NotADirectory(String),
-    /// A value to be written was not finite.
-    #[error("refusing to write a non-finite number to {0}")]
-    NonFinite(String),
-}
-
-fn io_err(path: &Path) -> impl FnOnce(std::io::Error) -> OutputError + '_ {
-    move |error| OutputError::Io {
-        path: path.display().to_string(),
-        error,
-    }
 }
 
 /// Checks that `dir` can be written, before a run starts: it is a

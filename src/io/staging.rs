@@ -14,7 +14,7 @@ use std::path::{Path, PathBuf};
 use std::sync::{Mutex, MutexGuard};
 
 use super::csv;
-use super::output::OutputError;
+use super::output_error::{OutputError, io_err};
 
 /// The folder `dir` is made in (`.` for a bare name), as written.
 pub fn parent_of(dir: &Path) -> PathBuf {
@@ -126,13 +126,6 @@ pub struct Staging {
     staging: PathBuf,
     names: Vec<String>,
     committed: bool,
-}
-
-fn io_err(path: &Path) -> impl FnOnce(std::io::Error) -> OutputError + '_ {
-    move |error| OutputError::Io {
-        path: path.display().to_string(),
-        error,
-    }
 }
 
 impl Staging {

@@ -8,13 +8,27 @@ use plotters::prelude::*;
 use super::marks::{Marker, shape};
 use super::ticks::{log_axis, tick_label};
 use super::{FONT, Figure, PlotError, axis_titles, titled};
-use crate::bench::Record;
 
-/// The records to draw and the scenes in panel order.
+/// One point of a work–precision curve, as the figure draws it: the
+/// benchmark (`bench`) measures it, the figure needs no more of it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct WorkPoint<'a> {
+    /// Scene name: the panel it is drawn in.
+    pub scene: &'a str,
+    /// Method name (`dop853`, `dopri5`, `ralston`, `taylor`): its line.
+    pub method: &'a str,
+    /// Median wall time of the repeats, s (x axis).
+    pub wall_s: f64,
+    /// Max-norm error of (Θ, Θ', X') at τ_end against the reference (y
+    /// axis).
+    pub error: f64,
+}
+
+/// The points to draw and the scenes in panel order.
 #[derive(Clone, Debug)]
 pub struct WorkPrecisionFigure<'a> {
-    /// Every record.
-    pub records: &'a [Record],
+    /// Every point.
+    pub points: &'a [WorkPoint<'a>],
     /// Scene names, one panel each.
     pub scenes: Vec<String>,
 }
@@ -51,7 +65,7 @@ impl Figure for WorkPrecisionFigure<'_> {
         let rows = self.scenes.len().div_ceil(cols).max(1);
         let panels = area.split_evenly((rows, cols));
         for (scene, panel) in self.scenes.iter().zip(panels.iter()) {
-            let recs: Vec<&Record> = self.records.iter().filter(|r| &r.scene == scene).collect();
+            let recs: Vec<&WorkPoint> = self.points.iter().filter(|r| r.scene == scene.as_str()).collect();
             let (x0, x1) = log_range(recs.iter().map(|r| r.wall_s));
             let (y0, y1) = log_range(recs.iter().map(|r| r.error.max(1e-16)));
             let mut chart = ChartBuilder::on(panel)
@@ -124,16 +138,11 @@ mod tests {
     fn narrow_log_axes_are_numbered_methods_have_their_own_markers_and_no_underscore_shows() {
         // Wall times within a factor of 3 and errors within a decade: no
         // power of ten inside either padded axis.
-        let record = |method: &str, wall_s: f64, error: f64| Record {
-            scene: "rack".into(),
-            method: method.into(),
-            setting: 1e-6,
+        let record = |method: &'static str, wall_s: f64, error: f64| WorkPoint {
+            scene: "rack",
+            method,
             wall_s,
-            rhs_evals: 1,
-            steps: 1,
             error,
-            impact_time_error: None,
-            impacts: 0,
         };
         let records = [
             record("dop853", 0.0021, 2.1e-7),
@@ -142,7 +151,7 @@ mod tests {
             record("dopri5", 0.0031, 4.1e-7),
         ];
         let fig = WorkPrecisionFigure {
-            records: &records,
+            points: &records,
             scenes: vec!["rack".into()],
         };
         let svg = fig.to_svg().unwrap();

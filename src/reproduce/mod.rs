@@ -39,7 +39,7 @@ use crate::analysis::classify::ClassifyOptions;
 use crate::analysis::orbit_diagram::Grid;
 use crate::analysis::steady::Window;
 use crate::analysis::{Progress, ProgressFn};
-use crate::io::output::OutputError;
+use crate::io::output_error::OutputError;
 use crate::plot::PlotError;
 use crate::sim::Scenario;
 use crate::sim::scenario::LawKind;

@@ -22,7 +22,7 @@ use crate::analysis::lyapunov::Lyapunov;
 use crate::analysis::orbit_diagram::Continuation;
 use crate::io::config::to_json;
 use crate::io::csv::{self, Num, Row};
-use crate::io::output::OutputError;
+use crate::io::output_error::OutputError;
 use crate::io::sweep_files::point_rows;
 use crate::plot::Figure;
 use crate::plot::bifurcation::BifurcationFigure;

@@ -11,7 +11,6 @@ pub mod catalogue;
 mod collect;
 pub mod job;
 pub mod method;
-pub mod param;
 pub mod protocol;
 mod run;
 pub mod runner;
@@ -19,10 +18,10 @@ pub mod scenario;
 mod validate;
 
 pub use answer::{EndState, Physical};
+pub use catalogue::Param;
 pub use collect::{HistoryRow, Keep, SectionRow, Sink, Tallies};
-pub use param::Param;
+pub use method::{Method, TAYLOR_DEFAULT_RTOL};
 pub use run::{
-    EnergyAudit, InitialState, Method, Outcome, RunOptions, RunResult, SimError, TAYLOR_DEFAULT_RTOL, initial_mode,
-    simulate, simulate_into,
+    EnergyAudit, InitialState, Outcome, RunOptions, RunResult, SimError, initial_mode, simulate, simulate_into,
 };
 pub use scenario::{Scenario, ScenarioError};

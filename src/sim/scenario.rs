@@ -18,7 +18,8 @@
 
 use std::path::PathBuf;
 
-use super::run::{InitialState, Method, RunOptions};
+use super::method::Method;
+use super::run::{InitialState, RunOptions};
 use crate::integrate::Tolerances;
 use crate::integrate::hybrid::Limits;
 use crate::model::excitation::record::Series;

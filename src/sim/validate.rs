@@ -2,9 +2,8 @@
 //! file's sections so that the first broken rule is the one reported. Every
 //! message names the key as the user writes it and says what is allowed.
 
-use super::catalogue::{self, KeySpec};
-use super::param::Param;
-use super::run::Method;
+use super::catalogue::{self, KeySpec, Param};
+use super::method::Method;
 use super::scenario::{
     ExcitationKind, MAX_FLOOR_PARTICIPATION, MAX_FLOOR_PERIOD_S, MAX_HISTORY_ROWS, MIN_FLOOR_PERIOD_S, MIN_PSI,
     MIN_SPECTRUM_SAMPLES, MU_K_LIMIT, PAPER_SPECTRUM_END, Scenario, ScenarioError, SpectrumRange,

@@ -188,7 +188,7 @@ fn short_name(param: &str) -> &str {
 
 /// The marker's value: four significant digits, as the sliders apply them.
 fn marker_text(v: f64) -> String {
-    crate::gui::panels::params::slider_text(v)
+    crate::gui::panels::slider::slider_text(v)
 }
 
 /// Where the marker's label sits against its line: to the right of it in

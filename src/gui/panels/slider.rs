@@ -4,9 +4,8 @@
 //! egui's own slider sets the value under the pointer, so pressing on it
 //! jumps the value to that pixel, and its travel ends where the rail
 //! ends. Here a drag adds `Δx × rate` to the value it started from (one
-//! [`SliderRange::step`] per point, or a
-//! [`FINE_DRAG`](super::params::FINE_DRAG)-th of it once Shift has been
-//! held during the drag), so a press that does not move leaves
+//! [`SliderRange::step`] per point, or a [`FINE_DRAG`]-th of it once Shift
+//! has been held during the drag), so a press that does not move leaves
 //! the value exactly as it was, and the value keeps moving while the
 //! pointer goes on past either end of the rail: only the slider's range
 //! limits it. The arrow keys step the focused slider by the same amounts.
@@ -14,7 +13,97 @@
 //! The widget knows nothing of the scene: it takes a value and returns
 //! the new one; the parameter panel validates and applies it.
 
-use super::params::SliderRange;
+/// The range of a key's slider: from `min` to `max` in the key's unit,
+/// on a logarithmic scale if `log`, and how far a point of drag or an
+/// arrow press moves it (`step`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SliderRange {
+    /// Left end.
+    pub min: f64,
+    /// Right end.
+    pub max: f64,
+    /// Logarithmic (for scales: sizes and frequencies).
+    pub log: bool,
+    /// What one point of a plain drag, or one arrow press, adds: in the
+    /// key's unit, or for a logarithmic slider the fraction of the value
+    /// (0.05: 5 %). A round number near the range over the 54 points the
+    /// handle travels, so that the handle nearly follows the pointer and
+    /// the tooltip can say the step.
+    pub step: f64,
+}
+
+/// How much finer a Shift-drag (and a Shift-arrow) moves a slider than a
+/// plain one: on A_v a point is 0.1 ψg, wider than the period-4 window
+/// of the paper's Fig. 4 (2.267–2.315 in this model); a twentieth of it,
+/// 0.005, puts about ten points in that window and one value (2.32)
+/// in the period-8 window (2.316–2.323), while the whole cascade from
+/// A_v = 1.6 still fits in one drag of about 150 points, on the screen
+/// at every presentation scale.
+pub const FINE_DRAG: f64 = 20.0;
+
+impl SliderRange {
+    /// The step of a plain or a fine move ([`SliderRange::step`], or a
+    /// [`FINE_DRAG`]-th of it).
+    pub fn step_of(&self, fine: bool) -> f64 {
+        if fine { self.step / FINE_DRAG } else { self.step }
+    }
+
+    /// `value` moved by `points` points of drag (or arrow presses; may be
+    /// fractional or negative), plain or `fine`, and kept on the range:
+    /// the range widened to take `start`, the value the move began from,
+    /// so that a value typed beyond the rail stays where it is until the
+    /// move heads back.
+    pub fn moved(&self, value: f64, points: f64, fine: bool, start: f64) -> f64 {
+        let step = self.step_of(fine);
+        let v = if self.log && value > 0.0 {
+            value * (1.0 + step).powf(points)
+        } else {
+            value + points * step
+        };
+        v.clamp(self.min.min(start), self.max.max(start))
+    }
+
+    /// Where `value` sits along the rail, from 0 (left end) to 1 (right
+    /// end), on the rail's own scale; a value beyond the range sits at the
+    /// nearer end.
+    pub fn place(&self, value: f64) -> f64 {
+        let f = if self.log && self.min > 0.0 && value > 0.0 {
+            (value / self.min).ln() / (self.max / self.min).ln()
+        } else {
+            (value - self.min) / (self.max - self.min)
+        };
+        if f.is_nan() { 0.0 } else { f.clamp(0.0, 1.0) }
+    }
+
+    /// A step as the tooltip says it: `0.1 ψg`, or `5 %` on a
+    /// logarithmic slider.
+    pub fn step_text(&self, fine: bool, unit: &str) -> String {
+        let step = self.step_of(fine);
+        if self.log {
+            format!("{} %", slider_text(100.0 * step))
+        } else if unit.is_empty() {
+            slider_text(step)
+        } else {
+            format!("{} {unit}", slider_text(step))
+        }
+    }
+}
+
+/// A slider's value as the text to apply: four significant digits, which
+/// is finer than a pixel of any slider and keeps the scene's numbers
+/// readable.
+pub fn slider_text(v: f64) -> String {
+    if v == 0.0 || !v.is_finite() {
+        return "0".to_string();
+    }
+    let digits = (3 - v.abs().log10().floor() as i32).clamp(0, 15) as usize;
+    let text = format!("{v:.digits$}");
+    if text.contains('.') {
+        text.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        text
+    }
+}
 
 /// A drag in progress: the unrounded value it has reached, the value it
 /// began from, where the pointer was last frame (points), and whether

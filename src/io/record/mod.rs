@@ -34,6 +34,8 @@ mod esm;
 #[cfg(test)]
 mod real_files;
 #[cfg(test)]
+mod test_helpers;
+#[cfg(test)]
 mod tests;
 #[cfg(test)]
 mod written_files;

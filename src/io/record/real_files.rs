@@ -7,7 +7,7 @@
 //! numbers by a reader written in the test. The format and refusal
 //! properties are tested on written files, in `written_files`.
 
-use super::written_files::{channel, peak_and_time};
+use super::test_helpers::{channel, peak_and_time, raw_channel};
 use super::*;
 
 /// Where the real COSMOS files are placed.
@@ -29,56 +29,6 @@ fn path_of(name: &str) -> std::path::PathBuf {
 fn text_of(name: &str) -> String {
     let path = path_of(name);
     std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
-}
-
-/// The test's own reading of a COSMOS channel, by the header layout the
-/// format fixes and by whitespace: the data line's count, the real
-/// header's sampling interval (value 62, ms), peak (64) and its time (65),
-/// and the values.
-pub(super) struct Raw {
-    pub count: usize,
-    pub step_ms: f64,
-    pub peak: f64,
-    pub peak_time_s: f64,
-    pub values: Vec<f64>,
-}
-
-pub(super) fn raw_channel(text: &str, k: usize) -> Raw {
-    let lines: Vec<&str> = text.lines().collect();
-    let start = lines
-        .iter()
-        .enumerate()
-        .filter(|(_, l)| l.contains("(Format v"))
-        .nth(k - 1)
-        .unwrap()
-        .0;
-    let real_at = start + lines[start..].iter().position(|l| l.contains("Real-header")).unwrap();
-    let real_lines: usize = lines[real_at].split_whitespace().nth(5).unwrap().parse().unwrap();
-    let reals: Vec<f64> = lines[real_at + 1..=real_at + real_lines]
-        .iter()
-        .flat_map(|l| l.split_whitespace().map(|v| v.parse::<f64>().unwrap()))
-        .collect();
-    let data_at = start
-        + lines[start..]
-            .iter()
-            .position(|l| l.contains("acceleration pts"))
-            .unwrap();
-    let count: usize = lines[data_at].split_whitespace().next().unwrap().parse().unwrap();
-    let values: Vec<f64> = lines[data_at + 1..]
-        .iter()
-        .flat_map(|l| l.split_whitespace())
-        .take(count)
-        // NaN for glued values, which whitespace cannot part: NaN equals
-        // nothing, so a comparison with them fails.
-        .map(|v| v.parse().unwrap_or(f64::NAN))
-        .collect();
-    Raw {
-        count,
-        step_ms: reals[61],
-        peak: reals[63],
-        peak_time_s: reals[64],
-        values,
-    }
 }
 
 #[test]

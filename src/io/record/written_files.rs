@@ -7,31 +7,13 @@
 //! the part it concerns.
 
 use super::cosmos_text::{Channel, ChannelLines, CosmosText, Fortran, UNKNOWN, cosmos_file, damped_sine};
+use super::test_helpers::{channel, peak_and_time, raw_channel};
 use super::*;
 
 /// Reads `content` as a file named `name` (its extension chooses the
 /// format), as [`read_record_as`] reads a file.
 pub(super) fn read_text(name: &str, content: &str, spec: RecordSpec) -> Result<LoadedRecord, RecordError> {
     read_record_bytes(name, content.as_bytes(), &spec)
-}
-
-/// A spec stating only the channel, 1-based.
-pub(super) fn channel(k: usize) -> RecordSpec {
-    RecordSpec {
-        channel: Some(k),
-        ..RecordSpec::default()
-    }
-}
-
-/// The largest |a| of a series as read, and its time.
-pub(super) fn peak_and_time(series: &Series) -> (f64, f64) {
-    let (k, a) = series
-        .accel_g()
-        .iter()
-        .enumerate()
-        .max_by(|a, b| a.1.abs().total_cmp(&b.1.abs()))
-        .unwrap();
-    (*a, series.times_s()[k])
 }
 
 /// The index of the largest |a| of an analytic sequence, and by how much
@@ -142,7 +124,7 @@ fn the_written_headers_read_by_the_real_files_own_parser_give_what_was_written()
     let (channels, file) = three_channels();
     let text = file.text.replace('\r', "");
     for (k, c) in channels.iter().enumerate() {
-        let raw = super::real_files::raw_channel(&text, k + 1);
+        let raw = raw_channel(&text, k + 1);
         assert_eq!(raw.count, c.values.len());
         assert_eq!(raw.step_ms, c.step_ms);
         let (i, _) = analytic_peak(&c.values);

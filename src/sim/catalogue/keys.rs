@@ -1,8 +1,8 @@
 //! The table of every config key, in the config file's order (sections as
 //! a config file writes them; messages list known keys in this order).
 
+use super::Param;
 use super::{Applies, Group, KeySpec, Range, Slot, Span, Value};
-use crate::sim::param::Param;
 use crate::sim::scenario::{AMPLITUDE_LIMIT, ExcitationKind as K, MAX_SIZE_M, MIN_SIZE_M};
 
 const fn at(group: Group, order: u8) -> Option<Slot> {

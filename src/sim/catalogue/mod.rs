@@ -16,11 +16,12 @@
 
 mod dimension;
 mod keys;
+mod param;
 
 pub use dimension::Dimension;
 pub use keys::CATALOGUE;
+pub use param::Param;
 
-use super::param::Param;
 use super::scenario::ExcitationKind;
 
 /// What a key's value is.

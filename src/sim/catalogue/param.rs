@@ -10,7 +10,7 @@
 //! impact friction) fixes it; setting the one it follows moves it while it
 //! is unset, exactly as writing the key in a config file would.
 
-use super::scenario::Scenario;
+use crate::sim::scenario::Scenario;
 
 /// A numeric parameter of a scenario. Units are those of its config key.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -109,7 +109,7 @@ impl Param {
     /// The config key it is written and shown as, e.g. `excitation.a_v`:
     /// its entry's in the catalogue, where the key is declared.
     pub fn key(self) -> &'static str {
-        super::catalogue::spec_of(self).key
+        super::spec_of(self).key
     }
 
     /// Sets the parameter (no validation: call [`Scenario::validate`]).
@@ -177,7 +177,7 @@ impl Param {
     }
 
     /// The scenario `base` with each `(param, value)` set, validated.
-    pub fn apply(base: &Scenario, assignments: &[(Param, f64)]) -> Result<Scenario, super::ScenarioError> {
+    pub fn apply(base: &Scenario, assignments: &[(Param, f64)]) -> Result<Scenario, crate::sim::ScenarioError> {
         let mut s = base.clone();
         for &(p, v) in assignments {
             p.set(&mut s, v);
