@@ -17,6 +17,7 @@ pub mod args;
 pub mod batch;
 pub mod bench;
 pub mod eng_args;
+pub mod flags;
 pub mod fragility;
 pub mod interrupt;
 pub mod map;
