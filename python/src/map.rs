@@ -83,7 +83,12 @@ impl Checked {
     /// in Python's keywords).
     fn failure(&self, index: usize, error: &SteadyError) -> String {
         let (x, y) = self.xy(index);
-        format!("{} = {x}, {} = {y}: {}", self.x.key, self.y.key, error.render(&Keywords))
+        format!(
+            "{} = {x}, {} = {y}: {}",
+            self.x.key,
+            self.y.key,
+            error.render(&Keywords)
+        )
     }
 }
 

@@ -213,7 +213,9 @@ impl PlanError {
                     ShardRule::NotKOverN => "expected K/N, e.g. 0/4 (K counts from 0)".to_string(),
                     ShardRule::NotIntegers => "expected K/N with non-negative integers, e.g. 0/4".to_string(),
                     ShardRule::NoShards => "N must be >= 1".to_string(),
-                    ShardRule::IndexTooLarge(count) => format!("K must be < N (K counts from 0: 0..={})", count.saturating_sub(1)),
+                    ShardRule::IndexTooLarge(count) => {
+                        format!("K must be < N (K counts from 0: 0..={})", count.saturating_sub(1))
+                    }
                 };
                 format!("{}: {what}", names.valued(StudyField::Shard, text))
             }

@@ -540,7 +540,10 @@ mod tests {
         );
         // 1 and its successor: no room for a third value between them.
         let next = f64::from_bits(1f64.to_bits() + 1);
-        assert_eq!(rule(Axis::new("x", "k", 1.0, next, 3).unwrap_err()), AxisRule::NotDistinct);
+        assert_eq!(
+            rule(Axis::new("x", "k", 1.0, next, 3).unwrap_err()),
+            AxisRule::NotDistinct
+        );
         // The caller's name for the axis, then the axis as given.
         assert_eq!(
             Axis::new("y", "k", 1.0, 1.0, 3).unwrap_err().to_string(),

@@ -113,11 +113,7 @@ impl WindowError {
         match *self {
             WindowError::Transient(v) => format!("{}: must be finite and >= 0", transient(v)),
             WindowError::TauEnd(v) => format!("{}: must be finite and <= 1e9", tau_end(v)),
-            WindowError::Empty(w) => format!(
-                "{}: must be larger than {}",
-                tau_end(w.tau_end),
-                transient(w.transient)
-            ),
+            WindowError::Empty(w) => format!("{}: must be larger than {}", tau_end(w.tau_end), transient(w.transient)),
             WindowError::TooFewPoints {
                 window,
                 forcing_period,
@@ -342,7 +338,10 @@ mod tests {
         };
         let e = SteadyError::from(w.validate().unwrap_err());
         assert_eq!(e.render(&Loud), "TAU_END:=700: must be larger than TRANSIENT:=800");
-        assert_eq!(SteadyError::NotHarmonic.render(&Loud), SteadyError::NotHarmonic.to_string());
+        assert_eq!(
+            SteadyError::NotHarmonic.render(&Loud),
+            SteadyError::NotHarmonic.to_string()
+        );
     }
 
     #[test]

@@ -48,7 +48,10 @@ mod tests {
             plan(Grid::new(1.0, 0.0, 0.1).unwrap_err()),
             "--to 0.0: must be >= --from 1"
         );
-        assert_eq!(plan(Grid::new(f64::NAN, 0.0, 0.1).unwrap_err()), "--from NaN: must be finite");
+        assert_eq!(
+            plan(Grid::new(f64::NAN, 0.0, 0.1).unwrap_err()),
+            "--from NaN: must be finite"
+        );
         assert_eq!(
             plan(Shard::parse("x").unwrap_err()),
             "--shard x: expected K/N, e.g. 0/4 (K counts from 0)"

@@ -172,8 +172,16 @@ pub fn run_with(args: &MapArgs, lyapunov: Option<&LyapunovFn<'_>>) -> Result<(),
         classify: ClassifyOptions::default(),
         lyapunov,
     };
-    spec.check()
-        .map_err(|e| input(anyhow!("--x {} = {}, --y {} = {}: {}", x.key, e.x, y.key, e.y, e.error.render(&Flags))))?;
+    spec.check().map_err(|e| {
+        input(anyhow!(
+            "--x {} = {}, --y {} = {}: {}",
+            x.key,
+            e.x,
+            y.key,
+            e.y,
+            e.error.render(&Flags)
+        ))
+    })?;
     let pool = thread_pool(args.study.threads)?;
     output::check_writable(&args.output.out)
         .with_context(|| "--out: cannot write the output directory".to_string())

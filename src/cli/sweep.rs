@@ -233,7 +233,12 @@ fn prepare(args: &SweepArgs) -> Result<Prepared, BatchError> {
         )));
     }
     let grid = Grid::new(args.from, args.to, args.step).map_err(plan_input)?;
-    let shard = args.shard.as_deref().map(Shard::parse).transpose().map_err(plan_input)?;
+    let shard = args
+        .shard
+        .as_deref()
+        .map(Shard::parse)
+        .transpose()
+        .map_err(plan_input)?;
     let plan = Plan::new(grid, continuation, shard).map_err(plan_input)?;
     let mut config = base.clone();
     let window = args.study.window(&base).map_err(|e| input(anyhow::anyhow!(e)))?;
