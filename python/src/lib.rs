@@ -16,6 +16,7 @@ mod interrupt;
 mod keys;
 mod map;
 mod memory;
+mod names;
 mod scene;
 mod simulate;
 mod sliding;

@@ -20,11 +20,12 @@ use rayon::prelude::*;
 use rocking::analysis::classify::{ClassifyOptions, Response};
 use rocking::analysis::outcome_map::{Axis, BlockMap, COARSE_CELLS, MapPlan, MapRun, OutcomeMap};
 use rocking::analysis::settle::CellResponse;
-use rocking::analysis::steady::Window;
+use rocking::analysis::steady::{SteadyError, Window};
 use rocking::io::config;
 use rocking::sim::{Param, Scenario};
 
 use crate::errors::{MAP_ARGS, key_error, with_python_args};
+use crate::names::Keywords;
 use crate::scene::Scene;
 use crate::study::{Stop, Workers, checkpoint, input, lyapunov_hook, response_columns, window};
 
@@ -36,12 +37,13 @@ fn chunk_cells(workers: &Workers) -> usize {
 }
 
 /// One axis from its key, first and last value and count, checked as
-/// `rocking map` checks `--x`/`--y`.
-fn axis(flag: &str, spec: (String, f64, f64, i64)) -> PyResult<(Axis, Param)> {
+/// `rocking map` checks `--x`/`--y`; `keyword` (`x`, `y`) names it in the
+/// axis's own errors.
+fn axis(flag: &str, keyword: &str, spec: (String, f64, f64, i64)) -> PyResult<(Axis, Param)> {
     let (key, a, b, n) = spec;
     let param = config::param(&key).map_err(|e| key_error(&key, format!("{flag} {e}")))?;
     let n = usize::try_from(n).map_err(|_| input(format!("{flag} {key}: N = '{n}' is not a positive integer")))?;
-    let axis = Axis::new(flag, &key, a, b, n).map_err(input)?;
+    let axis = Axis::new(keyword, &key, a, b, n).map_err(input)?;
     Ok((axis, param))
 }
 
@@ -77,10 +79,16 @@ impl Checked {
         (self.x.value(index % self.x.n), self.y.value(index / self.x.n))
     }
 
-    /// The message of a failed cell, as `rocking map` prints it.
-    fn failure(&self, index: usize, error: impl std::fmt::Display) -> String {
+    /// The message of a failed cell, as `rocking map` prints it (a window
+    /// in Python's keywords).
+    fn failure(&self, index: usize, error: &SteadyError) -> String {
         let (x, y) = self.xy(index);
-        format!("{} = {x}, {} = {y}: {error}", self.x.key, self.y.key)
+        format!(
+            "{} = {x}, {} = {y}: {}",
+            self.x.key,
+            self.y.key,
+            error.render(&Keywords)
+        )
     }
 }
 
@@ -114,8 +122,8 @@ fn check(
     coarse: i64,
     every_cell: bool,
 ) -> PyResult<Checked> {
-    let (x, x_param) = axis("--x", x)?;
-    let (y, y_param) = axis("--y", y)?;
+    let (x, x_param) = axis("--x", "x", x)?;
+    let (y, y_param) = axis("--y", "y", y)?;
     if x_param == y_param {
         return Err(key_error(
             &y.key,
@@ -145,7 +153,11 @@ fn check(
         checked.spec(base).check().map_err(|e| {
             input(format!(
                 "--x {} = {}, --y {} = {}: {}",
-                checked.x.key, e.x, checked.y.key, e.y, e.error
+                checked.x.key,
+                e.x,
+                checked.y.key,
+                e.y,
+                e.error.render(&Keywords)
             ))
         })?;
     }
@@ -157,7 +169,7 @@ fn check(
 fn compute(checked: &Checked, spec: &BlockMap<'_>, index: usize) -> Result<CellResponse, String> {
     let (x, y) = checked.xy(index);
     spec.cell(x, y, checked.plan.early_stop)
-        .map_err(|e| checked.failure(index, e))
+        .map_err(|e| checked.failure(index, &e))
 }
 
 /// Where a map's cells are computed.
@@ -238,7 +250,7 @@ fn local_batch(
     for indices in todo.chunks(chunk_cells(workers)) {
         let chunk = workers.run(|| {
             Chunk::compute(indices, |index| {
-                run.compute(index).map_err(|e| checked.failure(index, e))
+                run.compute(index).map_err(|e| checked.failure(index, &e))
             })
         });
         if let Some((_, message)) = chunk.failed {
@@ -536,7 +548,7 @@ pub fn _outcome_map<'py>(
                         e.x,
                         checked.y.key,
                         e.y,
-                        e.error
+                        e.error.render(&Keywords)
                     ))
                 })
             })

@@ -15,7 +15,7 @@ use pyo3::types::PyDict;
 use rocking::analysis::classify::{ClassifyOptions, Response};
 use rocking::analysis::lyapunov::largest_for_scenario;
 use rocking::analysis::orbit_diagram::{
-    BifurcationValue, BlockSweep, Continuation, Grid, Plan, Shard, SweepError, block_sweep,
+    BifurcationValue, BlockSweep, Continuation, Grid, Plan, PlanError, Shard, SweepError, block_sweep,
 };
 use rocking::analysis::silent;
 use rocking::analysis::steady::{LyapunovFn, SteadyError, Window, steady_response};
@@ -23,6 +23,7 @@ use rocking::io::config;
 use rocking::sim::{InitialState, Param, Scenario};
 
 use crate::errors::{SWEEP_ARGS, config_error, key_error, run_error, with_python_args};
+use crate::names::Keywords;
 use crate::scene::Scene;
 
 /// Most worker threads per core, as the CLI allows (`--threads`).
@@ -101,7 +102,7 @@ pub fn window(base: &Scenario, transient: f64, tau_end: Option<f64>) -> PyResult
         transient,
         tau_end: tau_end.unwrap_or(base.run.tau_end),
     };
-    w.validate().map_err(input)?;
+    w.validate().map_err(|e| input(e.render(&Keywords)))?;
     Ok(w)
 }
 
@@ -163,12 +164,13 @@ fn sweep_plan<'a>(
             ),
         ));
     }
-    let grid = Grid::new(start, stop, step).map_err(input)?;
+    let plan_input = |e: PlanError| input(e.render(&Keywords));
+    let grid = Grid::new(start, stop, step).map_err(plan_input)?;
     let shard = shard
         .map(|(k, n)| Shard::parse(&format!("{k}/{n}")))
         .transpose()
-        .map_err(input)?;
-    let plan = Plan::new(grid, cont, shard).map_err(input)?;
+        .map_err(plan_input)?;
+    let plan = Plan::new(grid, cont, shard).map_err(plan_input)?;
     let window = window(base, transient, tau_end)?;
     let spec = BlockSweep {
         base,
@@ -180,7 +182,7 @@ fn sweep_plan<'a>(
     spec.scenarios(&plan).map_err(|e| {
         key_error(
             param.key(),
-            format!("--param {} = {}: {}", param.key(), e.value, e.error),
+            format!("--param {} = {}: {}", param.key(), e.value, e.error.render(&Keywords)),
         )
     })?;
     Ok(SweepPlan { spec, plan })
@@ -205,7 +207,7 @@ impl Stop {
 
 /// The message of a failed sweep value, as the CLI prints it.
 fn sweep_failure(param: Param, e: &SweepError<SteadyError>) -> Stop {
-    Stop::Failed(anyhow!("{} = {}: {}", param.key(), e.value, e.error))
+    Stop::Failed(anyhow!("{} = {}: {}", param.key(), e.value, e.error.render(&Keywords)))
 }
 
 /// The values of `sp` with their grid indices, in index order. Without

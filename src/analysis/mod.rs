@@ -25,6 +25,7 @@
 pub mod attractor;
 pub mod classify;
 pub mod engineering;
+pub mod field;
 pub mod lyapunov;
 pub mod map_refine;
 pub mod orbit_diagram;

@@ -38,6 +38,7 @@
 use rayon::prelude::*;
 
 use super::classify::{ClassifyOptions, Response};
+use super::field::{FieldNames, OwnNames, StudyField};
 use super::steady::{LyapunovFn, SteadyError, Window, check_scenario, steady_response};
 use super::{Progress, ProgressFn};
 use crate::sim::{InitialState, Param, Scenario, SectionRow};
@@ -104,33 +105,134 @@ impl Decimal {
     }
 }
 
-/// Errors in a sweep's or map's definition, each naming the CLI flag.
-#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+/// Errors in a sweep's or map's definition, naming the input at fault by
+/// meaning ([`StudyField`], or the caller's name of a map axis);
+/// [`PlanError::render`] words them for a surface.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[error("{}", self.render(&OwnNames))]
 pub enum PlanError {
-    /// A flag's value is not allowed: `--step 0: must be finite and > 0`.
-    #[error("{flag} {value}: {message}")]
-    Flag {
-        /// The flag, e.g. `--step`.
-        flag: String,
-        /// Its value as given.
-        value: String,
-        /// What is allowed.
-        message: String,
+    /// A grid value is not allowed.
+    Grid {
+        /// `From`, `To` or `Step`.
+        field: StudyField,
+        /// Its value.
+        value: f64,
+        /// What is wrong with it.
+        rule: GridRule,
+    },
+    /// A shard that is not `K/N` with 0 ≤ K < N.
+    Shard {
+        /// The shard as given.
+        text: String,
+        /// What is wrong with it.
+        rule: ShardRule,
+    },
+    /// A map axis that is not allowed.
+    Axis {
+        /// The axis as its caller names it (the CLI `--x`, Python `x`).
+        name: String,
+        /// Its key, first and last value and count, as given.
+        given: String,
+        /// What is wrong with it.
+        rule: AxisRule,
     },
     /// Shards of a continuation sweep, whose values depend on each other.
-    #[error(
-        "--shard cannot be combined with --continuation {0}: each value is seeded from the previous one, so the values cannot be split"
-    )]
-    ShardedContinuation(&'static str),
+    ShardedContinuation(Continuation),
+}
+
+/// Why a [`Grid`] value is refused.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum GridRule {
+    /// Not finite.
+    NotFinite,
+    /// The step is not finite or not > 0.
+    NotPositive,
+    /// `to` is below `from` (the value here).
+    BelowFrom(f64),
+    /// The step gives more than [`MAX_VALUES`] values.
+    TooMany,
+    /// The step is below the values' resolution: values `index − 1` and
+    /// `index` are both `value`.
+    BelowResolution {
+        /// The later of the two equal values' index.
+        index: usize,
+        /// Their value.
+        value: f64,
+    },
+}
+
+/// Why a [`Shard`] is refused.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ShardRule {
+    /// No `/`.
+    NotKOverN,
+    /// K or N is not a non-negative integer.
+    NotIntegers,
+    /// N = 0.
+    NoShards,
+    /// K ≥ N (the N here).
+    IndexTooLarge(usize),
+}
+
+/// Why a map [`Axis`](super::outcome_map::Axis) is refused.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum AxisRule {
+    /// A or B is not finite.
+    NotFinite,
+    /// N is 0 or above [`MAX_AXIS_POINTS`](super::outcome_map::MAX_AXIS_POINTS).
+    Count,
+    /// A ≥ B with N > 1.
+    Order,
+    /// A and B too close for N distinct values.
+    NotDistinct,
 }
 
 impl PlanError {
-    /// `flag value: message`.
-    pub fn flag(flag: &str, value: impl std::fmt::Display, message: impl std::fmt::Display) -> Self {
-        Self::Flag {
-            flag: flag.to_string(),
-            value: value.to_string(),
-            message: message.to_string(),
+    /// The one-line message with the inputs named by `names`.
+    pub fn render(&self, names: &impl FieldNames) -> String {
+        match self {
+            PlanError::Grid { field, value, rule } => {
+                // Debug formatting: 1.5e-16 as written, not as 0.00000000000000015.
+                let given = names.valued(*field, &format!("{value:?}"));
+                let what = match *rule {
+                    GridRule::NotFinite => "must be finite".to_string(),
+                    GridRule::NotPositive => "must be finite and > 0".to_string(),
+                    GridRule::BelowFrom(from) => {
+                        format!("must be >= {}", names.valued(StudyField::From, &from.to_string()))
+                    }
+                    GridRule::TooMany => format!("gives more than {MAX_VALUES} values"),
+                    GridRule::BelowResolution { index, value } => format!(
+                        "is below the resolution of the values near {value:?}: values {} and {index} are both {value:?}",
+                        index.saturating_sub(1)
+                    ),
+                };
+                format!("{given}: {what}")
+            }
+            PlanError::Shard { text, rule } => {
+                let what = match *rule {
+                    ShardRule::NotKOverN => "expected K/N, e.g. 0/4 (K counts from 0)".to_string(),
+                    ShardRule::NotIntegers => "expected K/N with non-negative integers, e.g. 0/4".to_string(),
+                    ShardRule::NoShards => "N must be >= 1".to_string(),
+                    ShardRule::IndexTooLarge(count) => {
+                        format!("K must be < N (K counts from 0: 0..={})", count.saturating_sub(1))
+                    }
+                };
+                format!("{}: {what}", names.valued(StudyField::Shard, text))
+            }
+            PlanError::Axis { name, given, rule } => {
+                let what = match rule {
+                    AxisRule::NotFinite => "A and B must be finite".to_string(),
+                    AxisRule::Count => format!("N must be in 1..={}", super::outcome_map::MAX_AXIS_POINTS),
+                    AxisRule::Order => "A must be < B when N > 1".to_string(),
+                    AxisRule::NotDistinct => "the values must be distinct (A and B too close for N points)".to_string(),
+                };
+                format!("{name} {given}: {what}")
+            }
+            PlanError::ShardedContinuation(c) => format!(
+                "{} cannot be combined with {}: each value is seeded from the previous one, so the values cannot be split",
+                names.name(StudyField::Shard),
+                names.valued(StudyField::Continuation, c.name())
+            ),
         }
     }
 }
@@ -138,24 +240,23 @@ impl PlanError {
 impl Grid {
     /// Validates and counts the values.
     pub fn new(from: f64, to: f64, step: f64) -> Result<Self, PlanError> {
-        // Debug formatting: 1.5e-16 as written, not as 0.00000000000000015.
-        let bad = |flag: &str, v: f64, what: &str| Err(PlanError::flag(flag, format!("{v:?}"), what));
+        let bad = |field, value, rule| Err(PlanError::Grid { field, value, rule });
         if !from.is_finite() {
-            return bad("--from", from, "must be finite");
+            return bad(StudyField::From, from, GridRule::NotFinite);
         }
         if !to.is_finite() {
-            return bad("--to", to, "must be finite");
+            return bad(StudyField::To, to, GridRule::NotFinite);
         }
         if !step.is_finite() || step <= 0.0 {
-            return bad("--step", step, "must be finite and > 0");
+            return bad(StudyField::Step, step, GridRule::NotPositive);
         }
         if to < from {
-            return bad("--to", to, &format!("must be >= --from {from}"));
+            return bad(StudyField::To, to, GridRule::BelowFrom(from));
         }
         // The last index is the largest i with from + i·step < to + step/2.
         let n = ((to - from) / step - 0.5).ceil().max(0.0);
         if n.partial_cmp(&(MAX_VALUES as f64)) != Some(std::cmp::Ordering::Less) {
-            return bad("--step", step, &format!("gives more than {MAX_VALUES} values"));
+            return bad(StudyField::Step, step, GridRule::TooMany);
         }
         let count = n as usize + 1;
         let grid = Self {
@@ -168,18 +269,9 @@ impl Grid {
         // Distinct values are needed to tell them apart in the outputs: every
         // value must exceed the one before it once rounded to an f64 (a step
         // near the values' resolution rounds some pairs together).
-        if let Some(i) = (1..count).find(|&i| grid.value(i) <= grid.value(i - 1)) {
-            return bad(
-                "--step",
-                step,
-                &format!(
-                    "is below the resolution of the values near {:?}: values {} and {} are both {:?}",
-                    grid.value(i),
-                    i - 1,
-                    i,
-                    grid.value(i)
-                ),
-            );
+        if let Some(index) = (1..count).find(|&i| grid.value(i) <= grid.value(i - 1)) {
+            let value = grid.value(index);
+            return bad(StudyField::Step, step, GridRule::BelowResolution { index, value });
         }
         Ok(grid)
     }
@@ -235,18 +327,23 @@ pub struct Shard {
 impl Shard {
     /// Parses `K/N` (0 ≤ K < N).
     pub fn parse(text: &str) -> Result<Self, PlanError> {
-        let bad = |what: &str| Err(PlanError::flag("--shard", text, what));
+        let bad = |rule| {
+            Err(PlanError::Shard {
+                text: text.to_string(),
+                rule,
+            })
+        };
         let Some((k, n)) = text.split_once('/') else {
-            return bad("expected K/N, e.g. 0/4 (K counts from 0)");
+            return bad(ShardRule::NotKOverN);
         };
         let (Ok(index), Ok(count)) = (k.trim().parse::<usize>(), n.trim().parse::<usize>()) else {
-            return bad("expected K/N with non-negative integers, e.g. 0/4");
+            return bad(ShardRule::NotIntegers);
         };
         if count == 0 {
-            return bad("N must be >= 1");
+            return bad(ShardRule::NoShards);
         }
         if index >= count {
-            return bad(&format!("K must be < N (K counts from 0: 0..={})", count - 1));
+            return bad(ShardRule::IndexTooLarge(count));
         }
         Ok(Self { index, count })
     }
@@ -267,7 +364,7 @@ impl Plan {
     /// A plan; sharding a continuation sweep is an error.
     pub fn new(grid: Grid, continuation: Continuation, shard: Option<Shard>) -> Result<Self, PlanError> {
         if shard.is_some() && continuation != Continuation::None {
-            return Err(PlanError::ShardedContinuation(continuation.name()));
+            return Err(PlanError::ShardedContinuation(continuation));
         }
         Ok(Self {
             grid,
@@ -488,19 +585,31 @@ mod tests {
         assert_eq!(Grid::new(0.0, 1.0, 0.6).unwrap().count, 3);
         assert_eq!(Grid::new(0.0, 0.3, 1.0).unwrap().count, 1);
         assert_eq!(Grid::new(1.0, 1.0, 0.5).unwrap().count, 1);
-        assert!(Grid::new(0.0, 1.0, 0.0).unwrap_err().to_string().starts_with("--step"));
-        assert!(Grid::new(1.0, 0.0, 0.1).unwrap_err().to_string().starts_with("--to"));
-        assert!(
-            Grid::new(f64::NAN, 0.0, 0.1)
-                .unwrap_err()
-                .to_string()
-                .starts_with("--from")
+        let field = |e: PlanError| match e {
+            PlanError::Grid { field, rule, .. } => (field, rule),
+            other => panic!("not a grid error: {other}"),
+        };
+        assert_eq!(
+            field(Grid::new(0.0, 1.0, 0.0).unwrap_err()),
+            (StudyField::Step, GridRule::NotPositive)
         );
-        assert!(
-            Grid::new(1e20, 2e20, 1.0)
-                .unwrap_err()
-                .to_string()
-                .starts_with("--step")
+        assert_eq!(
+            field(Grid::new(1.0, 0.0, 0.1).unwrap_err()),
+            (StudyField::To, GridRule::BelowFrom(1.0))
+        );
+        assert_eq!(
+            field(Grid::new(f64::NAN, 0.0, 0.1).unwrap_err()),
+            (StudyField::From, GridRule::NotFinite)
+        );
+        // (2e20 − 1e20)/1 = 1e20 values, far above MAX_VALUES.
+        assert!(1e20 > MAX_VALUES as f64);
+        assert_eq!(
+            field(Grid::new(1e20, 2e20, 1.0).unwrap_err()),
+            (StudyField::Step, GridRule::TooMany)
+        );
+        assert_eq!(
+            Grid::new(1.0, 0.0, 0.1).unwrap_err().to_string(),
+            "to = 0.0: must be >= from = 1"
         );
     }
 
@@ -533,13 +642,26 @@ mod tests {
         all.sort_unstable();
         assert_eq!(all, (0..11).collect::<Vec<_>>());
         assert_eq!(Shard::parse("1/4").unwrap(), Shard { index: 1, count: 4 });
-        for bad in ["4/4", "1", "a/2", "0/0", "-1/3"] {
-            assert!(
-                Shard::parse(bad).unwrap_err().to_string().starts_with("--shard"),
+        for (bad, rule) in [
+            ("4/4", ShardRule::IndexTooLarge(4)),
+            ("1", ShardRule::NotKOverN),
+            ("a/2", ShardRule::NotIntegers),
+            ("0/0", ShardRule::NoShards),
+            ("-1/3", ShardRule::NotIntegers),
+        ] {
+            assert_eq!(
+                Shard::parse(bad),
+                Err(PlanError::Shard {
+                    text: bad.to_string(),
+                    rule
+                }),
                 "{bad}"
             );
         }
-        assert!(Plan::new(g, Continuation::Up, Some(Shard { index: 0, count: 2 })).is_err());
+        assert_eq!(
+            Plan::new(g, Continuation::Up, Some(Shard { index: 0, count: 2 })),
+            Err(PlanError::ShardedContinuation(Continuation::Up))
+        );
     }
 
     #[test]

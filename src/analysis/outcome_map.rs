@@ -17,7 +17,7 @@ use rayon::prelude::*;
 use super::attractor::{Attractor, Catalogue};
 use super::classify::{ClassifyOptions, Response};
 use super::map_refine::Refiner;
-use super::orbit_diagram::PlanError;
+use super::orbit_diagram::{AxisRule, PlanError};
 use super::settle::{CellResponse, cell_response};
 use super::steady::{LyapunovFn, SteadyError, Window, check_scenario};
 use super::{Progress, ProgressFn};
@@ -42,14 +42,22 @@ pub struct Axis {
 }
 
 impl Axis {
-    /// Validates an axis; errors name `flag` (e.g. `--x`).
-    pub fn new(flag: &str, key: &str, from: f64, to: f64, n: usize) -> Result<Self, PlanError> {
-        let bad = |what: String| Err(PlanError::flag(flag, format!("{key} {from} {to} {n}"), what));
+    /// Validates an axis. `name` is how the caller's surface names the
+    /// axis (the CLI its flag `--x`, Python its keyword `x`, the app `x`):
+    /// an error carries it as given, with the axis as given after it.
+    pub fn new(name: &str, key: &str, from: f64, to: f64, n: usize) -> Result<Self, PlanError> {
+        let bad = |rule| {
+            Err(PlanError::Axis {
+                name: name.to_string(),
+                given: format!("{key} {from} {to} {n}"),
+                rule,
+            })
+        };
         if !from.is_finite() || !to.is_finite() {
-            return bad("A and B must be finite".into());
+            return bad(AxisRule::NotFinite);
         }
         if n == 0 || n > MAX_AXIS_POINTS {
-            return bad(format!("N must be in 1..={MAX_AXIS_POINTS}"));
+            return bad(AxisRule::Count);
         }
         let axis = Self {
             key: key.to_string(),
@@ -58,10 +66,10 @@ impl Axis {
             n,
         };
         if n > 1 && from >= to {
-            return bad("A must be < B when N > 1".into());
+            return bad(AxisRule::Order);
         }
         if n > 1 && (0..n - 1).any(|i| axis.value(i) >= axis.value(i + 1)) {
-            return bad("the values must be distinct (A and B too close for N points)".into());
+            return bad(AxisRule::NotDistinct);
         }
         Ok(axis)
     }
@@ -442,7 +450,7 @@ impl<'a> MapRun<'a> {
                 return Err(MapError {
                     x,
                     y,
-                    error: SteadyError::Window("the map was not finished (a cell failed or was never computed)".into()),
+                    error: SteadyError::Unfinished,
                 });
             };
             labels.push(attractor);
@@ -515,25 +523,38 @@ mod tests {
 
     #[test]
     fn axis_values_end_exactly_at_to() {
-        let a = Axis::new("--x", "excitation.a_h", 0.1, 0.7, 7).unwrap();
+        let a = Axis::new("x", "excitation.a_h", 0.1, 0.7, 7).unwrap();
         assert_eq!(a.value(6), 0.7);
         assert_eq!(a.value(0), 0.1);
         assert_eq!(a.values().len(), 7);
-        assert_eq!(Axis::new("--x", "k", 2.0, 5.0, 1).unwrap().values(), vec![2.0]);
-        assert!(
-            Axis::new("--y", "k", 1.0, 1.0, 3)
-                .unwrap_err()
-                .to_string()
-                .starts_with("--y k")
+        assert_eq!(Axis::new("x", "k", 2.0, 5.0, 1).unwrap().values(), vec![2.0]);
+        let rule = |e: PlanError| match e {
+            PlanError::Axis { rule, .. } => rule,
+            other => panic!("not an axis error: {other}"),
+        };
+        assert_eq!(rule(Axis::new("y", "k", 1.0, 1.0, 3).unwrap_err()), AxisRule::Order);
+        assert_eq!(rule(Axis::new("x", "k", 0.0, 1.0, 0).unwrap_err()), AxisRule::Count);
+        assert_eq!(
+            rule(Axis::new("x", "k", f64::INFINITY, 1.0, 2).unwrap_err()),
+            AxisRule::NotFinite
         );
-        assert!(Axis::new("--x", "k", 0.0, 1.0, 0).is_err());
-        assert!(Axis::new("--x", "k", f64::INFINITY, 1.0, 2).is_err());
+        // 1 and its successor: no room for a third value between them.
+        let next = f64::from_bits(1f64.to_bits() + 1);
+        assert_eq!(
+            rule(Axis::new("x", "k", 1.0, next, 3).unwrap_err()),
+            AxisRule::NotDistinct
+        );
+        // The caller's name for the axis, then the axis as given.
+        assert_eq!(
+            Axis::new("y", "k", 1.0, 1.0, 3).unwrap_err().to_string(),
+            "y k 1 1 3: A must be < B when N > 1"
+        );
     }
 
     #[test]
     fn grid_map_is_row_major_and_reports_the_first_failure() {
-        let x = Axis::new("--x", "a", 0.0, 2.0, 3).unwrap();
-        let y = Axis::new("--y", "b", 10.0, 20.0, 2).unwrap();
+        let x = Axis::new("x", "a", 0.0, 2.0, 3).unwrap();
+        let y = Axis::new("y", "b", 10.0, 20.0, 2).unwrap();
         let cells = grid_map(&x, &y, &super::super::silent, |a, b| Ok::<_, String>((a, b))).unwrap();
         assert_eq!(
             cells,

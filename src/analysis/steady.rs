@@ -17,6 +17,7 @@
 //!   A non-finite exponent is an error, never written.
 
 use super::classify::{ClassifyError, ClassifyOptions, Response, classify_run};
+use super::field::{FieldNames, OwnNames, StudyField};
 use super::section::{after_transient, points_in_window};
 use crate::model::Mode;
 use crate::sim::scenario::ExcitationKind;
@@ -47,35 +48,83 @@ impl Default for Window {
 
 impl Window {
     /// Checks that `0 <= transient < tau_end <= 1e9` (the config's limit on
-    /// `run.tau_end`), naming the CLI flags in the message.
-    pub fn validate(&self) -> Result<(), String> {
+    /// `run.tau_end`).
+    pub fn validate(&self) -> Result<(), WindowError> {
         if !self.transient.is_finite() || self.transient < 0.0 {
-            return Err(format!("--transient {}: must be finite and >= 0", self.transient));
+            return Err(WindowError::Transient(self.transient));
         }
         if !self.tau_end.is_finite() || self.tau_end > 1e9 {
-            return Err(format!("--tau-end {}: must be finite and <= 1e9", self.tau_end));
+            return Err(WindowError::TauEnd(self.tau_end));
         }
         if self.tau_end <= self.transient {
-            return Err(format!(
-                "--tau-end {}: must be larger than --transient {}",
-                self.tau_end, self.transient
-            ));
+            return Err(WindowError::Empty(*self));
         }
         Ok(())
     }
 
     /// Checks that the window holds enough section points to classify for a
     /// forcing period 2π/Ω_h = `forcing_period`.
-    pub fn check_points(&self, forcing_period: f64, opts: &ClassifyOptions) -> Result<(), String> {
+    pub fn check_points(&self, forcing_period: f64, opts: &ClassifyOptions) -> Result<(), WindowError> {
         let have = points_in_window(forcing_period, self.transient, self.tau_end);
         let need = opts.min_points() as u64;
         if have < need {
-            return Err(format!(
-                "--transient {} / --tau-end {}: the window holds {have} section points (period {forcing_period:.6}); at least {need} are needed to classify",
-                self.transient, self.tau_end
-            ));
+            return Err(WindowError::TooFewPoints {
+                window: *self,
+                forcing_period,
+                have,
+                need,
+            });
         }
         Ok(())
+    }
+}
+
+/// A [`Window`] that cannot be sampled, naming its fields by meaning
+/// ([`StudyField`]); [`WindowError::render`] words it for a surface.
+#[derive(Clone, Copy, Debug, PartialEq, thiserror::Error)]
+#[error("{}", self.render(&OwnNames))]
+pub enum WindowError {
+    /// `transient` is not finite or is negative.
+    Transient(f64),
+    /// `tau_end` is not finite or is above 1e9 (the config's limit on
+    /// `run.tau_end`).
+    TauEnd(f64),
+    /// `tau_end <= transient`: nothing to sample.
+    Empty(Window),
+    /// Fewer section points in the window than the classifier needs.
+    TooFewPoints {
+        /// The window.
+        window: Window,
+        /// 2π/Ω_h, τ.
+        forcing_period: f64,
+        /// Section points in the window.
+        have: u64,
+        /// Section points the classifier needs.
+        need: u64,
+    },
+}
+
+impl WindowError {
+    /// The one-line message with the fields named by `names`.
+    pub fn render(&self, names: &impl FieldNames) -> String {
+        // `{}` of an f64: the value as the user would type it (700, not 700.0).
+        let transient = |v: f64| names.valued(StudyField::Transient, &v.to_string());
+        let tau_end = |v: f64| names.valued(StudyField::TauEnd, &v.to_string());
+        match *self {
+            WindowError::Transient(v) => format!("{}: must be finite and >= 0", transient(v)),
+            WindowError::TauEnd(v) => format!("{}: must be finite and <= 1e9", tau_end(v)),
+            WindowError::Empty(w) => format!("{}: must be larger than {}", tau_end(w.tau_end), transient(w.transient)),
+            WindowError::TooFewPoints {
+                window,
+                forcing_period,
+                have,
+                need,
+            } => format!(
+                "{} / {}: the window holds {have} section points (period {forcing_period:.6}); at least {need} are needed to classify",
+                transient(window.transient),
+                tau_end(window.tau_end)
+            ),
+        }
     }
 }
 
@@ -114,9 +163,28 @@ pub enum SteadyError {
     /// The points could not be classified.
     #[error(transparent)]
     Classify(#[from] ClassifyError),
-    /// The window holds too few section points.
-    #[error("{0}")]
-    Window(String),
+    /// The window cannot be sampled.
+    #[error(transparent)]
+    Window(#[from] WindowError),
+    /// A map was finished before all its cells were computed (a caller's
+    /// mistake, reported rather than written as a partial map).
+    #[error("the map was not finished (a cell failed or was never computed)")]
+    Unfinished,
+}
+
+impl SteadyError {
+    /// The one-line message with the study's inputs named by `names` (the
+    /// other variants name config keys, the same on every surface).
+    pub fn render(&self, names: &impl FieldNames) -> String {
+        match self {
+            SteadyError::Window(w) => w.render(names),
+            SteadyError::Scenario(_)
+            | SteadyError::NotHarmonic
+            | SteadyError::Sim(_)
+            | SteadyError::Classify(_)
+            | SteadyError::Unfinished => self.to_string(),
+        }
+    }
 }
 
 /// Checks, before running, that `scenario` has harmonic excitation and that
@@ -125,10 +193,8 @@ pub fn check_scenario(scenario: &Scenario, window: &Window, opts: &ClassifyOptio
     if scenario.excitation.kind != ExcitationKind::Harmonic {
         return Err(SteadyError::NotHarmonic);
     }
-    window.validate().map_err(SteadyError::Window)?;
-    window
-        .check_points(std::f64::consts::TAU / scenario.excitation.omega_h, opts)
-        .map_err(SteadyError::Window)
+    window.validate()?;
+    Ok(window.check_points(std::f64::consts::TAU / scenario.excitation.omega_h, opts)?)
 }
 
 /// The state of a section point as an initial state at τ = 0. A point taken
@@ -215,28 +281,66 @@ mod tests {
     }
 
     #[test]
-    fn window_validation_names_the_flags() {
+    fn window_errors_name_the_field_at_fault_by_meaning() {
         assert!(Window::default().validate().is_ok());
         let w = Window {
             transient: 800.0,
             tau_end: 700.0,
         };
-        assert!(w.validate().unwrap_err().starts_with("--tau-end"));
+        assert_eq!(w.validate(), Err(WindowError::Empty(w)));
+        assert_eq!(
+            w.validate().unwrap_err().to_string(),
+            "tau_end = 700: must be larger than transient = 800"
+        );
         let w = Window {
             transient: f64::NAN,
             tau_end: 700.0,
         };
-        assert!(w.validate().unwrap_err().starts_with("--transient"));
+        assert!(matches!(w.validate(), Err(WindowError::Transient(t)) if t.is_nan()));
+        let w = Window {
+            transient: 0.0,
+            tau_end: 2e9,
+        };
+        assert_eq!(w.validate(), Err(WindowError::TauEnd(2e9)));
         let short = Window {
             transient: 0.0,
             tau_end: 10.0,
         };
         let period = std::f64::consts::TAU / 8.0;
-        assert!(short.check_points(period, &ClassifyOptions::default()).is_err());
-        assert!(
-            Window::default()
-                .check_points(period, &ClassifyOptions::default())
-                .is_ok()
+        let opts = ClassifyOptions::default();
+        // τ_k = k·2π/8 ≤ 10 for k = 0 … 12: 13 points, fewer than needed.
+        let need = opts.min_points() as u64;
+        assert!(need > 13, "the check below needs a window too short");
+        assert!(matches!(
+            short.check_points(period, &opts),
+            Err(WindowError::TooFewPoints { have: 13, need: n, .. }) if n == need
+        ));
+        assert!(Window::default().check_points(period, &opts).is_ok());
+    }
+
+    /// A surface that shouts its names, to see that rendering uses them.
+    struct Loud;
+
+    impl FieldNames for Loud {
+        fn name(&self, field: StudyField) -> std::borrow::Cow<'static, str> {
+            field.name().to_uppercase().into()
+        }
+        fn valued(&self, field: StudyField, value: &str) -> String {
+            format!("{}:={value}", self.name(field))
+        }
+    }
+
+    #[test]
+    fn a_window_error_is_worded_by_the_surface_that_renders_it() {
+        let w = Window {
+            transient: 800.0,
+            tau_end: 700.0,
+        };
+        let e = SteadyError::from(w.validate().unwrap_err());
+        assert_eq!(e.render(&Loud), "TAU_END:=700: must be larger than TRANSIENT:=800");
+        assert_eq!(
+            SteadyError::NotHarmonic.render(&Loud),
+            SteadyError::NotHarmonic.to_string()
         );
     }
 

@@ -3,6 +3,7 @@
 
 use std::path::PathBuf;
 
+use super::flags::Flags;
 use crate::analysis::steady::Window;
 use crate::io::ConfigError;
 use crate::io::config;
@@ -58,7 +59,7 @@ impl StudyArgs {
             transient: self.transient,
             tau_end: self.tau_end.unwrap_or(base.run.tau_end),
         };
-        window.validate()?;
+        window.validate().map_err(|e| e.render(&Flags))?;
         Ok(window)
     }
 }

@@ -293,7 +293,12 @@ pub fn run(args: &FragilityArgs) -> Result<(), BatchError> {
             show(args.threshold)
         )));
     }
-    let shard = args.shard.as_deref().map(Shard::parse).transpose().map_err(input)?;
+    let shard = args
+        .shard
+        .as_deref()
+        .map(Shard::parse)
+        .transpose()
+        .map_err(super::sweep::plan_input)?;
     let spec_read = args.reading.spec()?;
     let entries = suite(&args.records, args.suite.as_deref(), spec_read)?;
     let vertical = vertical_choice(args.vertical, &entries)?;

@@ -28,6 +28,7 @@ use serde_json::json;
 
 use super::args::{SceneArgs, StudyArgs, StudyOutput};
 use super::error::BatchError;
+use super::flags::Flags;
 use super::sweep::{progress_bar, progress_fn, thread_pool};
 use crate::analysis::classify::{ClassifyOptions, Response};
 use crate::analysis::outcome_map::{Axis, BlockMap, COARSE_CELLS, Cell, MapPlan, compute_map};
@@ -171,8 +172,16 @@ pub fn run_with(args: &MapArgs, lyapunov: Option<&LyapunovFn<'_>>) -> Result<(),
         classify: ClassifyOptions::default(),
         lyapunov,
     };
-    spec.check()
-        .map_err(|e| input(anyhow!("--x {} = {}, --y {} = {}: {}", x.key, e.x, y.key, e.y, e.error)))?;
+    spec.check().map_err(|e| {
+        input(anyhow!(
+            "--x {} = {}, --y {} = {}: {}",
+            x.key,
+            e.x,
+            y.key,
+            e.y,
+            e.error.render(&Flags)
+        ))
+    })?;
     let pool = thread_pool(args.study.threads)?;
     output::check_writable(&args.output.out)
         .with_context(|| "--out: cannot write the output directory".to_string())
@@ -182,7 +191,10 @@ pub fn run_with(args: &MapArgs, lyapunov: Option<&LyapunovFn<'_>>) -> Result<(),
     let bar = progress_bar(x.n * y.n, "cells", args.output.quiet);
     let map = pool
         .install(|| compute_map(&spec, plan, &progress_fn(&bar)))
-        .map_err(|e| BatchError::Run(anyhow!("{} = {}, {} = {}: {}", x.key, e.x, y.key, e.y, e.error)))?;
+        .map_err(|e| {
+            let error = e.error.render(&Flags);
+            BatchError::Run(anyhow!("{} = {}, {} = {}: {}", x.key, e.x, y.key, e.y, error))
+        })?;
     bar.finish_and_clear();
     let wall = start.elapsed().as_secs_f64();
     let cells = &map.cells;

@@ -161,7 +161,7 @@ fn meta_of(common: &Json, json_path: &Path) -> anyhow::Result<SweepMeta> {
             .ok_or_else(|| anyhow!("{}: missing grid.{k}", json_path.display()))
     };
     let grid = Grid::new(num(&g, "from")?, num(&g, "to")?, num(&g, "step")?)
-        .map_err(|e| anyhow!("{}: {e}", json_path.display()))?;
+        .map_err(|e| anyhow!("{}: {}", json_path.display(), e.render(&super::flags::Flags)))?;
     if g.get("count").and_then(Json::as_u64) != Some(grid.count as u64) {
         bail!("{}: grid.count disagrees with from/to/step", json_path.display());
     }

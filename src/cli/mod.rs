@@ -18,6 +18,7 @@ pub mod batch;
 pub mod bench;
 pub mod eng_args;
 pub mod error;
+pub mod flags;
 pub mod fragility;
 pub mod interrupt;
 pub mod map;

@@ -23,9 +23,12 @@ use serde_json::{Value as Json, json};
 
 use super::args::{SceneArgs, StudyArgs, StudyOutput};
 use super::error::BatchError;
+use super::flags::Flags;
 use crate::analysis::Progress;
 use crate::analysis::classify::{ClassifyOptions, Response};
-use crate::analysis::orbit_diagram::{BlockSweep, Continuation, Grid, Plan, Shard, block_sweep, response_ranges};
+use crate::analysis::orbit_diagram::{
+    BlockSweep, Continuation, Grid, Plan, PlanError, Shard, block_sweep, response_ranges,
+};
 use crate::analysis::steady::{LyapunovFn, Window};
 use crate::io::config::{self, to_json};
 use crate::io::output;
@@ -200,6 +203,11 @@ fn input(e: impl Into<anyhow::Error>) -> BatchError {
     BatchError::Input(e.into())
 }
 
+/// A sweep's definition refused, its inputs named by their flags.
+pub(crate) fn plan_input(e: PlanError) -> BatchError {
+    BatchError::Input(anyhow::anyhow!(e.render(&Flags)))
+}
+
 /// Everything `run` checked and resolved before computing.
 struct Prepared {
     base: Scenario,
@@ -224,9 +232,14 @@ fn prepare(args: &SweepArgs) -> Result<Prepared, BatchError> {
             continuation.name()
         )));
     }
-    let grid = Grid::new(args.from, args.to, args.step).map_err(input)?;
-    let shard = args.shard.as_deref().map(Shard::parse).transpose().map_err(input)?;
-    let plan = Plan::new(grid, continuation, shard).map_err(input)?;
+    let grid = Grid::new(args.from, args.to, args.step).map_err(plan_input)?;
+    let shard = args
+        .shard
+        .as_deref()
+        .map(Shard::parse)
+        .transpose()
+        .map_err(plan_input)?;
+    let plan = Plan::new(grid, continuation, shard).map_err(plan_input)?;
     let mut config = base.clone();
     let window = args.study.window(&base).map_err(|e| input(anyhow::anyhow!(e)))?;
     config.run.tau_end = window.tau_end;
@@ -272,7 +285,7 @@ pub fn run_with(args: &SweepArgs, lyapunov: Option<&LyapunovFn<'_>>) -> Result<(
             "--param {} = {}: {}",
             meta.param.key(),
             e.value,
-            e.error
+            e.error.render(&Flags)
         ))
     })?;
     let pool = thread_pool(args.study.threads)?;
@@ -284,7 +297,14 @@ pub fn run_with(args: &SweepArgs, lyapunov: Option<&LyapunovFn<'_>>) -> Result<(
     let bar = progress_bar(plan.indices().len(), "values", args.output.quiet);
     let values = pool
         .install(|| block_sweep(&spec, &plan, &progress_fn(&bar)))
-        .map_err(|e| BatchError::Run(anyhow::anyhow!("{} = {}: {}", meta.param.key(), e.value, e.error)))?;
+        .map_err(|e| {
+            BatchError::Run(anyhow::anyhow!(
+                "{} = {}: {}",
+                meta.param.key(),
+                e.value,
+                e.error.render(&Flags)
+            ))
+        })?;
     bar.finish_and_clear();
     let wall = start.elapsed().as_secs_f64();
 
