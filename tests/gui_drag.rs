@@ -11,6 +11,7 @@ use egui_kittest::kittest::Queryable as _;
 use gui_common::{pointer, scene};
 use rocking::gui::RockingApp;
 use rocking::gui::panels::params::{Commit, slider_range, slider_text};
+use rocking::io::config::to_json;
 use rocking::io::record::reads_on_this_thread;
 
 /// The keys the parameter panel draws a slider for: B, H, the four
@@ -133,7 +134,7 @@ fn a_drag_gives_the_scene_and_the_refusal_that_resolving_the_table_gives() {
     let mut refused = 0;
     for preset in ["default", "fig16", "elcentro-statue", "kobe-rack-5th-floor"] {
         let (settings, cfg) = scene(preset, &[]);
-        let json = rocking::io::config::to_json(&cfg);
+        let json = to_json(&cfg);
         for key in SLIDER_KEYS {
             let range = slider_range(key).expect("a slider");
             let now = shown(&json, key).unwrap_or(0.5 * (range.min + range.max));
@@ -150,8 +151,15 @@ fn a_drag_gives_the_scene_and_the_refusal_that_resolving_the_table_gives() {
                 let resolved = settings.with(key, &raw);
                 match (dragged, resolved) {
                     (Ok((s1, c1)), Ok((s2, c2))) => {
-                        assert_eq!(c1, c2, "{preset}: {key} = {raw}");
-                        assert_eq!(format!("{c1:?}"), format!("{c2:?}"), "{preset}: {key} = {raw}");
+                        // The resolved keys first (readable where they
+                        // differ), then every field, the records' samples
+                        // and the unset defaults included.
+                        assert_eq!(to_json(&c1), to_json(&c2), "{preset}: {key} = {raw}");
+                        assert!(c1 == c2, "{preset}: {key} = {raw}: the scenes differ");
+                        assert!(
+                            format!("{c1:?}") == format!("{c2:?}"),
+                            "{preset}: {key} = {raw}: the scenes print differently"
+                        );
                         assert_eq!(s1.table, s2.table, "{preset}: {key} = {raw}");
                     }
                     (Err(e1), Err(e2)) => {
