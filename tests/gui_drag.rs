@@ -177,3 +177,38 @@ fn a_drag_gives_the_scene_and_the_refusal_that_resolving_the_table_gives() {
     assert_eq!(compared, 4 * SLIDER_KEYS.len() * 4);
     assert!(refused > 0 && refused < compared / 2, "{refused} of {compared} refused");
 }
+
+/// What one drag frame's edit costs in the app ([`RockingApp::commit`],
+/// from the value to the new scene handed on), on a harmonic scene and
+/// two record scenes, for a typed key, an initial-state key and the
+/// block's width (which re-resolves the table). A measurement, not a
+/// check: run with
+/// `cargo test --test gui_drag -- --ignored --nocapture measure`.
+#[test]
+#[ignore]
+fn measure_the_edit_of_a_drag_frame() {
+    for preset in ["default", "elcentro-statue", "kobe-rack"] {
+        for (key, from) in [("friction.static", 0.6), ("initial.theta", 0.0), ("block.width", 0.5)] {
+            let mut h = app(preset);
+            let mut us: Vec<f64> = (0..201)
+                .map(|k| {
+                    let raw = slider_text(from + 0.001 * (k % 50) as f64);
+                    let start = std::time::Instant::now();
+                    let applied = h.state_mut().commit(Commit {
+                        key,
+                        raw,
+                        dragged: true,
+                    });
+                    let elapsed = start.elapsed().as_secs_f64() * 1e6;
+                    assert!(applied, "{preset}: {key}: {:?}", h.state().message());
+                    elapsed
+                })
+                .collect();
+            us.sort_by(f64::total_cmp);
+            println!(
+                "{preset:16} {key:16} median {:7.1} µs, 90th percentile {:7.1} µs",
+                us[100], us[180]
+            );
+        }
+    }
+}
