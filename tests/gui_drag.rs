@@ -105,7 +105,10 @@ fn dragging_a_slider_on_a_record_scene_reads_the_record_file_no_more() {
     }
     assert_eq!(reads_on_this_thread(), reads, "a drag read the record");
     let cfg = h.state().config();
-    assert_eq!((cfg.block.mu_s, cfg.block.mu_k, cfg.impact.mu_k), (0.7, Some(0.55), Some(0.5)));
+    assert_eq!(
+        (cfg.block.mu_s, cfg.block.mu_k, cfg.impact.mu_k),
+        (0.7, Some(0.55), Some(0.5))
+    );
     assert_eq!((cfg.block.width, cfg.block.height, cfg.initial.theta), (0.42, 1.9, 0.1));
     let record = cfg.excitation.record_h.as_ref().expect("a record");
     // PGA 0.5 g from the record's own peak, the scale a typed PGA gives.

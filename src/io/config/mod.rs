@@ -479,7 +479,10 @@ pub fn from_table_with(table: &Table, source: &Source, memory: [Option<&Record>;
 /// vouches for the record keys. A record `kept` lacks is read.
 pub fn from_table_keeping(table: &Table, source: &Source, kept: &Scenario) -> Result<Scenario, ConfigError> {
     let x = &kept.excitation;
-    let from = [RecordFrom::kept(x.record_h.as_ref()), RecordFrom::kept(x.record_v.as_ref())];
+    let from = [
+        RecordFrom::kept(x.record_h.as_ref()),
+        RecordFrom::kept(x.record_v.as_ref()),
+    ];
     resolve(table, source, from)
 }
 
