@@ -62,3 +62,54 @@ fn the_same_samples_have_the_same_checksum() {
     );
     assert_ne!(samples().crc32, other.crc32);
 }
+
+/// A table resolved with the records a scene already holds (a slider
+/// drag's edit of another key) gives the scene reading the files gives,
+/// reads no record, and shares the samples rather than copying them. The
+/// keys that move the block's size resolve every value with a unit again
+/// (the preset's `output_dt = "0.01 s"` is 0.01 s × p in τ).
+#[test]
+fn a_table_resolved_keeping_a_scenes_records_reads_none_and_equals_reading_them() {
+    let text = config::preset_text("kobe-rack-5th-floor").unwrap();
+    let (mut table, source) = (config::parse_toml(text, "preset").unwrap(), Source::preset());
+    let read = config::from_table(&table, &source).unwrap();
+    for set in [
+        "block.width=0.45",
+        "block.height=\"1.9 m\"",
+        "floor.period=0.8",
+        "excitation.pga_h=\"0.5 g\"",
+    ] {
+        config::set_dotted(&mut table, set).unwrap();
+        let reads = rocking::io::record::reads_on_this_thread();
+        let kept = config::from_table_keeping(&table, &source, &read).unwrap();
+        assert_eq!(
+            rocking::io::record::reads_on_this_thread(),
+            reads,
+            "{set}: read a record"
+        );
+        let fresh = config::from_table(&table, &source).unwrap();
+        assert_eq!(
+            rocking::io::record::reads_on_this_thread(),
+            reads + 1,
+            "{set}: reading counts"
+        );
+        assert_eq!(config::to_json(&kept), config::to_json(&fresh), "{set}");
+        assert!(kept == fresh, "{set}");
+        let (a, b) = (&kept.excitation.record_h, &read.excitation.record_h);
+        let (a, b) = (a.as_ref().unwrap(), b.as_ref().unwrap());
+        assert!(
+            std::ptr::eq(a.series.accel_g().as_ptr(), b.series.accel_g().as_ptr()),
+            "{set}: copied"
+        );
+    }
+    // p = sqrt(3 g / (4 R)) for the final 0.45 m × 1.9 m block, R the half-diagonal.
+    let r = 0.5 * (0.45_f64.powi(2) + 1.9_f64.powi(2)).sqrt();
+    let p = (3.0 * 9.81 / (4.0 * r)).sqrt();
+    let kept = config::from_table_keeping(&table, &source, &read).unwrap();
+    assert!(
+        (kept.run.output_dt - 0.01 * p).abs() < 1e-12 * p,
+        "{} vs {}",
+        kept.run.output_dt,
+        0.01 * p
+    );
+}

@@ -505,17 +505,20 @@ impl RockingApp {
         }
     }
 
-    /// Sets one key to `raw` as a slider drag does: through the same
-    /// validation as [`RockingApp::set_key`], restarting from where the
-    /// panel's toggle says ([`RockingApp::drag_from`]; an initial-state key
-    /// always restarts from the initial state it sets).
+    /// Sets one key to `raw` as a slider drag does: to the scene
+    /// [`RockingApp::set_key`] would give, refused with the same message,
+    /// but as a typed edit of the scene shown that reads no record file
+    /// ([`Settings::dragged`]), since it comes every frame of a drag;
+    /// restarting from where the panel's toggle says
+    /// ([`RockingApp::drag_from`]; an initial-state key always restarts
+    /// from the initial state it sets).
     pub fn drag_key(&mut self, key: &str, raw: &str) -> bool {
         let from = if key.starts_with("initial.") {
             StartFrom::Initial
         } else {
             self.edits.drag_from
         };
-        match self.settings.with(key, raw) {
+        match self.settings.dragged(key, raw, &self.config) {
             Ok((s, cfg)) => {
                 self.apply_from(s, cfg, from);
                 true

@@ -3,15 +3,17 @@
 //! from. Resolving goes through [`from_table`](crate::io::config::from_table), so the app accepts
 //! exactly what the CLI accepts and refuses the rest with the same one-line
 //! message. Keys left out keep their documented defaults (e.g. Ω_v follows
-//! Ω_h), which a table of resolved values would lose.
+//! Ω_h), which a table of resolved values would lose. A slider drag
+//! ([`Settings::dragged`]) reaches the same scene as a typed edit of the
+//! scene shown, without resolving the table or reading a record again.
 
 use std::path::Path;
 
 use toml::Table;
 
-use crate::io::config::{ConfigError, set_dotted};
+use crate::io::config::{ConfigError, from_table_keeping, set_dotted};
 use crate::io::config::{Source, parse_toml, preset_text, read_file};
-use crate::sim::Scenario;
+use crate::sim::{Param, Scenario};
 
 /// The explicit keys of a scene and their source.
 #[derive(Clone, Debug, Default)]
@@ -139,15 +141,60 @@ impl Settings {
 
     /// The explicit value of `key` (`section.key`), as TOML text.
     pub fn explicit(&self, key: &str) -> Option<String> {
-        let (section, name) = key.split_once('.')?;
-        let v = self.table.get(section)?.as_table()?.get(name)?;
-        Some(value_text(v))
+        self.value(key).map(value_text)
     }
 
     /// These settings with `key` set to `raw` (TOML value text; empty
     /// removes the key, restoring its default), resolved and checked.
     /// Nothing changes on error.
     pub fn with(&self, key: &str, raw: &str) -> Result<(Self, Scenario), String> {
+        let next = self.edited(key, raw)?;
+        let cfg = next.resolve()?;
+        Ok((next, cfg))
+    }
+
+    /// [`Settings::with`] as a slider drag applies it, once a frame:
+    /// `current` is the scene these settings resolve to, and the result is
+    /// the one [`Settings::with`] gives, without reading a record file
+    /// again and, for most keys, without resolving the table.
+    ///
+    /// - A number for a key with a [`Param`] is set typed on a copy of
+    ///   `current` ([`Param::apply`]: the one value set, the scene
+    ///   re-validated), with the refusal [`Settings::with`] gives. The
+    ///   table gets the same text written in, so that a later typed edit,
+    ///   a save or a share link keeps it.
+    /// - The block's width and height are the exception: they move ψ and p,
+    ///   through which every value given with a unit (`output_dt = "0.01
+    ///   s"`, `a_h = "0.3 g"`) converts, so they re-resolve the table.
+    ///   That, and any other key but a record's own, takes the records
+    ///   `current` holds ([`from_table_keeping`]).
+    /// - A record's own keys (file, unit, time step, checksum, channel)
+    ///   name what to read: they are resolved as [`Settings::with`] does.
+    pub fn dragged(&self, key: &str, raw: &str, current: &Scenario) -> Result<(Self, Scenario), String> {
+        let next = self.edited(key, raw)?;
+        if names_the_record(key) {
+            let cfg = next.resolve()?;
+            return Ok((next, cfg));
+        }
+        // The number as the table now holds it: what resolving would read.
+        let value = match next.value(key) {
+            Some(toml::Value::Float(v)) => Some(*v),
+            Some(toml::Value::Integer(i)) => Some(*i as f64),
+            _ => None,
+        };
+        let typed = crate::io::config::param(key)
+            .ok()
+            .filter(|p| !matches!(p, Param::Width | Param::Height));
+        let cfg = match (typed, value) {
+            (Some(p), Some(v)) if v.is_finite() => Param::apply(current, &[(p, v)]).map_err(|e| e.to_string())?,
+            _ => from_table_keeping(&next.table, &next.source, current).map_err(|e| e.to_string())?,
+        };
+        Ok((next, cfg))
+    }
+
+    /// These settings with `key` set to `raw` as [`Settings::with`] sets
+    /// it; not resolved.
+    fn edited(&self, key: &str, raw: &str) -> Result<Self, String> {
         let mut next = self.clone();
         let raw = raw.trim();
         if raw.is_empty() {
@@ -159,8 +206,13 @@ impl Settings {
         } else {
             set_dotted(&mut next.table, &format!("{key}={raw}")).map_err(|e| e.to_string())?;
         }
-        let cfg = next.resolve()?;
-        Ok((next, cfg))
+        Ok(next)
+    }
+
+    /// The explicit value of `key` (`section.key`).
+    fn value(&self, key: &str) -> Option<&toml::Value> {
+        let (section, name) = key.split_once('.')?;
+        self.table.get(section)?.as_table()?.get(name)
     }
 
     /// The scene as TOML text, with a header naming its origin.
@@ -168,6 +220,17 @@ impl Settings {
         let body = toml::to_string(&self.table).map_err(|e| format!("cannot write the scene as TOML: {e}"))?;
         Ok(format!("# rocking scene (from {})\n\n{body}", self.origin))
     }
+}
+
+/// Whether `key` says which record to read and how (its file, unit, time
+/// step, checksum or channel), rather than what to do with it.
+fn names_the_record(key: &str) -> bool {
+    let Some(("excitation", name)) = key.split_once('.') else {
+        return false;
+    };
+    ["file", "unit", "dt", "crc32", "channel"]
+        .iter()
+        .any(|k| name.strip_prefix(k).is_some_and(|side| matches!(side, "_h" | "_v")))
 }
 
 /// Keys whose values are real numbers even when they print as integers.

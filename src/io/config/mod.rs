@@ -296,14 +296,37 @@ fn read_record(keys: &RecordKeys<'_>, source: &Source) -> Result<Option<Record>,
     }))
 }
 
-/// The record given as samples, or else the file the keys name.
-fn given_or_read(
-    keys: &RecordKeys<'_>,
-    source: &Source,
-    given: Option<&Record>,
-) -> Result<Option<Record>, ConfigError> {
-    let Some(given) = given else {
-        return read_record(keys, source);
+/// Where a resolution takes one record from.
+#[derive(Clone, Copy)]
+enum RecordFrom<'a> {
+    /// The file the keys name, if any.
+    Read,
+    /// Given as samples ([`from_table_with`]): a file's keys beside it are
+    /// an error.
+    Given(&'a Record),
+    /// Already read from the file the keys name ([`from_table_keeping`]).
+    Kept(&'a Record),
+}
+
+impl<'a> RecordFrom<'a> {
+    fn given(record: Option<&'a Record>) -> Self {
+        record.map_or(Self::Read, Self::Given)
+    }
+
+    fn kept(record: Option<&'a Record>) -> Self {
+        record.map_or(Self::Read, Self::Kept)
+    }
+}
+
+/// The record given as samples, or kept from an earlier read of the same
+/// keys, or else the file the keys name.
+fn given_or_read(keys: &RecordKeys<'_>, source: &Source, from: RecordFrom<'_>) -> Result<Option<Record>, ConfigError> {
+    let given = match from {
+        RecordFrom::Read => return read_record(keys, source),
+        // A clone shares the samples: no file is read, nothing copied.
+        RecordFrom::Kept(kept) if keys.file.is_some() => return Ok(Some(kept.clone())),
+        RecordFrom::Kept(_) => return read_record(keys, source),
+        RecordFrom::Given(given) => given,
     };
     let named = [
         ("file", keys.file.is_some()),
@@ -412,6 +435,28 @@ pub fn from_table(table: &Table, source: &Source) -> Result<Scenario, ConfigErro
 /// package): each takes the place of a file the table does not name
 /// (naming one as well is an error naming `excitation.file_*`).
 pub fn from_table_with(table: &Table, source: &Source, memory: [Option<&Record>; 2]) -> Result<Scenario, ConfigError> {
+    let [h, v] = memory;
+    resolve(table, source, [RecordFrom::given(h), RecordFrom::given(v)])
+}
+
+/// [`from_table`] for a table whose record keys (`excitation.file_*`,
+/// `unit_*`, `dt_*`, `crc32_*`, `channel_*`) are those `kept` resolved
+/// from: each record the table names is taken from `kept` (sharing its
+/// samples) instead of being read again. For an edit of another key, such
+/// as a slider drag, which must not read a file every frame; the caller
+/// vouches for the record keys. A record `kept` lacks is read.
+pub fn from_table_keeping(table: &Table, source: &Source, kept: &Scenario) -> Result<Scenario, ConfigError> {
+    let x = &kept.excitation;
+    let from = [
+        RecordFrom::kept(x.record_h.as_ref()),
+        RecordFrom::kept(x.record_v.as_ref()),
+    ];
+    resolve(table, source, from)
+}
+
+/// [`from_table`], with the horizontal and vertical records taken as
+/// `records` say.
+fn resolve(table: &Table, source: &Source, records: [RecordFrom<'_>; 2]) -> Result<Scenario, ConfigError> {
     let raw = raw(table)?;
     let d = Scenario::default();
     let num = |x: Option<Finite>| x.map(|v| v.0);
@@ -473,9 +518,9 @@ pub fn from_table_with(table: &Table, source: &Source, memory: [Option<&Record>;
         crc32: x.crc32_v.as_deref(),
         channel: x.channel_v.map(|Count(n)| n),
     };
-    let [memory_h, memory_v] = memory;
-    let record_h = given_or_read(&keys_h, source, memory_h)?;
-    let record_v = given_or_read(&keys_v, source, memory_v)?;
+    let [from_h, from_v] = records;
+    let record_h = given_or_read(&keys_h, source, from_h)?;
+    let record_v = given_or_read(&keys_v, source, from_v)?;
     let scale_h = record_scale(&keys_h, record_h.as_ref(), x.scale_h, x.pga_h, &geo, dx.scale_h)?;
     let scale_v = record_scale(&keys_v, record_v.as_ref(), x.scale_v, x.pga_v, &geo, dx.scale_v)?;
     let excitation = ExcitationSpec {

@@ -362,6 +362,21 @@ pub enum RecordError {
     },
 }
 
+thread_local! {
+    /// Records parsed on this thread ([`reads_on_this_thread`]).
+    static READS: std::cell::Cell<usize> = const { std::cell::Cell::new(0) };
+}
+
+/// How many records (files, or shipped records' bytes) this thread has
+/// parsed so far: [`read_record_as`] and [`read_record_bytes`] count one
+/// each. It exists for tests, which check with it that an edit which must
+/// not read its scene's record again (a slider drag) reads none. Counted
+/// per thread so that tests running side by side do not see each other's
+/// reads; the app's edits resolve on its own thread.
+pub fn reads_on_this_thread() -> usize {
+    READS.with(std::cell::Cell::get)
+}
+
 /// Largest record file read, bytes: a day of 200 Hz samples in text is
 /// about 50 MB; beyond 200 MB a file is not a ground-motion record.
 pub const MAX_RECORD_BYTES: u64 = 200 << 20;
@@ -530,6 +545,7 @@ pub fn read_record_as(path: &Path, spec: &RecordSpec) -> Result<LoadedRecord, Re
 /// # Errors
 /// As [`read_record_as`], less the file system's.
 pub fn read_record_bytes(name: &str, bytes: &[u8], spec: &RecordSpec) -> Result<LoadedRecord, RecordError> {
+    READS.with(|n| n.set(n.get() + 1));
     let file = name.to_string();
     if let Some(dt) = spec.dt
         && !(dt.is_finite() && dt > 0.0)

@@ -18,6 +18,7 @@
 //! - Errors: samples that break a [`Series`] invariant are rejected with a
 //!   [`SeriesError`], never repaired.
 
+use std::sync::Arc;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 /// Largest |acceleration| accepted from a record, in g.
@@ -55,27 +56,32 @@ pub fn step_in_range(step_s: f64) -> bool {
 /// Always holds at least 2 samples, all finite, with |a| <= [`MAX_ABS_ACCEL_G`].
 /// Built by [`Series::new`] or [`read_record`](crate::io::record::read_record),
 /// which enforce these invariants.
+///
+/// The samples are shared, never copied, between clones: a scenario, the
+/// model built from it for each run, and every parallel sweep point hold
+/// the one copy read from the file (tens of thousands of samples, read
+/// once per scene), and a clone costs two reference counts.
 #[derive(Debug)]
 pub struct Series {
     /// Sample times, s; strictly increasing, first >= 0.
-    times_s: Vec<f64>,
+    times_s: Arc<[f64]>,
     /// Accelerations at those times, in g.
-    accel_g: Vec<f64>,
+    accel_g: Arc<[f64]>,
     /// Where the last lookup landed ([`Series::count_at_or_before`]): an
     /// integrator asks for times in order, mostly inside one interval or
     /// the next, and a binary search over thousands of samples for each of
     /// them was about half a record run's forcing cost. Only a hint: every
     /// use checks it, so any value gives the same answers. Atomic so that a
-    /// series shared between threads stays `Sync`; each thread's runs hold
-    /// their own copy.
+    /// series shared between threads stays `Sync`; each clone (each
+    /// thread's runs) has its own hint over the shared samples.
     hint: AtomicUsize,
 }
 
 impl Clone for Series {
     fn clone(&self) -> Self {
         Self {
-            times_s: self.times_s.clone(),
-            accel_g: self.accel_g.clone(),
+            times_s: Arc::clone(&self.times_s),
+            accel_g: Arc::clone(&self.accel_g),
             hint: AtomicUsize::new(self.hint.load(Ordering::Relaxed)),
         }
     }
@@ -172,8 +178,8 @@ impl Series {
             previous = Some(time);
         }
         Ok(Self {
-            times_s,
-            accel_g,
+            times_s: times_s.into(),
+            accel_g: accel_g.into(),
             hint: AtomicUsize::new(0),
         })
     }
@@ -190,8 +196,8 @@ impl Series {
             "record samples break a Series invariant"
         );
         Self {
-            times_s,
-            accel_g,
+            times_s: times_s.into(),
+            accel_g: accel_g.into(),
             hint: AtomicUsize::new(0),
         }
     }
@@ -357,7 +363,7 @@ impl Series {
     /// conversion), or the error naming the first sample that then breaks
     /// the |a| limit.
     pub fn scaled(&self, factor: f64) -> Result<Series, SeriesError> {
-        Series::new(self.times_s.clone(), self.accel_g.iter().map(|a| a * factor).collect())
+        Series::new(self.times_s.to_vec(), self.accel_g.iter().map(|a| a * factor).collect())
     }
 }
 
@@ -626,6 +632,20 @@ mod tests {
         }
         assert_eq!(seen, vec![0.0, 0.5, 1.0, 2.0, 3.0, 4.0, 6.0]);
         assert_eq!(ex.next_breakpoint(f64::NAN), None);
+    }
+
+    #[test]
+    fn a_clone_and_the_excitation_built_from_it_share_the_samples() {
+        let times: Vec<f64> = (0..1000).map(|k| k as f64 * 0.01).collect();
+        let accel: Vec<f64> = times.iter().map(|t| (3.0 * t).sin()).collect();
+        let h = Series::new(times.clone(), accel.clone()).unwrap();
+        let copy = h.clone();
+        // The same memory, not equal copies of it.
+        assert!(std::ptr::eq(h.times_s().as_ptr(), copy.times_s().as_ptr()));
+        assert!(std::ptr::eq(h.accel_g().as_ptr(), copy.accel_g().as_ptr()));
+        let ex = RecordExcitation::new(copy, None, 2.0, 1.0, 1.0);
+        assert!(std::ptr::eq(h.accel_g().as_ptr(), ex.horizontal().accel_g().as_ptr()));
+        assert_eq!((h.times_s(), h.accel_g()), (&times[..], &accel[..]));
     }
 
     #[test]
