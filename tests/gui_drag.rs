@@ -10,7 +10,8 @@ use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable as _;
 use gui_common::{pointer, scene};
 use rocking::gui::RockingApp;
-use rocking::gui::panels::params::{Commit, slider_range, slider_text};
+use rocking::gui::panels::params::{Commit, slider_range};
+use rocking::gui::panels::slider::slider_text;
 use rocking::io::config::to_json;
 use rocking::io::record::reads_on_this_thread;
 
