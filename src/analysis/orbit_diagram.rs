@@ -174,13 +174,13 @@ pub enum ShardRule {
     IndexTooLarge(usize),
 }
 
-/// Why a map [`Axis`](super::outcome_map::Axis) is refused.
+/// Why a map axis is refused.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum AxisRule {
     /// A or B is not finite.
     NotFinite,
-    /// N is 0 or above [`MAX_AXIS_POINTS`](super::outcome_map::MAX_AXIS_POINTS).
-    Count,
+    /// N is 0 or above the most points an axis takes (given).
+    Count(usize),
     /// A ≥ B with N > 1.
     Order,
     /// A and B too close for N distinct values.
@@ -222,7 +222,7 @@ impl PlanError {
             PlanError::Axis { name, given, rule } => {
                 let what = match rule {
                     AxisRule::NotFinite => "A and B must be finite".to_string(),
-                    AxisRule::Count => format!("N must be in 1..={}", super::outcome_map::MAX_AXIS_POINTS),
+                    AxisRule::Count(max) => format!("N must be in 1..={max}"),
                     AxisRule::Order => "A must be < B when N > 1".to_string(),
                     AxisRule::NotDistinct => "the values must be distinct (A and B too close for N points)".to_string(),
                 };
