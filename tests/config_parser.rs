@@ -276,3 +276,28 @@ fn impact_law_and_pulse_shape_names() {
         assert!(msg.contains(&format!("{section}.{key}")), "{bad}: {msg}");
     }
 }
+
+/// Every key of the catalogue is a field of the config's serde shape: a
+/// value of its kind is never refused as an unknown key or an unknown
+/// field (a key added to the catalogue alone fails here).
+#[test]
+fn every_catalogue_key_is_read_by_the_config_parser() {
+    use rocking::sim::catalogue::{CATALOGUE, Dimension, Value};
+    for k in CATALOGUE {
+        let value = match k.value {
+            Value::Quantity(Dimension::Pga) => "\"0.3 g\"".to_string(),
+            Value::Quantity(_) | Value::Number => "0.5".to_string(),
+            Value::Count => "2".to_string(),
+            Value::Choice(words) => format!("\"{}\"", words[0]),
+            Value::Path => "\"no-such-record.dat\"".to_string(),
+            Value::Checksum => "\"00000000\"".to_string(),
+            Value::Flag => "true".to_string(),
+            Value::Tables => "[{ period = 1.0 }]".to_string(),
+        };
+        let (section, name) = k.key.split_once('.').expect("section.name");
+        let text = format!("[{section}]\n{name} = {value}\n");
+        if let Err(e) = parse(&text, "key.toml") {
+            assert!(!e.contains("unknown"), "{}: {e}", k.key);
+        }
+    }
+}

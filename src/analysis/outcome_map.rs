@@ -533,7 +533,10 @@ mod tests {
             other => panic!("not an axis error: {other}"),
         };
         assert_eq!(rule(Axis::new("y", "k", 1.0, 1.0, 3).unwrap_err()), AxisRule::Order);
-        assert_eq!(rule(Axis::new("x", "k", 0.0, 1.0, 0).unwrap_err()), AxisRule::Count(MAX_AXIS_POINTS));
+        assert_eq!(
+            rule(Axis::new("x", "k", 0.0, 1.0, 0).unwrap_err()),
+            AxisRule::Count(MAX_AXIS_POINTS)
+        );
         assert_eq!(
             rule(Axis::new("x", "k", f64::INFINITY, 1.0, 2).unwrap_err()),
             AxisRule::NotFinite
