@@ -75,12 +75,13 @@ impl VerticalArg {
     }
 }
 
-/// The vertical-motion keys: the command takes the vertical from its own
-/// flags (a suite line's `+ VPATH`, `--record-v`), scaled with the
-/// horizontal.
-const VERTICAL_KEYS: &[&str] = &[
-    "a_v", "omega_v", "phase_v", "file_v", "unit_v", "dt_v", "crc32_v", "scale_v", "pga_v",
-];
+/// Whether `name` (of `[excitation]`) is a vertical-motion key: the
+/// command takes the vertical from its own flags (a suite line's
+/// `+ VPATH`, `--record-v`), scaled with the horizontal. The catalogue
+/// names every vertical key with the suffix `_v`.
+fn is_vertical_key(name: &str) -> bool {
+    name.ends_with("_v") && crate::sim::catalogue::spec(&format!("excitation.{name}")).is_some()
+}
 
 impl Owns {
     /// Why `--set key` is refused, if it is: the engineering runs replace
@@ -93,7 +94,7 @@ impl Owns {
         let cmd = self.command;
         let why = match (section, name) {
             ("block", _) => format!("{cmd} sets every block's size itself ({}); remove it", self.sizes),
-            ("excitation", n) if VERTICAL_KEYS.contains(&n) => format!(
+            ("excitation", n) if is_vertical_key(n) => format!(
                 "{cmd} takes the vertical motion from {} and scales it with the horizontal; remove it",
                 self.vertical
             ),

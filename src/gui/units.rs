@@ -2,14 +2,16 @@
 //! (τ, Θ = θ/ψ, X per R), as the paper plots them, or an engineer's
 //! physical ones (t in s, θ in degrees, sliding in cm).
 //!
-//! Contract: this is the app's one place that converts between the two.
-//! Every conversion is a scale of a value the simulation thread sent, with
+//! Contract: this is the app's one place that converts between the two,
+//! through the core's one conversion ([`Dimension`]). Every conversion is
+//! a scale of a value the simulation thread sent, with
 //! the block's geometry from [`crate::sim::protocol::RunInfo`] (τ = p t,
 //! θ = ψΘ, x = R X); the sliding displacement itself is the core's
 //! ([`Geometry::sliding`]). Axis titles come from here too, so an axis and
 //! its numbers cannot disagree about the unit.
 
 use crate::model::geometry::Geometry;
+use crate::sim::catalogue::Dimension;
 use crate::sim::scenario::ExcitationKind;
 
 /// Which units numbers are shown in.
@@ -61,7 +63,7 @@ impl Scales {
     /// Time: τ → t in s (t = τ/p), or τ.
     pub fn time(&self, tau: f64) -> f64 {
         match self.units {
-            Units::Physical => tau / self.geo.p,
+            Units::Physical => Dimension::Tau.to_physical(tau, &self.geo),
             Units::Normalised => tau,
         }
     }
@@ -69,19 +71,19 @@ impl Scales {
     /// The inverse of [`Scales::time`]: a shown time → τ.
     pub fn tau_of(&self, shown: f64) -> f64 {
         match self.units {
-            Units::Physical => shown * self.geo.p,
+            Units::Physical => Dimension::Tau.to_bare(shown, &self.geo),
             Units::Normalised => shown,
         }
     }
 
     /// Seconds → τ, whatever the units shown (a record's length is in s).
     pub fn tau_of_seconds(&self, t_s: f64) -> f64 {
-        t_s * self.geo.p
+        Dimension::Tau.to_bare(t_s, &self.geo)
     }
 
     /// τ → seconds, whatever the units shown (the banner speaks seconds).
     pub fn seconds(&self, tau: f64) -> f64 {
-        tau / self.geo.p
+        Dimension::Tau.to_physical(tau, &self.geo)
     }
 
     /// Title of a time axis.
@@ -103,7 +105,7 @@ impl Scales {
     /// Rotation: Θ → θ in degrees (θ = ψΘ), or Θ.
     pub fn theta(&self, theta: f64) -> f64 {
         match self.units {
-            Units::Physical => (self.geo.psi * theta).to_degrees(),
+            Units::Physical => Dimension::Rotation.to_physical(theta, &self.geo).to_degrees(),
             Units::Normalised => theta,
         }
     }
@@ -119,7 +121,7 @@ impl Scales {
     /// Angular velocity: Θ' (per τ) → θ' in deg/s (θ' = ψ p Θ'), or Θ'.
     pub fn theta_dot(&self, theta_dot: f64) -> f64 {
         match self.units {
-            Units::Physical => (self.geo.psi * self.geo.p * theta_dot).to_degrees(),
+            Units::Physical => Dimension::AngularVelocity.to_physical(theta_dot, &self.geo).to_degrees(),
             Units::Normalised => theta_dot,
         }
     }
@@ -137,8 +139,10 @@ impl Scales {
     pub fn state_of(&self, theta: f64, theta_dot: f64) -> (f64, f64) {
         match self.units {
             Units::Physical => {
-                let t = theta.to_radians() / self.geo.psi;
-                (t, theta_dot.to_radians() / (self.geo.psi * self.geo.p))
+                (
+                    Dimension::Rotation.to_bare(theta.to_radians(), &self.geo),
+                    Dimension::AngularVelocity.to_bare(theta_dot.to_radians(), &self.geo),
+                )
             }
             Units::Normalised => (theta, theta_dot),
         }
@@ -175,7 +179,7 @@ impl Scales {
     /// Frequency: ω/p → f in Hz (f = ω p/2π), or ω/p.
     pub fn frequency(&self, omega_over_p: f64) -> f64 {
         match self.units {
-            Units::Physical => omega_over_p * self.geo.p / std::f64::consts::TAU,
+            Units::Physical => Dimension::Frequency.to_physical(omega_over_p, &self.geo) / std::f64::consts::TAU,
             Units::Normalised => omega_over_p,
         }
     }

@@ -20,6 +20,7 @@ use super::staging::{self, Staging};
 use crate::model::geometry::G;
 use crate::model::system::EventRecord;
 use crate::model::{Geometry, Mode};
+use crate::sim::catalogue::Dimension;
 use crate::sim::scenario::ExcitationKind;
 use crate::sim::{HistoryRow, Physical, RunResult, Scenario, SectionRow, Sink};
 
@@ -342,10 +343,21 @@ pub fn resolved_json(cfg: &Scenario) -> serde_json::Value {
     let geo = cfg.geometry();
     let (psi, p, r) = (geo.psi, geo.p, geo.r);
     let x = &cfg.excitation;
-    let amplitude = |a: f64| json!({ "normalised": a, "g": a * psi, "m_s2": a * psi * G, "over_g_tan_alpha": a * psi / geo.tan_psi });
-    let frequency = |w: f64| json!({ "normalised": w, "rad_s": w * p, "hz": w * p / std::f64::consts::TAU, "period_s": std::f64::consts::TAU / (w * p) });
-    let rotation = |t: f64| json!({ "normalised": t, "rad": t * psi, "deg": (t * psi).to_degrees() });
-    let time = |t: f64| json!({ "tau": t, "s": t / p });
+    // Every physical value through the one conversion (`Dimension`).
+    let si = |d: Dimension, bare: f64| d.to_physical(bare, &geo);
+    let amplitude = |a: f64| {
+        let g = si(Dimension::Amplitude, a);
+        json!({ "normalised": a, "g": g, "m_s2": g * G, "over_g_tan_alpha": g / geo.tan_psi })
+    };
+    let frequency = |w: f64| {
+        let rad_s = si(Dimension::Frequency, w);
+        json!({ "normalised": w, "rad_s": rad_s, "hz": rad_s / std::f64::consts::TAU, "period_s": std::f64::consts::TAU / rad_s })
+    };
+    let rotation = |t: f64| {
+        let rad = si(Dimension::Rotation, t);
+        json!({ "normalised": t, "rad": rad, "deg": rad.to_degrees() })
+    };
+    let time = |t: f64| json!({ "tau": t, "s": si(Dimension::Tau, t) });
     let harmonic_or_pulse = matches!(x.kind, ExcitationKind::Harmonic | ExcitationKind::Pulse);
     json!({
         "block": {
@@ -369,8 +381,8 @@ pub fn resolved_json(cfg: &Scenario) -> serde_json::Value {
         },
         "initial": {
             "theta": rotation(cfg.initial.theta),
-            "theta_dot": { "normalised": cfg.initial.theta_dot, "rad_s": cfg.initial.theta_dot * psi * p },
-            "x_dot": cfg.initial.x_dot.map(|v| json!({ "normalised": v, "m_s": v * r * p })),
+            "theta_dot": { "normalised": cfg.initial.theta_dot, "rad_s": si(Dimension::AngularVelocity, cfg.initial.theta_dot) },
+            "x_dot": cfg.initial.x_dot.map(|v| json!({ "normalised": v, "m_s": si(Dimension::Velocity, v) })),
         },
         "run": {
             "end": time(cfg.tau_end()),

@@ -53,17 +53,22 @@ use crate::sim::{Param, Scenario};
 /// The keys a map may vary: the excitation, friction and the initial
 /// state. Geometry and the impact law change the block itself, and the
 /// solver settings do not change the physics.
-pub const KEYS: [&str; 9] = [
-    "excitation.a_h",
-    "excitation.omega_h",
-    "excitation.a_v",
-    "excitation.omega_v",
-    "excitation.phase_v",
-    "friction.static",
-    "friction.kinetic",
-    "initial.theta",
-    "initial.theta_dot",
+pub const PARAMS: [Param; 9] = [
+    Param::Ah,
+    Param::OmegaH,
+    Param::Av,
+    Param::OmegaV,
+    Param::PhaseV,
+    Param::MuS,
+    Param::MuK,
+    Param::Theta0,
+    Param::ThetaDot0,
 ];
+
+/// The config keys of [`PARAMS`], as the axis menus list them.
+pub fn keys() -> [&'static str; 9] {
+    PARAMS.map(Param::key)
+}
 
 /// Cells per axis to choose from. 128 is the default: fine enough to see
 /// the structure of the overturning map.
@@ -82,11 +87,11 @@ pub const COARSE: usize = 16;
 /// one and a half times the current value for the others (0 to 1 at 0).
 pub fn default_range(key: &str, current: f64) -> (f64, f64) {
     let current = if current.is_finite() { current } else { 0.0 };
-    match key {
-        "initial.theta" => (-0.9, 0.9),
-        "initial.theta_dot" => (-1.0, 1.0),
+    match crate::sim::catalogue::spec(key).and_then(|s| s.param) {
+        Some(Param::Theta0) => (-0.9, 0.9),
+        Some(Param::ThetaDot0) => (-1.0, 1.0),
         _ if current == 0.0 => (0.0, 1.0),
-        "excitation.a_h" | "excitation.a_v" => (0.0, 2.0 * current.abs()),
+        Some(Param::Ah | Param::Av) => (0.0, 2.0 * current.abs()),
         _ => {
             let (a, b) = (0.5 * current, 1.5 * current);
             (a.min(b), a.max(b))
@@ -112,7 +117,7 @@ pub fn window_for(base: Window, lowest_omega_h: f64) -> Window {
 /// One mapped axis as the user set it.
 #[derive(Clone, Debug, PartialEq)]
 pub struct AxisChoice {
-    /// The config key, one of [`KEYS`].
+    /// The config key, one of [`keys`].
     pub key: String,
     /// First value (left or bottom edge's cell).
     pub from: f64,

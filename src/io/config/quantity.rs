@@ -160,30 +160,26 @@ impl Quantity {
                 Ok(v)
             };
         };
-        let converted = match (dim, unit) {
+        // The unit to the dimension's physical unit (m, g, rad/s, rad,
+        // m/s, s), then the one conversion to the model's number.
+        let physical = match (dim, unit) {
             (Dimension::Length, Unit::Metre) => Some(v),
             (Dimension::Length, Unit::Centimetre) => Some(v * 0.01),
             (Dimension::Length, Unit::Millimetre) => Some(v * 0.001),
-            (Dimension::Amplitude, Unit::Accel(a)) => Some(a.to_g(v) / geo.psi),
-            (Dimension::Amplitude, Unit::Uplift) => Some(v * geo.tan_psi / geo.psi),
-            (Dimension::Pga, Unit::Accel(a)) => Some(a.to_g(v)),
-            (Dimension::Pga, Unit::Uplift) => Some(v * geo.tan_psi),
-            (Dimension::Frequency, Unit::Hertz) => Some(std::f64::consts::TAU * v / geo.p),
-            (Dimension::Frequency, Unit::RadianPerSecond) => Some(v / geo.p),
-            (Dimension::Phase, Unit::Radian) => Some(v),
-            (Dimension::Phase, Unit::Degree) => Some(v * deg),
-            (Dimension::Rotation, Unit::Radian) => Some(v / geo.psi),
-            (Dimension::Rotation, Unit::Degree) => Some(v * deg / geo.psi),
-            (Dimension::AngularVelocity, Unit::RadianPerSecond) => Some(v / (geo.psi * geo.p)),
-            (Dimension::AngularVelocity, Unit::DegreePerSecond) => Some(v * deg / (geo.psi * geo.p)),
-            (Dimension::Velocity, Unit::MetrePerSecond) => Some(v / (geo.r * geo.p)),
-            (Dimension::Velocity, Unit::CentimetrePerSecond) => Some(v * 0.01 / (geo.r * geo.p)),
-            (Dimension::Tau, Unit::Second) => Some(v * geo.p),
-            (Dimension::Tau, Unit::Millisecond) => Some(v * 1e-3 * geo.p),
-            (Dimension::Seconds, Unit::Second) => Some(v),
-            (Dimension::Seconds, Unit::Millisecond) => Some(v * 1e-3),
+            (Dimension::Amplitude | Dimension::Pga, Unit::Accel(a)) => Some(a.to_g(v)),
+            (Dimension::Amplitude | Dimension::Pga, Unit::Uplift) => Some(v * geo.tan_psi),
+            (Dimension::Frequency, Unit::Hertz) => Some(std::f64::consts::TAU * v),
+            (Dimension::Frequency | Dimension::AngularVelocity, Unit::RadianPerSecond) => Some(v),
+            (Dimension::Phase | Dimension::Rotation, Unit::Radian) => Some(v),
+            (Dimension::Phase | Dimension::Rotation, Unit::Degree) => Some(v * deg),
+            (Dimension::AngularVelocity, Unit::DegreePerSecond) => Some(v * deg),
+            (Dimension::Velocity, Unit::MetrePerSecond) => Some(v),
+            (Dimension::Velocity, Unit::CentimetrePerSecond) => Some(v * 0.01),
+            (Dimension::Tau | Dimension::Seconds, Unit::Second) => Some(v),
+            (Dimension::Tau | Dimension::Seconds, Unit::Millisecond) => Some(v * 1e-3),
             _ => None,
         };
+        let converted = physical.map(|x| dim.to_bare(x, geo));
         let Some(x) = converted else {
             return Err(ConfigError::key(
                 key,

@@ -1,7 +1,15 @@
-//! What a key measures: the units that fit it and what a bare number
-//! means. The config parser converts with it (`io::config::quantity`), the
-//! Python package states it in `help(rocking.Scene)`, and the app shows the
-//! bare number's unit from it.
+//! What a key measures: the units that fit it, what a bare number means,
+//! and the one conversion between the model's normalised numbers and
+//! physical units. The config parser converts with it
+//! (`io::config::quantity`), `summary.json`'s `resolved` block
+//! (`io::output`) and the app's units switch (`gui::units`) too; the Python
+//! package states it in `help(rocking.Scene)`.
+//!
+//! The physical unit of each dimension: m, g (accelerations), rad/s
+//! (frequencies, angular velocities), rad, m/s, s. The bare number is the
+//! model's: Θ = θ/ψ, Θ' = θ̇/(ψ p), X' = ẋ/(R p), Ω = ω/p, τ = p t, A = a/(ψ g).
+
+use crate::model::Geometry;
 
 /// What a key measures, which decides the units that fit it and what a bare
 /// number means.
@@ -59,5 +67,62 @@ impl Dimension {
             Dimension::Tau => ("s", "tau = p*t"),
             Dimension::Length | Dimension::Pga | Dimension::Phase | Dimension::Seconds => return None,
         })
+    }
+
+    /// The model's (bare) number of a value in this dimension's physical
+    /// unit, for block `geo`.
+    pub fn to_bare(self, physical: f64, geo: &Geometry) -> f64 {
+        match self {
+            Dimension::Length | Dimension::Pga | Dimension::Phase | Dimension::Seconds => physical,
+            Dimension::Amplitude | Dimension::Rotation => physical / geo.psi,
+            Dimension::Frequency => physical / geo.p,
+            Dimension::AngularVelocity => physical / (geo.psi * geo.p),
+            Dimension::Velocity => physical / (geo.r * geo.p),
+            Dimension::Tau => physical * geo.p,
+        }
+    }
+
+    /// The inverse of [`Dimension::to_bare`]: a bare number in this
+    /// dimension's physical unit.
+    pub fn to_physical(self, bare: f64, geo: &Geometry) -> f64 {
+        match self {
+            Dimension::Length | Dimension::Pga | Dimension::Phase | Dimension::Seconds => bare,
+            Dimension::Amplitude | Dimension::Rotation => bare * geo.psi,
+            Dimension::Frequency => bare * geo.p,
+            Dimension::AngularVelocity => bare * geo.psi * geo.p,
+            Dimension::Velocity => bare * geo.r * geo.p,
+            Dimension::Tau => bare / geo.p,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Each conversion against the model's definitions written out: a
+    /// 0.6 × 2 m block, θ = ψΘ, θ̇ = ψpΘ', ẋ = RpX', ω = pΩ, t = τ/p, a = ψgA.
+    #[test]
+    fn bare_and_physical_are_the_models_definitions_both_ways() {
+        let geo = Geometry::new(0.6, 2.0);
+        let (psi, p, r) = ((0.3f64).atan(), (3.0 * 9.81 / (4.0 * (0.3f64.powi(2) + 1.0).sqrt())).sqrt(), (0.3f64.powi(2) + 1.0).sqrt());
+        let close = |a: f64, b: f64| (a - b).abs() <= 1e-12 * b.abs().max(1.0);
+        assert!(close(geo.psi, psi) && close(geo.p, p) && close(geo.r, r));
+        let cases = [
+            (Dimension::Length, 1.0),
+            (Dimension::Pga, 1.0),
+            (Dimension::Phase, 1.0),
+            (Dimension::Seconds, 1.0),
+            (Dimension::Amplitude, psi),
+            (Dimension::Rotation, psi),
+            (Dimension::Frequency, p),
+            (Dimension::AngularVelocity, psi * p),
+            (Dimension::Velocity, r * p),
+            (Dimension::Tau, 1.0 / p),
+        ];
+        for (d, physical_per_bare) in cases {
+            assert!(close(d.to_physical(0.7, &geo), 0.7 * physical_per_bare), "{d:?}");
+            assert!(close(d.to_bare(d.to_physical(0.7, &geo), &geo), 0.7), "{d:?}");
+        }
     }
 }

@@ -7,7 +7,7 @@ use egui::{Color32, TextureHandle};
 use egui_plot::{HLine, Plot, PlotBounds, PlotImage, PlotPoint, VLine};
 
 use super::slot::attractor_color;
-use super::{AxisChoice, KEYS, OutcomeMapView, RESOLUTIONS, Slot, current_value, default_range};
+use super::{AxisChoice, OutcomeMapView, RESOLUTIONS, Slot, current_value, default_range, keys};
 use crate::analysis::map_refine::Source;
 use crate::analysis::steady::Window;
 use crate::gui::panels::bifurcation::{PAPER_WINDOW, SHORT_WINDOW};
@@ -22,7 +22,7 @@ impl OutcomeMapView {
             egui::ComboBox::from_id_salt(("outcome map axis", name))
                 .selected_text(&axis.key)
                 .show_ui(ui, |ui| {
-                    for k in KEYS {
+                    for k in keys() {
                         if ui.selectable_label(k == axis.key, k).clicked() {
                             chosen = Some(k);
                         }
