@@ -21,7 +21,7 @@
 
 /// Relative distance within which two cycles are one attractor (module
 /// docs).
-pub const MATCH_FRACTION: f64 = 1e-2;
+pub(crate) const MATCH_FRACTION: f64 = 1e-2;
 
 /// Absolute part of the match tolerance, for components that are zero
 /// on both cycles (the slip velocity of a block that never slides).
@@ -66,7 +66,7 @@ fn canonical(cycle: &[[f64; 3]]) -> Vec<[f64; 3]> {
 }
 
 /// Whether two cycles are one attractor (module docs).
-pub fn same_attractor(a: &[[f64; 3]], b: &[[f64; 3]]) -> bool {
+pub(crate) fn same_attractor(a: &[[f64; 3]], b: &[[f64; 3]]) -> bool {
     let k = a.len();
     if k == 0 || k != b.len() {
         return false;
@@ -89,7 +89,7 @@ pub fn same_attractor(a: &[[f64; 3]], b: &[[f64; 3]]) -> bool {
 impl Catalogue {
     /// The discovery number (from 0) of the attractor with this cycle,
     /// adding it if it is new.
-    pub fn identify(&mut self, cycle: &[[f64; 3]]) -> u32 {
+    pub(crate) fn identify(&mut self, cycle: &[[f64; 3]]) -> u32 {
         if let Some(i) = self.cycles.iter().position(|c| same_attractor(c, cycle)) {
             return i as u32;
         }

@@ -73,7 +73,7 @@ use crate::sim::{Outcome, RunResult};
 
 /// Default largest period searched (the paper's diagrams show periods 1, 2
 /// and 4; 32 leaves room for longer periodic windows inside chaos).
-pub const K_MAX: u32 = 32;
+pub(crate) const K_MAX: u32 = 32;
 
 /// The class of a steady response.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize)]
@@ -123,7 +123,7 @@ impl Response {
 
     /// The paper's mode notation `(1,k)` for a periodic response of period k
     /// (see the module docs for this reading).
-    pub fn mode_notation(self) -> Option<String> {
+    pub(crate) fn mode_notation(self) -> Option<String> {
         self.period().map(|k| format!("(1,{k})"))
     }
 
@@ -203,7 +203,7 @@ impl Default for ClassifyOptions {
 
 impl ClassifyOptions {
     /// Points needed to classify: 2·`k_max`.
-    pub fn min_points(&self) -> usize {
+    pub(crate) fn min_points(&self) -> usize {
         2 * self.k_max as usize
     }
 
@@ -299,7 +299,7 @@ pub fn classify_points<const D: usize>(
 
 /// The smallest k ≤ `k_max` (and ≤ N/2) with which the points repeat to
 /// within the tolerance, or `None`.
-pub fn smallest_period<const D: usize>(points: &[[f64; D]], opts: &ClassifyOptions) -> Option<u32> {
+pub(crate) fn smallest_period<const D: usize>(points: &[[f64; D]], opts: &ClassifyOptions) -> Option<u32> {
     let mut amplitude = [0.0_f64; D];
     for p in points {
         for (a, x) in amplitude.iter_mut().zip(p) {
@@ -320,7 +320,7 @@ pub fn smallest_period<const D: usize>(points: &[[f64; D]], opts: &ClassifyOptio
 
 /// The two numbers of the invariant-curve test (module docs, step 2).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct CurveTest {
+pub(crate) struct CurveTest {
     /// Fraction of steps p_j → p_{j+1} whose cyclic-rank shift is within ±2
     /// of the most common one (1 for a rotation).
     pub rotation_fraction: f64,
@@ -331,14 +331,14 @@ pub struct CurveTest {
 
 impl CurveTest {
     /// Whether both criteria of an invariant curve hold.
-    pub fn is_invariant_curve(&self, opts: &ClassifyOptions) -> bool {
+    pub(crate) fn is_invariant_curve(&self, opts: &ClassifyOptions) -> bool {
         self.rotation_fraction >= opts.min_rotation_fraction && self.tour_ratio <= opts.max_tour_ratio
     }
 }
 
 /// Runs the invariant-curve test on finite points. Fewer than 3 points, or
 /// points that are all equal, give a fraction of 0 (no curve).
-pub fn curve_test<const D: usize>(points: &[[f64; D]]) -> CurveTest {
+pub(crate) fn curve_test<const D: usize>(points: &[[f64; D]]) -> CurveTest {
     let none = CurveTest {
         rotation_fraction: 0.0,
         tour_ratio: f64::INFINITY,

@@ -61,7 +61,7 @@ pub trait FieldNames {
 /// The core's own names ([`StudyField::name`]), a value after ` = `: what
 /// the errors' `Display` prints.
 #[derive(Clone, Copy, Debug, Default)]
-pub struct OwnNames;
+pub(crate) struct OwnNames;
 
 impl FieldNames for OwnNames {
     fn name(&self, field: StudyField) -> Cow<'static, str> {

@@ -137,7 +137,7 @@ impl<C: Copy + PartialEq> Refiner<C> {
     /// level of stride 1 has been handed out. A cell of the level above
     /// that was never recorded counts as a class of its own, so its
     /// neighbours are computed.
-    pub fn next_level(&mut self) -> Option<Vec<usize>> {
+    pub(crate) fn next_level(&mut self) -> Option<Vec<usize>> {
         if self.finished {
             return None;
         }

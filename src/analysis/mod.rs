@@ -46,7 +46,7 @@ pub enum Progress {
 }
 
 /// A progress callback: the CLI draws a bar from it, the app a counter.
-pub type ProgressFn<'a> = dyn Fn(Progress) + Sync + 'a;
+pub(crate) type ProgressFn<'a> = dyn Fn(Progress) + Sync + 'a;
 
 /// The callback that ignores progress.
 pub fn silent(_: Progress) {}

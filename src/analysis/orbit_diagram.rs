@@ -44,7 +44,7 @@ use super::{Progress, ProgressFn};
 use crate::sim::{InitialState, Param, Scenario, SectionRow};
 
 /// Most values one sweep may have (a guard against a step typed too small).
-pub const MAX_VALUES: usize = 10_000_000;
+pub(crate) const MAX_VALUES: usize = 10_000_000;
 
 /// The values of a sweep: `from + i·step` for every i with
 /// `from + i·step < to + step/2`, so `to` is included despite rounding (and
@@ -473,7 +473,7 @@ pub struct ResponseRange {
 }
 
 /// Groups consecutive `(value, response)` pairs with equal responses.
-pub fn response_ranges(values: &[(f64, Response)]) -> Vec<ResponseRange> {
+pub(crate) fn response_ranges(values: &[(f64, Response)]) -> Vec<ResponseRange> {
     let mut out: Vec<ResponseRange> = Vec::new();
     for &(value, response) in values {
         match out.last_mut() {

@@ -25,7 +25,7 @@ use crate::sim::{Param, Scenario};
 
 /// Most points on one axis (a guard against a typo; 10⁴ × 10⁴ cells would
 /// take weeks anyway).
-pub const MAX_AXIS_POINTS: usize = 10_000;
+pub(crate) const MAX_AXIS_POINTS: usize = 10_000;
 
 /// One axis of a map: what it is called and its values.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
@@ -227,7 +227,7 @@ pub const COARSE_CELLS: usize = 32;
 /// Lattice lines around a cell that must agree before it inherits their
 /// class: 2 catches boundaries that bulge between lattice lines and most
 /// one-cell islands next to a boundary (see [`COARSE_CELLS`]).
-pub const HALO: usize = 2;
+pub(crate) const HALO: usize = 2;
 
 impl MapPlan {
     /// Every cell computed over its whole window: the reference, kept for

@@ -73,7 +73,7 @@ impl<M, R, const N: usize> Observer<M, R, N> for Strobe<N> {
 
 /// The rows of a run's section at τ ≥ `transient` (rows are in time order,
 /// as the driver emits them).
-pub fn after_transient(rows: &[SectionRow], transient: f64) -> &[SectionRow] {
+pub(crate) fn after_transient(rows: &[SectionRow], transient: f64) -> &[SectionRow] {
     let first = rows.partition_point(|r| r.tau < transient);
     rows.get(first..).unwrap_or(&[])
 }
@@ -83,7 +83,7 @@ pub fn after_transient(rows: &[SectionRow], transient: f64) -> &[SectionRow] {
 /// X' is included so that a flat sliding block (Θ = Θ' = 0) is still told
 /// apart by its slip velocity; X itself is left out because a sliding block
 /// drifts, so X never repeats even when the motion is periodic.
-pub fn block_coordinates(rows: &[SectionRow]) -> Vec<[f64; 3]> {
+pub(crate) fn block_coordinates(rows: &[SectionRow]) -> Vec<[f64; 3]> {
     rows.iter().map(|r| [r.theta, r.theta_dot, r.x_dot]).collect()
 }
 
@@ -108,7 +108,7 @@ where
 
 /// How many section times τ_k = k·`period` lie in [`transient`, `tau_end`]
 /// (0 for a non-positive period or an empty window).
-pub fn points_in_window(period: f64, transient: f64, tau_end: f64) -> u64 {
+pub(crate) fn points_in_window(period: f64, transient: f64, tau_end: f64) -> u64 {
     if period.is_nan() || period <= 0.0 || tau_end.is_nan() || transient.is_nan() || tau_end < transient {
         return 0;
     }

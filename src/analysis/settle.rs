@@ -55,12 +55,12 @@ use crate::sim::{HistoryRow, Scenario, SectionRow, Sink, simulate_into};
 /// far above the 10⁻¹² scatter of a converged orbit at the default
 /// integration tolerance (so a converged orbit does reach it; a loose
 /// tolerance whose scatter exceeds it only means the run is not stopped).
-pub const SETTLE_FRACTION: f64 = 1e-2;
+pub(crate) const SETTLE_FRACTION: f64 = 1e-2;
 
 /// Recurrences beyond two whole cycles that must hold before a periodic
 /// run stops: 8 forcing periods, a margin against a passing
 /// near-recurrence of a chaotic transient.
-pub const CONFIRM: usize = 8;
+pub(crate) const CONFIRM: usize = 8;
 
 /// Why a watched run stopped early.
 #[derive(Clone, Debug, PartialEq)]
@@ -193,7 +193,7 @@ impl Sink for Settle {
 /// Whether a scenario's forcing has the section's period 2π/Ω_h exactly
 /// (module docs): harmonic, and no vertical forcing or Ω_v a whole
 /// multiple of Ω_h.
-pub fn forcing_is_periodic(scenario: &Scenario) -> bool {
+pub(crate) fn forcing_is_periodic(scenario: &Scenario) -> bool {
     let x = &scenario.excitation;
     if x.forcing_period().is_none() {
         return false;

@@ -31,14 +31,14 @@ use realfft::RealFftPlanner;
 use crate::sim::HistoryRow;
 
 /// The paper's integration step, the spacing of its spectrum's samples.
-pub const PAPER_DT: f64 = 0.004;
+pub(crate) const PAPER_DT: f64 = 0.004;
 /// Index of the paper's first spectrum sample.
-pub const PAPER_FIRST: usize = 3000;
+pub(crate) const PAPER_FIRST: usize = 3000;
 /// The paper's number of spectrum samples (7,096 − 3,000).
-pub const PAPER_COUNT: usize = 4096;
+pub(crate) const PAPER_COUNT: usize = 4096;
 
 /// Fewest samples a spectrum is computed from.
-pub const MIN_SAMPLES: usize = crate::sim::scenario::MIN_SPECTRUM_SAMPLES;
+pub(crate) const MIN_SAMPLES: usize = crate::sim::scenario::MIN_SPECTRUM_SAMPLES;
 
 /// Taper applied before the transform.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default, serde::Serialize)]
@@ -160,7 +160,7 @@ pub enum SpectrumError {
 }
 
 /// The one-sided PSD of `samples` spaced `dt` apart (module docs).
-pub fn power_spectrum(samples: &[f64], dt: f64, opts: &SpectrumOptions) -> Result<Spectrum, SpectrumError> {
+pub(crate) fn power_spectrum(samples: &[f64], dt: f64, opts: &SpectrumOptions) -> Result<Spectrum, SpectrumError> {
     let n = samples.len();
     if n < MIN_SAMPLES {
         return Err(SpectrumError::TooFewSamples(n));
@@ -207,12 +207,12 @@ pub fn power_spectrum(samples: &[f64], dt: f64, opts: &SpectrumOptions) -> Resul
 
 impl Spectrum {
     /// Bin width Δf = 1/(NΔτ), cycles per unit τ.
-    pub fn df(&self) -> f64 {
+    pub(crate) fn df(&self) -> f64 {
         1.0 / (self.n as f64 * self.dt)
     }
 
     /// Σ S_k Δf: the (taper-weighted) mean square of the signal.
-    pub fn total_power(&self) -> f64 {
+    pub(crate) fn total_power(&self) -> f64 {
         self.psd.iter().sum::<f64>() * self.df()
     }
 
@@ -326,7 +326,7 @@ pub fn resample(tau: &[f64], value: &[f64], slope: Option<&[f64]>, times: &[f64]
 }
 
 /// The Θ samples of a time history for `window`, with their spacing.
-pub fn theta_samples(history: &[HistoryRow], window: SpectrumWindow) -> Result<(Vec<f64>, f64), SpectrumError> {
+pub(crate) fn theta_samples(history: &[HistoryRow], window: SpectrumWindow) -> Result<(Vec<f64>, f64), SpectrumError> {
     let (first, count, dt) = match window {
         SpectrumWindow::All => {
             let n = history.len();

@@ -64,7 +64,7 @@ impl Window {
 
     /// Checks that the window holds enough section points to classify for a
     /// forcing period 2π/Ω_h = `forcing_period`.
-    pub fn check_points(&self, forcing_period: f64, opts: &ClassifyOptions) -> Result<(), WindowError> {
+    pub(crate) fn check_points(&self, forcing_period: f64, opts: &ClassifyOptions) -> Result<(), WindowError> {
         let have = points_in_window(forcing_period, self.transient, self.tau_end);
         let need = opts.min_points() as u64;
         if have < need {
@@ -201,7 +201,7 @@ pub fn check_scenario(scenario: &Scenario, window: &Window, opts: &ClassifyOptio
 /// with the pivot stuck (or at rest) gets no `x_dot`, so that the run
 /// recomputes the exact no-slip velocity instead of starting with a slip of
 /// rounding size; a sliding point keeps its `x_dot`.
-pub fn seed_of(row: &SectionRow) -> Option<InitialState> {
+pub(crate) fn seed_of(row: &SectionRow) -> Option<InitialState> {
     let x_dot = match row.mode {
         Mode::Rest | Mode::Rock { .. } => None,
         Mode::Slide { .. } | Mode::SlideRock { .. } => Some(row.x_dot),

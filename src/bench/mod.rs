@@ -268,10 +268,10 @@ pub fn reference(scene: &Scene) -> Result<(RunResult, Reference), SimError> {
 }
 
 /// Repeats of a record add up to at least this much wall time, s.
-pub const MIN_MEASURED_S: f64 = 0.05;
+pub(crate) const MIN_MEASURED_S: f64 = 0.05;
 
 /// Most repeats of one record (a free-rocking run takes 15 µs).
-pub const MAX_REPEATS: usize = 2000;
+pub(crate) const MAX_REPEATS: usize = 2000;
 
 /// Runs one method at one setting `repeats` times against `reference`
 /// (more for a short run: see [`MIN_MEASURED_S`]); the median wall time is
@@ -344,7 +344,7 @@ pub fn work_precision(scene: &Scene, opts: &BenchOptions) -> Result<(Reference, 
 /// Time of `method` at `error`, by log–log interpolation of its records;
 /// if every record is more accurate than `error`, the fastest record's time
 /// (an upper bound); `None` if none is accurate enough.
-pub fn time_at_error(records: &[Record], method: &str, error: f64) -> Option<f64> {
+pub(crate) fn time_at_error(records: &[Record], method: &str, error: f64) -> Option<f64> {
     let mut pts: Vec<(f64, f64)> = records
         .iter()
         .filter(|r| r.method == method && r.error > 0.0 && r.wall_s > 0.0)
@@ -444,7 +444,7 @@ impl Row for CsvRecord<'_> {
 }
 
 /// Records as CSV (`scene,method,setting,wall_s,rhs_evals,steps,error,impact_time_error,impacts`).
-pub fn to_csv(records: &[Record]) -> String {
+pub(crate) fn to_csv(records: &[Record]) -> String {
     csv::to_string(records.iter().map(|r| CsvRecord {
         scene: &r.scene,
         method: &r.method,

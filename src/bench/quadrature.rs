@@ -30,7 +30,7 @@ pub fn quarter_period(psi: f64, theta0: f64) -> f64 {
 }
 
 /// Impact times of Housner free rocking from rest at `theta0` up to `tau_end`.
-pub fn impact_times(psi: f64, housner_r: f64, theta0: f64, tau_end: f64) -> Vec<f64> {
+pub(crate) fn impact_times(psi: f64, housner_r: f64, theta0: f64, tau_end: f64) -> Vec<f64> {
     let mut out = Vec::new();
     let mut theta = theta0;
     let mut tau = quarter_period(psi, theta);

@@ -17,7 +17,7 @@ use crate::sim::scenario::Record;
 use crate::sim::{Scenario, ScenarioError};
 
 /// Most values of one list flag.
-pub const MAX_LIST: usize = 100_000;
+pub(crate) const MAX_LIST: usize = 100_000;
 
 /// The block's contact and the solver: a scene, and the friction flag.
 #[derive(Debug, Clone, clap::Args)]
@@ -209,7 +209,7 @@ impl RecordUnitArgs {
 
 /// Reads the record at `path` with `spec`; a missing unit names --unit, a
 /// missing step --dt, anything else the file and line.
-pub fn read_record(path: &Path, spec: &RecordSpec) -> anyhow::Result<Record> {
+pub(crate) fn read_record(path: &Path, spec: &RecordSpec) -> anyhow::Result<Record> {
     let loaded = read_record_as(path, spec).map_err(|e| match e {
         RecordError::NoUnit { .. } | RecordError::HeaderNoUnit { .. } | RecordError::NoHeaderUnit { .. } => {
             anyhow!("{e} (give the unit with --unit g|m/s2|cm/s2)")
@@ -231,7 +231,7 @@ pub fn read_record(path: &Path, spec: &RecordSpec) -> anyhow::Result<Record> {
 /// A list flag's values: `a,b,c` or `FROM:TO:N` (N evenly spaced values,
 /// both ends included), each finite and > 0, no value twice (a repeated
 /// level or ratio would count its runs twice or draw one block twice).
-pub fn positive_list(flag: &str, text: &str) -> Result<Vec<f64>, BatchError> {
+pub(crate) fn positive_list(flag: &str, text: &str) -> Result<Vec<f64>, BatchError> {
     let bad = |what: String| input(anyhow!("{flag} {text}: {what}"));
     let range = if let [from, to, n] = text.split(':').collect::<Vec<_>>()[..] {
         let (Ok(from), Ok(to), Ok(n)) = (
@@ -330,7 +330,7 @@ pub fn increasing(flag: &str, values: &[f64]) -> Result<(), BatchError> {
 /// The amplitudes or scales a search tries, `step`, 2·step, … `max`
 /// (`analysis::engineering::overturn_scale::ladder`), checked here so that
 /// errors name the flags and print the numbers as [`show`] does.
-pub fn search_ladder(step_flag: &str, step: f64, max_flag: &str, max: f64) -> Result<Vec<f64>, BatchError> {
+pub(crate) fn search_ladder(step_flag: &str, step: f64, max_flag: &str, max: f64) -> Result<Vec<f64>, BatchError> {
     if !(step > 0.0 && step.is_finite()) {
         return Err(input(anyhow!(
             "{step_flag} {}: must be a finite number > 0",
@@ -381,7 +381,7 @@ pub fn show(x: f64) -> String {
 /// `e` with its config key replaced by the flag the user typed, from
 /// `flags` (`(key, flag)` pairs), the key kept in brackets:
 /// `--pulse-period (excitation.omega_h): …`. A key with no flag is kept.
-pub fn flag_error(e: &ScenarioError, flags: &[(&str, &str)]) -> String {
+pub(crate) fn flag_error(e: &ScenarioError, flags: &[(&str, &str)]) -> String {
     match flags.iter().find(|(key, _)| e.key.starts_with(key)) {
         Some((_, flag)) => format!("{flag} ({}): {}", e.key, e.message),
         None => e.to_string(),
@@ -392,7 +392,7 @@ pub fn flag_error(e: &ScenarioError, flags: &[(&str, &str)]) -> String {
 /// commands' printed answers, when the base scene has `[floor]`: the
 /// levels and scales are the ground motion's, and the block feels it
 /// filtered through the building.
-pub fn floor_note(base: &Scenario) -> Option<String> {
+pub(crate) fn floor_note(base: &Scenario) -> Option<String> {
     let floor = base.floor.as_ref()?;
     let modes: Vec<String> = floor
         .modes

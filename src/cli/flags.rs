@@ -8,7 +8,7 @@ use crate::analysis::field::{FieldNames, StudyField};
 
 /// Study inputs named as `rocking sweep`, `map` and `merge` name them.
 #[derive(Clone, Copy, Debug, Default)]
-pub struct Flags;
+pub(crate) struct Flags;
 
 impl FieldNames for Flags {
     fn name(&self, field: StudyField) -> Cow<'static, str> {

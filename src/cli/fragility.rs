@@ -178,7 +178,7 @@ const OWNS: Owns = Owns {
 /// about 10 a scaled record's duration and frequency content no longer
 /// match the intensity it is scaled to (a weak, short record stands in for
 /// a strong, long one), and the fit leans on motion no site produces.
-pub const LARGE_SCALE: f64 = 10.0;
+pub(crate) const LARGE_SCALE: f64 = 10.0;
 
 /// The warnings about one record of the suite, one line each: its PGA as
 /// read (in its unit) beyond what ground motion does, which suggests a wrong
@@ -798,7 +798,7 @@ fn incremental(
 
 /// Whether `dirs` are fragility shards (the first holds a
 /// `fragility.json`): `rocking merge` then joins them with [`merge`].
-pub fn are_fragility_shards(dirs: &[PathBuf]) -> bool {
+pub(crate) fn are_fragility_shards(dirs: &[PathBuf]) -> bool {
     dirs.first().is_some_and(|d| d.join("fragility.json").is_file())
 }
 

@@ -113,7 +113,7 @@ impl Row for MapRow {
 }
 
 /// `map.csv` of `cells` (in row order).
-pub fn map_csv(cells: &[Cell]) -> String {
+pub(crate) fn map_csv(cells: &[Cell]) -> String {
     csv::to_string(cells.iter().map(|c| MapRow {
         x: Num(c.x),
         y: Num(c.y),
@@ -133,7 +133,7 @@ pub fn run(args: &MapArgs) -> Result<(), BatchError> {
 
 /// Runs `rocking map`; `lyapunov`, if given, fills the `lyapunov` column,
 /// decides between quasiperiodic and chaotic, and adds the λ-coloured map.
-pub fn run_with(args: &MapArgs, lyapunov: Option<&LyapunovFn<'_>>) -> Result<(), BatchError> {
+pub(crate) fn run_with(args: &MapArgs, lyapunov: Option<&LyapunovFn<'_>>) -> Result<(), BatchError> {
     let input = BatchError::Input;
     let base = args.scene.load().map_err(|e| input(e.into()))?;
     let (x, x_param) = axis("--x", &args.x).map_err(input)?;

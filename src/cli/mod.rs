@@ -138,7 +138,7 @@ impl Cli {
     /// derived `defer` would apply an arguments struct's own doc comment
     /// ("Arguments of `rocking sweep`") after the variant's, so each
     /// subcommand is deferred here again, keeping the variant's about.
-    pub fn command_deferred() -> clap::Command {
+    pub(crate) fn command_deferred() -> clap::Command {
         use clap::CommandFactory as _;
         /// Adds `A`'s arguments to subcommand `cmd`, keeping its about.
         fn augment<A: clap::Args>(cmd: clap::Command) -> clap::Command {

@@ -10,7 +10,7 @@ use std::time::{Duration, Instant};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle, TermLike};
 
 /// Seconds between two progress lines in a log.
-pub const LOG_INTERVAL_S: u64 = 5;
+pub(crate) const LOG_INTERVAL_S: u64 = 5;
 
 /// A progress bar counting `len` units named `what` (e.g. "blocks").
 pub fn bar(len: usize, what: &str, quiet: bool) -> ProgressBar {

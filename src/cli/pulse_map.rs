@@ -85,7 +85,7 @@ pub struct PulseMapArgs {
 /// 15.5 at 10 for B/H = 0.2, so about 1.5e5 at 1000, far above any
 /// --amp-max) and a point costs time in proportion to ω_p/p (about 70 min
 /// at 1e6).
-pub const MAX_OMEGA_RATIO: f64 = 1000.0;
+pub(crate) const MAX_OMEGA_RATIO: f64 = 1000.0;
 
 /// What `pulse-map` sets itself, for refusing `--set` keys it would
 /// ignore.

@@ -55,7 +55,7 @@ impl SuiteEntry {
 /// so 1 MiB is some 10 000 records, more than a fragility study runs in a
 /// day; beyond it the file is not a suite (`/dev/zero` would be read
 /// without end).
-pub const MAX_SUITE_BYTES: u64 = 1 << 20;
+pub(crate) const MAX_SUITE_BYTES: u64 = 1 << 20;
 
 /// Bytes of a file in a `--records` folder read to tell a record from
 /// another file (a README, a suite list, a figure).

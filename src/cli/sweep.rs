@@ -96,7 +96,7 @@ pub struct SweepArgs {
 /// Everything about a sweep except its results: what `sweep.json` records
 /// and what the figure's titles are made from.
 #[derive(Clone, Debug)]
-pub struct SweepMeta {
+pub(crate) struct SweepMeta {
     /// The swept parameter.
     pub param: Param,
     /// Its values.
@@ -161,12 +161,12 @@ impl SweepMeta {
 
 /// A progress bar on stderr: drawn on a terminal, a line every few
 /// seconds in a log ([`super::progress::bar`]), nothing when quiet.
-pub fn progress_bar(len: usize, what: &str, quiet: bool) -> ProgressBar {
+pub(crate) fn progress_bar(len: usize, what: &str, quiet: bool) -> ProgressBar {
     super::progress::bar(len, what, quiet)
 }
 
 /// The analyses' progress callback drawing on `bar`.
-pub fn progress_fn(bar: &ProgressBar) -> impl Fn(Progress) + Sync + '_ {
+pub(crate) fn progress_fn(bar: &ProgressBar) -> impl Fn(Progress) + Sync + '_ {
     move |p| match p {
         Progress::Total(n) => bar.set_length(n),
         Progress::Done => bar.inc(1),
@@ -179,7 +179,7 @@ pub fn progress_fn(bar: &ProgressBar) -> impl Fn(Progress) + Sync + '_ {
 pub const MAX_THREADS_PER_CORE: usize = 4;
 
 /// A rayon pool of `threads` workers (default: one per core), named.
-pub fn thread_pool(threads: Option<usize>) -> Result<rayon::ThreadPool, BatchError> {
+pub(crate) fn thread_pool(threads: Option<usize>) -> Result<rayon::ThreadPool, BatchError> {
     let cores = std::thread::available_parallelism().map_or(1, usize::from);
     let most = MAX_THREADS_PER_CORE * cores;
     match threads {
@@ -266,7 +266,7 @@ pub fn run(args: &SweepArgs) -> Result<(), BatchError> {
 
 /// Runs `rocking sweep`; `lyapunov`, if given, fills the `lyapunov` column
 /// and decides between quasiperiodic and chaotic.
-pub fn run_with(args: &SweepArgs, lyapunov: Option<&LyapunovFn<'_>>) -> Result<(), BatchError> {
+pub(crate) fn run_with(args: &SweepArgs, lyapunov: Option<&LyapunovFn<'_>>) -> Result<(), BatchError> {
     let Prepared {
         base,
         meta,
@@ -361,7 +361,7 @@ pub fn run_with(args: &SweepArgs, lyapunov: Option<&LyapunovFn<'_>>) -> Result<(
 
 /// A shard file's check for `sweep.json`: its data rows (lines after the
 /// header) and the CRC-32 of its bytes, as 8 hex digits.
-pub fn file_check(text: &str) -> serde_json::Value {
+pub(crate) fn file_check(text: &str) -> serde_json::Value {
     serde_json::json!({
         "rows": text.lines().count().saturating_sub(1),
         "crc32": format!("{:08x}", crc32fast::hash(text.as_bytes())),

@@ -22,7 +22,7 @@ pub fn staged(out: &Path, write: impl FnOnce(&mut Staging) -> anyhow::Result<()>
 /// A failure while writing outputs: a problem of the output location (a
 /// full disk, a name too long, no permission: any I/O error, exit 2), or
 /// else of the computation that renders them (exit 1).
-pub fn output_error(e: anyhow::Error) -> BatchError {
+pub(crate) fn output_error(e: anyhow::Error) -> BatchError {
     use crate::io::output_error::OutputError;
     let io = e.chain().any(|c| {
         c.downcast_ref::<std::io::Error>().is_some()

@@ -121,7 +121,9 @@ impl Scales {
     /// Angular velocity: Θ' (per τ) → θ' in deg/s (θ' = ψ p Θ'), or Θ'.
     pub fn theta_dot(&self, theta_dot: f64) -> f64 {
         match self.units {
-            Units::Physical => Dimension::AngularVelocity.to_physical(theta_dot, &self.geo).to_degrees(),
+            Units::Physical => Dimension::AngularVelocity
+                .to_physical(theta_dot, &self.geo)
+                .to_degrees(),
             Units::Normalised => theta_dot,
         }
     }
@@ -138,12 +140,10 @@ impl Scales {
     /// (rotation, angular velocity) → (Θ, Θ').
     pub fn state_of(&self, theta: f64, theta_dot: f64) -> (f64, f64) {
         match self.units {
-            Units::Physical => {
-                (
-                    Dimension::Rotation.to_bare(theta.to_radians(), &self.geo),
-                    Dimension::AngularVelocity.to_bare(theta_dot.to_radians(), &self.geo),
-                )
-            }
+            Units::Physical => (
+                Dimension::Rotation.to_bare(theta.to_radians(), &self.geo),
+                Dimension::AngularVelocity.to_bare(theta_dot.to_radians(), &self.geo),
+            ),
             Units::Normalised => (theta, theta_dot),
         }
     }

@@ -75,7 +75,7 @@ impl<const N: usize> Ralston<N> {
 
     /// Puts the step back to `h_fixed` after `undo_and_shrink` cut it; the
     /// driver calls it once the event has been handled.
-    pub fn reset_step(&mut self) {
+    pub(crate) fn reset_step(&mut self) {
         self.h = self.tol.h_fixed;
     }
 

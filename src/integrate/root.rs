@@ -16,7 +16,7 @@
 
 /// Why a root could not be found.
 #[derive(Clone, Copy, Debug, PartialEq, thiserror::Error)]
-pub enum RootError {
+pub(crate) enum RootError {
     /// The end values do not satisfy `g(a) > 0 >= g(b)` (a NaN fails too).
     #[error("root not bracketed: g({a}) = {ga:e}, g({b}) = {gb:e}")]
     NotBracketed {
@@ -60,7 +60,7 @@ pub enum RootError {
 /// [`RootError::NotBracketed`] if the end values do not bracket a crossing,
 /// [`RootError::NoConvergence`] if `max_iter` evaluations did not suffice or
 /// `g` returned NaN.
-pub fn brent_root<G: FnMut(f64) -> f64>(
+pub(crate) fn brent_root<G: FnMut(f64) -> f64>(
     mut g: G,
     a: f64,
     b: f64,
@@ -193,7 +193,7 @@ pub fn brent_root<G: FnMut(f64) -> f64>(
 /// arbitrary: only a few ulps of `|x|` are added, so that every trial point
 /// differs from the last. `max_iter` bounds the evaluations in the interior
 /// search (at least one); two more are spent on the end points.
-pub fn brent_min<G: FnMut(f64) -> f64>(mut g: G, a: f64, b: f64, xtol: f64, max_iter: u32) -> (f64, f64) {
+pub(crate) fn brent_min<G: FnMut(f64) -> f64>(mut g: G, a: f64, b: f64, xtol: f64, max_iter: u32) -> (f64, f64) {
     let (a0, b0) = if a <= b { (a, b) } else { (b, a) };
     let (ga, gb) = (g(a0), g(b0));
     if a0 == b0 {

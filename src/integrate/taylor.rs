@@ -23,7 +23,7 @@ use super::dop853::Dop853;
 use super::stepper::{Rhs, StepError, StepStats, Stepper, Tolerances};
 
 /// Highest order the stepper uses (the order for rtol 1e-14 is 28).
-pub const MAX_ORDER: usize = 28;
+pub(crate) const MAX_ORDER: usize = 28;
 
 /// Lowest order: below it the step from the coefficients is too short to
 /// beat DOP853.
@@ -79,7 +79,7 @@ impl<const N: usize> Taylor<N> {
     }
 
     /// A stepper of a chosen order (clamped to 2..=[`MAX_ORDER`]).
-    pub fn with_order(tol: Tolerances, order: usize) -> Self {
+    pub(crate) fn with_order(tol: Tolerances, order: usize) -> Self {
         let order = order.clamp(2, MAX_ORDER);
         Self {
             tol,

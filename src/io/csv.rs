@@ -36,7 +36,7 @@ impl Serialize for Num {
 /// Whether CSV text made by [`to_string`] holds a non-finite number (a
 /// [`Num`] that was NaN or infinite). Text cells never count, whatever
 /// they spell.
-pub fn has_non_finite(text: &str) -> bool {
+pub(crate) fn has_non_finite(text: &str) -> bool {
     text.contains(NON_FINITE_CELL)
 }
 

@@ -12,7 +12,7 @@ use super::csv::{Num, Row};
 
 /// A row of `spectrum.csv`: one block of a rocking spectrum.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct SpectrumRow {
+pub(crate) struct SpectrumRow {
     /// Slenderness ratio B/H.
     pub b_over_h: Num,
     /// Slenderness angle α = atan(B/H), rad.
@@ -73,7 +73,7 @@ impl Row for SpectrumRow {
 /// A row of a spectrum's `safe_windows.csv`: amplitudes above a block's
 /// first overturning scale at which it survives again.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct SpectrumWindowRow {
+pub(crate) struct SpectrumWindowRow {
     /// B/H of the block.
     pub b_over_h: Num,
     /// R of the block, m.
@@ -95,7 +95,7 @@ impl Row for SpectrumWindowRow {
 
 /// A row of `pulse_map.csv`: one (pulse, B/H, ω_p/p).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct PulseMapRow {
+pub(crate) struct PulseMapRow {
     /// Pulse: one-sine, one-cosine, type-c1, ….
     pub pulse: String,
     /// B/H.
@@ -130,7 +130,7 @@ impl Row for PulseMapRow {
 
 /// A row of a pulse map's `safe_windows.csv`.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct PulseWindowRow {
+pub(crate) struct PulseWindowRow {
     /// Pulse.
     pub pulse: String,
     /// B/H.
@@ -150,7 +150,7 @@ impl Row for PulseWindowRow {
 
 /// A row of `runs.csv`: one run of a fragility study.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct FragilityRunRow {
+pub(crate) struct FragilityRunRow {
     /// Run number (block outer, level, record inner), from 0.
     pub run: u64,
     /// Block number, from 0.
@@ -205,7 +205,7 @@ impl Row for FragilityRunRow {
 /// block (block outer, record, level inner: each record's incremental
 /// curve in order).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct IncrementalRow {
+pub(crate) struct IncrementalRow {
     /// Block number, from 0.
     pub block: u64,
     /// Width B, m.
@@ -239,7 +239,7 @@ impl Row for IncrementalRow {
 
 /// A row of `fractions.csv`: one block at one level.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct FractionRow {
+pub(crate) struct FractionRow {
     /// Block number.
     pub block: u64,
     /// Width B, m.

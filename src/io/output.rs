@@ -212,7 +212,7 @@ pub fn summary_json(cfg: &Scenario, res: &RunResult) -> serde_json::Value {
 /// with its length. The first write error (a full disk) or non-finite
 /// number is kept and reported by [`RunFiles::finish`]; nothing after it
 /// is written.
-pub struct RunFiles {
+pub(crate) struct RunFiles {
     events: ::csv::Writer<BufWriter<File>>,
     poincare: ::csv::Writer<BufWriter<File>>,
     history: ::csv::Writer<BufWriter<File>>,
@@ -395,7 +395,7 @@ pub fn resolved_json(cfg: &Scenario) -> serde_json::Value {
 
 /// Checks that `dir` can be written, before a run starts: it is a
 /// directory or can be created, and a file can be made in it.
-pub fn check_writable(dir: &Path) -> Result<(), OutputError> {
+pub(crate) fn check_writable(dir: &Path) -> Result<(), OutputError> {
     if dir.exists() && !dir.is_dir() {
         return Err(OutputError::NotADirectory(dir.display().to_string()));
     }

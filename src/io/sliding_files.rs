@@ -10,7 +10,7 @@ use super::csv::{Num, Row};
 
 /// A row of `sliding_spectrum.csv`.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct SlidingRow {
+pub(crate) struct SlidingRow {
     /// Which block: `slide-only` (cannot rock: rigid-plastic sliding) or
     /// `block` (the given block, which may rock).
     pub block: String,

@@ -17,7 +17,7 @@ use super::csv;
 use super::output_error::{OutputError, io_err};
 
 /// The folder `dir` is made in (`.` for a bare name), as written.
-pub fn parent_of(dir: &Path) -> PathBuf {
+pub(crate) fn parent_of(dir: &Path) -> PathBuf {
     match dir.parent() {
         Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
         _ => PathBuf::from("."),
@@ -83,7 +83,7 @@ fn live() -> MutexGuard<'static, Vec<PathBuf>> {
 /// output of an interrupted command before the process ends (a `then`
 /// that ends the process). A commit under way finishes first, so the
 /// output is whole or absent.
-pub fn remove_live_then<R>(then: impl FnOnce() -> R) -> R {
+pub(crate) fn remove_live_then<R>(then: impl FnOnce() -> R) -> R {
     let live = live();
     for dir in live.iter() {
         // Threads may still be writing into it: a file made between the

@@ -58,12 +58,12 @@ impl Row for PointRow {
 }
 
 /// `classes.csv` of `values`.
-pub fn classes_csv(values: &[BifurcationValue]) -> String {
+pub(crate) fn classes_csv(values: &[BifurcationValue]) -> String {
     csv::to_string(values.iter().map(ClassRow::of))
 }
 
 /// The point rows of `values`, in value order.
-pub fn point_rows(values: &[BifurcationValue]) -> impl Iterator<Item = PointRow> + '_ {
+pub(crate) fn point_rows(values: &[BifurcationValue]) -> impl Iterator<Item = PointRow> + '_ {
     values.iter().flat_map(|v| {
         v.points.iter().map(move |p| PointRow {
             value: Num(v.value),
@@ -76,7 +76,7 @@ pub fn point_rows(values: &[BifurcationValue]) -> impl Iterator<Item = PointRow>
 }
 
 /// `points.csv` of `values`.
-pub fn points_csv(values: &[BifurcationValue]) -> String {
+pub(crate) fn points_csv(values: &[BifurcationValue]) -> String {
     csv::to_string(point_rows(values))
 }
 

@@ -23,7 +23,7 @@ use crate::io::config::load;
 use crate::sim::{Param, Scenario, simulate};
 
 /// The swept key of every bifurcation diagram of the paper.
-pub const PARAM: Param = Param::Av;
+pub(crate) const PARAM: Param = Param::Av;
 
 /// The grid, window and classifier shared by every diagram of a run.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
@@ -58,7 +58,7 @@ pub struct Diagram {
 
 /// Computes the diagram of `figure` with `variant` (values in parallel on
 /// the current rayon pool, unless the variant continues).
-pub fn run_diagram(
+pub(crate) fn run_diagram(
     figure: &PaperFigure,
     variant: Variant,
     settings: &DiagramSettings,
@@ -102,7 +102,7 @@ pub fn run_diagram(
 /// from rest (not continuation), whose runs depend on the value alone. A tumble
 /// long after τ = 0 means the block rocked, possibly chaotically, for that
 /// long first: a transient, not an immediate overturn.
-pub fn tumble_times(d: &Diagram) -> Result<Vec<(f64, f64)>, ReproduceError> {
+pub(crate) fn tumble_times(d: &Diagram) -> Result<Vec<(f64, f64)>, ReproduceError> {
     let fail = |e: String| ReproduceError::Figure {
         figure: d.figure,
         what: format!("tumble times ({})", d.variant.slug()),
@@ -140,7 +140,7 @@ pub fn tumble_times(d: &Diagram) -> Result<Vec<(f64, f64)>, ReproduceError> {
 
 /// Neighbouring runs of tumbled values: `(A_v, responses of its
 /// neighbours)` per value.
-pub type Neighbours = Vec<(f64, Vec<Response>)>;
+pub(crate) type Neighbours = Vec<(f64, Vec<Response>)>;
 
 /// Neighbouring runs of the tumbled values of `d` with A_v in
 /// [`from`, `to`]: for each, `count` runs at A_v·(1 + k·10⁻⁹), k = 1 …
@@ -148,7 +148,7 @@ pub type Neighbours = Vec<(f64, Vec<Response>)>;
 /// chaotic transient depends on such tiny changes; the share of
 /// neighbours that still rock at the window's end is what runs like the
 /// paper's could have seen. Deterministic (collected by index).
-pub fn tumbled_neighbours(d: &Diagram, from: f64, to: f64, count: usize) -> Result<Neighbours, ReproduceError> {
+pub(crate) fn tumbled_neighbours(d: &Diagram, from: f64, to: f64, count: usize) -> Result<Neighbours, ReproduceError> {
     let fail = |e: String| ReproduceError::Figure {
         figure: d.figure,
         what: format!("neighbouring runs ({})", d.variant.slug()),
@@ -204,7 +204,7 @@ impl Diagram {
     }
 
     /// First A_v that tumbled, if any.
-    pub fn first_tumble(&self) -> Option<f64> {
+    pub(crate) fn first_tumble(&self) -> Option<f64> {
         self.values
             .iter()
             .find(|v| v.response == Response::Tumbled)
@@ -239,7 +239,7 @@ pub fn order(r: Response) -> u32 {
 }
 
 /// `period 2 ×12, chaotic ×3, …` for a table cell.
-pub fn counts_text(counts: &[(Response, usize)]) -> String {
+pub(crate) fn counts_text(counts: &[(Response, usize)]) -> String {
     if counts.is_empty() {
         return "none".to_string();
     }
@@ -313,7 +313,7 @@ impl Verdict {
 
 /// One of the paper's ranges against our values.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
-pub struct RangeComparison {
+pub(crate) struct RangeComparison {
     /// First A_v of the paper's range.
     pub from: f64,
     /// Last A_v of the paper's range.
@@ -357,7 +357,7 @@ pub fn matches(expect: Expect, r: Response) -> bool {
 ///   match, partly when at least 1/4 do.
 ///
 /// Otherwise it differs.
-pub fn compare_ranges(values: &[(f64, Response)], ranges: &[PaperRange], tol: f64) -> Vec<RangeComparison> {
+pub(crate) fn compare_ranges(values: &[(f64, Response)], ranges: &[PaperRange], tol: f64) -> Vec<RangeComparison> {
     let eps = 1e-9;
     ranges
         .iter()
@@ -446,7 +446,7 @@ pub fn cascade(values: &[(f64, Response)]) -> Vec<u32> {
 
 /// Whether the start of `values` is a period-doubling cascade: periods 1,
 /// 2 and 4 in this order (see [`cascade`]).
-pub fn is_period_doubling(values: &[(f64, Response)]) -> bool {
+pub(crate) fn is_period_doubling(values: &[(f64, Response)]) -> bool {
     cascade(values).starts_with(&[1, 2, 4])
 }
 
@@ -454,7 +454,7 @@ pub fn is_period_doubling(values: &[(f64, Response)]) -> bool {
 /// responses along the sweep, tumbled and flight values skipped: many
 /// switches are the paper's "intermittency" (periodic and chaotic values
 /// intermingled).
-pub fn intermittency_switches(values: &[(f64, Response)]) -> usize {
+pub(crate) fn intermittency_switches(values: &[(f64, Response)]) -> usize {
     let kinds: Vec<bool> = values
         .iter()
         .filter_map(|(_, r)| match r {

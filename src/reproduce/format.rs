@@ -15,7 +15,7 @@ pub fn prefix(n: u32) -> String {
 }
 
 /// The base name of a diagram's files: `fig04_` or `fig04_variant_ralston_`.
-pub fn diagram_stem(d: &Diagram) -> String {
+pub(crate) fn diagram_stem(d: &Diagram) -> String {
     match d.variant {
         Variant::Paper => prefix(d.figure),
         Variant::Ralston
@@ -31,7 +31,7 @@ pub fn diagram_stem(d: &Diagram) -> String {
 
 /// The parameters that define a response in a short line:
 /// `Ω_h = Ω_v = 8, A_h = 2, A_v = 2.5, no sliding`.
-pub fn short_params(cfg: &Scenario, with_a_v: bool) -> String {
+pub(crate) fn short_params(cfg: &Scenario, with_a_v: bool) -> String {
     let x = &cfg.excitation;
     let mut parts = Vec::new();
     if x.omega_h == x.omega_v() {
@@ -48,7 +48,7 @@ pub fn short_params(cfg: &Scenario, with_a_v: bool) -> String {
 }
 
 /// The impact law and block in a short line: `B × H = 1 × 4 m, impact ratio r = 0.925`.
-pub fn block_and_impact(cfg: &Scenario) -> String {
+pub(crate) fn block_and_impact(cfg: &Scenario) -> String {
     let law = match cfg.impact.law {
         LawKind::Housner => format!("Housner impact r = {:.4}", cfg.geometry().housner_r()),
         LawKind::CornerMomentum => "corner-momentum impact".to_string(),
@@ -59,7 +59,7 @@ pub fn block_and_impact(cfg: &Scenario) -> String {
 }
 
 /// A number with at most 4 decimals, trailing zeros dropped.
-pub fn short_num(x: f64) -> String {
+pub(crate) fn short_num(x: f64) -> String {
     let s = format!("{x:.4}");
     let s = s.trim_end_matches('0').trim_end_matches('.');
     if s.is_empty() || s == "-" {

@@ -53,11 +53,11 @@ use variant::{R_SCAN, Variant};
 
 /// The figures whose diagrams are investigated with the variants: the
 /// paper's Figs. 3 and 4, the only ones for which it gives mode ranges.
-pub const INVESTIGATED: [u32; 2] = [3, 4];
+pub(crate) const INVESTIGATED: [u32; 2] = [3, 4];
 
 /// The figure whose diagram gets a Lyapunov scan: Fig. 10, whose quoted
 /// exponent (0.51) the paper gives without its A_v.
-pub const SCANNED: u32 = 10;
+pub(crate) const SCANNED: u32 = 10;
 
 /// What to compute.
 #[derive(Clone, Debug, PartialEq)]
@@ -77,7 +77,7 @@ impl Options {
     }
 
     /// The response run lengths.
-    pub fn response_settings(&self) -> ResponseSettings {
+    pub(crate) fn response_settings(&self) -> ResponseSettings {
         if self.quick {
             ResponseSettings::quick()
         } else {
@@ -86,12 +86,12 @@ impl Options {
     }
 
     /// The Lyapunov scan window, τ: (600, 1600) or (200, 500) quick.
-    pub fn scan_window(&self) -> (f64, f64) {
+    pub(crate) fn scan_window(&self) -> (f64, f64) {
         if self.quick { (200.0, 500.0) } else { (600.0, 1600.0) }
     }
 
     /// Whether figure `number` is computed.
-    pub fn wants(&self, number: u32) -> bool {
+    pub(crate) fn wants(&self, number: u32) -> bool {
         self.only.as_ref().is_none_or(|o| o.contains(&number))
     }
 }
@@ -160,7 +160,7 @@ pub struct Reproduction {
 impl Reproduction {
     /// The diagram of `figure` with the paper's own impact law (eqs.
     /// 17–27, e = 0; see [`paper_law`]).
-    pub fn paper_law_diagram(&self, figure: u32) -> Option<&Diagram> {
+    pub(crate) fn paper_law_diagram(&self, figure: u32) -> Option<&Diagram> {
         let d = self.diagram(figure, Variant::Paper)?;
         self.diagram(figure, paper_law(&d.config))
     }
@@ -188,7 +188,7 @@ impl Reproduction {
     }
 
     /// The neighbouring runs of `figure`'s tumbled values.
-    pub fn survivals(&self, figure: u32) -> Option<&diagrams::Neighbours> {
+    pub(crate) fn survivals(&self, figure: u32) -> Option<&diagrams::Neighbours> {
         self.survivals.iter().find(|t| t.0 == figure).map(|t| &t.1)
     }
 
@@ -199,7 +199,7 @@ impl Reproduction {
 
     /// The diagrams of `figure`'s impact-ratio scan, with the preset's,
     /// Housner's and the printed eq. 20's, in increasing r: `(r, diagram)`.
-    pub fn ratio_scan(&self, figure: u32) -> Vec<(f64, &Diagram)> {
+    pub(crate) fn ratio_scan(&self, figure: u32) -> Vec<(f64, &Diagram)> {
         let mut out: Vec<(f64, &Diagram)> = self
             .diagrams
             .iter()
@@ -255,7 +255,7 @@ fn config_of(f: &PaperFigure) -> Result<Scenario, ReproduceError> {
 /// The paper's own impact law (its eqs. 17–27 with e = 0) as a variant of
 /// `cfg`: [`Variant::ImpulseLaw`] where the block can slide, and
 /// [`Variant::Housner`] (the same law without slip) where it cannot.
-pub fn paper_law(cfg: &Scenario) -> Variant {
+pub(crate) fn paper_law(cfg: &Scenario) -> Variant {
     if cfg.block.mu_s.is_finite() {
         Variant::ImpulseLaw
     } else {

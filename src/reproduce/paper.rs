@@ -80,7 +80,7 @@ pub struct PaperFigure {
 const NO_RANGES: &[PaperRange] = &[];
 
 /// Every figure of the paper's section 4, in order.
-pub const FIGURES: [PaperFigure; 17] = [
+pub(crate) const FIGURES: [PaperFigure; 17] = [
     PaperFigure {
         number: 3,
         preset: "fig3",
@@ -362,7 +362,7 @@ pub fn figure(number: u32) -> Option<&'static PaperFigure> {
 
 /// Parses a figure name as written on the command line: `fig4`, `fig04`,
 /// `4` (case-insensitive); `None` if it is not one of Figs. 3–19.
-pub fn parse_figure(name: &str) -> Option<u32> {
+pub(crate) fn parse_figure(name: &str) -> Option<u32> {
     let t = name.trim().to_ascii_lowercase();
     let digits = t.strip_prefix("fig").unwrap_or(&t);
     if digits.is_empty() || !digits.bytes().all(|b| b.is_ascii_digit()) {

@@ -30,10 +30,10 @@ use crate::io::config::load;
 use crate::sim::{Outcome, Param, Scenario, simulate};
 
 /// Sampling step of the paper's run, τ (the paper's integration step).
-pub const HISTORY_DT: f64 = PAPER_DT;
+pub(crate) const HISTORY_DT: f64 = PAPER_DT;
 /// Sampling step of the long run's history used for the long spectrum, τ:
 /// 25 cycles per unit τ at Nyquist, i.e. 19 harmonics of Ω_h = 8.
-pub const LONG_DT: f64 = 0.02;
+pub(crate) const LONG_DT: f64 = 0.02;
 
 /// Run lengths of a response example.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
@@ -65,7 +65,7 @@ pub struct ResponseSettings {
 
 /// Relative step of the neighbouring runs' A_v: far below any precision
 /// the paper could have meant, far above rounding.
-pub const NEIGHBOUR_STEP: f64 = 1e-9;
+pub(crate) const NEIGHBOUR_STEP: f64 = 1e-9;
 
 impl ResponseSettings {
     /// The full settings: paper's run to 800, long run to 4000, Lyapunov
@@ -185,7 +185,7 @@ pub struct ResponseExample {
 }
 
 /// Computes the response example of `figure`.
-pub fn run_response(
+pub(crate) fn run_response(
     figure: &PaperFigure,
     settings: &ResponseSettings,
     classify: &ClassifyOptions,
@@ -379,7 +379,7 @@ pub fn exponents(
 
 /// The result of [`exponents`]: the exponents over the settings' window,
 /// and those of the transient before a tumble.
-pub type TransientExponents = (Result<Lyapunov, String>, Option<TransientExponent>);
+pub(crate) type TransientExponents = (Result<Lyapunov, String>, Option<TransientExponent>);
 
 /// The window of a chaotic transient's exponent, τ.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
@@ -443,7 +443,7 @@ pub fn response_variants(cfg: &Scenario) -> Vec<Variant> {
 }
 
 /// Computes the response example of `figure` with `variant`.
-pub fn run_response_variant(
+pub(crate) fn run_response_variant(
     figure: &PaperFigure,
     variant: Variant,
     settings: &ResponseSettings,

@@ -48,7 +48,7 @@ impl Scan {
 /// Computes the largest exponent (tangent dynamics) of every chaotic or
 /// quasiperiodic value of `diagram`, over τ `window.0`–`window.1`, in
 /// parallel (collected by index, so deterministic).
-pub fn lyapunov_scan(diagram: &Diagram, window: (f64, f64), batches: usize) -> Result<Scan, ReproduceError> {
+pub(crate) fn lyapunov_scan(diagram: &Diagram, window: (f64, f64), batches: usize) -> Result<Scan, ReproduceError> {
     let fail = |e: String| ReproduceError::Figure {
         figure: diagram.figure,
         what: "Lyapunov scan".to_string(),

@@ -9,7 +9,7 @@ use crate::model::Geometry;
 
 /// The paper's vertical restitution e = 0.925 (its section 4.1), used by
 /// the `printed-eq20` variant.
-pub const PAPER_E: f64 = 0.925;
+pub(crate) const PAPER_E: f64 = 0.925;
 
 /// One way of computing a bifurcation diagram.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
@@ -51,11 +51,11 @@ pub enum Variant {
 /// The ratios r of the impact-ratio scan, besides those of the preset
 /// (0.925), Housner (0.9118) and the printed eq. 20 (0.830): between and
 /// around them.
-pub const R_SCAN: [f64; 5] = [0.85, 0.87, 0.89, 0.94, 0.96];
+pub(crate) const R_SCAN: [f64; 5] = [0.85, 0.87, 0.89, 0.94, 0.96];
 
 impl Variant {
     /// The variants run for the investigation of a diagram that differs.
-    pub const INVESTIGATION: [Variant; 6] = [
+    pub(crate) const INVESTIGATION: [Variant; 6] = [
         Variant::Ralston,
         Variant::ContinuationUp,
         Variant::Housner,
@@ -65,7 +65,7 @@ impl Variant {
     ];
 
     /// Name used in file names and JSON (`paper`, `ralston`, `r0.85`, …).
-    pub fn slug(self) -> String {
+    pub(crate) fn slug(self) -> String {
         match self {
             Variant::Paper => "paper".to_string(),
             Variant::Ralston => "ralston".to_string(),
@@ -95,7 +95,7 @@ impl Variant {
     }
 
     /// What the variant changes, shortest form, for figure titles.
-    pub fn short_label(self) -> String {
+    pub(crate) fn short_label(self) -> String {
         match self {
             Variant::Paper => "preset".to_string(),
             Variant::Ralston => "Ralston RK2, fixed step 0.004 (the paper's integrator)".to_string(),
@@ -144,7 +144,7 @@ impl Variant {
 
 /// The paper's eq. 20 for an impact without sliding (λ_x = −1):
 /// δ_i = 1 − (3/2)(1 + e) sin²ψ, with `e` its vertical restitution.
-pub fn printed_eq20_ratio(geo: &Geometry, e: f64) -> f64 {
+pub(crate) fn printed_eq20_ratio(geo: &Geometry, e: f64) -> f64 {
     1.0 - 1.5 * (1.0 + e) * geo.sin_psi * geo.sin_psi
 }
 

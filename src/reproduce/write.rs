@@ -43,7 +43,7 @@ pub trait Sink {
 
 /// Highest harmonic ω/Ω_h shown in the spectra (the forcing frequency
 /// and its first harmonics, where the paper's spectra have their lines).
-pub const MAX_HARMONIC: f64 = 5.0;
+pub(crate) const MAX_HARMONIC: f64 = 5.0;
 
 /// A row of a diagram's `classes.csv` (no Lyapunov column: the paper's
 /// diagrams are computed without exponents).
@@ -71,7 +71,7 @@ impl Row for ThetaRow {
 }
 
 /// `classes.csv` of a diagram: `value,outcome,period,max_abs_theta`.
-pub fn classes_csv(d: &Diagram) -> String {
+pub(crate) fn classes_csv(d: &Diagram) -> String {
     csv::to_string(d.values.iter().map(|v| DiagramClassRow {
         value: Num(v.value),
         outcome: v.response.name(),
@@ -81,7 +81,7 @@ pub fn classes_csv(d: &Diagram) -> String {
 }
 
 /// `points.csv` of a diagram: `value,k,tau,theta,theta_dot`.
-pub fn points_csv(d: &Diagram) -> String {
+pub(crate) fn points_csv(d: &Diagram) -> String {
     csv::to_string(point_rows(&d.values))
 }
 
@@ -308,7 +308,7 @@ fn write_response(sink: &mut dyn Sink, r: &ResponseExample, names: &mut Vec<Stri
 }
 
 /// The JSON summary of a Lyapunov result.
-pub fn lyapunov_json(l: &Result<Lyapunov, String>) -> Json {
+pub(crate) fn lyapunov_json(l: &Result<Lyapunov, String>) -> Json {
     match l {
         Ok(l) => l.summary(),
         Err(e) => json!({ "error": e }),

@@ -42,7 +42,7 @@ pub struct SectionRow {
 
 impl HistoryRow {
     /// The row of state `y` in `mode` at τ = `t`.
-    pub fn of_state(t: f64, mode: Mode, y: &[f64; N]) -> Self {
+    pub(crate) fn of_state(t: f64, mode: Mode, y: &[f64; N]) -> Self {
         Self {
             tau: t,
             theta: y[THETA],
@@ -56,7 +56,7 @@ impl HistoryRow {
 
 impl SectionRow {
     /// Section point `k` of state `y` in `mode` at τ = `t`.
-    pub fn of_state(k: u64, t: f64, mode: Mode, y: &[f64; N]) -> Self {
+    pub(crate) fn of_state(k: u64, t: f64, mode: Mode, y: &[f64; N]) -> Self {
         let r = HistoryRow::of_state(t, mode, y);
         Self {
             k,

@@ -117,7 +117,7 @@ impl<Reply, Cmd> Job<Reply, Cmd> {
     }
 
     /// The next reply, without waiting.
-    pub fn try_recv(&self) -> Option<Reply> {
+    pub(crate) fn try_recv(&self) -> Option<Reply> {
         self.replies.try_recv().ok()
     }
 
@@ -179,19 +179,19 @@ impl<Reply, Cmd> Link<Reply, Cmd> {
 
     /// Sends `reply` if the channel has room, without waking the consumer
     /// (call [`Link::wake`] after a burst); otherwise hands it back.
-    pub fn try_send(&self, reply: Reply) -> Result<(), TrySendError<Reply>> {
+    pub(crate) fn try_send(&self, reply: Reply) -> Result<(), TrySendError<Reply>> {
         self.replies.try_send(reply)
     }
 
     /// Wakes the consumer.
-    pub fn wake(&self) {
+    pub(crate) fn wake(&self) {
         (self.waker)();
     }
 
     /// The next command, waiting at most `timeout` (forever if `None`).
     /// `Ok(None)` means none came in time; `Err(Stopped)` that the consumer
     /// dropped its handle, so the thread should end.
-    pub fn next_command(&self, timeout: Option<Duration>) -> Result<Option<Cmd>, Stopped> {
+    pub(crate) fn next_command(&self, timeout: Option<Duration>) -> Result<Option<Cmd>, Stopped> {
         match timeout {
             None => self.commands.recv().map(Some).map_err(|_| Stopped),
             Some(d) => match self.commands.recv_timeout(d) {
@@ -204,7 +204,7 @@ impl<Reply, Cmd> Link<Reply, Cmd> {
 
     /// The next command if one is waiting; `Err(Stopped)` as in
     /// [`Link::next_command`].
-    pub fn try_command(&self) -> Result<Option<Cmd>, Stopped> {
+    pub(crate) fn try_command(&self) -> Result<Option<Cmd>, Stopped> {
         match self.commands.try_recv() {
             Ok(c) => Ok(Some(c)),
             Err(crossbeam_channel::TryRecvError::Empty) => Ok(None),

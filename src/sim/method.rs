@@ -62,7 +62,7 @@ impl Method {
 
 /// What to do with the stepper of a method (a generic closure, which Rust
 /// spells as a trait).
-pub trait StepperVisitor {
+pub(crate) trait StepperVisitor {
     /// What the visit returns.
     type Output;
 
@@ -72,7 +72,7 @@ pub trait StepperVisitor {
 
 /// Calls `visitor` with a new stepper of `method` at tolerances `tol` (and
 /// `tol.h_fixed` for Ralston's fixed step).
-pub fn with_stepper<V: StepperVisitor>(method: Method, tol: Tolerances, visitor: V) -> V::Output {
+pub(crate) fn with_stepper<V: StepperVisitor>(method: Method, tol: Tolerances, visitor: V) -> V::Output {
     match method {
         Method::Dop853 => visitor.visit(Dop853::new(tol)),
         Method::Dopri5 => visitor.visit(Dopri5::new(tol)),

@@ -43,9 +43,9 @@ pub enum Speed {
 impl Speed {
     /// Slowest playback, ×0.1: slow enough to follow one impact of the
     /// paper's block by eye.
-    pub const MIN_MULTIPLE: f64 = 0.1;
+    pub(crate) const MIN_MULTIPLE: f64 = 0.1;
     /// Fastest paced playback, ×1000; beyond that use [`Speed::Max`].
-    pub const MAX_MULTIPLE: f64 = 1000.0;
+    pub(crate) const MAX_MULTIPLE: f64 = 1000.0;
 }
 
 impl Default for Speed {
@@ -134,7 +134,7 @@ pub enum SimCommand {
 }
 
 /// Most ghost copies: the 1–100.
-pub const MAX_GHOSTS: usize = 100;
+pub(crate) const MAX_GHOSTS: usize = 100;
 
 /// One state on the regular output grid — the batch run's history row —
 /// with what the scene needs to draw it without doing any mechanics. Its
@@ -316,7 +316,7 @@ impl SimUpdate {
 /// rest, which is exact to the sampling of the display and is only drawn,
 /// never fed back into the mechanics.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub enum BaseMotion {
+pub(crate) enum BaseMotion {
     /// The base stays put.
     Fixed,
     /// Closed form: amplitude `A_h ψ/(γ Ω_h²)` per R, frequency, phase.

@@ -53,10 +53,10 @@ use crate::sim::Scenario;
 /// Capacity of the update channel, in messages. At one batch per
 /// [`TICK`] this is about a second of output: enough to ride out a slow
 /// frame without merging.
-pub const UPDATE_CAPACITY: usize = 64;
+pub(crate) const UPDATE_CAPACITY: usize = 64;
 
 /// Release period of the paced playback: one 60 Hz frame.
-pub const TICK: Duration = Duration::from_micros(16_667);
+pub(crate) const TICK: Duration = Duration::from_micros(16_667);
 
 /// How the thread failed to start.
 #[derive(Debug, thiserror::Error)]

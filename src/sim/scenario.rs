@@ -35,44 +35,44 @@ use crate::model::{FlightPolicy, Geometry, ImpactLaw, Model};
 /// positive for every block and angle exactly when μ_k < 4/3; beyond it
 /// slide-rock has no unique solution (the Painlevé paradox), and the
 /// slipping impact's denominator fails at the same bound.
-pub const MU_K_LIMIT: f64 = 4.0 / 3.0;
+pub(crate) const MU_K_LIMIT: f64 = 4.0 / 3.0;
 
 /// Largest |amplitude| accepted, units of ψ g: a guard against typos far
 /// beyond any physical shaking (the block is in flight long before).
-pub const AMPLITUDE_LIMIT: f64 = 1e6;
+pub(crate) const AMPLITUDE_LIMIT: f64 = 1e6;
 
 /// Smallest block size accepted, m (`block.width`, `block.height`).
-pub const MIN_SIZE_M: f64 = 1e-4;
+pub(crate) const MIN_SIZE_M: f64 = 1e-4;
 
 /// Largest block size accepted, m.
-pub const MAX_SIZE_M: f64 = 1e4;
+pub(crate) const MAX_SIZE_M: f64 = 1e4;
 
 /// Smallest slenderness ψ accepted, rad: amplitudes are in units of ψg, so
 /// a block thinner than this makes every amplitude vanish.
-pub const MIN_PSI: f64 = 1e-6;
+pub(crate) const MIN_PSI: f64 = 1e-6;
 
 /// Fewest history samples a power spectrum is taken of.
-pub const MIN_SPECTRUM_SAMPLES: usize = 8;
+pub(crate) const MIN_SPECTRUM_SAMPLES: usize = 8;
 
 /// Most rows of the time history one run may keep (`run.output_dt`).
-pub const MAX_HISTORY_ROWS: f64 = 5e7;
+pub(crate) const MAX_HISTORY_ROWS: f64 = 5e7;
 
 /// Default free-vibration tail after a record, s (`run.tail_s`): a record
 /// run goes on this long after the last sample unless the block comes to
 /// rest or overturns first. 30 s is several free-rocking periods of any
 /// block up to tens of metres (the period of free rocking grows only as
 /// √R), so a block still moving after it is reported as moving, not missed.
-pub const RECORD_TAIL_S: f64 = 30.0;
+pub(crate) const RECORD_TAIL_S: f64 = 30.0;
 
 /// PGA above which a record's unit is probably wrong, g: the largest peak
 /// ground accelerations ever recorded are about 3–4 g.
-pub const IMPLAUSIBLE_PGA_G: f64 = 5.0;
+pub(crate) const IMPLAUSIBLE_PGA_G: f64 = 5.0;
 
 /// PGA below which a record's unit is probably wrong, g: 0.01 g is about
 /// the threshold of shaking people feel, so a record an engineer runs is
 /// stronger; a record in cm/s² read as m/s² or as g comes out 100 to 1000
 /// times too weak and lands below it.
-pub const IMPLAUSIBLY_SMALL_PGA_G: f64 = 0.01;
+pub(crate) const IMPLAUSIBLY_SMALL_PGA_G: f64 = 0.01;
 
 /// The block and its contact with the base.
 #[derive(Clone, Debug, PartialEq)]
@@ -241,7 +241,7 @@ impl Record {
 
 /// The file name in a record's path or `shipped:NAME` reference (the text
 /// itself when it has none).
-pub fn record_file_name(path: &str) -> String {
+pub(crate) fn record_file_name(path: &str) -> String {
     let path = path.strip_prefix(SHIPPED_PREFIX).unwrap_or(path);
     std::path::Path::new(path)
         .file_name()
@@ -251,7 +251,7 @@ pub fn record_file_name(path: &str) -> String {
 /// The [`Record::path`] of a record given as samples (from memory, not
 /// from a file): it names no file, so messages that show a record's path
 /// say where it came from.
-pub const IN_MEMORY: &str = "(samples in memory)";
+pub(crate) const IN_MEMORY: &str = "(samples in memory)";
 
 impl Record {
     /// A record given as samples rather than read from a file (a caller
@@ -414,13 +414,13 @@ impl SpectrumRange {
 }
 
 /// τ at which the paper's spectrum window ends.
-pub const PAPER_SPECTRUM_END: f64 = 28.384;
+pub(crate) const PAPER_SPECTRUM_END: f64 = 28.384;
 
 /// Default damping ratio of a building mode (`floor.damping`): 5 % of
 /// critical, the damping design spectra are written for (ASCE 7-22
 /// §11.4, Eurocode 8 §3.2.2.2) and the usual value for reinforced-concrete
 /// and steel buildings shaken near their design level.
-pub const FLOOR_DAMPING: f64 = 0.05;
+pub(crate) const FLOOR_DAMPING: f64 = 0.05;
 
 /// Default participation Γφ of a single building mode at the floor
 /// (`floor.participation`): 1, the floor as the mass of a one-storey
@@ -428,22 +428,22 @@ pub const FLOOR_DAMPING: f64 = 0.05;
 /// acceleration a_f = −2ζωu̇ − ω²u (the floor-spectrum convention). A
 /// uniform shear building has (4/π) sin(πz/2H) at height z (docs/model.md,
 /// "Floor motion"); give that for a floor of a taller building.
-pub const FLOOR_PARTICIPATION: f64 = 1.0;
+pub(crate) const FLOOR_PARTICIPATION: f64 = 1.0;
 
 /// Shortest building period accepted, s (`floor.period`): 0.01 s is a
 /// 100 Hz mode, above any frequency ground shaking carries (about
 /// 0.1–30 Hz), so such a floor is rigid; leave `[floor]` out instead. A
 /// shorter period would also force the integrator's steps down to 1/ω.
-pub const MIN_FLOOR_PERIOD_S: f64 = 0.01;
+pub(crate) const MIN_FLOOR_PERIOD_S: f64 = 0.01;
 
 /// Longest building period accepted, s: the tallest buildings have
 /// fundamental periods under about 10 s; 20 s is a typo or a wrong unit.
-pub const MAX_FLOOR_PERIOD_S: f64 = 20.0;
+pub(crate) const MAX_FLOOR_PERIOD_S: f64 = 20.0;
 
 /// Largest |Γφ| accepted (`floor.participation`): a uniform shear
 /// building's first mode has 4/π ≈ 1.27 at its roof and higher modes less;
 /// 10 is a typo, not a building.
-pub const MAX_FLOOR_PARTICIPATION: f64 = 10.0;
+pub(crate) const MAX_FLOOR_PARTICIPATION: f64 = 10.0;
 
 /// One mode of the building the block stands in (`[floor]` or one
 /// `[[floor.mode]]`).
@@ -581,7 +581,7 @@ pub struct ScenarioError {
 /// A PGA for a message: three decimals as before where they show it
 /// (0.036 g), three significant digits below (0.000357 g), so a tiny peak
 /// does not print as 0.000.
-pub fn readable_g(g: f64) -> String {
+pub(crate) fn readable_g(g: f64) -> String {
     if g == 0.0 || g.abs() >= 0.01 {
         format!("{g:.3}")
     } else {
@@ -614,12 +614,12 @@ impl Scenario {
     }
 
     /// μ̄_s during impact, resolved.
-    pub fn impact_mu_s(&self) -> f64 {
+    pub(crate) fn impact_mu_s(&self) -> f64 {
         self.impact.mu_s.unwrap_or(self.block.mu_s)
     }
 
     /// μ̄_k during impact, resolved.
-    pub fn impact_mu_k(&self) -> f64 {
+    pub(crate) fn impact_mu_k(&self) -> f64 {
         self.impact.mu_k.unwrap_or(self.block.kinetic().min(self.impact_mu_s()))
     }
 
@@ -676,7 +676,7 @@ impl Scenario {
     }
 
     /// The ground's excitation, without the building of `[floor]`.
-    pub fn ground_excitation(&self) -> Result<Excitation, ScenarioError> {
+    pub(crate) fn ground_excitation(&self) -> Result<Excitation, ScenarioError> {
         let geo = self.geometry();
         let x = &self.excitation;
         Ok(match x.kind {
@@ -759,7 +759,7 @@ impl Scenario {
     /// building's ringing down can no longer lift or slide the block
     /// ([`FloorExcitation::quiet_after`] at min(B/H, μ_s) g, the vertical
     /// being at rest then). `None` for other kinds.
-    pub fn rest_after_tau(&self) -> Option<f64> {
+    pub(crate) fn rest_after_tau(&self) -> Option<f64> {
         let end = self.record_end_tau()?;
         if self.floor.is_none() {
             return Some(end);

@@ -83,7 +83,7 @@ impl Intensity {
     }
 
     /// Axis label with unit and, for Sa, the period `sa_period_s` (s).
-    pub fn label_at(self, sa_period_s: Option<f64>) -> String {
+    pub(crate) fn label_at(self, sa_period_s: Option<f64>) -> String {
         match (self, sa_period_s) {
             (Intensity::Sa, Some(t)) => format!("Sa(T = {t} s, 5 %) (g)"),
             _ => self.label().to_string(),
@@ -114,7 +114,7 @@ impl Intensity {
     /// The factor that turns [`record_value`](Self::record_value) into
     /// this measure for `block`: 1 for PGA and PGV, 1/tan α for PGA/(g tan
     /// α) (the PGA is already in g), p/(g tan α) for PGV·p/(g tan α).
-    pub fn block_factor(self, block: BlockSize) -> f64 {
+    pub(crate) fn block_factor(self, block: BlockSize) -> f64 {
         let tan_alpha = block.width_m / block.height_m;
         match self {
             Intensity::Pga | Intensity::Pgv | Intensity::Sa => 1.0,

@@ -24,7 +24,7 @@
 use std::f64::consts::{FRAC_1_SQRT_2, PI};
 
 /// z of a two-sided 95 % interval, Φ⁻¹(0.975).
-pub const Z95: f64 = 1.959_963_984_540_054;
+pub(crate) const Z95: f64 = 1.959_963_984_540_054;
 
 /// erfc(x) for x ≥ 0: 1 − erf by the series below 2, the continued
 /// fraction (evaluated by Lentz's method) above.
@@ -67,7 +67,7 @@ fn erfc_nonneg(x: f64) -> f64 {
 
 /// The standard normal cumulative distribution Φ(z), accurate in both
 /// tails (Φ(−z) is computed directly, never as 1 − Φ(z)).
-pub fn normal_cdf(z: f64) -> f64 {
+pub(crate) fn normal_cdf(z: f64) -> f64 {
     let x = z * FRAC_1_SQRT_2;
     if x >= 0.0 {
         1.0 - 0.5 * erfc_nonneg(x)
@@ -77,7 +77,7 @@ pub fn normal_cdf(z: f64) -> f64 {
 }
 
 /// The standard normal density φ(z).
-pub fn normal_pdf(z: f64) -> f64 {
+pub(crate) fn normal_pdf(z: f64) -> f64 {
     (-0.5 * z * z).exp() / (2.0 * PI).sqrt()
 }
 

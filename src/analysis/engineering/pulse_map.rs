@@ -20,7 +20,7 @@ use crate::sim::scenario::ShapeKind;
 
 /// Half-diagonal of the blocks the map runs, m. Any size gives the same
 /// map (see the module docs); 1 m keeps p near 2.7/s.
-pub const MAP_BLOCK_R_M: f64 = 1.0;
+pub(crate) const MAP_BLOCK_R_M: f64 = 1.0;
 
 /// A pulse shape of the map.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -22,7 +22,7 @@ use crate::sim::{Outcome, Scenario, ScenarioError, SimError, simulate};
 /// near the overturning angle with a small velocity needs about
 /// 2·ln(2/δ) in τ to fall back or over, δ its distance from |Θ| = 1; 50
 /// covers δ down to 1e-10, far below any amplitude resolution of a search.
-pub const PULSE_TAIL_TAU: f64 = 50.0;
+pub(crate) const PULSE_TAIL_TAU: f64 = 50.0;
 
 /// A rectangular block, m.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
@@ -36,7 +36,7 @@ pub struct BlockSize {
 impl BlockSize {
     /// The block of half-diagonal `r_m` (m) and slenderness ratio
     /// `b_over_h` = B/H: B = 2R sin α, H = 2R cos α, α = atan(B/H).
-    pub fn from_half_diagonal(r_m: f64, b_over_h: f64) -> Self {
+    pub(crate) fn from_half_diagonal(r_m: f64, b_over_h: f64) -> Self {
         let alpha = b_over_h.atan();
         Self {
             width_m: 2.0 * r_m * alpha.sin(),
@@ -45,7 +45,7 @@ impl BlockSize {
     }
 
     /// The block of height `h_m` (m) and ratio `b_over_h` = B/H.
-    pub fn from_height(h_m: f64, b_over_h: f64) -> Self {
+    pub(crate) fn from_height(h_m: f64, b_over_h: f64) -> Self {
         Self {
             width_m: b_over_h * h_m,
             height_m: h_m,
@@ -257,7 +257,12 @@ fn set_pulse(s: &mut Scenario, shape: ShapeKind, cycles: u32, a_h: f64, omega: f
 }
 
 /// Runs `size` under `drive` at `scale` (see [`scenario_for`]).
-pub fn respond(base: &Scenario, size: BlockSize, drive: &Drive, scale: f64) -> Result<BlockResponse, ResponseError> {
+pub(crate) fn respond(
+    base: &Scenario,
+    size: BlockSize,
+    drive: &Drive,
+    scale: f64,
+) -> Result<BlockResponse, ResponseError> {
     let s = scenario_for(base, size, drive, scale)?;
     let p = s.geometry().p;
     let r = simulate(s.model()?, &s.initial, &s.run_options())?;

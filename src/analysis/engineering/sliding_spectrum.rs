@@ -47,13 +47,13 @@ use crate::sim::{Outcome, Scenario, ScenarioError, simulate};
 pub const SLIDE_ONLY_B_OVER_H: f64 = 1000.0;
 
 /// Most friction coefficients of one spectrum.
-pub const MAX_MU: usize = 100_000;
+pub(crate) const MAX_MU: usize = 100_000;
 
 /// A sliding displacement below this (m) is round-off of a block that did
 /// not slip: the sliding displacement of a rocking block is computed from
 /// x and θ, whose rounding leaves about 1e-16 R. A nanometre is far below
 /// anything an engineer measures and far above that rounding.
-pub const NO_SLIDING_M: f64 = 1e-9;
+pub(crate) const NO_SLIDING_M: f64 = 1e-9;
 
 /// Which of the two blocks of a sliding spectrum.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
@@ -182,12 +182,12 @@ pub struct SlidingError {
 impl SlidingSpec<'_> {
     /// The slide-only block: the given block's half-diagonal at B/H =
     /// [`SLIDE_ONLY_B_OVER_H`].
-    pub fn slide_only_block(&self) -> BlockSize {
+    pub(crate) fn slide_only_block(&self) -> BlockSize {
         BlockSize::from_half_diagonal(self.block.half_diagonal_m(), SLIDE_ONLY_B_OVER_H)
     }
 
     /// The block of `kind`.
-    pub fn block_of(&self, kind: BlockKind) -> BlockSize {
+    pub(crate) fn block_of(&self, kind: BlockKind) -> BlockSize {
         match kind {
             BlockKind::SlideOnly => self.slide_only_block(),
             BlockKind::Given => self.block,
@@ -254,7 +254,7 @@ impl SlidingSpec<'_> {
     }
 
     /// Runs block `kind` at μ_s = `mu`.
-    pub fn respond(&self, kind: BlockKind, mu: f64) -> Result<SlidingResponse, ResponseError> {
+    pub(crate) fn respond(&self, kind: BlockKind, mu: f64) -> Result<SlidingResponse, ResponseError> {
         let s = self.scenario(kind, mu)?;
         let geo = s.geometry();
         let r = simulate(s.model()?, &s.initial, &s.run_options())?;

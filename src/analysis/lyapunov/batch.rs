@@ -48,7 +48,7 @@ mod serde_arrays {
     use serde::Serializer;
     use serde::ser::SerializeSeq as _;
 
-    pub fn serialize<S: Serializer, const D: usize>(a: &[f64; D], s: S) -> Result<S::Ok, S::Error> {
+    pub(crate) fn serialize<S: Serializer, const D: usize>(a: &[f64; D], s: S) -> Result<S::Ok, S::Error> {
         let mut seq = s.serialize_seq(Some(D))?;
         for x in a {
             seq.serialize_element(x)?;
@@ -108,7 +108,7 @@ impl<const D: usize> Accumulator<D> {
     }
 
     /// Whether every interval has been pushed.
-    pub fn is_full(&self) -> bool {
+    pub(crate) fn is_full(&self) -> bool {
         self.done >= self.intervals
     }
 

@@ -18,10 +18,10 @@ use nalgebra::{Const, DimMin, SMatrix, SVector};
 pub type Square<const D: usize> = [[f64; D]; D];
 
 /// A `D × D` matrix as the machinery computes with it.
-pub type Matrix<const D: usize> = SMatrix<f64, D, D>;
+pub(crate) type Matrix<const D: usize> = SMatrix<f64, D, D>;
 
 /// A vector of `D` tangent coordinates.
-pub type Vector<const D: usize> = SVector<f64, D>;
+pub(crate) type Vector<const D: usize> = SVector<f64, D>;
 
 /// The [`Matrix`] of a row-major [`Square`].
 pub fn matrix<const D: usize>(a: &Square<D>) -> Matrix<D> {
@@ -29,7 +29,7 @@ pub fn matrix<const D: usize>(a: &Square<D>) -> Matrix<D> {
 }
 
 /// The row-major [`Square`] of a [`Matrix`].
-pub fn square<const D: usize>(m: &Matrix<D>) -> Square<D> {
+pub(crate) fn square<const D: usize>(m: &Matrix<D>) -> Square<D> {
     std::array::from_fn(|i| std::array::from_fn(|j| m[(i, j)]))
 }
 
@@ -39,7 +39,7 @@ pub fn square<const D: usize>(m: &Matrix<D>) -> Square<D> {
 ///
 /// The bound holds for every `D` up to 127 (nalgebra's `DimMin` goes
 /// through typenum); a caller generic in `D` must repeat it.
-pub fn qr_matrix<const D: usize>(a: &Matrix<D>) -> (Matrix<D>, Vector<D>)
+pub(crate) fn qr_matrix<const D: usize>(a: &Matrix<D>) -> (Matrix<D>, Vector<D>)
 where
     Const<D>: DimMin<Const<D>, Output = Const<D>>,
 {

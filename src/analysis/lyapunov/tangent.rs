@@ -125,7 +125,7 @@ where
     }
 
     /// Starts counting surviving directions at `t`, in `mode`.
-    pub fn track_from(&mut self, t: f64, mode: S::Mode) {
+    pub(crate) fn track_from(&mut self, t: f64, mode: S::Mode) {
         self.track_from = t;
         self.min_dim = self.inner.tangent_dim(mode).min(D);
     }

@@ -170,7 +170,7 @@ where
     }
 
     /// The system, mutably (e.g. to change a parameter between calls).
-    pub fn system_mut(&mut self) -> &mut Sys {
+    pub(crate) fn system_mut(&mut self) -> &mut Sys {
         &mut self.system
     }
 
@@ -196,7 +196,7 @@ where
     }
 
     /// Restarts from a new state and mode (e.g. after the user edits it).
-    pub fn reinit(&mut self, mode: Sys::Mode, t: f64, y: [f64; N]) {
+    pub(crate) fn reinit(&mut self, mode: Sys::Mode, t: f64, y: [f64; N]) {
         self.mode = mode;
         let sys = &self.system;
         let f = Field { sys, mode };
@@ -235,7 +235,7 @@ where
     /// runs to it in one step. The paper's fixed-step method steps onto
     /// `t_end`, as in `advance` (it stops on the section times too, which
     /// the live session's chunk ends are).
-    pub fn advance_past<O>(&mut self, t_end: f64, horizon: f64, obs: &mut O) -> Result<Advance, Sys::Error>
+    pub(crate) fn advance_past<O>(&mut self, t_end: f64, horizon: f64, obs: &mut O) -> Result<Advance, Sys::Error>
     where
         O: Observer<Sys::Mode, Sys::Record, N>,
     {

@@ -69,7 +69,7 @@ pub const MAX_GUARDS: usize = 8;
 /// Sub-intervals per step at which guards are sampled on the dense output.
 /// Eight keeps a DOP853 step's interior sample spacing well below the
 /// curvature scale of the guards while costing only 7 dense evaluations.
-pub const SUBINTERVALS: usize = 8;
+pub(crate) const SUBINTERVALS: usize = 8;
 
 /// What a system does at an event.
 #[derive(Clone, Copy, Debug)]

@@ -88,11 +88,11 @@ pub fn parse_toml(text: &str, file: &str) -> Result<Table, ConfigError> {
 
 /// Largest config file read, bytes: a config is a page of text; anything
 /// near this is not one.
-pub const MAX_CONFIG_BYTES: u64 = 1 << 20;
+pub(crate) const MAX_CONFIG_BYTES: u64 = 1 << 20;
 
 /// Reads a config file: TOML, or a `summary.json` / JSON config (whose
 /// `config` object is used if present).
-pub fn read_file(path: &Path) -> Result<(Table, Source), ConfigError> {
+pub(crate) fn read_file(path: &Path) -> Result<(Table, Source), ConfigError> {
     let name = path.display().to_string();
     if path.is_dir() {
         return Err(file_error(&name, "is a directory, expected a config file"));

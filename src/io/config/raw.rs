@@ -20,7 +20,7 @@ use crate::sim::scenario::{ExcitationKind, LawKind, LyapunovChoice, ShapeKind, S
 /// The whole file: every section optional.
 #[derive(Debug, Default, Deserialize)]
 #[serde(default, deny_unknown_fields)]
-pub struct RawConfig {
+pub(crate) struct RawConfig {
     /// `[block]`.
     pub block: RawBlock,
     /// `[friction]`.
@@ -42,7 +42,7 @@ pub struct RawConfig {
 /// `[floor]`: one building mode's keys, or `[[floor.mode]]` tables.
 #[derive(Debug, Default, Deserialize)]
 #[serde(default, deny_unknown_fields)]
-pub struct RawFloor {
+pub(crate) struct RawFloor {
     pub period: Option<Quantity>,
     pub damping: Option<Finite>,
     pub participation: Option<Finite>,
@@ -52,7 +52,7 @@ pub struct RawFloor {
 /// One `[[floor.mode]]` table.
 #[derive(Debug, Default, Deserialize)]
 #[serde(default, deny_unknown_fields)]
-pub struct RawFloorMode {
+pub(crate) struct RawFloorMode {
     pub period: Option<Quantity>,
     pub damping: Option<Finite>,
     pub participation: Option<Finite>,
@@ -61,7 +61,7 @@ pub struct RawFloorMode {
 /// `[block]`: width and height (bare: metres).
 #[derive(Debug, Default, Deserialize)]
 #[serde(default, deny_unknown_fields)]
-pub struct RawBlock {
+pub(crate) struct RawBlock {
     pub width: Option<Quantity>,
     pub height: Option<Quantity>,
 }
@@ -69,7 +69,7 @@ pub struct RawBlock {
 /// `[friction]`: μ_s and μ_k, either may be `inf`.
 #[derive(Debug, Default, Deserialize)]
 #[serde(default, deny_unknown_fields)]
-pub struct RawFriction {
+pub(crate) struct RawFriction {
     #[serde(rename = "static")]
     pub mu_s: Option<Coefficient>,
     #[serde(rename = "kinetic")]
@@ -79,7 +79,7 @@ pub struct RawFriction {
 /// `[impact]`.
 #[derive(Debug, Default, Deserialize)]
 #[serde(default, deny_unknown_fields)]
-pub struct RawImpact {
+pub(crate) struct RawImpact {
     pub law: Option<LawKind>,
     pub r: Option<Finite>,
     pub e: Option<Finite>,
@@ -92,7 +92,7 @@ pub struct RawImpact {
 /// `[excitation]`.
 #[derive(Debug, Default, Deserialize)]
 #[serde(default, deny_unknown_fields)]
-pub struct RawExcitation {
+pub(crate) struct RawExcitation {
     pub kind: Option<ExcitationKind>,
     pub a_h: Option<Quantity>,
     pub a_v: Option<Quantity>,
@@ -121,7 +121,7 @@ pub struct RawExcitation {
 /// `[initial]`.
 #[derive(Debug, Default, Deserialize)]
 #[serde(default, deny_unknown_fields)]
-pub struct RawInitial {
+pub(crate) struct RawInitial {
     pub theta: Option<Quantity>,
     pub theta_dot: Option<Quantity>,
     pub x_dot: Option<Quantity>,
@@ -130,7 +130,7 @@ pub struct RawInitial {
 /// `[run]`.
 #[derive(Debug, Default, Deserialize)]
 #[serde(default, deny_unknown_fields)]
-pub struct RawRun {
+pub(crate) struct RawRun {
     pub tau_end: Option<Quantity>,
     pub t_end: Option<Quantity>,
     pub tail_s: Option<Quantity>,
@@ -149,7 +149,7 @@ pub struct RawRun {
 /// `[analysis]`.
 #[derive(Debug, Default, Deserialize)]
 #[serde(default, deny_unknown_fields)]
-pub struct RawAnalysis {
+pub(crate) struct RawAnalysis {
     pub lyapunov: Option<bool>,
     pub lyapunov_method: Option<LyapunovChoice>,
     pub spectrum: Option<bool>,
@@ -271,7 +271,7 @@ impl<'de> Deserialize<'de> for Finite {
 
 /// A friction coefficient: a number, or `inf` (no sliding).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Coefficient(pub f64);
+pub(crate) struct Coefficient(pub f64);
 
 impl<'de> Deserialize<'de> for Coefficient {
     fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {

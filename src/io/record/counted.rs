@@ -20,7 +20,7 @@ impl FixedWidth {
     /// Reads the descriptor after `Format=` in `line` (any case, spaces
     /// allowed: `Format= (6F13.6)`, `Format=(8f9.6)`); `None` when there is
     /// none or it is not `(nXw...)` with X one of F, E, G, D, I.
-    pub fn after_format(line: &str) -> Option<FixedWidth> {
+    pub(crate) fn after_format(line: &str) -> Option<FixedWidth> {
         let upper = line.to_ascii_uppercase();
         let rest = &upper[upper.find("FORMAT")? + "FORMAT".len()..];
         let rest = rest.trim_start().strip_prefix('=')?.trim_start().strip_prefix('(')?;

@@ -379,7 +379,7 @@ pub fn reads_on_this_thread() -> usize {
 
 /// Largest record file read, bytes: a day of 200 Hz samples in text is
 /// about 50 MB; beyond 200 MB a file is not a ground-motion record.
-pub const MAX_RECORD_BYTES: u64 = 200 << 20;
+pub(crate) const MAX_RECORD_BYTES: u64 = 200 << 20;
 
 /// What the caller states about a record file: its unit and, for a
 /// one-column file, its time step.
@@ -544,7 +544,7 @@ pub fn read_record_as(path: &Path, spec: &RecordSpec) -> Result<LoadedRecord, Re
 ///
 /// # Errors
 /// As [`read_record_as`], less the file system's.
-pub fn read_record_bytes(name: &str, bytes: &[u8], spec: &RecordSpec) -> Result<LoadedRecord, RecordError> {
+pub(crate) fn read_record_bytes(name: &str, bytes: &[u8], spec: &RecordSpec) -> Result<LoadedRecord, RecordError> {
     READS.with(|n| n.set(n.get() + 1));
     let file = name.to_string();
     if let Some(dt) = spec.dt
@@ -649,7 +649,7 @@ fn detect(path: &Path, lines: &[&str]) -> Detected {
 /// a format with a header (AT2, COSMOS, ESM), by its extension or its
 /// header lines, as [`read_record_as`] chooses the format. For tools that
 /// sort records from other files in a folder.
-pub fn has_record_header(path: &Path, head: &str) -> bool {
+pub(crate) fn has_record_header(path: &Path, head: &str) -> bool {
     let lines: Vec<&str> = head
         .split('\n')
         .map(|line| line.strip_suffix('\r').unwrap_or(line))

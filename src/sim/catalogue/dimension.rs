@@ -71,7 +71,7 @@ impl Dimension {
 
     /// The model's (bare) number of a value in this dimension's physical
     /// unit, for block `geo`.
-    pub fn to_bare(self, physical: f64, geo: &Geometry) -> f64 {
+    pub(crate) fn to_bare(self, physical: f64, geo: &Geometry) -> f64 {
         match self {
             Dimension::Length | Dimension::Pga | Dimension::Phase | Dimension::Seconds => physical,
             Dimension::Amplitude | Dimension::Rotation => physical / geo.psi,
@@ -84,7 +84,7 @@ impl Dimension {
 
     /// The inverse of [`Dimension::to_bare`]: a bare number in this
     /// dimension's physical unit.
-    pub fn to_physical(self, bare: f64, geo: &Geometry) -> f64 {
+    pub(crate) fn to_physical(self, bare: f64, geo: &Geometry) -> f64 {
         match self {
             Dimension::Length | Dimension::Pga | Dimension::Phase | Dimension::Seconds => bare,
             Dimension::Amplitude | Dimension::Rotation => bare * geo.psi,
@@ -105,7 +105,11 @@ mod tests {
     #[test]
     fn bare_and_physical_are_the_models_definitions_both_ways() {
         let geo = Geometry::new(0.6, 2.0);
-        let (psi, p, r) = ((0.3f64).atan(), (3.0 * 9.81 / (4.0 * (0.3f64.powi(2) + 1.0).sqrt())).sqrt(), (0.3f64.powi(2) + 1.0).sqrt());
+        let (psi, p, r) = (
+            (0.3f64).atan(),
+            (3.0 * 9.81 / (4.0 * (0.3f64.powi(2) + 1.0).sqrt())).sqrt(),
+            (0.3f64.powi(2) + 1.0).sqrt(),
+        );
         let close = |a: f64, b: f64| (a - b).abs() <= 1e-12 * b.abs().max(1.0);
         assert!(close(geo.psi, psi) && close(geo.p, p) && close(geo.r, r));
         let cases = [

@@ -221,7 +221,7 @@ pub fn spec(key: &str) -> Option<&'static KeySpec> {
 }
 
 /// The entry of parameter `p`.
-pub fn spec_of(p: Param) -> &'static KeySpec {
+pub(crate) fn spec_of(p: Param) -> &'static KeySpec {
     CATALOGUE
         .iter()
         .find(|k| k.param == Some(p))
@@ -240,7 +240,7 @@ pub fn sections() -> Vec<&'static str> {
 }
 
 /// The keys of `section`, in the config file's order.
-pub fn keys_of(section: &str) -> Vec<&'static str> {
+pub(crate) fn keys_of(section: &str) -> Vec<&'static str> {
     CATALOGUE
         .iter()
         .filter(|k| k.section() == section)

@@ -102,7 +102,7 @@ impl Param {
 
     /// Whether the parameter is part of the initial state (a map over
     /// two of them is a basin map: the same system in every cell).
-    pub fn is_initial_state(self) -> bool {
+    pub(crate) fn is_initial_state(self) -> bool {
         matches!(self, Param::Theta0 | Param::ThetaDot0 | Param::XDot0)
     }
 

@@ -432,7 +432,7 @@ impl Session {
 
     /// As [`Session::new`], with stroboscopic section points at forcing
     /// phase `phase` (rad, taken modulo 2π): τ_k = (2πk + φ)/Ω_h.
-    pub fn with_phase(run: RunId, scenario: &Scenario, start: Start, phase: f64) -> Result<Self, String> {
+    pub(crate) fn with_phase(run: RunId, scenario: &Scenario, start: Start, phase: f64) -> Result<Self, String> {
         let model = scenario.model().map_err(|e| e.to_string())?;
         let section_period = model.excitation.forcing_period();
         let phase = normalise_phase(phase);
@@ -542,7 +542,7 @@ impl Session {
     }
 
     /// Whether the driver has stopped (terminal mode or error).
-    pub fn is_ended(&self) -> bool {
+    pub(crate) fn is_ended(&self) -> bool {
         self.ended.is_some()
     }
 
@@ -578,7 +578,7 @@ impl Session {
     /// there) into `batch` without moving the playhead: a run started
     /// paused shows where the block starts instead of an empty stage.
     /// Integrates one chunk ahead, which the run would do next anyway.
-    pub fn first_frame(&mut self, batch: &mut Batch) {
+    pub(crate) fn first_frame(&mut self, batch: &mut Batch) {
         if self.released > self.start.0 {
             return;
         }
@@ -589,7 +589,7 @@ impl Session {
     }
 
     /// Integrates chunk by chunk until `tau` is computed or the run ends.
-    pub fn fill_to(&mut self, tau: f64) {
+    pub(crate) fn fill_to(&mut self, tau: f64) {
         while self.ended.is_none() && self.driver.t() < tau {
             self.advance_chunk();
         }
@@ -602,7 +602,7 @@ impl Session {
     }
 
     /// Integrates one chunk (to the next point of the chunk grid).
-    pub fn advance_chunk(&mut self) {
+    pub(crate) fn advance_chunk(&mut self) {
         if self.ended.is_some() {
             return;
         }
@@ -810,7 +810,7 @@ impl Session {
 
     /// A new run of the same scenario from the state shown at the playhead,
     /// with Θ + `eps`, keeping this run's section phase.
-    pub fn perturbed(&self, run: RunId, eps: f64, last_sample: Option<&Sample>) -> Result<Session, String> {
+    pub(crate) fn perturbed(&self, run: RunId, eps: f64, last_sample: Option<&Sample>) -> Result<Session, String> {
         let (tau, mode, y) = self.shown_state(last_sample);
         Session::with_phase(
             run,
