@@ -118,7 +118,7 @@ pub fn rock(geo: &Geometry, pivot: Sign, theta: f64, theta_dot: f64, fo: Forcing
 
 /// [`rock`] with the tilt already computed.
 #[inline]
-pub fn rock_at(geo: &Geometry, pivot: Sign, tilt: Tilt, theta_dot: f64, fo: Forcing) -> Accel {
+pub(crate) fn rock_at(geo: &Geometry, pivot: Sign, tilt: Tilt, theta_dot: f64, fo: Forcing) -> Accel {
     let s = pivot.value();
     let Tilt { sn, c } = tilt;
     let b = fo.b();
@@ -142,7 +142,13 @@ pub fn rock_at(geo: &Geometry, pivot: Sign, tilt: Tilt, theta_dot: f64, fo: Forc
 /// (docs/model.md §3). For φ = ψ(1 − sΘ) in [0, π/2], 0 ≤ sin φ ≤
 /// min(1, ψ(1 + |Θ|)) and 0 ≤ cos φ ≤ 1, and γ sin²φ ≤ γ < 1, so each term
 /// is bounded by its worst case separately.
-pub fn rock_normal_lower_bound(geo: &Geometry, theta_max: f64, theta_dot_max: f64, a_max: f64, b_min: f64) -> f64 {
+pub(crate) fn rock_normal_lower_bound(
+    geo: &Geometry,
+    theta_max: f64,
+    theta_dot_max: f64,
+    a_max: f64,
+    b_min: f64,
+) -> f64 {
     let phi_max = geo.psi * (1.0 + theta_max);
     let phi_min = geo.psi * (1.0 - theta_max);
     if !(phi_max <= std::f64::consts::FRAC_PI_2 && phi_min >= 0.0) || b_min <= 0.0 {
@@ -172,7 +178,7 @@ pub fn slide_rock(
 
 /// [`slide_rock`] with the tilt already computed.
 #[inline]
-pub fn slide_rock_at(
+pub(crate) fn slide_rock_at(
     geo: &Geometry,
     pivot: Sign,
     slip: Sign,
@@ -203,7 +209,7 @@ pub fn slide_rock_at(
 /// The slide-rock denominator D = (1−γ) + γ(sin²φ − sσμ_k sin φ cos φ).
 /// Slide-rock is well posed only while D > 0 (docs/model.md §4.2).
 #[inline]
-pub fn slide_rock_denominator(geo: &Geometry, pivot: Sign, slip: Sign, mu_k: f64, theta: f64) -> f64 {
+pub(crate) fn slide_rock_denominator(geo: &Geometry, pivot: Sign, slip: Sign, mu_k: f64, theta: f64) -> f64 {
     let Tilt { sn, c } = Tilt::new(geo, pivot, theta);
     (1.0 - GAMMA) + GAMMA * (sn * sn - pivot.value() * slip.value() * mu_k * sn * c)
 }

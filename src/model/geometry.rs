@@ -7,7 +7,7 @@ pub const G: f64 = 9.81;
 /// γ = mR²/I_O = 3/4 for a rectangular block (paper eq. 13). It also equals
 /// R p²/g, which is why it appears wherever a normalised acceleration meets
 /// a force per unit weight.
-pub const GAMMA: f64 = 0.75;
+pub(crate) const GAMMA: f64 = 0.75;
 
 /// A rectangular block of width `B` and height `H` (metres), with the
 /// quantities of MODEL-DECISIONS "Conventions and units".
@@ -77,7 +77,7 @@ impl Geometry {
 
     /// Height the lifted corner reaches at rotation |Θ|, m: B·sin(ψ|Θ|)
     /// (to the block lying on its side, |θ| = π/2).
-    pub fn uplift_m(&self, abs_theta: f64) -> f64 {
+    pub(crate) fn uplift_m(&self, abs_theta: f64) -> f64 {
         self.width * (self.psi * abs_theta).min(std::f64::consts::FRAC_PI_2).sin()
     }
 

@@ -235,7 +235,7 @@ pub fn ratio(geo: &Geometry, pre: &PreImpact, r: f64) -> PostImpact {
 /// impact reverses the rotation (the corner-momentum law with slip:
 /// w₊ = (1 − 1.5 sin²ψ) w₋ + ¾ cos ψ V_cx₋), or when Housner's r < 0
 /// (ψ > 54.7°).
-pub fn reverses(pre: &PreImpact, post: &PostImpact) -> bool {
+pub(crate) fn reverses(pre: &PreImpact, post: &PostImpact) -> bool {
     !post.lifts_off && pre.striking.value() * post.w < 0.0
 }
 
@@ -243,7 +243,7 @@ pub fn reverses(pre: &PreImpact, post: &PostImpact) -> bool {
 /// vertical velocity stop (total vertical impulse π_y = −Y'₋), and the
 /// horizontal velocity is stopped by friction if |X'₋| <= μ_s π_y, or
 /// reduced by μ_k π_y otherwise (the block then slides flat).
-pub fn flat_landing(pre: &PreImpact, mu_s: f64, mu_k: f64) -> PostImpact {
+pub(crate) fn flat_landing(pre: &PreImpact, mu_s: f64, mu_k: f64) -> PostImpact {
     let py = (-pre.y_dot).max(0.0);
     let (px, slip) = if within_cone(pre.x_dot, mu_s, py) {
         (-pre.x_dot, None)
@@ -264,7 +264,7 @@ pub fn flat_landing(pre: &PreImpact, mu_s: f64, mu_k: f64) -> PostImpact {
 }
 
 /// Applies `law`.
-pub fn apply_law(geo: &Geometry, law: &ImpactLaw, pre: &PreImpact) -> PostImpact {
+pub(crate) fn apply_law(geo: &Geometry, law: &ImpactLaw, pre: &PreImpact) -> PostImpact {
     match *law {
         ImpactLaw::Housner => housner(geo, pre),
         ImpactLaw::CornerMomentum => corner_momentum(geo, pre),

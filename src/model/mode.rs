@@ -103,5 +103,5 @@ impl Mode {
     }
 
     /// The mode names in [`index`](Mode::index) order.
-    pub const NAMES: [&'static str; 6] = ["rest", "slide", "rock", "slide-rock", "tumbled", "flight"];
+    pub(crate) const NAMES: [&'static str; 6] = ["rest", "slide", "rock", "slide-rock", "tumbled", "flight"];
 }

@@ -73,7 +73,7 @@ impl Oscillator {
 
     /// The same oscillator in a time unit `new_units_per_old` times finer
     /// (τ = p t: an oscillator in s becomes one in τ with p, ω_τ = ω_s / p).
-    pub fn rescaled(&self, new_units_per_old: f64) -> Self {
+    pub(crate) fn rescaled(&self, new_units_per_old: f64) -> Self {
         Self {
             omega: self.omega / new_units_per_old,
             zeta: self.zeta,
@@ -115,7 +115,7 @@ impl Oscillator {
 
     /// The response a time `s` ≥ 0 into an interval that starts in state
     /// (`u0`, `u_dot0`) under the ground acceleration `a0 + k s`: exact.
-    pub fn linear_at(&self, u0: f64, u_dot0: f64, a0: f64, k: f64, s: f64) -> Response {
+    pub(crate) fn linear_at(&self, u0: f64, u_dot0: f64, a0: f64, k: f64, s: f64) -> Response {
         let (alpha, beta) = self.particular(a0, k);
         let h = self.free_at(
             Free {
@@ -231,7 +231,7 @@ impl HarmonicResponse {
     /// The steady-state relative acceleration ü as a complex amplitude
     /// (re, im) per unit ground amplitude: ü_ss = Im[Ü e^{i(Ωt+φ)}] with
     /// Ü = Ω²/(ω² − Ω² + 2iζωΩ).
-    pub fn steady_accel_ratio(&self) -> (f64, f64) {
+    pub(crate) fn steady_accel_ratio(&self) -> (f64, f64) {
         let w2 = self.osc.omega * self.osc.omega;
         let o2 = self.big_omega * self.big_omega;
         let (dr, di) = (w2 - o2, 2.0 * self.osc.sigma() * self.big_omega);
@@ -241,7 +241,7 @@ impl HarmonicResponse {
 
     /// A bound on the transient's |ü| for every t ≥ 0: the amplitude
     /// √(c² + d²) of e^{−σt}(c cos ω_d t + d sin ω_d t), with e^{−σt} ≤ 1.
-    pub fn transient_accel_bound(&self) -> f64 {
+    pub(crate) fn transient_accel_bound(&self) -> f64 {
         self.osc.free_accel_amplitude(self.transient)
     }
 }
@@ -306,7 +306,7 @@ impl PiecewiseResponse {
     }
 
     /// u̇ at each sample.
-    pub fn u_dot(&self) -> &[f64] {
+    pub(crate) fn u_dot(&self) -> &[f64] {
         &self.u_dot
     }
 
@@ -335,7 +335,7 @@ impl PiecewiseResponse {
     /// The response at `t` (s) in interval `i` (see
     /// [`PiecewiseResponse::interval`]), in closed form; at rest before
     /// the first sample.
-    pub fn at_in(&self, i: Option<usize>, t: f64) -> Response {
+    pub(crate) fn at_in(&self, i: Option<usize>, t: f64) -> Response {
         let Some(i) = i else {
             return Response {
                 u: 0.0,
@@ -363,7 +363,7 @@ impl PiecewiseResponse {
     /// damped sinusoid with zeros π/ω_d apart in closed form; between two of
     /// them u̇ is monotone and has at most one zero, found by bisection to
     /// rounding (the error in u is then of second order).
-    pub fn max_abs_u(&self) -> f64 {
+    pub(crate) fn max_abs_u(&self) -> f64 {
         let mut peak = self.u.iter().fold(0.0_f64, |m, u| m.max(u.abs()));
         let wd = self.osc.omega_d();
         for i in 0..self.times.len().saturating_sub(1) {
@@ -437,7 +437,7 @@ pub fn pseudo_acceleration(series: &Series, scale: f64, period_s: f64, zeta: f64
 /// |f − interpolant| ≤ M₂ w²/8, starting from the known lower bound `best`.
 /// Pieces whose bound cannot beat the best found are dropped; the rest are
 /// halved (at most 2⁶⁰ times).
-pub fn max_abs_smooth(f: impl Fn(f64) -> f64, m2: impl Fn(f64, f64) -> f64, h: f64, best: f64, rel: f64) -> f64 {
+pub(crate) fn max_abs_smooth(f: impl Fn(f64) -> f64, m2: impl Fn(f64, f64) -> f64, h: f64, best: f64, rel: f64) -> f64 {
     let mut best = best.max(f(0.0).abs()).max(f(h).abs());
     let mut stack = vec![(0.0, h, f(0.0).abs(), f(h).abs(), 0_u32)];
     while let Some((s0, s1, f0, f1, depth)) = stack.pop() {

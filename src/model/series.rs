@@ -24,7 +24,7 @@ use super::state::{FRICTION_LOSS, N, THETA, THETA_DOT, WORK, X, X_DOT};
 /// one order beyond the rest): 29, for the Taylor stepper's highest order
 /// 28. Longer requests return `false`. The working series are arrays of
 /// this length, zeroed on every expansion, so it is no longer than needed.
-pub const MAX_ORDER: usize = crate::integrate::taylor::MAX_ORDER + 1;
+pub(crate) const MAX_ORDER: usize = crate::integrate::taylor::MAX_ORDER + 1;
 
 /// Coefficients of one scalar series.
 type Series = [f64; MAX_ORDER + 1];

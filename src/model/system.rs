@@ -166,7 +166,7 @@ impl BlockSystem {
     }
 
     /// The effective tumble angle: `tumble_theta` capped at the side landing.
-    pub fn tumble_angle(&self) -> f64 {
+    pub(crate) fn tumble_angle(&self) -> f64 {
         self.model.tumble_theta.min(self.model.geo.side_theta())
     }
 
@@ -204,7 +204,7 @@ impl BlockSystem {
     /// Mechanical energy at the end of a run: as [`energy`](Self::energy),
     /// except that a block thrown off the base by an impact keeps the
     /// vertical velocity it left with.
-    pub fn final_energy(&self, mode: Mode, y: &[f64; N]) -> f64 {
+    pub(crate) fn final_energy(&self, mode: Mode, y: &[f64; N]) -> f64 {
         match (mode, self.tally.lift_off_y_dot) {
             (Mode::Flight, Some(y_dot)) => {
                 let geo = &self.model.geo;

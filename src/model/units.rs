@@ -58,14 +58,14 @@ impl AccelUnit {
     /// Reads a unit name as a format that writes names in upper case
     /// defines them (PEER AT2 headers: `UNITS OF G`, `CM/S/S`, `CM/SEC/SEC`):
     /// any case, otherwise as [`AccelUnit::parse`]. Not for what users type.
-    pub fn parse_upper_case(text: &str) -> Option<AccelUnit> {
+    pub(crate) fn parse_upper_case(text: &str) -> Option<AccelUnit> {
         let lower = text.to_ascii_lowercase();
         AccelUnit::parse(&lower)
     }
 
     /// The accepted spelling `text` differs from only in case (`G` → `g`),
     /// for a message that says units are case-sensitive.
-    pub fn case_hint(text: &str) -> Option<&'static str> {
+    pub(crate) fn case_hint(text: &str) -> Option<&'static str> {
         let t = text.trim().replace('²', "2");
         ["g", "m/s2", "cm/s2"]
             .into_iter()

@@ -42,16 +42,16 @@ use super::params::Model;
 use super::state::{N, THETA, THETA_DOT, X_DOT};
 
 /// Dimension of the tangent coordinates `z = (Θ, Θ', X')`.
-pub const DIM: usize = 3;
+pub(crate) const DIM: usize = 3;
 
 /// Indices of `z = (Θ, Θ', X')` in the state `[Θ, Θ', X, X', W, D]`.
-pub const COORDS: [usize; DIM] = [THETA, THETA_DOT, X_DOT];
+pub(crate) const COORDS: [usize; DIM] = [THETA, THETA_DOT, X_DOT];
 
 /// A `DIM × DIM` matrix, row-major.
-pub type Matrix = [[f64; DIM]; DIM];
+pub(crate) type Matrix = [[f64; DIM]; DIM];
 
 /// The identity matrix.
-pub const IDENTITY: Matrix = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+pub(crate) const IDENTITY: Matrix = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
 
 /// Gradient of one guard: `∂g/∂z` and the explicit time derivative `∂g/∂τ`.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -94,7 +94,7 @@ pub fn tangent_dim(mode: Mode) -> usize {
 /// for excitations whose derivative is known in closed form (harmonic, a
 /// floor under harmonic ground motion, and none); `None` for pulses and
 /// records.
-pub fn forcing_rate(excitation: &Excitation, tau: f64) -> Option<Forcing> {
+pub(crate) fn forcing_rate(excitation: &Excitation, tau: f64) -> Option<Forcing> {
     match excitation {
         Excitation::None => Some(Forcing { a: 0.0, av: 0.0 }),
         Excitation::Harmonic(h) => Some(Forcing {
@@ -221,7 +221,7 @@ fn tilted_partials(model: &Model, mode: Mode, fo: Forcing, y: &[f64; N]) -> Opti
 /// forcing `fo` and state `y`. Flat and terminal modes have constant (or
 /// zero) fields: their Jacobian is zero. No field depends on `X'`, so the
 /// last column is always zero.
-pub fn field_jacobian(model: &Model, mode: Mode, fo: Forcing, y: &[f64; N]) -> Matrix {
+pub(crate) fn field_jacobian(model: &Model, mode: Mode, fo: Forcing, y: &[f64; N]) -> Matrix {
     match tilted_partials(model, mode, fo, y) {
         Some((_, p)) => {
             let psi = model.geo.psi;
@@ -330,7 +330,7 @@ pub fn guard_gradient(
 /// Projection of `z` onto the tangent space of `mode` at state `y`: what a
 /// switch into `mode` does to a perturbation (rest pins everything, slide
 /// pins Θ and Θ', rock slaves X' to c ψ Θ').
-pub fn mode_projection(geo: &Geometry, mode: Mode, y: &[f64; N]) -> Matrix {
+pub(crate) fn mode_projection(geo: &Geometry, mode: Mode, y: &[f64; N]) -> Matrix {
     match mode {
         Mode::Rest | Mode::Tumbled | Mode::Flight => [[0.0; DIM]; DIM],
         Mode::Slide { .. } => [[0.0; DIM], [0.0; DIM], [0.0, 0.0, 1.0]],
@@ -521,7 +521,7 @@ pub fn reset_jacobian(
 
 /// Slip velocity of the pivot of a tilted mode (`None` for flat modes):
 /// used to keep a displaced state in its slip direction.
-pub fn slip_velocity(geo: &Geometry, mode: Mode, y: &[f64; N]) -> Option<f64> {
+pub(crate) fn slip_velocity(geo: &Geometry, mode: Mode, y: &[f64; N]) -> Option<f64> {
     match mode {
         Mode::Rock { pivot } | Mode::SlideRock { pivot, .. } => Some(dynamics::pivot_slip_velocity(
             geo,

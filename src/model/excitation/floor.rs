@@ -356,7 +356,7 @@ impl FloorExcitation {
 
     /// Shortest time scale, τ: 1/ω of the fastest mode, in τ, and the
     /// harmonic's own.
-    pub fn time_scale(&self) -> f64 {
+    pub(crate) fn time_scale(&self) -> f64 {
         let modes = self
             .modes
             .iter()
@@ -405,7 +405,7 @@ impl FloorExcitation {
     /// record's end, and the sum stays below `level_g` once every mode's
     /// share is below `level_g` divided by the number of modes. `end_tau`
     /// for harmonic ground (which never stops) or a zero level.
-    pub fn quiet_after(&self, end_tau: f64, level_g: f64) -> f64 {
+    pub(crate) fn quiet_after(&self, end_tau: f64, level_g: f64) -> f64 {
         let Ground::Record { modes, .. } = &self.ground else {
             return end_tau;
         };

@@ -123,7 +123,7 @@ impl Excitation {
     /// this. A record is linear between its samples, and steps stop at every
     /// sample, so it needs neither; a floor oscillates inside a sample
     /// interval, so its time scale is 1/ω of its fastest mode (in τ).
-    pub fn time_scale(&self) -> f64 {
+    pub(crate) fn time_scale(&self) -> f64 {
         let inv = |omega: f64| if omega > 0.0 { 1.0 / omega } else { f64::INFINITY };
         match self {
             Excitation::None | Excitation::Record(_) => f64::INFINITY,

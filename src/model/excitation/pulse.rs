@@ -22,7 +22,7 @@ use std::f64::consts::PI;
 ///
 /// Near-fault records show at most a handful of main cycles; 20 is far beyond
 /// that while keeping the phase root well separated from 0.
-pub const MAX_TYPE_C_CYCLES: u32 = 20;
+pub(crate) const MAX_TYPE_C_CYCLES: u32 = 20;
 
 /// Shape of an analytic pulse, with ω the pulse frequency and T = 2π/ω its
 /// period (both per unit τ).
@@ -200,7 +200,7 @@ impl Pulse {
     /// The non-smooth points of the acceleration, in τ: the start 0 and the
     /// end [`Pulse::duration`], where it has a kink (type A, half-sine) or a
     /// jump (types B and C, rectangular).
-    pub fn breakpoints(&self) -> [f64; 2] {
+    pub(crate) fn breakpoints(&self) -> [f64; 2] {
         [0.0, self.duration]
     }
 }

@@ -26,7 +26,7 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 /// The largest peak ground acceleration ever recorded is about 4 g, so a value
 /// above 100 g is a units mix-up (cm/s² or m/s² read as g) or a corrupt file,
 /// not ground motion; it is rejected rather than simulated.
-pub const MAX_ABS_ACCEL_G: f64 = 100.0;
+pub(crate) const MAX_ABS_ACCEL_G: f64 = 100.0;
 
 /// Shortest time step between record samples accepted from a file, s.
 ///
@@ -34,18 +34,18 @@ pub const MAX_ABS_ACCEL_G: f64 = 100.0;
 /// beyond 10 kHz; a step below 1e-5 s (100 kHz) is a unit mix-up (µs or ms
 /// read as s) or a corrupt header, and with steps near the smallest double
 /// the record's own integrals (PGV, PGD) underflow to nonsense.
-pub const MIN_STEP_S: f64 = 1e-5;
+pub(crate) const MIN_STEP_S: f64 = 1e-5;
 
 /// Longest time step between record samples accepted from a file, s: 10 s
 /// between samples (0.1 Hz) cannot describe ground shaking, whose energy
 /// lies between about 0.1 and 30 Hz; such a step is a unit mix-up (ms read
 /// as s) or a gap in the file.
-pub const MAX_STEP_S: f64 = 10.0;
+pub(crate) const MAX_STEP_S: f64 = 10.0;
 
 /// Whether `step_s` lies in [[`MIN_STEP_S`], [`MAX_STEP_S`]], up to a
 /// relative 1e-9 so that the differences of times written at exactly 1e-5
 /// s (or 10 s) apart pass.
-pub fn step_in_range(step_s: f64) -> bool {
+pub(crate) fn step_in_range(step_s: f64) -> bool {
     let slack = 1.0 + 1e-9;
     step_s * slack >= MIN_STEP_S && step_s <= MAX_STEP_S * slack
 }
