@@ -1,9 +1,9 @@
 //! Early stopping of a steady-response run: a run ends as soon as its
 //! class is certain, instead of running out its whole window.
 //!
-//! A map cell used to run its transient and window (τ 0–800 by default)
-//! whatever it did; most cells come to rest or settle onto a periodic
-//! orbit long before. [`Settle`] watches a run's section points and events
+//! Run out in full, a map cell runs its transient and window (τ 0–800 by
+//! default) whatever it does; most cells come to rest or settle onto a
+//! periodic orbit long before. [`Settle`] watches a run's section points and events
 //! and ends it (through [`Sink::settled`]) when one of these holds at a
 //! section point τ_n:
 //! - **Rest**: the block is at rest and has been since at least τ_n − T

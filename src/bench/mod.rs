@@ -73,7 +73,8 @@ const FROM_REST: InitialState = InitialState {
     x_dot: None,
 };
 
-/// The four scenes of issue 5.
+/// The four scenes of the benchmark: free rocking, a periodic orbit,
+/// sliding and chaos (docs/performance.md).
 pub fn scenes() -> Vec<Scene> {
     vec![
         Scene {
@@ -366,7 +367,7 @@ pub(crate) fn time_at_error(records: &[Record], method: &str, error: f64) -> Opt
     inside.or_else(|| all_better.then(|| pts.iter().map(|p| p.1).fold(f64::INFINITY, f64::min).exp()))
 }
 
-/// The speed targets of issue 5 for one scene, from its records.
+/// The speed targets of one scene (docs/performance.md), from its records.
 #[derive(Clone, Debug, Serialize)]
 pub struct Targets {
     /// Scene name.
