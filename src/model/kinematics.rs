@@ -66,7 +66,11 @@ mod tests {
             let x = turned_about_corner(&geo, 1.0, theta0, x0, theta);
             let before = x0 * geo.r + corners(&geo, geo.psi * theta0)[1].0;
             let after = x * geo.r + corners(&geo, geo.psi * theta)[1].0;
-            assert!((after - before).abs() < TOL, "Θ = {theta}: corner moved {}", after - before);
+            assert!(
+                (after - before).abs() < TOL,
+                "Θ = {theta}: corner moved {}",
+                after - before
+            );
         }
         // On its side, the centre lies H/2 beyond the corner.
         let x = turned_about_corner(&geo, 1.0, theta0, x0, geo.side_theta());

@@ -114,9 +114,8 @@ impl Serialize for EndState {
 impl<'de> serde::Deserialize<'de> for EndState {
     fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
         let name = String::deserialize(d)?;
-        EndState::from_name(&name).ok_or_else(|| {
-            serde::de::Error::unknown_variant(&name, &["rest", "moving", "overturned", "flight"])
-        })
+        EndState::from_name(&name)
+            .ok_or_else(|| serde::de::Error::unknown_variant(&name, &["rest", "moving", "overturned", "flight"]))
     }
 }
 

@@ -266,8 +266,14 @@ impl RunEnd {
     /// terminal nor rest (which the thread does not send).
     pub fn end_state(&self) -> Option<(EndState, f64)> {
         match *self {
-            RunEnd::Terminal { mode: Mode::Tumbled, tau } => Some((EndState::Overturned, tau)),
-            RunEnd::Terminal { mode: Mode::Flight, tau } => Some((EndState::Flight, tau)),
+            RunEnd::Terminal {
+                mode: Mode::Tumbled,
+                tau,
+            } => Some((EndState::Overturned, tau)),
+            RunEnd::Terminal {
+                mode: Mode::Flight,
+                tau,
+            } => Some((EndState::Flight, tau)),
             RunEnd::Terminal {
                 mode: Mode::Rest | Mode::Slide { .. } | Mode::Rock { .. } | Mode::SlideRock { .. },
                 ..
@@ -435,7 +441,10 @@ pub fn pose(geo: &Geometry, theta: f64, x: f64, mode: Mode, base_x: f64) -> Pose
     let tilted = theta != 0.0;
     let pivot = tilted.then(|| {
         let s = Sign::of(theta);
-        ((base_x + x + kinematics::corner_offset(geo, s.value(), theta)) * geo.r, s)
+        (
+            (base_x + x + kinematics::corner_offset(geo, s.value(), theta)) * geo.r,
+            s,
+        )
     });
     Pose {
         x: (base_x + x) * geo.r,

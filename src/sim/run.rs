@@ -4,9 +4,9 @@ use std::time::Instant;
 
 use serde::Serialize;
 
-pub use super::end_state::Outcome;
-use super::end_state::EndState;
 use super::collect::{Collector, HistoryRow, Keep, SectionRow, Sink, Tallies};
+use super::end_state::EndState;
+pub use super::end_state::Outcome;
 use super::method::{Method, StepperVisitor, with_stepper};
 use crate::integrate::hybrid::{Advance, Driver, Limits, Outputs};
 use crate::integrate::{StepStats, Stepper, Tolerances};

@@ -15,9 +15,9 @@
 //! - Every number in a [`BlockResponse`] is finite.
 
 use crate::model::excitation::Excitation;
-use crate::sim::scenario::{ExcitationKind, RECORD_TAIL_S, Record, ShapeKind};
 /// How a run ended, in the engineer's words: the core's one type.
 pub use crate::sim::EndState;
+use crate::sim::scenario::{ExcitationKind, RECORD_TAIL_S, Record, ShapeKind};
 use crate::sim::{Scenario, ScenarioError, SimError, simulate};
 
 /// Free-vibration tail after a pulse, in τ (units of 1/p). A block released
