@@ -9,6 +9,7 @@ pub mod energy;
 pub mod excitation;
 pub mod geometry;
 pub mod impact;
+pub mod kinematics;
 pub mod mode;
 pub mod oscillator;
 pub mod params;

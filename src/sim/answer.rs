@@ -6,37 +6,11 @@
 
 use serde::Serialize;
 
-use super::run::{Outcome, RunResult};
+pub use super::end_state::EndState;
+use super::run::RunResult;
 use super::scenario::{ExcitationKind, LawKind, Scenario};
 use crate::model::excitation::record::GroundPeaks;
 use crate::model::excitation::{Excitation, FloorPeaks};
-
-/// How a run ended, in the words an engineer uses.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "lowercase")]
-pub enum EndState {
-    /// Flat and stuck at the end.
-    Rest,
-    /// Still rocking or sliding at the end: the run ended before the block
-    /// settled, so it is not known to have survived.
-    Moving,
-    /// Overturned (|Θ| reached `run.tumble_theta`).
-    Overturned,
-    /// Left the ground (the normal force vanished).
-    Flight,
-}
-
-impl EndState {
-    /// The name in outputs.
-    pub fn name(self) -> &'static str {
-        match self {
-            EndState::Rest => "rest",
-            EndState::Moving => "moving",
-            EndState::Overturned => "overturned",
-            EndState::Flight => "flight",
-        }
-    }
-}
 
 /// Seconds spent in each grounded mode.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
@@ -130,12 +104,7 @@ impl Physical {
     pub fn of(s: &Scenario, res: &RunResult) -> Self {
         let geo = s.geometry();
         let sec = |tau: f64| tau / geo.p;
-        let end_state = match res.outcome {
-            Outcome::Tumbled => EndState::Overturned,
-            Outcome::Flight => EndState::Flight,
-            Outcome::Rest => EndState::Rest,
-            Outcome::Running => EndState::Moving,
-        };
+        let end_state = res.end_state();
         let theta = geo.psi * res.max_abs_theta;
         let [rest, slide, rock, slide_rock] = res.mode_time.map(sec);
         let peaks = |r: &Option<super::scenario::Record>, scale: f64| {

@@ -9,6 +9,7 @@
 pub mod answer;
 pub mod catalogue;
 mod collect;
+mod end_state;
 pub mod job;
 pub mod method;
 pub mod protocol;
@@ -17,9 +18,10 @@ pub mod runner;
 pub mod scenario;
 mod validate;
 
-pub use answer::{EndState, Physical};
+pub use answer::Physical;
 pub use catalogue::Param;
 pub use collect::{HistoryRow, Keep, SectionRow, Sink, Tallies};
+pub use end_state::EndState;
 pub use method::{Method, TAYLOR_DEFAULT_RTOL};
 pub use run::{
     EnergyAudit, InitialState, Outcome, RunOptions, RunResult, SimError, initial_mode, simulate, simulate_into,

@@ -19,10 +19,10 @@
 //!
 //! This module knows nothing of windows; the app turns these into pictures.
 
-use super::{HistoryRow, Scenario};
+use super::{EndState, HistoryRow, Scenario};
 use crate::model::geometry::Geometry;
 use crate::model::system::EventRecord;
-use crate::model::{Mode, Sign, energy};
+use crate::model::{Mode, Sign, energy, kinematics};
 
 /// Identifies one run (one continuous trajectory). Ids increase by one with
 /// every new run started through one [`super::runner::SimHandle`]; the first
@@ -260,6 +260,30 @@ pub enum RunEnd {
     Failed(String),
 }
 
+impl RunEnd {
+    /// How the run ended, in the engineer's words, and when (τ): `None`
+    /// for a run that failed, or that stopped in a mode that is neither
+    /// terminal nor rest (which the thread does not send).
+    pub fn end_state(&self) -> Option<(EndState, f64)> {
+        match *self {
+            RunEnd::Terminal {
+                mode: Mode::Tumbled,
+                tau,
+            } => Some((EndState::Overturned, tau)),
+            RunEnd::Terminal {
+                mode: Mode::Flight,
+                tau,
+            } => Some((EndState::Flight, tau)),
+            RunEnd::Terminal {
+                mode: Mode::Rest | Mode::Slide { .. } | Mode::Rock { .. } | Mode::SlideRock { .. },
+                ..
+            }
+            | RunEnd::Failed(_) => None,
+            RunEnd::Rest { tau, .. } => Some((EndState::Rest, tau)),
+        }
+    }
+}
+
 /// Updates from the simulation thread.
 #[derive(Clone, Debug, PartialEq)]
 pub enum SimUpdate {
@@ -417,10 +441,10 @@ pub fn pose(geo: &Geometry, theta: f64, x: f64, mode: Mode, base_x: f64) -> Pose
     let tilted = theta != 0.0;
     let pivot = tilted.then(|| {
         let s = Sign::of(theta);
-        // The pivot lies a horizontal distance R sin φ, φ = ψ(1 − sΘ), from
-        // the centre of mass, on its side s.
-        let phi = geo.psi * (1.0 - s.value() * theta);
-        ((base_x + x + s.value() * phi.sin()) * geo.r, s)
+        (
+            (base_x + x + kinematics::corner_offset(geo, s.value(), theta)) * geo.r,
+            s,
+        )
     });
     Pose {
         x: (base_x + x) * geo.r,
@@ -434,6 +458,21 @@ pub fn pose(geo: &Geometry, theta: f64, x: f64, mode: Mode, base_x: f64) -> Pose
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_run_end_reads_as_the_engineers_end_state_with_its_time() {
+        let at = |mode| RunEnd::Terminal { mode, tau: 3.5 }.end_state();
+        assert_eq!(at(Mode::Tumbled), Some((EndState::Overturned, 3.5)));
+        assert_eq!(at(Mode::Flight), Some((EndState::Flight, 3.5)));
+        assert_eq!(at(Mode::Rock { pivot: Sign::Pos }), None);
+        let rest = RunEnd::Rest {
+            tau: 9.0,
+            max_abs_theta: 0.2,
+            max_abs_sliding: 0.0,
+        };
+        assert_eq!(rest.end_state(), Some((EndState::Rest, 9.0)));
+        assert_eq!(RunEnd::Failed("x".into()).end_state(), None);
+    }
 
     #[test]
     fn flat_block_stands_on_its_base() {

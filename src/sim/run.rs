@@ -5,6 +5,8 @@ use std::time::Instant;
 use serde::Serialize;
 
 use super::collect::{Collector, HistoryRow, Keep, SectionRow, Sink, Tallies};
+use super::end_state::EndState;
+pub use super::end_state::Outcome;
 use super::method::{Method, StepperVisitor, with_stepper};
 use crate::integrate::hybrid::{Advance, Driver, Limits, Outputs};
 use crate::integrate::{StepStats, Stepper, Tolerances};
@@ -49,20 +51,6 @@ pub struct RunOptions {
     pub rest_after: Option<f64>,
     /// Loop bounds.
     pub limits: Limits,
-}
-
-/// How a run ended.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "lowercase")]
-pub enum Outcome {
-    /// Still moving at `tau_end`.
-    Running,
-    /// At rest at `tau_end`.
-    Rest,
-    /// Tumbled.
-    Tumbled,
-    /// Flight.
-    Flight,
 }
 
 /// The energy audit, per m g R (docs/model.md §8):
@@ -127,6 +115,24 @@ pub struct RunResult {
     pub max_abs_sliding: f64,
     /// Sliding displacement at the end, per R (signed, +x to the right).
     pub final_sliding: f64,
+}
+
+impl RunResult {
+    /// How it ended, in the engineer's words.
+    pub fn end_state(&self) -> EndState {
+        EndState::of(self.outcome)
+    }
+
+    /// τ of the event the run ended on (overturning or flight; the run's
+    /// end if the event's own time was not kept), `None` for a run that
+    /// ended at rest or moving.
+    pub fn end_event_tau(&self) -> Option<f64> {
+        match self.outcome {
+            Outcome::Rest | Outcome::Running => None,
+            Outcome::Tumbled => self.tumble_tau.or(Some(self.tau_end)),
+            Outcome::Flight => self.flight_tau.or(Some(self.tau_end)),
+        }
+    }
 }
 
 /// Errors of a run.

@@ -15,8 +15,10 @@
 //! - Every number in a [`BlockResponse`] is finite.
 
 use crate::model::excitation::Excitation;
+/// How a run ended, in the engineer's words: the core's one type.
+pub use crate::sim::EndState;
 use crate::sim::scenario::{ExcitationKind, RECORD_TAIL_S, Record, ShapeKind};
-use crate::sim::{Outcome, Scenario, ScenarioError, SimError, simulate};
+use crate::sim::{Scenario, ScenarioError, SimError, simulate};
 
 /// Free-vibration tail after a pulse, in τ (units of 1/p). A block released
 /// near the overturning angle with a small velocity needs about
@@ -123,46 +125,6 @@ impl Drive {
     }
 }
 
-/// How a run ended, in the engineer's words.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum EndState {
-    /// At rest at the end of the run.
-    Rest,
-    /// Still rocking or sliding at the end of the tail.
-    Moving,
-    /// |Θ| reached `run.tumble_theta` (default 1: the centre of mass passed
-    /// over the pivot).
-    Overturned,
-    /// The normal force vanished: the block left the ground, and what
-    /// follows is not computed.
-    Flight,
-}
-
-impl EndState {
-    /// Output name.
-    pub fn name(self) -> &'static str {
-        match self {
-            EndState::Rest => "rest",
-            EndState::Moving => "moving",
-            EndState::Overturned => "overturned",
-            EndState::Flight => "flight",
-        }
-    }
-
-    /// Reads an output name back.
-    pub fn from_name(name: &str) -> Option<Self> {
-        [EndState::Rest, EndState::Moving, EndState::Overturned, EndState::Flight]
-            .into_iter()
-            .find(|s| s.name() == name)
-    }
-
-    /// Whether the block is known to have survived (rest or still moving).
-    pub fn survived(self) -> bool {
-        matches!(self, EndState::Rest | EndState::Moving)
-    }
-}
-
 /// The answer of one run.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct BlockResponse {
@@ -266,12 +228,7 @@ pub(crate) fn respond(
     let s = scenario_for(base, size, drive, scale)?;
     let p = s.geometry().p;
     let r = simulate(s.model()?, &s.initial, &s.run_options())?;
-    let (end, event_tau) = match r.outcome {
-        Outcome::Rest => (EndState::Rest, None),
-        Outcome::Running => (EndState::Moving, None),
-        Outcome::Tumbled => (EndState::Overturned, r.tumble_tau.or(Some(r.tau_end))),
-        Outcome::Flight => (EndState::Flight, r.flight_tau.or(Some(r.tau_end))),
-    };
+    let (end, event_tau) = (r.end_state(), r.end_event_tau());
     Ok(BlockResponse {
         end,
         peak_theta_over_alpha: r.max_abs_theta,

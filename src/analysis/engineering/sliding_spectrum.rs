@@ -39,7 +39,7 @@ use rayon::prelude::*;
 
 use super::response::{BlockSize, Drive, EndState, ResponseError, scenario_for};
 use crate::analysis::{Progress, ProgressFn};
-use crate::sim::{Outcome, Scenario, ScenarioError, simulate};
+use crate::sim::{Scenario, ScenarioError, simulate};
 
 /// B/H of the slide-only block: tan α = 1000, far above any ground motion
 /// (the strongest recorded PGAs are 3–4 g) and any friction coefficient,
@@ -258,12 +258,7 @@ impl SlidingSpec<'_> {
         let s = self.scenario(kind, mu)?;
         let geo = s.geometry();
         let r = simulate(s.model()?, &s.initial, &s.run_options())?;
-        let (end, event_tau) = match r.outcome {
-            Outcome::Rest => (EndState::Rest, None),
-            Outcome::Running => (EndState::Moving, None),
-            Outcome::Tumbled => (EndState::Overturned, r.tumble_tau.or(Some(r.tau_end))),
-            Outcome::Flight => (EndState::Flight, r.flight_tau.or(Some(r.tau_end))),
-        };
+        let (end, event_tau) = (r.end_state(), r.end_event_tau());
         Ok(SlidingResponse {
             end,
             peak_sliding_m: r.max_abs_sliding * geo.r,

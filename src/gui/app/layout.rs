@@ -11,7 +11,8 @@ use crate::gui::panels::ground;
 use crate::gui::panels::params;
 use crate::gui::panels::plots;
 use crate::gui::panels::scene::{self, SceneInput};
-use crate::model::Mode;
+use crate::model::kinematics;
+use crate::sim::EndState;
 use crate::sim::protocol::RunEnd;
 
 /// How long an impact flash lasts, s of wall-clock time.
@@ -153,13 +154,7 @@ impl RockingApp {
         };
         let verdict = self.end.as_ref().and_then(|e| Verdict::of(e, info.geometry));
         // After a tumble: the fall onto the side, drawn (not simulated).
-        let tumbled = matches!(
-            self.end,
-            Some(RunEnd::Terminal {
-                mode: Mode::Tumbled,
-                ..
-            })
-        );
+        let tumbled = verdict.is_some_and(|v| v.end == EndState::Overturned);
         // A record scene: the banner in its own strip above the block.
         let rect = match &self.record_label {
             Some(label) => {
@@ -221,8 +216,7 @@ impl RockingApp {
         // the layout tests: world height y is drawn at centre − (y − y_mid)·scale.
         let to_screen = |y: f64| rect.center().y - ((y - y_mid) * scale) as f32;
         let p = crate::sim::protocol::pose(&info.geometry, sample.theta, sample.x, sample.mode, sample.base_x);
-        let (sin, cos) = p.angle.sin_cos();
-        let reach = 0.5 * (info.geometry.width * sin.abs() + info.geometry.height * cos.abs());
+        let reach = kinematics::half_height_turned_m(&info.geometry, p.angle);
         self.frame_layout.block_top = Some(to_screen(p.y + reach));
         self.frame_layout.table_top = Some(to_screen(0.0));
         let view = scene::view(rect, scale, &self.camera, y_mid, ui.ctx().pixels_per_point());
@@ -235,7 +229,7 @@ impl RockingApp {
         // block at rest): only a record scene, whose banner has its own
         // strip, says SURVIVED; the status bar says how any run ended.
         if self.record_label.is_none()
-            && let Some(v) = verdict.as_ref().filter(|v| !matches!(v, Verdict::Survived { .. }))
+            && let Some(v) = verdict.as_ref().filter(|v| !v.end.survived())
         {
             let mut lines = banner::Lines::verdict(v, None);
             if tumbled {

@@ -11,6 +11,7 @@ use crate::gui::panels::scene;
 use crate::gui::prefs::{self, Prefs};
 use crate::model::Mode;
 use crate::model::geometry::Geometry;
+use crate::model::kinematics;
 use crate::sim::protocol::Sample;
 
 /// How long the drawn fall after a tumble takes, s of wall-clock time:
@@ -126,10 +127,8 @@ pub fn fallen(geo: &Geometry, end: &Sample, t: f64) -> (Sample, bool) {
     let s = if end.theta == 0.0 { 1.0 } else { end.theta.signum() };
     let progress = (t / FALL_S).clamp(0.0, 1.0);
     let theta = end.theta + (s * geo.side_theta() - end.theta) * progress * progress;
-    // The pivot's position stays where it was at the tumble (docs/model.md
-    // §1.4: X_p = X + s·sin(ψ(1 − |Θ|))).
-    let pivot = end.x + s * (geo.psi * (1.0 - end.theta.abs())).sin();
-    let x = pivot - s * (geo.psi * (1.0 - theta.abs())).sin();
+    // The corner it tumbled over stays where it was at the tumble.
+    let x = kinematics::turned_about_corner(geo, s, end.theta, end.x, theta);
     let mut shown = *end;
     shown.state.theta = theta;
     shown.state.x = x;

@@ -8,39 +8,37 @@
 //! PGA under them.
 //!
 //! It only words what the simulation thread sent (how the run ended,
-//! [`RunEnd`], and the latest sample), in seconds, degrees and centimetres
+//! [`RunEnd`], read as the core's [`EndState`], and the latest sample), in seconds, degrees and centimetres
 //! whatever units the plots show: the verdict is an engineer's answer.
 
 use egui::{Color32, RichText};
 
 use crate::gui::units::{Scales, Units};
-use crate::model::Mode;
 use crate::model::geometry::Geometry;
+use crate::sim::EndState;
 use crate::sim::protocol::{RunEnd, Sample};
 
-/// How a run ended, as the banner says it.
+/// A run's end as the banner says it: the core's [`EndState`] with the
+/// numbers the banner shows, in seconds, degrees and centimetres.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Verdict {
-    /// Tumbled at `t_s` seconds.
-    Overturned {
-        /// When, s.
-        t_s: f64,
-    },
-    /// Left the ground (the normal force vanished) at `t_s`: the model
-    /// stops there.
-    Flight {
-        /// When, s.
-        t_s: f64,
-    },
-    /// At rest after the record.
-    Survived {
-        /// Largest |θ|, degrees.
-        peak_deg: f64,
-        /// Largest |θ| per α (1 tips a block at rest over).
-        over_alpha: f64,
-        /// Largest |sliding displacement|, cm.
-        sliding_cm: f64,
-    },
+pub struct Verdict {
+    /// How the run ended.
+    pub end: EndState,
+    /// When, s.
+    pub t_s: f64,
+    /// For a block at rest after the record: its peaks.
+    pub peaks: Option<Peaks>,
+}
+
+/// The peaks of a block that survived.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Peaks {
+    /// Largest |θ|, degrees.
+    pub peak_deg: f64,
+    /// Largest |θ| per α (1 tips a block at rest over).
+    pub over_alpha: f64,
+    /// Largest |sliding displacement|, cm.
+    pub sliding_cm: f64,
 }
 
 impl Verdict {
@@ -49,53 +47,53 @@ impl Verdict {
     /// neither.
     pub fn of(end: &RunEnd, geo: Geometry) -> Option<Self> {
         let si = Scales::new(Units::Physical, geo);
-        match *end {
-            RunEnd::Terminal { mode, tau } => match mode {
-                Mode::Tumbled => Some(Verdict::Overturned { t_s: si.seconds(tau) }),
-                Mode::Flight => Some(Verdict::Flight { t_s: si.seconds(tau) }),
-                Mode::Rest | Mode::Slide { .. } | Mode::Rock { .. } | Mode::SlideRock { .. } => None,
-            },
+        let (state, tau) = end.end_state()?;
+        let peaks = match *end {
             RunEnd::Rest {
                 max_abs_theta,
                 max_abs_sliding,
                 ..
-            } => Some(Verdict::Survived {
+            } => Some(Peaks {
                 peak_deg: si.theta(max_abs_theta),
                 over_alpha: max_abs_theta,
                 sliding_cm: si.sliding_cm(max_abs_sliding),
             }),
-            RunEnd::Failed(_) => None,
-        }
+            RunEnd::Terminal { .. } | RunEnd::Failed(_) => None,
+        };
+        Some(Verdict {
+            end: state,
+            t_s: si.seconds(tau),
+            peaks,
+        })
     }
 
     /// The large line: `OVERTURNED at t = 4.78 s`, `SURVIVED`, …
     pub fn headline(&self) -> String {
-        match self {
-            Verdict::Overturned { t_s } => format!("OVERTURNED at t = {t_s:.2} s"),
-            Verdict::Flight { t_s } => format!("LEFT THE GROUND at t = {t_s:.2} s"),
-            Verdict::Survived { .. } => "SURVIVED".to_string(),
+        let t_s = self.t_s;
+        match self.end {
+            EndState::Overturned => format!("OVERTURNED at t = {t_s:.2} s"),
+            EndState::Flight => format!("LEFT THE GROUND at t = {t_s:.2} s"),
+            EndState::Rest | EndState::Moving => "SURVIVED".to_string(),
         }
     }
 
     /// The line under it, if any: the peaks of a block that survived.
     pub fn detail(&self) -> Option<String> {
-        match self {
-            Verdict::Overturned { .. } | Verdict::Flight { .. } => None,
-            Verdict::Survived {
-                peak_deg,
-                over_alpha,
-                sliding_cm,
-            } => Some(format!(
-                "peak rotation {peak_deg:.1}° ({over_alpha:.2} α) · sliding {sliding_cm:.1} cm"
-            )),
-        }
+        self.peaks.map(
+            |Peaks {
+                 peak_deg,
+                 over_alpha,
+                 sliding_cm,
+             }| format!("peak rotation {peak_deg:.1}° ({over_alpha:.2} α) · sliding {sliding_cm:.1} cm"),
+        )
     }
 
     /// The headline's colour: red for a block lost, green for one that stood.
     pub fn color(&self) -> Color32 {
-        match self {
-            Verdict::Overturned { .. } | Verdict::Flight { .. } => Color32::from_rgb(255, 95, 85),
-            Verdict::Survived { .. } => Color32::from_rgb(110, 225, 120),
+        if self.end.survived() {
+            Color32::from_rgb(110, 225, 120)
+        } else {
+            Color32::from_rgb(255, 95, 85)
         }
     }
 }
@@ -247,6 +245,7 @@ pub fn show(ui: &mut egui::Ui, rect: egui::Rect, fitted: &Fitted) -> (egui::Rect
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::model::Mode;
 
     #[test]
     fn a_tumble_is_worded_in_seconds() {
