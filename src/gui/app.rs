@@ -400,7 +400,7 @@ impl RockingApp {
 
     /// Shows numbers in `units` from now on (this session), whatever scene
     /// is loaded next.
-    pub fn set_units(&mut self, units: Units) {
+    pub(crate) fn set_units(&mut self, units: Units) {
         self.units_choice = Some(units);
     }
 
@@ -468,7 +468,7 @@ impl RockingApp {
     /// Makes `settings` (resolved to `config`) the scene and restarts with
     /// it from `from`. The old run's plots are cleared either way, so the
     /// new parameters' attractor is drawn alone.
-    pub fn apply_from(&mut self, settings: Settings, config: Scenario, from: StartFrom) {
+    pub(crate) fn apply_from(&mut self, settings: Settings, config: Scenario, from: StartFrom) {
         if settings.origin != self.settings.origin {
             // Another scene: its note, if any, comes with it (load_preset).
             self.lecture.note = None;
@@ -512,7 +512,7 @@ impl RockingApp {
     /// restarting from where the panel's toggle says
     /// ([`RockingApp::drag_from`]; an initial-state key always restarts
     /// from the initial state it sets).
-    pub fn drag_key(&mut self, key: &str, raw: &str) -> bool {
+    pub(crate) fn drag_key(&mut self, key: &str, raw: &str) -> bool {
         let from = if key.starts_with("initial.") {
             StartFrom::Initial
         } else {
@@ -602,7 +602,7 @@ impl RockingApp {
 
     /// Restarts from Θ = `theta`, Θ' = `theta_dot` (a click on the phase
     /// portrait), through the same validation as the panel.
-    pub fn start_at(&mut self, theta: f64, theta_dot: f64) {
+    pub(crate) fn start_at(&mut self, theta: f64, theta_dot: f64) {
         let next = self
             .settings
             .with("initial.theta", &format!("{theta}"))

@@ -16,7 +16,7 @@ use wgpu::util::DeviceExt as _;
 
 /// Most shapes one frame draws: a block, 100 ghosts, an impact flash,
 /// the base and its ticks, forces and markers, with room to spare.
-pub const MAX_SHAPES: usize = 512;
+pub(crate) const MAX_SHAPES: usize = 512;
 
 /// One shape, laid out as the shader's per-instance vertex attributes
 /// (48 bytes: a multiple of 16).
@@ -68,7 +68,7 @@ impl Shape {
     }
 
     /// A segment from `a` to `b` of width `w`, all in metres.
-    pub fn segment(a: [f64; 2], b: [f64; 2], w: f64, color: egui::Color32) -> Self {
+    pub(crate) fn segment(a: [f64; 2], b: [f64; 2], w: f64, color: egui::Color32) -> Self {
         let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
         let len = dx.hypot(dy);
         // The shader rotates clockwise; a segment's direction angle is
@@ -193,7 +193,7 @@ pub fn install(render_state: &egui_wgpu::RenderState) {
 
 /// One frame of the scene: the view and the shapes (at most [`MAX_SHAPES`];
 /// the rest are not drawn).
-pub struct SceneCallback {
+pub(crate) struct SceneCallback {
     /// The view.
     pub view: ViewUniform,
     /// The shapes, back to front.

@@ -50,7 +50,7 @@ fn grey(i: usize) -> u8 {
 
 /// The GIF palette, RGB bytes: the 6 × 6 × 6 colour cube, then 39 greys,
 /// then black at [`UNCHANGED`] (the transparent index; never drawn).
-pub fn palette() -> Vec<u8> {
+pub(crate) fn palette() -> Vec<u8> {
     let mut p = Vec::with_capacity(3 * 256);
     for r in 0..CUBE {
         for g in 0..CUBE {
@@ -68,7 +68,7 @@ pub fn palette() -> Vec<u8> {
 
 /// The index in [`palette`] of the colour nearest (r, g, b): the nearer
 /// of the nearest cube colour and the nearest grey.
-pub fn nearest(r: u8, g: u8, b: u8) -> u8 {
+pub(crate) fn nearest(r: u8, g: u8, b: u8) -> u8 {
     let level = |c: u8| (usize::from(c) + 25) / 51;
     let (ri, gi, bi) = (level(r), level(g), level(b));
     let d2 = |c: u8, q: u8| {
@@ -258,7 +258,7 @@ impl GifBuilder {
     /// the last frame is shown until then, so the GIF plays for the whole
     /// clip even when frames came slower than asked. Without it (or if it
     /// is not after the last frame) the last frame lasts 1/fps.
-    pub fn end_at(&mut self, t: f64) {
+    pub(crate) fn end_at(&mut self, t: f64) {
         self.end = Some(t);
     }
 
@@ -361,7 +361,7 @@ impl GifBuilder {
 }
 
 /// What the app sends the GIF writer.
-pub enum Shot {
+pub(crate) enum Shot {
     /// A frame captured at `t`, s.
     Frame(f64, Arc<ColorImage>),
     /// The recording ended at `t`, s (the frames' clock): write the file.
@@ -373,7 +373,7 @@ pub enum Shot {
 /// The GIF writer's thread: it encodes the frames sent on the returned
 /// sender as they come and, after [`Shot::End`], writes `path` and sends
 /// what it wrote (or why not) on the returned receiver, then calls `wake`.
-pub fn spawn_gif_writer(
+pub(crate) fn spawn_gif_writer(
     path: PathBuf,
     options: GifOptions,
     wake: impl Fn() + Send + 'static,
@@ -464,7 +464,7 @@ pub fn write_png(path: &Path, img: &ColorImage) -> Result<Written, String> {
 
 /// Writes `img` to `path` as PNG on a background thread; the result comes
 /// on the returned receiver, then `wake` is called.
-pub fn spawn_png_writer(
+pub(crate) fn spawn_png_writer(
     path: PathBuf,
     img: Arc<ColorImage>,
     wake: impl Fn() + Send + 'static,

@@ -15,7 +15,7 @@ use crate::io::output::{events_csv, history_csv, poincare_csv, write_all};
 use crate::sim::{HistoryRow, SectionRow};
 
 /// Writes `bytes` to `path` through a temporary file in the same directory.
-pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), String> {
+pub(crate) fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), String> {
     let tmp = temp_beside(path);
     let r = std::fs::write(&tmp, bytes).and_then(|()| std::fs::rename(&tmp, path));
     if r.is_err() {
@@ -33,7 +33,7 @@ fn temp_beside(path: &Path) -> std::path::PathBuf {
 
 /// Writes `history.csv` (the samples kept), `poincare.csv` and `events.csv`
 /// into `dir`, in the batch run's formats.
-pub fn data_csv(dir: &Path, hist: &RunHistory, geo: &crate::model::Geometry) -> Result<(), String> {
+pub(crate) fn data_csv(dir: &Path, hist: &RunHistory, geo: &crate::model::Geometry) -> Result<(), String> {
     let history: Vec<HistoryRow> = hist
         .samples
         .iter()
@@ -82,7 +82,7 @@ fn register_font() {
 
 /// Draws the time history (window `window` ending at `now`), the phase
 /// portrait (the last `trail` τ) and the Poincaré points into one PNG.
-pub fn plots_png(path: &Path, hist: &RunHistory, now: f64, window: f64, trail: f64) -> Result<(), String> {
+pub(crate) fn plots_png(path: &Path, hist: &RunHistory, now: f64, window: f64, trail: f64) -> Result<(), String> {
     register_font();
     let tmp = temp_beside(path).with_extension("png");
     let r = draw(&tmp, hist, now, window, trail)

@@ -18,7 +18,7 @@ use crate::sim::protocol::GhostState;
 /// Most points one ghost's trail keeps: 4096 batches, over a minute of
 /// play at 60 frames per second, longer than the portrait's default 20 τ
 /// trail at any speed up to 20×.
-pub const GHOST_TRAIL_POINTS: usize = 4096;
+pub(crate) const GHOST_TRAIL_POINTS: usize = 4096;
 
 /// One point of a ghost's trail.
 #[derive(Clone, Copy, Debug, PartialEq)]

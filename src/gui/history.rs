@@ -73,14 +73,14 @@ impl<T> Ring<T> {
 
 /// Samples kept: 2¹⁷ at the live spacing of 0.005 τ is 655 τ, more than
 /// the longest time-history window (500 τ). 12 MB.
-pub const SAMPLE_CAPACITY: usize = 1 << 17;
+pub(crate) const SAMPLE_CAPACITY: usize = 1 << 17;
 
 /// Events kept for the CSV export and the counters (the newest).
-pub const EVENT_CAPACITY: usize = 1 << 17;
+pub(crate) const EVENT_CAPACITY: usize = 1 << 17;
 
 /// Section points kept: 4·10⁶ (64 MB), four times the 10⁶ the issue asks to
 /// stay smooth. When full, the oldest half is dropped.
-pub const SECTION_CAPACITY: usize = 4_000_000;
+pub(crate) const SECTION_CAPACITY: usize = 4_000_000;
 
 /// Section points, stored for density plotting.
 #[derive(Clone, Debug, Default)]
@@ -118,7 +118,7 @@ impl SectionStore {
     }
 
     /// Bounding box (min Θ, max Θ, min Θ', max Θ'), if any point.
-    pub fn bbox(&self) -> Option<[f64; 4]> {
+    pub(crate) fn bbox(&self) -> Option<[f64; 4]> {
         self.bbox
     }
 }
@@ -194,7 +194,7 @@ impl RunHistory {
 
     /// Forgets the stroboscopic section points only (their phase changed;
     /// the motion, and so the samples and impacts, go on).
-    pub fn clear_section(&mut self) {
+    pub(crate) fn clear_section(&mut self) {
         let generation = self.section.generation;
         self.section = SectionStore::default();
         self.section.generation = generation + 1;
@@ -202,7 +202,7 @@ impl RunHistory {
     }
 
     /// Adds a sample unless it has a non-finite value.
-    pub fn push_sample(&mut self, s: Sample) {
+    pub(crate) fn push_sample(&mut self, s: Sample) {
         let finite = [
             s.tau,
             s.theta,
@@ -225,7 +225,7 @@ impl RunHistory {
     }
 
     /// Adds an event unless it has a non-finite value.
-    pub fn push_event(&mut self, e: EventRecord) {
+    pub(crate) fn push_event(&mut self, e: EventRecord) {
         let finite = [e.tau, e.theta, e.theta_dot_before, e.theta_dot_after, e.x_dot]
             .iter()
             .all(|v| v.is_finite());
@@ -244,7 +244,7 @@ impl RunHistory {
     }
 
     /// Adds a section point unless it has a non-finite value.
-    pub fn push_section(&mut self, p: SectionRow) {
+    pub(crate) fn push_section(&mut self, p: SectionRow) {
         if [p.tau, p.theta, p.theta_dot, p.x, p.x_dot]
             .iter()
             .all(|v| v.is_finite())
@@ -263,7 +263,7 @@ impl RunHistory {
 /// are passed through. Points outside `[t0, t1]` are skipped except one on
 /// each side, so the line reaches the plot's edges. Writes into `out`
 /// (cleared first).
-pub fn decimate_min_max(
+pub(crate) fn decimate_min_max(
     points: impl Iterator<Item = (f64, f64)>,
     t0: f64,
     t1: f64,
@@ -395,7 +395,7 @@ impl DensityGrid {
 
     /// Forgets every count (another store is to be binned), keeping the
     /// work counter.
-    pub fn forget(&mut self) {
+    pub(crate) fn forget(&mut self) {
         *self = Self {
             work: self.work,
             ..Self::default()
@@ -410,7 +410,7 @@ impl DensityGrid {
     /// The grid as an image: empty pixels transparent, occupied ones
     /// coloured by log count (so single points stay visible next to dense
     /// bands).
-    pub fn to_image(&self, low: egui::Color32, high: egui::Color32) -> egui::ColorImage {
+    pub(crate) fn to_image(&self, low: egui::Color32, high: egui::Color32) -> egui::ColorImage {
         let log_max = (1.0 + self.max_count as f32).ln().max(f32::MIN_POSITIVE);
         let pixels = self
             .counts

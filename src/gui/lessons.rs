@@ -86,7 +86,7 @@ pub const PHENOMENA: &[Lesson] = &[
 ];
 
 /// What the paper claims and what this model shows, per figure preset.
-pub const FIGURES: &[(&str, &str)] = &[
+pub(crate) const FIGURES: &[(&str, &str)] = &[
     (
         "fig3",
         "The paper: a bifurcation diagram over A_v (the View menu's Bifurcation diagram draws it). This model, at this run's A_v = 1.0: the (1,2) orbit the paper reports for 0.7 < A_v < 1.25, two Poincaré dots.",
@@ -158,7 +158,7 @@ pub const FIGURES: &[(&str, &str)] = &[
 ];
 
 /// Presets ▸ Engineering: real records in physical units.
-pub const ENGINEERING: &[&str] = &["kobe-rack", "elcentro-statue"];
+pub(crate) const ENGINEERING: &[&str] = &["kobe-rack", "elcentro-statue"];
 
 /// The text shown above the block for a loaded scene.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -171,7 +171,7 @@ pub struct Note {
 
 impl Note {
     /// The note of `lesson`.
-    pub fn of_lesson(lesson: &Lesson) -> Self {
+    pub(crate) fn of_lesson(lesson: &Lesson) -> Self {
         Self {
             title: lesson.title.to_string(),
             text: lesson.look.to_string(),
@@ -194,7 +194,7 @@ impl Note {
 
 /// The phenomenon whose note preset `name` shows when loaded by name: the
 /// first that uses it.
-pub fn lesson_of_preset(name: &str) -> Option<&'static Lesson> {
+pub(crate) fn lesson_of_preset(name: &str) -> Option<&'static Lesson> {
     PHENOMENA.iter().find(|l| l.preset == name)
 }
 

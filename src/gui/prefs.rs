@@ -12,7 +12,7 @@ use serde::{Deserialize, Serialize};
 /// Smallest and largest presentation scale (egui's zoom factor): below
 /// 0.75 text is unreadable even on a laptop; above 3 a 1280 × 800
 /// projector has no room left for the block.
-pub const SCALE_RANGE: (f32, f32) = (0.75, 3.0);
+pub(crate) const SCALE_RANGE: (f32, f32) = (0.75, 3.0);
 
 /// The scales the View menu offers where the window holds them
 /// ([`max_scale`]; the keyboard steps between any up to that).
@@ -23,11 +23,11 @@ pub const SCALES: [f32; 6] = [1.0, 1.25, 1.5, 1.75, 2.0, 2.5];
 /// (window pixels / scale) are too few, and panels would cover each other
 /// or squeeze the plots to a few ticks. 800 × 500 is 1280 × 800 at 160 %
 /// and 1920 × 1080 at 216 %.
-pub const MIN_LAYOUT_POINTS: [f32; 2] = [800.0, 500.0];
+pub(crate) const MIN_LAYOUT_POINTS: [f32; 2] = [800.0, 500.0];
 
 /// The same in the lecture presentation, whose text is a third larger:
 /// 1000 × 625 is 1280 × 800 at 128 % and 1920 × 1080 at 173 %.
-pub const LECTURE_LAYOUT_POINTS: [f32; 2] = [1000.0, 625.0];
+pub(crate) const LECTURE_LAYOUT_POINTS: [f32; 2] = [1000.0, 625.0];
 
 /// The largest presentation scale a window of `window` logical pixels (its
 /// size in points at scale 1) holds, in the lecture presentation if
@@ -78,7 +78,7 @@ impl Default for Prefs {
 
 impl Prefs {
     /// `scale` clamped to [`SCALE_RANGE`] (NaN: 1).
-    pub fn clamp_scale(scale: f32) -> f32 {
+    pub(crate) fn clamp_scale(scale: f32) -> f32 {
         if scale.is_finite() {
             scale.clamp(SCALE_RANGE.0, SCALE_RANGE.1)
         } else {
@@ -113,7 +113,7 @@ impl Prefs {
 
 /// Where the prefs live: `$XDG_CONFIG_HOME/rocking/app.toml`, else
 /// `$HOME/.config/rocking/app.toml`; `None` without either variable.
-pub fn default_path() -> Option<PathBuf> {
+pub(crate) fn default_path() -> Option<PathBuf> {
     let base = std::env::var_os("XDG_CONFIG_HOME")
         .filter(|v| !v.is_empty())
         .map(PathBuf::from)

@@ -108,13 +108,13 @@ impl Settings {
 
     /// Resolves and validates, keeping the config layer's error as it is
     /// (so the caller can tell which key is at fault).
-    pub fn resolve_typed(&self) -> Result<Scenario, ConfigError> {
+    pub(crate) fn resolve_typed(&self) -> Result<Scenario, ConfigError> {
         crate::io::config::from_table(&self.table, &self.source)
     }
 
     /// These settings with each `(key, value)` (`section.key`) set, or
     /// removed for `None`; not resolved.
-    pub fn with_values(&self, values: &[(&str, Option<toml::Value>)]) -> Self {
+    pub(crate) fn with_values(&self, values: &[(&str, Option<toml::Value>)]) -> Self {
         let mut next = self.clone();
         for (key, value) in values {
             let Some((section, name)) = key.split_once('.') else {
@@ -216,7 +216,7 @@ impl Settings {
     }
 
     /// The scene as TOML text, with a header naming its origin.
-    pub fn to_toml(&self) -> Result<String, String> {
+    pub(crate) fn to_toml(&self) -> Result<String, String> {
         let body = toml::to_string(&self.table).map_err(|e| format!("cannot write the scene as TOML: {e}"))?;
         Ok(format!("# rocking scene (from {})\n\n{body}", self.origin))
     }
@@ -242,7 +242,7 @@ fn is_float_key(section: &str, key: &str) -> bool {
 }
 
 /// A TOML value as the user would type it (`inf`, `0.4`, `ratio`).
-pub fn value_text(v: &toml::Value) -> String {
+pub(crate) fn value_text(v: &toml::Value) -> String {
     match v {
         toml::Value::String(s) => s.clone(),
         toml::Value::Float(f) if f.is_infinite() && *f > 0.0 => "inf".to_string(),
@@ -255,7 +255,7 @@ pub fn value_text(v: &toml::Value) -> String {
 }
 
 /// A number in the shortest form that reads back to the same value.
-pub fn format_number(x: f64) -> String {
+pub(crate) fn format_number(x: f64) -> String {
     if x.is_infinite() {
         if x > 0.0 { "inf".into() } else { "-inf".into() }
     } else {

@@ -69,7 +69,7 @@ impl Scales {
     }
 
     /// The inverse of [`Scales::time`]: a shown time → τ.
-    pub fn tau_of(&self, shown: f64) -> f64 {
+    pub(crate) fn tau_of(&self, shown: f64) -> f64 {
         match self.units {
             Units::Physical => Dimension::Tau.to_bare(shown, &self.geo),
             Units::Normalised => shown,
@@ -77,7 +77,7 @@ impl Scales {
     }
 
     /// Seconds → τ, whatever the units shown (a record's length is in s).
-    pub fn tau_of_seconds(&self, t_s: f64) -> f64 {
+    pub(crate) fn tau_of_seconds(&self, t_s: f64) -> f64 {
         Dimension::Tau.to_bare(t_s, &self.geo)
     }
 
@@ -87,7 +87,7 @@ impl Scales {
     }
 
     /// Title of a time axis.
-    pub fn time_label(&self) -> &'static str {
+    pub(crate) fn time_label(&self) -> &'static str {
         match self.units {
             Units::Physical => "t [s]",
             Units::Normalised => "τ = p t",
@@ -95,7 +95,7 @@ impl Scales {
     }
 
     /// Unit suffix of a shown time (for value fields).
-    pub fn time_suffix(&self) -> &'static str {
+    pub(crate) fn time_suffix(&self) -> &'static str {
         match self.units {
             Units::Physical => " s",
             Units::Normalised => " τ",
@@ -111,7 +111,7 @@ impl Scales {
     }
 
     /// Title of a rotation axis.
-    pub fn theta_label(&self) -> &'static str {
+    pub(crate) fn theta_label(&self) -> &'static str {
         match self.units {
             Units::Physical => "θ [deg]",
             Units::Normalised => "Θ = θ/ψ",
@@ -129,7 +129,7 @@ impl Scales {
     }
 
     /// Title of an angular-velocity axis.
-    pub fn theta_dot_label(&self) -> &'static str {
+    pub(crate) fn theta_dot_label(&self) -> &'static str {
         match self.units {
             Units::Physical => "θ' [deg/s]",
             Units::Normalised => "Θ' = dΘ/dτ",
@@ -138,7 +138,7 @@ impl Scales {
 
     /// The inverse of [`Scales::theta`] and [`Scales::theta_dot`]: a shown
     /// (rotation, angular velocity) → (Θ, Θ').
-    pub fn state_of(&self, theta: f64, theta_dot: f64) -> (f64, f64) {
+    pub(crate) fn state_of(&self, theta: f64, theta_dot: f64) -> (f64, f64) {
         match self.units {
             Units::Physical => (
                 Dimension::Rotation.to_bare(theta.to_radians(), &self.geo),
@@ -159,7 +159,7 @@ impl Scales {
     }
 
     /// The name of [`Scales::horizontal`] in a legend.
-    pub fn horizontal_label(&self) -> &'static str {
+    pub(crate) fn horizontal_label(&self) -> &'static str {
         match self.units {
             Units::Physical => "sliding [cm]",
             Units::Normalised => "X (per R)",
@@ -167,12 +167,12 @@ impl Scales {
     }
 
     /// A sliding displacement per R → cm.
-    pub fn sliding_cm(&self, per_r: f64) -> f64 {
+    pub(crate) fn sliding_cm(&self, per_r: f64) -> f64 {
         per_r * self.geo.r * CM_PER_M
     }
 
     /// The overturning angle of a block at rest (|Θ| = 1, θ = α = ψ), shown.
-    pub fn tip_angle(&self) -> f64 {
+    pub(crate) fn tip_angle(&self) -> f64 {
         self.theta(1.0)
     }
 
@@ -185,7 +185,7 @@ impl Scales {
     }
 
     /// Title of a frequency axis.
-    pub fn frequency_label(&self) -> &'static str {
+    pub(crate) fn frequency_label(&self) -> &'static str {
         match self.units {
             Units::Physical => "f [Hz]",
             Units::Normalised => "ω / p",

@@ -126,7 +126,7 @@ impl RunResult {
     /// τ of the event the run ended on (overturning or flight; the run's
     /// end if the event's own time was not kept), `None` for a run that
     /// ended at rest or moving.
-    pub fn end_event_tau(&self) -> Option<f64> {
+    pub(crate) fn end_event_tau(&self) -> Option<f64> {
         match self.outcome {
             Outcome::Rest | Outcome::Running => None,
             Outcome::Tumbled => self.tumble_tau.or(Some(self.tau_end)),

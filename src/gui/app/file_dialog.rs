@@ -28,11 +28,11 @@ use crate::gui::export;
 /// dialog opened: the portal's window takes a few tenths of a second to
 /// appear and a person another few to press Cancel, while a missing
 /// portal or zenity answers in milliseconds.
-pub const NO_DIALOG_S: f64 = 0.3;
+pub(crate) const NO_DIALOG_S: f64 = 0.3;
 
 /// The environment variable that chooses the dialog: `app` for the path
 /// window only; anything else, or unset, for the desktop's dialog first.
-pub const ENV: &str = "ROCKING_FILE_DIALOG";
+pub(crate) const ENV: &str = "ROCKING_FILE_DIALOG";
 
 /// The status-bar line when the desktop's dialog could not open (short:
 /// one line of the status bar; the path window says why).
@@ -95,7 +95,7 @@ impl FileAsk {
     }
 
     /// The file name proposed for a file to write, with its extension.
-    pub fn proposed_name(self) -> Option<&'static str> {
+    pub(crate) fn proposed_name(self) -> Option<&'static str> {
         match self {
             Self::SaveScene => Some("scene.toml"),
             Self::ExportPlots => Some("plots.png"),
@@ -124,7 +124,7 @@ impl FileAsk {
 pub type NativeDialog = fn(FileAsk, &Path) -> Option<PathBuf>;
 
 /// The desktop's dialog through rfd (blocks until it closes).
-pub fn rfd_dialog(ask: FileAsk, dir: &Path) -> Option<PathBuf> {
+pub(crate) fn rfd_dialog(ask: FileAsk, dir: &Path) -> Option<PathBuf> {
     let mut d = rfd::FileDialog::new().set_title(ask.title()).set_directory(dir);
     if let Some((name, exts)) = ask.filter() {
         d = d.add_filter(name, exts);
@@ -141,7 +141,7 @@ pub fn rfd_dialog(ask: FileAsk, dir: &Path) -> Option<PathBuf> {
 
 /// The dialog an environment value of [`ENV`] chooses: `app` (any case)
 /// for none (the path window only), else rfd's.
-pub fn native_from_env(value: Option<&str>) -> Option<NativeDialog> {
+pub(crate) fn native_from_env(value: Option<&str>) -> Option<NativeDialog> {
     match value {
         Some(v) if v.trim().eq_ignore_ascii_case("app") => None,
         Some(_) | None => Some(rfd_dialog),
@@ -151,7 +151,7 @@ pub fn native_from_env(value: Option<&str>) -> Option<NativeDialog> {
 /// `text` typed for `ask` as the path it names, or why it cannot be used.
 /// A relative path is taken from `base`; a leading `~` is the home
 /// folder. A file to write without an extension gets the proposed one.
-pub fn check_path(ask: FileAsk, text: &str, base: &Path) -> Result<PathBuf, String> {
+pub(crate) fn check_path(ask: FileAsk, text: &str, base: &Path) -> Result<PathBuf, String> {
     let text = text.trim();
     if text.is_empty() {
         return Err("type a path".into());
@@ -206,7 +206,7 @@ pub fn check_path(ask: FileAsk, text: &str, base: &Path) -> Result<PathBuf, Stri
 
 /// The text the path window starts with: the proposed file in `dir`, or
 /// `dir` itself (with a separator, ready for a file name).
-pub fn proposed_text(ask: FileAsk, dir: &Path) -> String {
+pub(crate) fn proposed_text(ask: FileAsk, dir: &Path) -> String {
     match (ask.kind(), ask.proposed_name()) {
         (PathKind::Save, Some(name)) => dir.join(name).display().to_string(),
         (PathKind::Folder, _) => dir.display().to_string(),
@@ -233,7 +233,7 @@ struct PathWindow {
 }
 
 /// How the app asks for paths.
-pub struct FileDialogs {
+pub(crate) struct FileDialogs {
     /// The desktop's dialog, tried first; `None`: the path window only.
     native: Option<NativeDialog>,
     /// The folder proposed: the last one a path was chosen in, at first
@@ -261,7 +261,7 @@ impl RockingApp {
     /// with it. The desktop's dialog first (blocking, as desktop dialogs
     /// are); if it could not open, the status bar says so and the path
     /// window opens.
-    pub fn ask_file(&mut self, ctx: &egui::Context, ask: FileAsk) {
+    pub(crate) fn ask_file(&mut self, ctx: &egui::Context, ask: FileAsk) {
         let mut fallback = false;
         if let Some(native) = self.files.native {
             let asked = Instant::now();

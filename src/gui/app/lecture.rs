@@ -16,7 +16,7 @@ use crate::sim::protocol::Sample;
 
 /// How long the drawn fall after a tumble takes, s of wall-clock time:
 /// about what a 2 m block takes to fall over, slow enough to follow.
-pub const FALL_S: f64 = 1.2;
+pub(crate) const FALL_S: f64 = 1.2;
 
 /// What the side panel shows when several analyses are open (a narrow
 /// window tabs them instead of squeezing the block between columns).
@@ -47,7 +47,7 @@ impl SideTab {
 /// Which of the phase portrait and the Poincaré points the side panel
 /// shows where it has room for one only.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum PlotTab {
+pub(crate) enum PlotTab {
     /// The phase portrait.
     #[default]
     Phase,
@@ -59,7 +59,7 @@ pub enum PlotTab {
 /// record's ground acceleration) the bottom panel shows where it has room
 /// for one only.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum BottomTab {
+pub(crate) enum BottomTab {
     /// The time history.
     #[default]
     History,
@@ -69,7 +69,7 @@ pub enum BottomTab {
 
 /// The state of the extras.
 #[derive(Debug)]
-pub struct Lecture {
+pub(crate) struct Lecture {
     /// The note above the block, if the scene has one.
     pub note: Option<Note>,
     /// Whether the user closed it.
@@ -224,7 +224,7 @@ impl RockingApp {
 
     /// Remembers the scale where the user's config lives
     /// ([`prefs::default_path`]): the desktop app does, tests do not.
-    pub fn remember_scale(&mut self, ctx: &egui::Context) {
+    pub(crate) fn remember_scale(&mut self, ctx: &egui::Context) {
         if let Some(path) = prefs::default_path() {
             self.remember_scale_in(ctx, path);
         }

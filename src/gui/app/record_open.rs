@@ -75,7 +75,7 @@ impl RockingApp {
     /// Answers the open question: the record's accelerations are in
     /// `unit`, and (for a one-column file) sample k is at k·`step` (text:
     /// seconds, or a quantity such as `10 ms`).
-    pub fn answer_record(&mut self, unit: AccelUnit, step: Option<&str>) {
+    pub(crate) fn answer_record(&mut self, unit: AccelUnit, step: Option<&str>) {
         let Some(q) = self.record_question.take() else {
             return;
         };
@@ -83,7 +83,7 @@ impl RockingApp {
     }
 
     /// Drops the open question; the scene stays as it was.
-    pub fn cancel_record(&mut self) {
+    pub(crate) fn cancel_record(&mut self) {
         self.record_question = None;
     }
 

@@ -19,10 +19,10 @@ use crate::gui::capture::{self, GifOptions, Shot, Written};
 
 /// The width a PNG of the view has at least, physical pixels: a 1080p
 /// projector's.
-pub const PRESENTATION_WIDTH: f32 = 1920.0;
+pub(crate) const PRESENTATION_WIDTH: f32 = 1920.0;
 
 /// The height it has at least, physical pixels.
-pub const PRESENTATION_HEIGHT: f32 = 1080.0;
+pub(crate) const PRESENTATION_HEIGHT: f32 = 1080.0;
 
 /// The window title for a scene from `origin` (a preset, `preset NAME`, or
 /// a file path), with `•` after it while it has unsaved changes:
@@ -73,7 +73,7 @@ struct ViewExport {
 
 /// The sharing state of the app.
 #[derive(Default)]
-pub struct Share {
+pub(crate) struct Share {
     /// The title last sent to the window.
     title_sent: Option<String>,
     /// The scene as last loaded or saved: its origin and explicit keys.

@@ -10,7 +10,7 @@ use crate::gui::panels::axes;
 
 /// The size of each text style, points.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct TextSizes {
+pub(crate) struct TextSizes {
     /// Small text (egui's 9 pt default is unreadable projected).
     pub small: f32,
     /// Labels, values, notes, axis titles.
@@ -28,7 +28,7 @@ pub struct TextSizes {
 impl TextSizes {
     /// The default: nothing below 14 px at scale 1, body text a little
     /// larger so parameter names and values read at a glance.
-    pub const NORMAL: Self = Self {
+    pub(crate) const NORMAL: Self = Self {
         small: 14.0,
         body: 15.0,
         button: 15.0,
@@ -39,7 +39,7 @@ impl TextSizes {
 
     /// The lecture presentation: plot numbers at 20 px and the rest
     /// enlarged less, so the plots keep most of their room.
-    pub const LECTURE: Self = Self {
+    pub(crate) const LECTURE: Self = Self {
         small: 17.0,
         body: 18.0,
         button: 18.0,

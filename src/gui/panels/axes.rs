@@ -17,7 +17,7 @@ use egui_plot::{AxisHints, GridInput, GridMark, Plot};
 /// are wide ("−0.125"), so they need more room than y numbers (one line
 /// high). Both are above egui_plot's own label thresholds (60 and 20
 /// points), below which it fades numbers out.
-pub const MIN_LABEL_GAP: [f64; 2] = [72.0, 34.0];
+pub(crate) const MIN_LABEL_GAP: [f64; 2] = [72.0, 34.0];
 
 /// Smallest distance between numbered ticks that an axis too short for
 /// two ticks [`MIN_LABEL_GAP`] apart may fall back to, points per axis: an
@@ -25,7 +25,7 @@ pub const MIN_LABEL_GAP: [f64; 2] = [72.0, 34.0];
 /// still leaves out a number wider than its gap). A short
 /// axis (a plot squeezed by a large presentation scale) then still shows
 /// two numbers rather than one.
-pub const FLOOR_LABEL_GAP: [f64; 2] = [36.0, 17.0];
+pub(crate) const FLOOR_LABEL_GAP: [f64; 2] = [36.0, 17.0];
 
 /// egui_plot's smallest grid spacing (points), which it turns into
 /// [`GridInput::base_step_size`]; set explicitly so the conversion from
@@ -33,7 +33,7 @@ pub const FLOOR_LABEL_GAP: [f64; 2] = [36.0, 17.0];
 const GRID_MIN: f32 = 8.0;
 
 /// The smallest 1, 2 or 5 × 10ᵏ that is ≥ `raw` (> 0).
-pub fn nice_step(raw: f64) -> f64 {
+pub(crate) fn nice_step(raw: f64) -> f64 {
     if !(raw.is_finite() && raw > 0.0) {
         return 1.0;
     }
@@ -107,7 +107,7 @@ pub fn marks(bounds: (f64, f64), points_per_unit: f64, min_gap: f64, floor_gap: 
 /// at least 2.2 floor gaps long (else the data, padded). The step is the
 /// smallest 1–2–5 step that keeps numbers `floor_gap` apart, at least
 /// what `min_gap` asks where the axis is long enough.
-pub fn nice_bounds(lo: f64, hi: f64, length: f64, min_gap: f64, floor_gap: f64, pad: f64) -> (f64, f64) {
+pub(crate) fn nice_bounds(lo: f64, hi: f64, length: f64, min_gap: f64, floor_gap: f64, pad: f64) -> (f64, f64) {
     let (lo, hi) = (lo.min(hi), lo.max(hi));
     if !(lo.is_finite() && hi.is_finite() && length.is_finite() && length > 0.0) {
         return (lo, hi);
@@ -146,7 +146,7 @@ fn step_below(step: f64) -> f64 {
 /// A tick's number: as many decimals as its step needs (a 0.05 step gives
 /// two, a 0.2 step one, a 5 step none), in scientific notation for very
 /// large or very small steps so a deep zoom still reads.
-pub fn format_tick(mark: GridMark, _range: &RangeInclusive<f64>) -> String {
+pub(crate) fn format_tick(mark: GridMark, _range: &RangeInclusive<f64>) -> String {
     let step = mark.step_size.abs();
     let v = if mark.value.abs() < step * 1e-9 {
         0.0
@@ -183,10 +183,10 @@ const GAP_FONT_PT: f32 = 12.5;
 
 /// The text style plot numbers are drawn in ([`crate::gui::app`] sets its
 /// size: at least 14 px, 20 px in the lecture presentation).
-pub const PLOT_NUMBERS: &str = "plot numbers";
+pub(crate) const PLOT_NUMBERS: &str = "plot numbers";
 
 /// The font of plot numbers in `style`: [`PLOT_NUMBERS`], else the body font.
-pub fn number_font(style: &egui::Style) -> egui::FontId {
+pub(crate) fn number_font(style: &egui::Style) -> egui::FontId {
     let name = egui::TextStyle::Name(PLOT_NUMBERS.into());
     style
         .text_styles
@@ -198,7 +198,7 @@ pub fn number_font(style: &egui::Style) -> egui::FontId {
 /// The smallest gaps between numbered ticks for plot numbers in `style`'s
 /// [`number_font`], points per axis: ([`MIN_LABEL_GAP`], [`FLOOR_LABEL_GAP`])
 /// grown with the font.
-pub fn gaps(style: &egui::Style) -> ([f64; 2], [f64; 2]) {
+pub(crate) fn gaps(style: &egui::Style) -> ([f64; 2], [f64; 2]) {
     let grow = f64::from((number_font(style).size / GAP_FONT_PT).max(1.0));
     (
         [grow * MIN_LABEL_GAP[0], grow * MIN_LABEL_GAP[1]],

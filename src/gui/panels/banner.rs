@@ -78,7 +78,7 @@ impl Verdict {
     }
 
     /// The line under it, if any: the peaks of a block that survived.
-    pub fn detail(&self) -> Option<String> {
+    pub(crate) fn detail(&self) -> Option<String> {
         self.peaks.map(
             |Peaks {
                  peak_deg,
@@ -179,7 +179,7 @@ const MIN_PT: f32 = 14.0;
 /// Height of the strip a record scene's banner takes above the block,
 /// points: always room for the headline and two lines at full size, so the
 /// scene keeps its size when the verdict replaces the clock.
-pub const STRIP_HEIGHT: f32 = 1.3 * HEADLINE_PT + 2.0 * 1.35 * DETAIL_PT + 2.0 * PAD;
+pub(crate) const STRIP_HEIGHT: f32 = 1.3 * HEADLINE_PT + 2.0 * 1.35 * DETAIL_PT + 2.0 * PAD;
 
 /// A banner fitted to a width: each line's size, and the plate's height.
 #[derive(Clone, Debug, PartialEq)]

@@ -49,16 +49,16 @@ pub const SHORT_WINDOW: Window = Window {
 };
 
 /// The paper's window: section points for 600 ≤ τ ≤ 800.
-pub const PAPER_WINDOW: Window = Window {
+pub(crate) const PAPER_WINDOW: Window = Window {
     transient: 600.0,
     tau_end: 800.0,
 };
 
 /// Default number of values: the paper's grid, 0 to 3 in steps of 0.02.
-pub const DEFAULT_COUNT: usize = 151;
+pub(crate) const DEFAULT_COUNT: usize = 151;
 
 /// The swept key the view opens on (the paper's bifurcation figures).
-pub const DEFAULT_PARAM: &str = "excitation.a_v";
+pub(crate) const DEFAULT_PARAM: &str = "excitation.a_v";
 
 /// What a computed sweep depends on.
 #[derive(Clone, Debug, PartialEq)]
@@ -163,7 +163,7 @@ pub fn default_range(param: &str, current: f64) -> (f64, f64) {
 /// The numeric keys a sweep may vary, with their current values in `cfg`
 /// (infinite for `inf`). Solver settings are left out: the window replaces
 /// the run's end, and the others do not change the physics.
-pub fn sweepable(cfg: &Scenario) -> Vec<(String, f64)> {
+pub(crate) fn sweepable(cfg: &Scenario) -> Vec<(String, f64)> {
     Param::ALL
         .into_iter()
         .filter(|p| !p.key().starts_with("run."))

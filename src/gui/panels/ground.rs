@@ -80,7 +80,7 @@ impl RecordLabel {
 
 /// Ground-trace state.
 #[derive(Clone, Debug, Default)]
-pub struct GroundView {
+pub(crate) struct GroundView {
     scratch: Vec<PlotPoint>,
     /// Points passed to the plot over the app's life (work counter).
     pub work: u64,
@@ -89,7 +89,7 @@ pub struct GroundView {
 /// Draws the title and the trace of a_h from the start of the run to `now`
 /// (τ), over the whole record's length (so it fills in as the record
 /// plays), in the time unit of `scales`.
-pub fn ground_plot(
+pub(crate) fn ground_plot(
     ui: &mut egui::Ui,
     hist: &RunHistory,
     view: &mut GroundView,

@@ -35,7 +35,7 @@ pub const TRANSIENT_TAU: f64 = 200.0;
 /// Ends of the successive windows, τ: each doubles the accumulation, so the
 /// batch-means error roughly shrinks by √2 per stage, and the whole
 /// sequence costs about twice its last stage.
-pub const STAGES: [f64; 5] = [500.0, 1000.0, 2000.0, 4000.0, 8000.0];
+pub(crate) const STAGES: [f64; 5] = [500.0, 1000.0, 2000.0, 4000.0, 8000.0];
 
 /// Most points of the convergence curve drawn.
 const CURVE_POINTS: usize = 2000;

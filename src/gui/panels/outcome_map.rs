@@ -53,7 +53,7 @@ use crate::sim::{Param, Scenario};
 /// The keys a map may vary: the excitation, friction and the initial
 /// state. Geometry and the impact law change the block itself, and the
 /// solver settings do not change the physics.
-pub const PARAMS: [Param; 9] = [
+pub(crate) const PARAMS: [Param; 9] = [
     Param::Ah,
     Param::OmegaH,
     Param::Av,
@@ -72,10 +72,10 @@ pub fn keys() -> [&'static str; 9] {
 
 /// Cells per axis to choose from. 128 is the default: fine enough to see
 /// the structure of the overturning map.
-pub const RESOLUTIONS: [usize; 4] = [32, 64, 128, 256];
+pub(crate) const RESOLUTIONS: [usize; 4] = [32, 64, 128, 256];
 
 /// Default cells per axis.
-pub const DEFAULT_RESOLUTION: usize = 128;
+pub(crate) const DEFAULT_RESOLUTION: usize = 128;
 
 /// Cells of the coarse level along the longer axis (at least): 17 × 17 at
 /// 128, a first picture after about 2 % of the full map's work.

@@ -72,7 +72,7 @@ impl Key {
 
 /// The groups of the panel, in order, with their keys: the catalogue's
 /// entries that have a place in the panel ([`catalogue::panel_keys`]).
-pub static GROUPS: LazyLock<Vec<(&'static str, Vec<Key>)>> = LazyLock::new(|| {
+pub(crate) static GROUPS: LazyLock<Vec<(&'static str, Vec<Key>)>> = LazyLock::new(|| {
     Group::ALL
         .into_iter()
         .map(|g| (g.title(), catalogue::panel_keys(g).into_iter().map(Key::of).collect()))
@@ -307,7 +307,7 @@ fn slider(ui: &mut egui::Ui, k: &Key, shown: &str) -> Option<Commit> {
 
 /// The hover text of `k`'s slider: its range, and the plain and fine
 /// steps of a drag and of the arrow keys, with their unit.
-pub fn slider_help(k: &Key, range: &SliderRange) -> String {
+pub(crate) fn slider_help(k: &Key, range: &SliderRange) -> String {
     let (plain, fine) = (range.step_text(false, k.unit), range.step_text(true, k.unit));
     let unit = if k.unit.is_empty() {
         String::new()

@@ -50,7 +50,7 @@ impl Default for PhaseView {
 impl PhaseView {
     /// The trail for a new run: a record's whole length (`record_tau`, τ),
     /// so the portrait of an earthquake shows all of it, else the default.
-    pub fn fit_run(&mut self, record_tau: Option<f64>) {
+    pub(crate) fn fit_run(&mut self, record_tau: Option<f64>) {
         self.trail_tau = record_tau.map_or(Self::default().trail_tau, |tau| tau.max(1.0));
         self.held = None;
     }
@@ -69,7 +69,7 @@ impl PhaseView {
 /// forcing period at Ω_h = 8) behind each ghost's dot. Twenty full-length
 /// trails retrace the same attractor as the block's and merge into one
 /// blur; short tails show the ghosts as a cloud spreading over it.
-pub const GHOST_TAIL_TAU: f64 = 1.0;
+pub(crate) const GHOST_TAIL_TAU: f64 = 1.0;
 
 /// Largest τ between two points of a ghost's tail that are joined. One
 /// point arrives per frame: 0.03 τ apart at 1× on the default block, 0.16
@@ -91,7 +91,7 @@ const TRAIL_POINTS: usize = 2400;
 
 /// Draws the phase portrait in the units of `scales`. Returns the (Θ, Θ')
 /// the user clicked (in the model's units), if any.
-pub fn phase_plot(
+pub(crate) fn phase_plot(
     ui: &mut egui::Ui,
     hist: &RunHistory,
     view: &mut PhaseView,
@@ -344,7 +344,7 @@ fn section_selector(ui: &mut egui::Ui, view: &mut PoincareView) -> Option<f64> {
 /// How many of the latest section points are drawn enlarged: 16 shows
 /// every dot of a period-8 orbit (the end of the paper's Fig. 4 cascade)
 /// twice over.
-pub const LATEST_SECTION_POINTS: usize = 16;
+pub(crate) const LATEST_SECTION_POINTS: usize = 16;
 
 /// Draws the section selector and the Poincaré points of the section
 /// chosen as a per-pixel density image, in the units of `scales` (both are
@@ -352,7 +352,12 @@ pub const LATEST_SECTION_POINTS: usize = 16;
 /// the view converted back; the impact section's phase is in rad in both).
 /// Returns the stroboscopic phase the user asked for, if they changed it:
 /// the caller sends it to the simulation thread.
-pub fn poincare_plot(ui: &mut egui::Ui, hist: &RunHistory, view: &mut PoincareView, scales: &Scales) -> Option<f64> {
+pub(crate) fn poincare_plot(
+    ui: &mut egui::Ui,
+    hist: &RunHistory,
+    view: &mut PoincareView,
+    scales: &Scales,
+) -> Option<f64> {
     let new_phase = section_selector(ui, view);
     let impact = view.section == SectionKind::Impact;
     let store = if impact { &hist.impact_section } else { &hist.section };
@@ -483,7 +488,7 @@ pub fn poincare_plot(ui: &mut egui::Ui, hist: &RunHistory, view: &mut PoincareVi
 
 /// Time-history settings.
 #[derive(Clone, Debug)]
-pub struct HistoryView {
+pub(crate) struct HistoryView {
     /// Window length, τ.
     pub window: f64,
     /// Also draw X.
@@ -519,7 +524,7 @@ impl HistoryView {
     /// The window for a new run, unless the user chose one: the whole
     /// record (`record_tau`, τ, and 2 % more) so the response lines up with
     /// the ground trace beside it, else the default.
-    pub fn fit_run(&mut self, record_tau: Option<f64>) {
+    pub(crate) fn fit_run(&mut self, record_tau: Option<f64>) {
         if self.user_window {
             return;
         }
@@ -543,7 +548,7 @@ type Series = (
 /// of `scales`: the time axis in s or τ, θ in degrees or Θ, the sliding
 /// displacement in cm or X per R; accelerations are per unit g in both.
 /// Dashed lines mark ±α, the overturning angle of a block at rest.
-pub fn history_plot(ui: &mut egui::Ui, hist: &RunHistory, view: &mut HistoryView, now: f64, scales: &Scales) {
+pub(crate) fn history_plot(ui: &mut egui::Ui, hist: &RunHistory, view: &mut HistoryView, now: f64, scales: &Scales) {
     // Wrapped: one row would be wider than a narrow column and push the
     // plot beside it off its room.
     ui.horizontal_wrapped(|ui| {
@@ -637,12 +642,12 @@ pub fn history_plot(ui: &mut egui::Ui, hist: &RunHistory, view: &mut HistoryView
 /// Samples of the last stretch of Θ the spectrum is taken from: 2¹³ at the
 /// live spacing of 0.005 τ is 41 τ, about 52 forcing periods at Ω = 8, a
 /// resolution Δω = 2π/41 ≈ 0.15 p.
-pub const SPECTRUM_SAMPLES: usize = 1 << 13;
+pub(crate) const SPECTRUM_SAMPLES: usize = 1 << 13;
 
 /// Power-spectrum plot state: the last spectrum, recomputed at most every
 /// [`SpectrumView::EVERY_TAU`] of playback.
 #[derive(Clone, Debug, Default)]
-pub struct SpectrumView {
+pub(crate) struct SpectrumView {
     /// (ω in units of p, log₁₀ PSD) of the last spectrum.
     points: Vec<[f64; 2]>,
     /// τ of the last sample it was computed at.
@@ -656,7 +661,7 @@ pub struct SpectrumView {
 impl SpectrumView {
     /// Playback τ between recomputations: a spectrum of 41 τ changes little
     /// in 1 τ, and this keeps the FFT off most frames.
-    pub const EVERY_TAU: f64 = 1.0;
+    pub(crate) const EVERY_TAU: f64 = 1.0;
 
     /// Forget (new run).
     pub fn reset(&mut self) {
@@ -671,7 +676,7 @@ impl SpectrumView {
 /// samples, computed by [`crate::analysis::spectrum::power_spectrum`], with
 /// the forcing frequency Ω_h marked; frequencies in the units of `scales`
 /// (Hz or ω/p).
-pub fn spectrum_plot(
+pub(crate) fn spectrum_plot(
     ui: &mut egui::Ui,
     hist: &RunHistory,
     view: &mut SpectrumView,

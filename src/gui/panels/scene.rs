@@ -17,7 +17,7 @@ use crate::model::geometry::Geometry;
 use crate::sim::protocol::{GhostState, Sample, pose};
 
 /// Colour of each mode (index order of [`Mode::index`]).
-pub const MODE_COLORS: [Color32; 6] = [
+pub(crate) const MODE_COLORS: [Color32; 6] = [
     Color32::from_rgb(120, 144, 170), // rest
     Color32::from_rgb(64, 190, 200),  // slide
     Color32::from_rgb(90, 190, 100),  // rock
@@ -43,12 +43,12 @@ pub fn ghost_color(k: usize, n: usize) -> Color32 {
 
 /// Width of a ghost's outline, points: wide enough to see a colour in,
 /// narrow enough that twenty outlines a few pixels apart stay apart.
-pub const GHOST_OUTLINE: f64 = 2.0;
+pub(crate) const GHOST_OUTLINE: f64 = 2.0;
 
 /// The largest |Θ_ghost − Θ| over `ghosts`, units of ψ; `None` without
 /// ghosts. Shown beside the block, it grows by orders of magnitude while
 /// the ghosts are still hidden behind it.
-pub fn ghost_spread(sample: &Sample, ghosts: &[GhostState]) -> Option<f64> {
+pub(crate) fn ghost_spread(sample: &Sample, ghosts: &[GhostState]) -> Option<f64> {
     ghosts.iter().map(|g| (g.theta - sample.theta).abs()).reduce(f64::max)
 }
 
@@ -229,7 +229,7 @@ pub fn view(rect: Rect, scale: f64, camera: &Camera, y_mid: f64, pixels_per_poin
 /// corner of `rect`, while there are ghosts and the run goes on: the
 /// number grows from ε by orders of magnitude long before the drift shows
 /// as pixels.
-pub fn ghost_caption(ui: &mut egui::Ui, rect: Rect, input: &SceneInput<'_>) {
+pub(crate) fn ghost_caption(ui: &mut egui::Ui, rect: Rect, input: &SceneInput<'_>) {
     if input.terminal.is_some() {
         return;
     }
@@ -251,7 +251,7 @@ pub fn ghost_caption(ui: &mut egui::Ui, rect: Rect, input: &SceneInput<'_>) {
 }
 
 /// Draws the shapes with wgpu (if `gpu`) or with egui's painter.
-pub fn paint(ui: &egui::Ui, rect: Rect, shapes: Vec<Shape>, view: ViewUniform, gpu: bool) {
+pub(crate) fn paint(ui: &egui::Ui, rect: Rect, shapes: Vec<Shape>, view: ViewUniform, gpu: bool) {
     if gpu {
         ui.painter().add(egui_wgpu::Callback::new_paint_callback(
             rect,

@@ -39,12 +39,12 @@ pub struct SliderRange {
 /// in the period-8 window (2.316–2.323), while the whole cascade from
 /// A_v = 1.6 still fits in one drag of about 150 points, on the screen
 /// at every presentation scale.
-pub const FINE_DRAG: f64 = 20.0;
+pub(crate) const FINE_DRAG: f64 = 20.0;
 
 impl SliderRange {
     /// The step of a plain or a fine move ([`SliderRange::step`], or a
     /// [`FINE_DRAG`]-th of it).
-    pub fn step_of(&self, fine: bool) -> f64 {
+    pub(crate) fn step_of(&self, fine: bool) -> f64 {
         if fine { self.step / FINE_DRAG } else { self.step }
     }
 
@@ -77,7 +77,7 @@ impl SliderRange {
 
     /// A step as the tooltip says it: `0.1 ψg`, or `5 %` on a
     /// logarithmic slider.
-    pub fn step_text(&self, fine: bool, unit: &str) -> String {
+    pub(crate) fn step_text(&self, fine: bool, unit: &str) -> String {
         let step = self.step_of(fine);
         if self.log {
             format!("{} %", slider_text(100.0 * step))
@@ -126,7 +126,7 @@ fn keyboard_id() -> egui::Id {
 /// Whether one of these sliders has the keyboard focus. It takes only the
 /// arrow keys, so the app's one-key shortcuts (Space, R, S) stay on while
 /// it has the focus a click gave it.
-pub fn has_keyboard(ctx: &egui::Context) -> bool {
+pub(crate) fn has_keyboard(ctx: &egui::Context) -> bool {
     let focused = ctx.memory(|m| m.focused());
     focused.is_some() && ctx.data(|d| d.get_temp::<egui::Id>(keyboard_id())) == focused
 }

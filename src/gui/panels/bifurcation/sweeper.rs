@@ -28,10 +28,10 @@ use crate::sim::{Param, Scenario};
 
 /// Most values one interactive sweep may have: 2001 values of 255 points
 /// each is about 4 MB, and more columns than a screen has pixels add nothing.
-pub const MAX_VALUES: usize = 2001;
+pub(crate) const MAX_VALUES: usize = 2001;
 
 /// Replies the channel holds: every value of the largest sweep plus `Done`.
-pub const CAPACITY: usize = MAX_VALUES + 1;
+pub(crate) const CAPACITY: usize = MAX_VALUES + 1;
 
 /// What to compute.
 #[derive(Clone, Debug)]
@@ -80,7 +80,7 @@ pub enum Reply {
 /// A running (or finished) sweep: [`Job::drain`] its replies,
 /// [`Job::cancel`] it, ask whether it [`Job::finished`]; dropping it
 /// cancels and joins.
-pub type Sweeper = Job<Reply>;
+pub(crate) type Sweeper = Job<Reply>;
 
 /// The closure's error when the sweep was cancelled.
 struct Cancelled;

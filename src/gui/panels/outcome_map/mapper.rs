@@ -47,7 +47,7 @@ use crate::sim::{Param, Scenario};
 /// Replies the channel holds: a whole 64 × 64 map, so a small map never
 /// waits on the view; larger ones wait for it to drain (it drains every
 /// frame).
-pub const CAPACITY: usize = 4096;
+pub(crate) const CAPACITY: usize = 4096;
 
 /// What to compute.
 #[derive(Clone, Debug)]
@@ -100,7 +100,7 @@ impl Request {
 }
 
 /// The class of a computed cell; `None` when its run failed.
-pub type Class = Option<Response>;
+pub(crate) type Class = Option<Response>;
 
 /// What the map thread sends.
 #[derive(Clone, Debug, PartialEq)]
@@ -145,7 +145,7 @@ pub enum Reply {
 
 /// A running (or finished) map: drain its replies, cancel it, ask whether
 /// it finished; dropping it cancels and joins.
-pub type Mapper = Job<Reply>;
+pub(crate) type Mapper = Job<Reply>;
 
 /// Starts `req` on a thread named `outcome map`.
 pub fn start(req: Request, waker: Waker) -> Result<Mapper, String> {

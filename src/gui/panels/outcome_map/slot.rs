@@ -68,7 +68,7 @@ impl Slot {
 
     /// Whether the slot is a periodic class (coloured by attractor in a
     /// basin map).
-    pub fn is_periodic(self) -> bool {
+    pub(crate) fn is_periodic(self) -> bool {
         match self {
             Slot::Period1 | Slot::Period2 | Slot::PeriodK => true,
             Slot::Rest | Slot::Quasiperiodic | Slot::Chaotic | Slot::Tumbled | Slot::Flight | Slot::Failed => false,
