@@ -50,3 +50,59 @@ impl Legend {
             .map_err(PlotError::from_display)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// How the test legend is drawn.
+    enum Way {
+        /// The plotters chain the figures used to spell out.
+        ByHand,
+        /// Through [`Legend`], with this fill.
+        Shared(f64),
+    }
+
+    /// Draws one labelled series on a 300×200 SVG, then its legend `way`.
+    fn svg_with(way: Way) -> String {
+        super::super::ensure_font().unwrap();
+        let mut svg = String::new();
+        {
+            let root = SVGBackend::with_string(&mut svg, (300, 200)).into_drawing_area();
+            let mut chart = ChartBuilder::on(&root).build_cartesian_2d(0.0..1.0, 0.0..1.0).unwrap();
+            chart
+                .draw_series(LineSeries::new([(0.0, 0.0), (1.0, 1.0)], &BLACK))
+                .unwrap()
+                .label("a line")
+                .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLACK));
+            match way {
+                Way::ByHand => chart
+                    .configure_series_labels()
+                    .position(SeriesLabelPosition::LowerRight)
+                    .background_style(WHITE.mix(0.9))
+                    .border_style(RGBColor(150, 150, 150))
+                    .label_font((FONT, 14))
+                    .draw()
+                    .unwrap(),
+                Way::Shared(fill) => Legend {
+                    fill,
+                    ..Legend::at(SeriesLabelPosition::LowerRight, 14)
+                }
+                .draw(&mut chart)
+                .unwrap(),
+            }
+            root.present().unwrap();
+        }
+        svg
+    }
+
+    #[test]
+    fn the_shared_legend_box_is_the_one_the_figures_wrote_out_by_hand() {
+        // Same bytes: fill, frame, corner and text size all as written by hand.
+        let by_hand = svg_with(Way::ByHand);
+        assert!(by_hand.contains("a line"));
+        assert_eq!(svg_with(Way::Shared(0.9)), by_hand);
+        // A different fill must show, so the comparison above is not blind.
+        assert_ne!(svg_with(Way::Shared(0.5)), by_hand);
+    }
+}
