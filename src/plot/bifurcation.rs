@@ -8,6 +8,7 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use super::labels::{legend_entries, response_colour, response_label};
+use super::style::Legend;
 use super::{FONT, Figure, PlotError, axis_titles, padded_range, titled};
 use crate::analysis::classify::Response;
 
@@ -140,14 +141,11 @@ impl Figure for BifurcationFigure<'_> {
                 .label(response_label(key))
                 .legend(move |(x, y)| Circle::new((x + 8, y), 4, colour.filled()));
         }
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::UpperLeft)
-            .background_style(WHITE.mix(0.85))
-            .border_style(RGBColor(150, 150, 150))
-            .label_font((FONT, 16))
-            .draw()
-            .map_err(e)?;
+        Legend {
+            fill: 0.85,
+            ..Legend::at(SeriesLabelPosition::UpperLeft, 16)
+        }
+        .draw(&mut chart)?;
         Ok(())
     }
 }

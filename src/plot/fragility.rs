@@ -7,6 +7,7 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use super::marks::{colour, legend_entry, marker};
+use super::style::Legend;
 use super::{FONT, Figure, PlotError, axis_titles, titled};
 
 /// Pixels below and left of each panel's plotting area for numbers and
@@ -124,14 +125,7 @@ impl Figure for FragilityFigure {
                     .label(curve.label.as_str())
                     .legend(move |at| legend_entry(i, at, has_fit));
             }
-            chart
-                .configure_series_labels()
-                .position(SeriesLabelPosition::LowerRight)
-                .background_style(WHITE.mix(0.9))
-                .border_style(RGBColor(150, 150, 150))
-                .label_font((FONT, 14))
-                .draw()
-                .map_err(e)?;
+            Legend::at(SeriesLabelPosition::LowerRight, 14).draw(&mut chart)?;
         }
         Ok(())
     }

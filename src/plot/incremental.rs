@@ -11,6 +11,7 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use super::marks::{colour, marker};
+use super::style::Legend;
 use super::{FONT, Figure, PlotError, axis_titles, titled};
 use crate::analysis::engineering::EndState;
 
@@ -158,14 +159,7 @@ impl Figure for IncrementalFigure {
                     .map_err(e)?;
             }
             if first && panel.curves.len() <= MAX_LEGEND {
-                chart
-                    .configure_series_labels()
-                    .position(SeriesLabelPosition::LowerRight)
-                    .background_style(WHITE.mix(0.9))
-                    .border_style(RGBColor(150, 150, 150))
-                    .label_font((FONT, 13))
-                    .draw()
-                    .map_err(e)?;
+                Legend::at(SeriesLabelPosition::LowerRight, 13).draw(&mut chart)?;
             }
         }
         Ok(())

@@ -24,6 +24,7 @@ pub mod rich;
 pub mod rocking_spectrum;
 pub mod sliding_spectrum;
 pub mod spectrum;
+pub mod style;
 #[cfg(test)]
 pub(crate) mod svg_text;
 pub mod ticks;

@@ -9,6 +9,7 @@ use plotters::prelude::*;
 
 use super::marks::{colour, legend_entry, marker};
 use super::rocking_spectrum::ScalePoint;
+use super::style::Legend;
 use super::{FONT, Figure, PlotError, axis_titles, padded_range, titled};
 
 /// Pixels below and left of the plotting area for numbers and titles.
@@ -118,14 +119,7 @@ impl Figure for PulseMapFigure {
                 .label("light bars: safe windows above it")
                 .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], SAFE.stroke_width(3)));
         }
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::UpperLeft)
-            .background_style(WHITE.mix(0.9))
-            .border_style(RGBColor(150, 150, 150))
-            .label_font((FONT, 16))
-            .draw()
-            .map_err(e)?;
+        Legend::at(SeriesLabelPosition::UpperLeft, 16).draw(&mut chart)?;
         Ok(())
     }
 }

@@ -9,6 +9,7 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use super::marks::{legend_entry, marker};
+use super::style::Legend;
 use super::ticks::{log_axis, tick_label};
 use super::{FONT, Figure, PlotError, axis_titles, titled};
 use crate::analysis::engineering::EndState;
@@ -270,14 +271,7 @@ impl Figure for OverturnScaleFigure {
                 .label("light bars: safe windows above it")
                 .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], SAFE.stroke_width(3)));
         }
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::UpperRight)
-            .background_style(WHITE.mix(0.9))
-            .border_style(RGBColor(150, 150, 150))
-            .label_font((FONT, 16))
-            .draw()
-            .map_err(e)?;
+        Legend::at(SeriesLabelPosition::UpperRight, 16).draw(&mut chart)?;
         Ok(())
     }
 }

@@ -11,6 +11,7 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use super::marks::{colour, legend_entry, marker};
+use super::style::Legend;
 use super::{FONT, Figure, PlotError, axis_titles, padded_range, titled};
 use crate::analysis::engineering::EndState;
 
@@ -197,15 +198,8 @@ impl Figure for SlidingFigure {
                     .label("flight (the block left the ground)")
                     .legend(|(x, y)| TriangleMarker::new((x + 10, y), 6, BLACK.filled()));
             }
-            chart
-                .configure_series_labels()
-                // Sliding falls with μ: the upper right is usually empty.
-                .position(SeriesLabelPosition::UpperRight)
-                .background_style(WHITE.mix(0.9))
-                .border_style(RGBColor(150, 150, 150))
-                .label_font((FONT, 14))
-                .draw()
-                .map_err(e)?;
+            // Sliding falls with μ: the upper right is usually empty.
+            Legend::at(SeriesLabelPosition::UpperRight, 14).draw(&mut chart)?;
         }
         Ok(())
     }

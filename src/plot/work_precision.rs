@@ -6,6 +6,7 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use super::marks::{Marker, shape};
+use super::style::Legend;
 use super::ticks::{log_axis, tick_label};
 use super::{FONT, Figure, PlotError, axis_titles, titled};
 
@@ -118,13 +119,12 @@ impl Figure for WorkPrecisionFigure<'_> {
                     }))
                     .map_err(e)?;
             }
-            chart
-                .configure_series_labels()
-                .background_style(WHITE.mix(0.9))
-                .border_style(BLACK)
-                .label_font((FONT, 15))
-                .draw()
-                .map_err(e)?;
+            Legend {
+                frame: BLACK,
+                // Middle right: where this figure's legend has always sat (plotters' default).
+                ..Legend::at(SeriesLabelPosition::MiddleRight, 15)
+            }
+            .draw(&mut chart)?;
         }
         Ok(())
     }
