@@ -17,7 +17,7 @@ use crate::analysis::engineering::lognormal::BandPoint;
 
 /// One block in one panel.
 #[derive(Clone, Debug)]
-pub struct FragilityCurve {
+pub(crate) struct FragilityCurve {
     /// Legend text (the block and its fit).
     pub label: String,
     /// Observed (level, fraction).
@@ -28,7 +28,7 @@ pub struct FragilityCurve {
 
 /// One panel.
 #[derive(Clone, Debug)]
-pub struct FragilityPanel {
+pub(crate) struct FragilityPanel {
     /// Panel caption.
     pub caption: String,
     /// Its curves, one per block.
@@ -37,7 +37,7 @@ pub struct FragilityPanel {
 
 /// The figure.
 #[derive(Clone, Debug)]
-pub struct FragilityFigure {
+pub(crate) struct FragilityFigure {
     /// First title line.
     pub title: String,
     /// Second title line.

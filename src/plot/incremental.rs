@@ -29,7 +29,7 @@ const PANELS_PER_ROW: usize = 3;
 /// One record's curve in one panel: (level, peak θ/α, end) in increasing
 /// level.
 #[derive(Clone, Debug)]
-pub struct IncrementalCurve {
+pub(crate) struct IncrementalCurve {
     /// The record's name.
     pub label: String,
     /// Its runs.
@@ -38,7 +38,7 @@ pub struct IncrementalCurve {
 
 /// One block's panel.
 #[derive(Clone, Debug)]
-pub struct IncrementalPanel {
+pub(crate) struct IncrementalPanel {
     /// Caption (the block).
     pub caption: String,
     /// One curve per record.
@@ -47,7 +47,7 @@ pub struct IncrementalPanel {
 
 /// The figure.
 #[derive(Clone, Debug)]
-pub struct IncrementalFigure {
+pub(crate) struct IncrementalFigure {
     /// First title line.
     pub title: String,
     /// Second title line.

@@ -15,7 +15,7 @@ pub fn num(x: f64) -> String {
 
 /// Decimal places that write every value of a grid `from + i·step`
 /// exactly as typed (`0.02` → 2), at most 12.
-pub fn grid_decimals(from: f64, step: f64) -> usize {
+pub(crate) fn grid_decimals(from: f64, step: f64) -> usize {
     let exact = |x: f64, d: i32| {
         let scaled = x * 10f64.powi(d);
         (scaled - scaled.round()).abs() <= 1e-6 * scaled.abs().max(1.0)
@@ -25,12 +25,12 @@ pub fn grid_decimals(from: f64, step: f64) -> usize {
 
 /// A grid value with `decimals` places (`1.7000000000000002` → `1.70`):
 /// for titles and summaries; files keep the exact value.
-pub fn grid_num(x: f64, decimals: usize) -> String {
+pub(crate) fn grid_num(x: f64, decimals: usize) -> String {
     format!("{x:.decimals$}")
 }
 
 /// The axis label of a parameter, with its unit.
-pub fn param_label(param: Param) -> String {
+pub(crate) fn param_label(param: Param) -> String {
     let label = match param {
         Param::Av => "A_v, vertical amplitude (units of ψ g)",
         Param::Ah => "A_h, horizontal amplitude (units of ψ g)",
@@ -52,7 +52,7 @@ pub fn param_label(param: Param) -> String {
 }
 
 /// The short symbol of a parameter, for titles (`A_v`, `Ω_h`, …).
-pub fn param_symbol(param: Param) -> String {
+pub(crate) fn param_symbol(param: Param) -> String {
     let s = match param {
         Param::Av => "A_v",
         Param::Ah => "A_h",
@@ -74,7 +74,7 @@ pub fn param_symbol(param: Param) -> String {
 /// The parameters of `cfg` that define a harmonic response, except those in
 /// `varied`: block, excitation, friction and impact law, e.g.
 /// `B × H = 1 × 4 m, Ω_h = Ω_v = 8, A_h = 3, no sliding, impact ratio r = 0.925`.
-pub fn fixed_parameters(cfg: &Scenario, varied: &[Param]) -> String {
+pub(crate) fn fixed_parameters(cfg: &Scenario, varied: &[Param]) -> String {
     let free = |p: Param| !varied.contains(&p);
     let x = &cfg.excitation;
     let mut parts = Vec::new();
@@ -127,7 +127,7 @@ pub fn fixed_parameters(cfg: &Scenario, varied: &[Param]) -> String {
 }
 
 /// The block's friction for a title: `no sliding` or `μ_s = 0.4, μ_k = 0.35`.
-pub fn friction_text(cfg: &Scenario) -> String {
+pub(crate) fn friction_text(cfg: &Scenario) -> String {
     if cfg.block.mu_s.is_infinite() {
         "no sliding".to_string()
     } else {
@@ -140,7 +140,7 @@ pub fn friction_text(cfg: &Scenario) -> String {
 /// black, rest light grey, flight pink (colour-blind-safe-ish: the classes
 /// that matter most, period 1/2, chaos and tumbling, differ in lightness
 /// too).
-pub fn response_colour(r: Response) -> RGBColor {
+pub(crate) fn response_colour(r: Response) -> RGBColor {
     match r {
         Response::Periodic { period: 1 } => RGBColor(31, 119, 180),
         Response::Periodic { period: 2 } => RGBColor(44, 160, 44),
@@ -157,7 +157,7 @@ pub fn response_colour(r: Response) -> RGBColor {
 
 /// The legend text of a response class: `period 2 (1,2)`, `chaotic`, …
 /// Periods above 4 share one colour, so `period k > 4` names them together.
-pub fn response_label(r: Response) -> String {
+pub(crate) fn response_label(r: Response) -> String {
     match r {
         Response::Periodic { period } if period <= 4 => format!("period {period} (1,{period})"),
         Response::Periodic { .. } => "period > 4".to_string(),
@@ -168,7 +168,7 @@ pub fn response_label(r: Response) -> String {
 }
 
 /// The legend group of a response: periods above 4 share one entry.
-pub fn legend_key(r: Response) -> Response {
+pub(crate) fn legend_key(r: Response) -> Response {
     match r {
         Response::Periodic { period } if period > 4 => Response::Periodic { period: 5 },
         other => other,
@@ -177,7 +177,7 @@ pub fn legend_key(r: Response) -> Response {
 
 /// Legend groups present in `responses`, in a fixed order (rest, periods,
 /// quasiperiodic, chaotic, tumbled, flight).
-pub fn legend_entries(responses: impl Iterator<Item = Response>) -> Vec<Response> {
+pub(crate) fn legend_entries(responses: impl Iterator<Item = Response>) -> Vec<Response> {
     let order = |r: &Response| match r {
         Response::Rest => 0,
         Response::Periodic { period } => *period,

@@ -42,7 +42,7 @@ pub enum Shape {
 }
 
 /// Shapes in the order series take them.
-pub const SHAPES: [Shape; 5] = [
+pub(crate) const SHAPES: [Shape; 5] = [
     Shape::Disc,
     Shape::Square,
     Shape::Diamond,
@@ -86,7 +86,7 @@ pub fn marker<C>(i: usize, at: C, r: i32) -> Marker<C> {
 
 /// Series `i`'s legend entry at legend position `at`: its marker, on a
 /// short line in its colour when `line` (a series drawn as a line).
-pub fn legend_entry(i: usize, (x, y): (i32, i32), line: bool) -> Marker<(i32, i32)> {
+pub(crate) fn legend_entry(i: usize, (x, y): (i32, i32), line: bool) -> Marker<(i32, i32)> {
     Marker {
         line,
         ..marker(i, (x + 10, y), 4)

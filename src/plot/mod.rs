@@ -40,7 +40,7 @@ use plotters::prelude::*;
 use plotters::style::FontStyle;
 
 /// The font family name the figures use.
-pub const FONT: &str = "sans-serif";
+pub(crate) const FONT: &str = "sans-serif";
 
 /// A drawing or font error, as one line.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
@@ -49,13 +49,13 @@ pub struct PlotError(pub String);
 
 impl PlotError {
     /// Wraps any backend error.
-    pub fn from_display<E: std::fmt::Display>(e: E) -> Self {
+    pub(crate) fn from_display<E: std::fmt::Display>(e: E) -> Self {
         Self(e.to_string())
     }
 }
 
 /// Registers the figure font with plotters (once per process).
-pub fn ensure_font() -> Result<(), PlotError> {
+pub(crate) fn ensure_font() -> Result<(), PlotError> {
     static REGISTERED: OnceLock<Result<(), String>> = OnceLock::new();
     REGISTERED
         .get_or_init(|| {
@@ -147,7 +147,7 @@ fn title_line<DB: DrawingBackend>(
 /// `chart.plotting_area().get_pixel_range()` gives them), `y` upright at
 /// the left of the `y_area`-pixel label area beside it. Drawn on `root`, the
 /// figure's whole area.
-pub fn axis_titles<DB: DrawingBackend>(
+pub(crate) fn axis_titles<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
     plot: (Range<i32>, Range<i32>),
     (x, y): (&str, &str),
@@ -180,7 +180,12 @@ pub fn axis_titles<DB: DrawingBackend>(
 
 /// A range `[lo, hi]` padded by `pad` of its width, widened to at least
 /// `min_width` around its centre, from finite values (`default` if none).
-pub fn padded_range(values: impl Iterator<Item = f64>, pad: f64, min_width: f64, default: (f64, f64)) -> (f64, f64) {
+pub(crate) fn padded_range(
+    values: impl Iterator<Item = f64>,
+    pad: f64,
+    min_width: f64,
+    default: (f64, f64),
+) -> (f64, f64) {
     let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
     for v in values.filter(|v| v.is_finite()) {
         lo = lo.min(v);

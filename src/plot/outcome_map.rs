@@ -71,7 +71,7 @@ const ATTRACTOR_COLOURS: [RGBColor; 10] = [
 
 /// The colour of attractor `id` (from 1): the figure's, and the app's
 /// map panel's, so that the two agree.
-pub fn attractor_colour(id: u32) -> RGBColor {
+pub(crate) fn attractor_colour(id: u32) -> RGBColor {
     ATTRACTOR_COLOURS[(id.max(1) as usize - 1) % ATTRACTOR_COLOURS.len()]
 }
 

@@ -17,7 +17,7 @@ const LABEL_AREAS: (i32, i32) = (56, 80);
 
 /// One pulse at one slenderness.
 #[derive(Clone, Debug)]
-pub struct PulseMapSeries {
+pub(crate) struct PulseMapSeries {
     /// Legend text.
     pub label: String,
     /// (ω_p/p, smallest overturning a_p/(g tan α), safe windows).
@@ -26,7 +26,7 @@ pub struct PulseMapSeries {
 
 /// The map.
 #[derive(Clone, Debug)]
-pub struct PulseMapFigure {
+pub(crate) struct PulseMapFigure {
     /// First title line.
     pub title: String,
     /// Second title line.

@@ -64,7 +64,7 @@ pub fn runs(text: &str) -> Vec<(String, bool)> {
 }
 
 /// Whether `text` has a subscript to draw.
-pub fn has_subscript(text: &str) -> bool {
+pub(crate) fn has_subscript(text: &str) -> bool {
     runs(text).iter().any(|(_, sub)| *sub)
 }
 

@@ -27,7 +27,7 @@ const LABEL_AREAS: (i32, i32) = (56, 80);
 
 /// `[lo, hi]` of the finite positive values, widened by a factor on each
 /// side for a log axis (`default` if none).
-pub fn log_range(values: impl Iterator<Item = f64>, default: (f64, f64)) -> (f64, f64) {
+pub(crate) fn log_range(values: impl Iterator<Item = f64>, default: (f64, f64)) -> (f64, f64) {
     let (mut lo, mut hi) = (f64::INFINITY, 0.0_f64);
     for v in values.filter(|v| v.is_finite() && *v > 0.0) {
         lo = lo.min(v);
@@ -172,11 +172,11 @@ impl Figure for SpectrumFigure {
 /// One block of an overturning-scale figure: (x, the smallest failing
 /// amplitude or `None`, the safe windows above it as (from, to), `to`
 /// `None` when open).
-pub type ScalePoint = (f64, Option<f64>, Vec<(f64, Option<f64>)>);
+pub(crate) type ScalePoint = (f64, Option<f64>, Vec<(f64, Option<f64>)>);
 
 /// One slenderness of an overturning-scale spectrum.
 #[derive(Clone, Debug)]
-pub struct OverturnSeries {
+pub(crate) struct OverturnSeries {
     /// Legend text.
     pub label: String,
     /// (p in 1/s, smallest overturning PGA in g, safe windows in g).
@@ -185,7 +185,7 @@ pub struct OverturnSeries {
 
 /// The overturning-scale spectrum.
 #[derive(Clone, Debug)]
-pub struct OverturnScaleFigure {
+pub(crate) struct OverturnScaleFigure {
     /// First title line.
     pub title: String,
     /// Second title line.

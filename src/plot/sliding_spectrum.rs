@@ -24,7 +24,7 @@ const MARK: RGBColor = RGBColor(90, 90, 90);
 
 /// One block's curve.
 #[derive(Clone, Debug)]
-pub struct SlidingCurve {
+pub(crate) struct SlidingCurve {
     /// Legend text.
     pub label: String,
     /// (μ, peak sliding m, residual sliding m if it exists, end), μ
@@ -34,7 +34,7 @@ pub struct SlidingCurve {
 
 /// The figure.
 #[derive(Clone, Debug)]
-pub struct SlidingFigure {
+pub(crate) struct SlidingFigure {
     /// First title line.
     pub title: String,
     /// Second title line.

@@ -12,7 +12,7 @@ use super::{FONT, PlotError};
 const FRAME: RGBColor = RGBColor(150, 150, 150);
 
 /// How one figure's legend box looks.
-pub struct Legend {
+pub(crate) struct Legend {
     /// Corner (or edge) of the plotting area the box sits in.
     pub position: SeriesLabelPosition,
     /// Label text size in pixels.

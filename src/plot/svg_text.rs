@@ -3,7 +3,7 @@
 
 /// One `<text>` element: its position, anchor and content.
 #[derive(Clone, Debug, PartialEq)]
-pub struct SvgText {
+pub(crate) struct SvgText {
     /// x, pixels.
     pub x: f64,
     /// y, pixels.
@@ -58,7 +58,7 @@ fn is_number(text: &str) -> bool {
 
 /// The numbers under the lowest x axis of `svg`: the numeric, centred texts
 /// on the lowest row that holds any.
-pub fn x_axis_numbers(svg: &str) -> Vec<String> {
+pub(crate) fn x_axis_numbers(svg: &str) -> Vec<String> {
     let numbers: Vec<SvgText> = texts(svg)
         .into_iter()
         .filter(|t| !t.rotated && t.anchor == "middle" && is_number(&t.content))
@@ -73,7 +73,7 @@ pub fn x_axis_numbers(svg: &str) -> Vec<String> {
 
 /// The numbers beside the leftmost y axis of `svg`: the numeric,
 /// right-aligned texts in the leftmost column that holds any.
-pub fn y_axis_numbers(svg: &str) -> Vec<String> {
+pub(crate) fn y_axis_numbers(svg: &str) -> Vec<String> {
     let numbers: Vec<SvgText> = texts(svg)
         .into_iter()
         .filter(|t| !t.rotated && t.anchor == "end" && is_number(&t.content))
@@ -87,14 +87,14 @@ pub fn y_axis_numbers(svg: &str) -> Vec<String> {
 }
 
 /// Asserts that the x and y axes of `svg` each carry at least two numbers.
-pub fn assert_numbered(svg: &str, what: &str) {
+pub(crate) fn assert_numbered(svg: &str, what: &str) {
     let (x, y) = (x_axis_numbers(svg), y_axis_numbers(svg));
     assert!(x.len() >= 2, "{what}: x axis numbers {x:?}");
     assert!(y.len() >= 2, "{what}: y axis numbers {y:?}");
 }
 
 /// The texts of `svg` that show an underscore.
-pub fn underscores(svg: &str) -> Vec<String> {
+pub(crate) fn underscores(svg: &str) -> Vec<String> {
     texts(svg)
         .into_iter()
         .map(|t| t.content)

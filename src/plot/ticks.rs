@@ -25,7 +25,7 @@ const MAX_TICKS: usize = 12;
 /// has fewer than three (the range spans less than a factor of about 1.5),
 /// evenly spaced round values as on a linear axis. Always at least
 /// [`MIN_TICKS`] values for a non-empty range; none for an invalid one.
-pub fn log_ticks(lo: f64, hi: f64) -> Vec<f64> {
+pub(crate) fn log_ticks(lo: f64, hi: f64) -> Vec<f64> {
     if !(lo.is_finite() && hi.is_finite() && lo > 0.0 && hi > lo) {
         return Vec::new();
     }
@@ -69,7 +69,7 @@ fn decade_multiples(lo: f64, hi: f64, mantissas: &[f64]) -> Vec<f64> {
 /// Evenly spaced round values in `[lo, hi]`: the finest step of 1, 2 or
 /// 5 × 10^k that cuts the range into at most six parts (three to seven
 /// values).
-pub fn linear_ticks(lo: f64, hi: f64) -> Vec<f64> {
+pub(crate) fn linear_ticks(lo: f64, hi: f64) -> Vec<f64> {
     if !(lo.is_finite() && hi.is_finite() && hi > lo) {
         return Vec::new();
     }
@@ -93,7 +93,7 @@ fn round_to_step(v: f64, step: f64) -> f64 {
 
 /// A logarithmic axis over `range` numbered at [`log_ticks`], with light
 /// grid lines at every 1…9 × 10^k inside it.
-pub fn log_axis(range: Range<f64>) -> WithKeyPoints<LogCoord<f64>> {
+pub(crate) fn log_axis(range: Range<f64>) -> WithKeyPoints<LogCoord<f64>> {
     let (lo, hi) = (range.start, range.end);
     let light = decade_multiples(lo, hi, &[1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0]);
     range
@@ -104,7 +104,7 @@ pub fn log_axis(range: Range<f64>) -> WithKeyPoints<LogCoord<f64>> {
 
 /// A tick's number as short as it reads (`2`, `0.5`, `2.5`, `1e-5`): six
 /// significant digits at most, trailing zeros dropped.
-pub fn tick_label(v: f64) -> String {
+pub(crate) fn tick_label(v: f64) -> String {
     if v == 0.0 || !v.is_finite() {
         return if v == 0.0 { "0".into() } else { format!("{v}") };
     }

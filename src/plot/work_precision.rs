@@ -27,7 +27,7 @@ pub struct WorkPoint<'a> {
 
 /// The points to draw and the scenes in panel order.
 #[derive(Clone, Debug)]
-pub struct WorkPrecisionFigure<'a> {
+pub(crate) struct WorkPrecisionFigure<'a> {
     /// Every point.
     pub points: &'a [WorkPoint<'a>],
     /// Scene names, one panel each.
