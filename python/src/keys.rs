@@ -73,7 +73,9 @@ pub fn undocumented() -> Vec<String> {
     KNOWN_KEYS
         .iter()
         .flat_map(|(s, keys)| keys.iter().map(move |k| (*s, *k)))
-        .filter(|(s, k)| catalogue::spec(&format!("{s}.{k}")).is_none_or(|d| d.meaning.is_empty() || d.written.is_empty()))
+        .filter(|(s, k)| {
+            catalogue::spec(&format!("{s}.{k}")).is_none_or(|d| d.meaning.is_empty() || d.written.is_empty())
+        })
         .map(|(s, k)| format!("{s}.{k}"))
         .collect()
 }
