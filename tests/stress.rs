@@ -127,6 +127,7 @@ fn model_of(s: &Scene, excited: bool) -> Model {
         tumble_theta: 1.0,
         flight: FlightPolicy::Stop,
         zeno_eps: 1e-5,
+        frame: None,
     }
 }
 

@@ -376,6 +376,9 @@ pub enum LyapunovError {
         /// The forcing period, τ.
         period: f64,
     },
+    /// The model has no tangent equations (a rocking frame).
+    #[error("lyapunov exponents are not available for a [frame] yet (its tangent equations are not written)")]
+    NoTangent,
     /// The initial state is not admissible.
     #[error(transparent)]
     Initial(#[from] SimError),
@@ -388,6 +391,9 @@ pub enum LyapunovError {
 /// docs for the phase space, units and typed non-results).
 pub fn lyapunov(model: &Model, init: &InitialState, opts: &LyapunovOptions) -> Result<Lyapunov, LyapunovError> {
     opts.validate()?;
+    if model.frame.is_some() {
+        return Err(LyapunovError::NoTangent);
+    }
     let period = model.excitation.forcing_period().ok_or(LyapunovError::NotHarmonic)?;
     if variational::forcing_rate(&model.excitation, 0.0).is_none() {
         return Err(LyapunovError::NotHarmonic);

@@ -49,6 +49,7 @@ fn paper_block(mu: (f64, f64), law: ImpactLaw, excitation: impl Fn(f64) -> Excit
         tumble_theta: 1.0,
         flight: FlightPolicy::Ignore,
         zeno_eps: 1e-5,
+        frame: None,
     }
 }
 

@@ -191,12 +191,24 @@ pub fn summary_json(cfg: &Scenario, res: &RunResult) -> serde_json::Value {
             "rhs_evals": res.stats.rhs_evals,
             "wall_s": res.wall_s,
         },
-        "block": {
-            "psi_rad": geo.psi,
-            "p_per_s": geo.p,
-            "r_m": geo.r,
-            "housner_r": geo.housner_r(),
-            "seconds_per_tau": 1.0 / geo.p,
+        structure_key(cfg): match &cfg.frame {
+            None => json!({
+                "psi_rad": geo.psi,
+                "p_per_s": geo.p,
+                "r_m": geo.r,
+                "housner_r": geo.housner_r(),
+                "seconds_per_tau": 1.0 / geo.p,
+            }),
+            // The columns' ψ, p and R (τ = p t with the column's p), and
+            // the frame's own factor and impact coefficient.
+            Some(frame) => json!({
+                "psi_rad": geo.psi,
+                "p_per_s": geo.p,
+                "r_m": geo.r,
+                "kappa": frame.kappa(),
+                "impact_r": frame.restitution(&geo),
+                "seconds_per_tau": 1.0 / geo.p,
+            }),
         },
         "physical": Physical::of(cfg, res),
         "resolved": resolved_json(cfg),
@@ -360,7 +372,7 @@ pub fn resolved_json(cfg: &Scenario) -> serde_json::Value {
     let time = |t: f64| json!({ "tau": t, "s": si(Dimension::Tau, t) });
     let harmonic_or_pulse = matches!(x.kind, ExcitationKind::Harmonic | ExcitationKind::Pulse);
     json!({
-        "block": {
+        structure_key(cfg): {
             "width_m": cfg.block.width,
             "height_m": cfg.block.height,
             "half_diagonal_m": r,
@@ -391,6 +403,12 @@ pub fn resolved_json(cfg: &Scenario) -> serde_json::Value {
             "tumble_theta": rotation(cfg.run.tumble_theta),
         },
     })
+}
+
+/// The key of the structure's section: `block`, or `frame` (whose
+/// columns the sizes are).
+fn structure_key(cfg: &Scenario) -> &'static str {
+    if cfg.frame.is_some() { "frame" } else { "block" }
 }
 
 /// Checks that `dir` can be written, before a run starts: it is a

@@ -2,6 +2,7 @@
 //! the run treats flight and impact accumulation.
 
 use super::excitation::Excitation;
+use super::frame::Frame;
 use super::geometry::Geometry;
 use super::impact::ImpactLaw;
 
@@ -36,4 +37,7 @@ pub struct Model {
     /// Post-impact |Θ'| below which an impact accumulation is summed in
     /// closed form and the block put to rest (default 1e-5).
     pub zeno_eps: f64,
+    /// A rocking frame of columns of `geo` under a cap beam; `None`: the
+    /// single block.
+    pub frame: Option<Frame>,
 }

@@ -97,6 +97,57 @@ pub struct Physical {
     pub friction_static: Option<f64>,
     /// Kinetic friction coefficient at the base; `None`: no sliding.
     pub friction_kinetic: Option<f64>,
+    /// Each body's answer, bottom to top (a frame's columns, then its
+    /// beam); absent for the single block, whose answer is the above.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub bodies: Option<Vec<Body>>,
+    /// What the one-line answer calls the structure when it has several
+    /// bodies (`frame`); `None` for the single block.
+    #[serde(skip)]
+    pub subject: Option<&'static str>,
+}
+
+/// One body's answer (`physical.bodies`).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Body {
+    /// What it is: `column 1`, …, `beam`.
+    pub name: String,
+    /// Largest |rotation|, degrees.
+    pub max_rotation_deg: f64,
+    /// Whether it overturned.
+    pub overturned: bool,
+    /// Largest |sliding displacement| relative to what it stands on, m.
+    pub max_sliding_m: f64,
+    /// Largest rise, m: a column's lifted corner, the beam's whole body.
+    pub max_uplift_m: f64,
+}
+
+/// A frame's bodies: its columns, all rocking alike, then its beam, which
+/// translates on the columns' top corners and rises by
+/// 2R(cos(ψ − |θ|) − cos ψ) (docs/model.md §12.1).
+fn frame_bodies(s: &Scenario, res: &RunResult, overturned: bool) -> Option<Vec<Body>> {
+    let frame = s.frame.as_ref()?;
+    let geo = s.geometry();
+    let theta = geo.psi * res.max_abs_theta;
+    let mut bodies: Vec<Body> = (1..=frame.columns)
+        .map(|k| Body {
+            name: format!("column {k}"),
+            max_rotation_deg: theta.to_degrees(),
+            overturned,
+            max_sliding_m: res.max_abs_sliding * geo.r,
+            max_uplift_m: geo.uplift_m(res.max_abs_theta),
+        })
+        .collect();
+    // Past |θ| = ψ the frame has collapsed; the rise is taken at ψ.
+    let tilt = theta.min(geo.psi);
+    bodies.push(Body {
+        name: "beam".to_string(),
+        max_rotation_deg: 0.0,
+        overturned,
+        max_sliding_m: res.max_abs_sliding * geo.r,
+        max_uplift_m: 2.0 * geo.r * ((geo.psi - tilt).cos() - geo.cos_psi),
+    });
+    Some(bodies)
 }
 
 impl Physical {
@@ -148,6 +199,8 @@ impl Physical {
             impact_r: (s.impact.law != LawKind::Impulse).then(|| s.impact_r()),
             friction_static: s.block.mu_s.is_finite().then_some(s.block.mu_s),
             friction_kinetic: s.block.mu_s.is_finite().then(|| s.block.kinetic()),
+            bodies: frame_bodies(s, res, end_state == EndState::Overturned),
+            subject: s.frame.is_some().then_some("frame"),
         }
     }
 
@@ -155,6 +208,9 @@ impl Physical {
     /// `Housner impact r = 0.899, friction μ = 0.5`.
     pub fn contact(&self) -> String {
         let law = match (self.impact_law, self.impact_r) {
+            ("housner" | "corner-momentum", Some(r)) if self.subject == Some("frame") => {
+                format!("frame impact r = {r:.3} (docs/model.md §12.3)")
+            }
             ("housner", Some(r)) => format!("Housner impact r = {r:.3}"),
             (law, Some(r)) => format!("{law} impact r = {r:.3}"),
             (law, None) => format!("{law} impact"),
@@ -214,9 +270,10 @@ impl Physical {
             "no sliding".to_string()
         };
         let motion = format!("{rocking}, {sliding}");
+        let subject = self.subject.map_or(String::new(), |s| format!("{s} "));
         match self.end_state {
             EndState::Overturned => format!(
-                "overturned at t = {:.2} s{input}",
+                "{subject}overturned at t = {:.2} s{input}",
                 self.t_overturn_s.unwrap_or(self.t_end_s)
             ),
             EndState::Flight => format!(

@@ -12,7 +12,7 @@ use crate::integrate::hybrid::{Advance, Driver, Limits, Outputs};
 use crate::integrate::{StepStats, Stepper, Tolerances};
 use crate::model::dynamics::Tilt;
 use crate::model::system::{EventRecord, FRICTION_LOSS, ModelError, N, Tally, WORK, X};
-use crate::model::{BlockSystem, Mode, Model, Sign};
+use crate::model::{Mode, Model, Rocker, RockerVisitor, Sign, with_rocker};
 
 /// Initial state (config `initial.*`).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
@@ -231,7 +231,28 @@ pub fn simulate_into(
     impl StepperVisitor for Run<'_> {
         type Output = Result<RunResult, SimError>;
         fn visit<S: Stepper<N> + Send + 'static>(self, stepper: S) -> Self::Output {
-            run_with(stepper, self.model, self.mode0, self.y0, self.opts, self.sink)
+            /// The run with its stepper, waiting for the model's system.
+            struct WithStepper<'a, S> {
+                stepper: S,
+                mode0: Mode,
+                y0: [f64; N],
+                opts: &'a RunOptions,
+                sink: &'a mut dyn Sink,
+            }
+            impl<S: Stepper<N>> RockerVisitor for WithStepper<'_, S> {
+                type Output = Result<RunResult, SimError>;
+                fn visit<R: Rocker>(self, system: R) -> Self::Output {
+                    run_with(self.stepper, system, self.mode0, self.y0, self.opts, self.sink)
+                }
+            }
+            let next = WithStepper {
+                stepper,
+                mode0: self.mode0,
+                y0: self.y0,
+                opts: self.opts,
+                sink: self.sink,
+            };
+            with_rocker(self.model, next)
         }
     }
     let run = Run {
@@ -244,9 +265,9 @@ pub fn simulate_into(
     with_stepper(opts.method, opts.tol, run)
 }
 
-fn run_with<S: Stepper<N>>(
+fn run_with<S: Stepper<N>, R: Rocker>(
     stepper: S,
-    model: Model,
+    mut system: R,
     mode0: Mode,
     mut y0: [f64; N],
     opts: &RunOptions,
@@ -254,19 +275,18 @@ fn run_with<S: Stepper<N>>(
 ) -> Result<RunResult, SimError> {
     let start = Instant::now();
     let section_period = if opts.section {
-        model.excitation.forcing_period()
+        system.params().excitation.forcing_period()
     } else {
         None
     };
-    let mut system = BlockSystem::new(model);
-    let mode0 = system.settle(mode0, 0.0, &mut y0);
-    let e0 = system.energy(mode0, &y0);
+    let mode0 = system.settle_mode(mode0, 0.0, &mut y0);
+    let e0 = system.mechanical_energy(mode0, &y0);
     let outputs = Outputs {
         sample_dt: opts.output_dt,
         section_period,
     };
     let mut driver = Driver::new(stepper, system, mode0, 0.0, y0, opts.limits, outputs);
-    let geometry = driver.system().model.geo;
+    let geometry = driver.system().params().geo;
     let mut obs = Collector {
         sink,
         keep_history: opts.output_dt.is_some(),
@@ -318,7 +338,7 @@ fn run_with<S: Stepper<N>>(
     let y = *driver.y();
     let t_final = driver.t();
     let system = driver.system();
-    let tally = system.tally;
+    let tally = system.tallied();
 
     // Time per mode: the collector's sums up to the last event, plus the
     // mode the run ended in up to its end.
@@ -328,7 +348,7 @@ fn run_with<S: Stepper<N>>(
         mode_time[obs.mode.index()] += (t_final - obs.mode_since).max(0.0);
     }
     let tumble_tau = tallies.tumble_tau;
-    let side_landing_tau = if system.tumble_angle() >= system.model.geo.side_theta() {
+    let side_landing_tau = if system.overturn_angle() >= system.params().geo.side_theta() {
         tumble_tau
     } else {
         None
@@ -345,7 +365,7 @@ fn run_with<S: Stepper<N>>(
         Mode::Slide { .. } | Mode::Rock { .. } | Mode::SlideRock { .. } => Outcome::Running,
     };
 
-    let e_final = system.final_energy(final_mode, &y);
+    let e_final = system.end_energy(final_mode, &y);
     let (work, friction, impact) = (y[WORK], y[FRICTION_LOSS], tally.impact_loss);
     let residual = (e_final - e0) - (work - friction - impact);
     let scale = e0

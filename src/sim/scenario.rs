@@ -28,7 +28,7 @@ use crate::model::excitation::{
 };
 use crate::model::oscillator::Oscillator;
 use crate::model::units::AccelUnit;
-use crate::model::{FlightPolicy, Geometry, ImpactLaw, Model};
+use crate::model::{FlightPolicy, Frame, Geometry, ImpactLaw, Model};
 
 /// Largest kinetic friction coefficient accepted (exclusive): the
 /// slide-rock denominator (1−γ) + γ(sin²φ − sσμ_k sin φ cos φ) stays
@@ -501,6 +501,9 @@ pub struct Scenario {
     pub analyses: Analyses,
     /// The building the block stands in; `None`: on the ground.
     pub floor: Option<FloorSpec>,
+    /// A rocking frame (config `[frame]`) whose columns are `block`'s
+    /// width and height; `None`: the single block.
+    pub frame: Option<Frame>,
 }
 
 impl Default for Scenario {
@@ -563,6 +566,7 @@ impl Default for Scenario {
                 spectrum_window: SpectrumRange::All,
             },
             floor: None,
+            frame: None,
         }
     }
 }
@@ -610,7 +614,12 @@ impl Scenario {
         // Housner's ratio is negative for squat blocks (ψ > 54.7°, where a
         // single-corner impact reverses the rotation and the block lands
         // flat, docs/model.md §7.5): the default ratio is then 0.
-        self.impact.r.unwrap_or_else(|| self.geometry().housner_r().max(0.0))
+        // A frame's own coefficient (docs/model.md §12.3) likewise.
+        let own = match &self.frame {
+            Some(frame) => frame.restitution(&self.geometry()),
+            None => self.geometry().housner_r(),
+        };
+        self.impact.r.unwrap_or_else(|| own.max(0.0))
     }
 
     /// μ̄_s during impact, resolved.
@@ -739,6 +748,7 @@ impl Scenario {
             tumble_theta: self.run.tumble_theta,
             flight: self.run.flight,
             zeno_eps: self.run.zeno_eps,
+            frame: self.frame,
         })
     }
 

@@ -5,7 +5,7 @@
 use super::catalogue::{self, KeySpec, Param};
 use super::method::Method;
 use super::scenario::{
-    ExcitationKind, MAX_FLOOR_PARTICIPATION, MAX_FLOOR_PERIOD_S, MAX_HISTORY_ROWS, MIN_FLOOR_PERIOD_S, MIN_PSI,
+    ExcitationKind, LawKind, MAX_FLOOR_PARTICIPATION, MAX_FLOOR_PERIOD_S, MAX_HISTORY_ROWS, MIN_FLOOR_PERIOD_S, MIN_PSI,
     MIN_SPECTRUM_SAMPLES, MU_K_LIMIT, PAPER_SPECTRUM_END, Scenario, ScenarioError, SpectrumRange,
 };
 use crate::model::excitation::pulse;
@@ -46,13 +46,68 @@ fn check(key: &str, ok: bool, allowed: &str, value: f64) -> Result<(), ScenarioE
 impl Scenario {
     /// Checks every rule; the first broken one is the error.
     pub fn validate(&self) -> Result<(), ScenarioError> {
-        self.validate_block()?;
+        if self.frame.is_some() {
+            self.validate_frame()?;
+        } else {
+            self.validate_block()?;
+        }
         self.validate_impact()?;
         self.validate_excitation()?;
         self.validate_run()?;
         self.validate_initial()?;
         self.validate_analyses()?;
-        self.validate_floor()
+        self.validate_floor()?;
+        self.validate_frame_analyses()
+    }
+
+    /// A rocking frame's columns, beam and contact (docs/model.md §12).
+    fn validate_frame(&self) -> Result<(), ScenarioError> {
+        let (Some(frame), b) = (&self.frame, &self.block) else {
+            return Ok(());
+        };
+        within_key("frame.width", b.width)?;
+        within_key("frame.height", b.height)?;
+        check(
+            "frame.width",
+            self.geometry().psi >= MIN_PSI,
+            "at least 1e-6 of frame.height (a slenderness ψ = atan(B/H) below 1e-6 rad makes every amplitude in ψg vanish)",
+            b.width,
+        )?;
+        check(
+            "frame.columns",
+            (2..=1000).contains(&frame.columns),
+            "an integer in 2..=1000 (a cap beam rests on at least two columns)",
+            f64::from(frame.columns),
+        )?;
+        within_key("frame.beam_mass_ratio", frame.beam_mass_ratio)?;
+        if b.mu_s.is_finite() {
+            return Err(ScenarioError::new(
+                "friction.static",
+                "a [frame]'s columns rock on stuck corners; sliding of a frame is not modelled (docs/model.md §12)",
+            ));
+        }
+        Ok(())
+    }
+
+    /// What a frame cannot do yet: the single block's impulse law and the
+    /// Lyapunov exponents, whose tangent equations are the block's.
+    fn validate_frame_analyses(&self) -> Result<(), ScenarioError> {
+        if self.frame.is_none() {
+            return Ok(());
+        }
+        if self.impact.law == LawKind::Impulse {
+            return Err(ScenarioError::new(
+                "impact.law",
+                "\"impulse\" is the single block's law; a [frame] takes \"housner\" (its own coefficient, docs/model.md §12.3) or \"ratio\"",
+            ));
+        }
+        if self.analyses.lyapunov {
+            return Err(ScenarioError::new(
+                "analysis.lyapunov",
+                "is not available for a [frame] yet (its tangent equations are not written)",
+            ));
+        }
+        Ok(())
     }
 
     fn validate_floor(&self) -> Result<(), ScenarioError> {

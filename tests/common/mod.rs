@@ -18,6 +18,7 @@ pub fn model(width: f64, height: f64, law: ImpactLaw, mu: (f64, f64), excitation
         tumble_theta: 1.0,
         flight: FlightPolicy::Stop,
         zeno_eps: 1e-5,
+        frame: None,
     }
 }
 

@@ -28,7 +28,7 @@ pub use set::{apply_sets, line_of, set_dotted, set_dotted_from};
 use crate::io::record::{self, RecordError, RecordSpec};
 use crate::io::shipped;
 use crate::model::units::AccelUnit;
-use crate::model::{FlightPolicy, Geometry};
+use crate::model::{FlightPolicy, Frame, Geometry};
 use crate::sim::scenario::{Analyses, Block, ExcitationSpec, Impact, Record, RunSpec};
 use crate::sim::{InitialState, Param, Scenario, catalogue};
 use quantity::{Dimension, Quantity};
@@ -408,9 +408,33 @@ fn reject_unknown(table: &Table) -> Result<(), ConfigError> {
     Ok(())
 }
 
+/// With `[frame]`, the sections that describe a single block are errors:
+/// a config describes one structure, and a frame's columns do not slide.
+fn frame_alone(table: &Table) -> Result<(), ConfigError> {
+    if table.contains_key("block") {
+        return Err(ConfigError::key(
+            "block",
+            "a config has one of [block] and [frame], not both (a frame's columns are frame.width × frame.height)",
+        ));
+    }
+    if table.contains_key("friction") {
+        return Err(ConfigError::key(
+            "friction",
+            "a [frame]'s columns rock on stuck corners; sliding of a frame is not modelled: remove [friction] (docs/model.md §12)",
+        ));
+    }
+    Ok(())
+}
+
 /// Deserialises `table` into the config's shape; a value of the wrong type
 /// is an error naming its key.
 fn raw(table: &Table) -> Result<RawConfig, ConfigError> {
+    if table.contains_key("stack") {
+        return Err(ConfigError::key(
+            "stack",
+            "stacks of blocks are not simulated yet: this version runs a single [block] or a rocking [frame]",
+        ));
+    }
     reject_unknown(table)?;
     serde_path_to_error::deserialize(toml::Value::Table(table.clone())).map_err(|e| {
         let key = e.path().to_string();
@@ -468,15 +492,46 @@ fn resolve(table: &Table, source: &Source, records: [RecordFrom<'_>; 2]) -> Resu
             q.resolve(key, Dimension::Length, &Geometry::new(1.0, 1.0))
         })
     };
-    let block = Block {
-        width: metres("block.width", raw.block.width, d.block.width)?,
-        height: metres("block.height", raw.block.height, d.block.height)?,
-        mu_s: coef(raw.friction.mu_s).unwrap_or(d.block.mu_s),
-        mu_k: coef(raw.friction.mu_k),
+    let (block, frame) = match &raw.frame {
+        None => (
+            Block {
+                width: metres("block.width", raw.block.width, d.block.width)?,
+                height: metres("block.height", raw.block.height, d.block.height)?,
+                mu_s: coef(raw.friction.mu_s).unwrap_or(d.block.mu_s),
+                mu_k: coef(raw.friction.mu_k),
+            },
+            None,
+        ),
+        Some(f) => {
+            frame_alone(table)?;
+            let required = |key: &str, what: &str| {
+                ConfigError::key(key, format!("is required with [frame] ({what})"))
+            };
+            let size = |key: &str, q: Option<Quantity>, what: &str| -> Result<f64, ConfigError> {
+                let q = q.ok_or_else(|| required(key, what))?;
+                q.resolve(key, Dimension::Length, &Geometry::new(1.0, 1.0))
+            };
+            let block = Block {
+                width: size("frame.width", f.width, "each column's width, e.g. 1.2 or \"120 cm\"")?,
+                height: size("frame.height", f.height, "each column's height, e.g. 6 or \"6 m\"")?,
+                mu_s: f64::INFINITY,
+                mu_k: None,
+            };
+            let beam = f.beam_mass_ratio.ok_or_else(|| {
+                required("frame.beam_mass_ratio", "the cap beam's mass over the columns' total mass, e.g. 0.5")
+            })?;
+            let frame = Frame {
+                // Past u32, the scenario's range check could not see it.
+                columns: f.columns.map_or(2, |Count(n)| u32::try_from(n).unwrap_or(u32::MAX)),
+                beam_mass_ratio: beam.0,
+            };
+            (block, Some(frame))
+        }
     };
     // The block is checked before any conversion uses its geometry.
     Scenario {
         block: block.clone(),
+        frame,
         ..Scenario::default()
     }
     .validate()?;
@@ -599,6 +654,7 @@ fn resolve(table: &Table, source: &Source, records: [RecordFrom<'_>; 2]) -> Resu
         run,
         analyses,
         floor,
+        frame,
     };
     scenario.validate()?;
     Ok(scenario)
@@ -692,6 +748,19 @@ pub fn to_json(s: &Scenario) -> Json {
     });
     if let (Some(floor), Some(out)) = (&s.floor, config.as_object_mut()) {
         out.insert("floor".to_string(), floor_json(floor));
+    }
+    // A frame is written as the `[frame]` it was read from: its columns'
+    // size, no block and no friction (a frame's columns do not slide).
+    if let (Some(frame), Some(out)) = (&s.frame, config.as_object_mut()) {
+        out.remove("block");
+        out.remove("friction");
+        out.insert(
+            "frame".to_string(),
+            json!({
+                "width": s.block.width, "height": s.block.height,
+                "columns": frame.columns, "beam_mass_ratio": frame.beam_mass_ratio,
+            }),
+        );
     }
     config
 }

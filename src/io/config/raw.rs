@@ -37,6 +37,18 @@ pub(crate) struct RawConfig {
     pub analysis: RawAnalysis,
     /// `[floor]`: the building the block stands in, if any.
     pub floor: Option<RawFloor>,
+    /// `[frame]`: a rocking frame instead of the single block.
+    pub frame: Option<RawFrame>,
+}
+
+/// `[frame]`: the columns' size, their number and the cap beam's mass.
+#[derive(Debug, Default, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub(crate) struct RawFrame {
+    pub width: Option<Quantity>,
+    pub height: Option<Quantity>,
+    pub columns: Option<Count>,
+    pub beam_mass_ratio: Option<Finite>,
 }
 
 /// `[floor]`: one building mode's keys, or `[[floor.mode]]` tables.

@@ -33,6 +33,7 @@ fn worst_difference(mode: Mode, exc: Excitation, y: [f64; N], order: usize, h: f
         tumble_theta: 1.0,
         flight: crate::model::FlightPolicy::Stop,
         zeno_eps: 1e-5,
+        frame: None,
     };
     let mut fused = vec![[0.0; N]; order + 1];
     assert!(taylor(&model, mode, t, &y, order, &mut fused));

@@ -27,6 +27,7 @@ fn model(mu_s: f64, mu_k: f64, law: ImpactLaw) -> Model {
         tumble_theta: 1.0,
         flight: FlightPolicy::Ignore,
         zeno_eps: 1e-5,
+        frame: None,
     }
 }
 

@@ -48,6 +48,9 @@ const SIZE: Option<Range> = Some(Range {
 fn non_negative(x: f64) -> bool {
     x >= 0.0
 }
+fn non_negative_finite(x: f64) -> bool {
+    (0.0..f64::INFINITY).contains(&x)
+}
 const COEFFICIENT: Option<Range> = Some(Range {
     ok: non_negative,
     allowed: ">= 0 or inf",
@@ -132,6 +135,51 @@ pub const CATALOGUE: &[KeySpec] = &[
         range: SIZE,
         slot: at(Group::Block, 1),
         slider: log(0.05, 10.0, 0.1),
+        ..B
+    },
+    // [frame]
+    KeySpec {
+        key: "frame.width",
+        value: Value::Quantity(super::Dimension::Length),
+        symbol: "B",
+        unit: "m",
+        meaning: "width B of each column of a rocking frame",
+        written: "m, or \"60 cm\", \"600 mm\"",
+        doc: "Width B > 0 of each column of a rocking frame. Required with [frame].",
+        range: SIZE,
+        ..B
+    },
+    KeySpec {
+        key: "frame.height",
+        value: Value::Quantity(super::Dimension::Length),
+        symbol: "H",
+        unit: "m",
+        meaning: "height H of each column of a rocking frame",
+        written: "m, or \"6 m\", \"600 cm\"",
+        doc: "Height H > 0 of each column of a rocking frame. Required with [frame].",
+        range: SIZE,
+        ..B
+    },
+    KeySpec {
+        key: "frame.columns",
+        value: Value::Count,
+        symbol: "columns",
+        meaning: "number of columns of a rocking frame",
+        written: "an integer",
+        doc: "Columns under the cap beam, 2..=1000. Default 2 (a bridge bent).",
+        ..B
+    },
+    KeySpec {
+        key: "frame.beam_mass_ratio",
+        value: Value::Number,
+        symbol: "γ_b",
+        meaning: "cap beam mass over the columns' total mass",
+        written: "a number >= 0",
+        doc: "Mass of the cap beam over the columns' total mass, >= 0 (0: lone columns). Required with [frame].",
+        range: Some(Range {
+            ok: non_negative_finite,
+            allowed: ">= 0",
+        }),
         ..B
     },
     // [friction]

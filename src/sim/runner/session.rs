@@ -433,6 +433,12 @@ impl Session {
     /// As [`Session::new`], with stroboscopic section points at forcing
     /// phase `phase` (rad, taken modulo 2π): τ_k = (2πk + φ)/Ω_h.
     pub(crate) fn with_phase(run: RunId, scenario: &Scenario, start: Start, phase: f64) -> Result<Self, String> {
+        if scenario.frame.is_some() {
+            return Err(
+                "the app draws a single block: run a [frame] scene headless (README, \"Rocking frames\")"
+                    .to_string(),
+            );
+        }
         let model = scenario.model().map_err(|e| e.to_string())?;
         let section_period = model.excitation.forcing_period();
         let phase = normalise_phase(phase);

@@ -1,0 +1,477 @@
+//! The rocking frame as a [`HybridSystem`]: rest, rocking on stuck
+//! corners, and the terminal modes. Guard indices (each positive inside
+//! its mode):
+//!
+//! | mode | 0 | 1 | 2 | 3 | 4 |
+//! |---|---|---|---|---|---|
+//! | rest | flight b | uplift right κ₊ | uplift left κ₋ | | |
+//! | rock s | impact sΘ | tumble Θ_t − sΘ | flight: base normal | extremum sΘ' (observer) | flight: beam normal |
+//!
+//! The indices of rest and of rock's first four guards are the block's, so
+//! events read alike in both models.
+
+use std::cell::Cell;
+
+use super::{Frame, FrameAccel, rock};
+use crate::integrate::hybrid::{HybridSystem, Jump, MAX_GUARDS};
+use crate::model::dynamics::{self, Forcing, Tilt};
+use crate::model::energy;
+use crate::model::geometry::GAMMA;
+use crate::model::impact::ImpactLaw;
+use crate::model::mode::{Mode, Sign};
+use crate::model::params::{FlightPolicy, Model};
+use crate::model::rocker::Rocker;
+use crate::model::state::{N, THETA, THETA_DOT, X, X_DOT};
+use crate::model::system::{EventKind, EventRecord, ModelError, Tally};
+
+/// The rocking frame as a hybrid system.
+#[derive(Clone, Debug)]
+pub struct FrameSystem {
+    /// Parameters: the column's geometry and the frame's.
+    pub model: Model,
+    /// Tallies.
+    pub tally: Tally,
+    /// The frame (a massless beam if the model has none: lone columns).
+    frame: Frame,
+    /// [`Frame::kappa`], computed once.
+    kappa: f64,
+    /// The forcing at the last evaluation, as the block keeps it.
+    last_forcing: Cell<(f64, Forcing)>,
+}
+
+impl FrameSystem {
+    /// A system for `model` with zeroed tallies.
+    pub fn new(model: Model) -> Self {
+        let frame = model.frame.unwrap_or(Frame {
+            columns: 2,
+            beam_mass_ratio: 0.0,
+        });
+        Self {
+            kappa: frame.kappa(),
+            frame,
+            model,
+            tally: Tally::default(),
+            last_forcing: Cell::new((f64::NAN, Forcing { a: 0.0, av: 0.0 })),
+        }
+    }
+
+    #[inline]
+    fn forcing(&self, t: f64) -> Forcing {
+        let (tl, fl) = self.last_forcing.get();
+        if tl.to_bits() == t.to_bits() {
+            return fl;
+        }
+        let fo = self.model.excitation.forcing(t);
+        self.last_forcing.set((t, fo));
+        fo
+    }
+
+    fn stops_at_flight(&self) -> bool {
+        self.model.flight == FlightPolicy::Stop
+    }
+
+    fn tumble_angle(&self) -> f64 {
+        self.model.tumble_theta.min(self.model.geo.side_theta())
+    }
+
+    /// Accelerations and forces of rocking about `pivot` at `y`.
+    #[inline]
+    fn rocking(&self, pivot: Sign, fo: Forcing, y: &[f64; N]) -> FrameAccel {
+        let geo = &self.model.geo;
+        let tilt = Tilt::new(geo, pivot, y[THETA]);
+        rock(&self.frame, self.kappa, pivot, tilt, geo.psi * y[THETA_DOT], fo)
+    }
+
+    /// Mechanical energy per m_c g R: ½(1 + 3γ_b)w² + (1 + 2γ_b)Y, with Y
+    /// the height of a column's centre (docs/model.md §12.2).
+    pub fn energy(&self, mode: Mode, y: &[f64; N]) -> f64 {
+        let geo = &self.model.geo;
+        let (height, _) = energy::height(geo, mode, y[THETA], y[THETA_DOT]);
+        self.frame.kinetic(geo.psi * y[THETA_DOT]) + self.frame.lever() * height
+    }
+
+    /// Brings a freshly entered mode to a consistent one at `t`: a rest
+    /// the base lifts rocks, a rocking frame whose base or beam loses
+    /// contact flies, a frame flat and still whose base drives it back
+    /// rests.
+    pub fn settle(&mut self, mut mode: Mode, t: f64, y: &mut [f64; N]) -> Mode {
+        let fo = self.model.excitation.forcing(t);
+        let geo = self.model.geo;
+        // Rest → rock → flight or rest is the longest chain.
+        for _ in 0..4 {
+            let next = match mode {
+                Mode::Rest => {
+                    if fo.b() <= 0.0 && self.stops_at_flight() {
+                        Some(Mode::Flight)
+                    } else {
+                        [Sign::Pos, Sign::Neg]
+                            .into_iter()
+                            .find(|&s| dynamics::restoring(&geo, s, fo) < 0.0)
+                            .map(|s| rock_from_flat(s, y))
+                    }
+                }
+                Mode::Rock { pivot } => {
+                    let acc = self.rocking(pivot, fo, y);
+                    if (acc.base_normal <= 0.0 || acc.beam_normal <= 0.0) && self.stops_at_flight() {
+                        Some(Mode::Flight)
+                    } else if y[THETA] == 0.0 && y[THETA_DOT] == 0.0 && pivot.value() * acc.wdd < 0.0 {
+                        Some(Mode::Rest)
+                    } else {
+                        None
+                    }
+                }
+                // A frame never slides; the terminal modes stay.
+                Mode::Slide { .. } | Mode::SlideRock { .. } | Mode::Tumbled | Mode::Flight => None,
+            };
+            match next {
+                Some(m) => mode = m,
+                None => return mode,
+            }
+        }
+        mode
+    }
+
+    /// A switch other than an impact, settled, with its record.
+    fn simple(
+        &mut self,
+        kind: EventKind,
+        before: Mode,
+        target: Mode,
+        t: f64,
+        y: &[f64; N],
+        mut yn: [f64; N],
+    ) -> Jump<Mode, EventRecord, N> {
+        let mode = self.settle(target, t, &mut yn);
+        Jump {
+            mode,
+            t,
+            y: yn,
+            records: [Some(record(kind, t, before, mode, y, &yn)), None],
+        }
+    }
+
+    /// The impact at Θ = 0 (docs/model.md §12.3): every column's other
+    /// corner and the beam's other supports strike and stick; the
+    /// angular velocity is multiplied by the frame's coefficient (or the
+    /// `ratio` law's r). An accumulation is summed in closed form as the
+    /// block's (docs/model.md §10, with the frame's κ).
+    fn impact(&mut self, before: Mode, pivot: Sign, t: f64, y: &[f64; N]) -> Jump<Mode, EventRecord, N> {
+        let geo = self.model.geo;
+        let striking = pivot.flip();
+        let r = match self.model.law {
+            ImpactLaw::Ratio { r } => r,
+            // The frame's own momentum balance; `impulse` is refused for a
+            // frame when the scenario is checked.
+            ImpactLaw::Housner | ImpactLaw::CornerMomentum | ImpactLaw::Impulse { .. } => {
+                self.frame.restitution(&geo)
+            }
+        };
+        self.tally.impacts += 1;
+        let w_before = geo.psi * y[THETA_DOT];
+        let e_before = self.frame.kinetic(w_before);
+        // r ≤ 0: the momentum balance cannot be met rotating about the new
+        // corners (it would drive the old ones into the base), so the frame
+        // lands flat and loses all its kinetic energy.
+        let w_after = r.max(0.0) * w_before;
+        let mut yn = *y;
+        yn[THETA] = 0.0;
+        yn[THETA_DOT] = w_after / geo.psi;
+        yn[X_DOT] = geo.cos_psi * w_after;
+        let mut impact = record(EventKind::Impact, t, before, Mode::Rock { pivot: striking }, y, &yn);
+        impact.theta = 0.0;
+        if yn[THETA_DOT].abs() < self.model.zeno_eps {
+            return self.accumulate(impact, e_before, t, striking, r.max(0.0), w_after, yn);
+        }
+        self.tally.impact_loss += e_before - self.frame.kinetic(w_after);
+        let mode = self.settle(Mode::Rock { pivot: striking }, t, &mut yn);
+        impact.after = mode;
+        Jump {
+            mode,
+            t,
+            y: yn,
+            records: [Some(impact), None],
+        }
+    }
+
+    /// The rest of an impact accumulation summed in closed form: the frame
+    /// put flat `dt` later, dt = 2v(1/k₊ + r/k₋)/(1 − r²) with k the
+    /// deceleration κ·(b sin ψ ± a cos ψ) on each side (docs/model.md §10).
+    #[allow(clippy::too_many_arguments)]
+    fn accumulate(
+        &mut self,
+        mut impact: EventRecord,
+        e_before: f64,
+        t: f64,
+        striking: Sign,
+        r: f64,
+        w_after: f64,
+        mut yn: [f64; N],
+    ) -> Jump<Mode, EventRecord, N> {
+        let geo = self.model.geo;
+        let fo = self.model.excitation.forcing(t);
+        let k_next = self.kappa * dynamics::restoring(&geo, striking, fo);
+        let k_after = self.kappa * dynamics::restoring(&geo, striking.flip(), fo);
+        self.tally.impact_loss += e_before;
+        yn[THETA] = 0.0;
+        yn[THETA_DOT] = 0.0;
+        yn[X_DOT] = 0.0;
+        if k_next > 0.0 && k_after > 0.0 {
+            let v = w_after.abs();
+            let dt = if r < 1.0 {
+                2.0 * v * (1.0 / k_next + r / k_after) / (1.0 - r * r)
+            } else {
+                2.0 * v / k_next
+            };
+            let mut t_acc = t + dt;
+            if t_acc <= t {
+                t_acc = t.next_up();
+            }
+            let mode = self.settle(Mode::Rest, t_acc, &mut yn);
+            let rest = EventRecord {
+                tau: t_acc,
+                kind: EventKind::Rest,
+                before: Mode::Rock { pivot: striking },
+                after: mode,
+                theta: 0.0,
+                theta_dot_before: impact.theta_dot_after,
+                theta_dot_after: 0.0,
+                x_dot: 0.0,
+                x: yn[X],
+            };
+            Jump {
+                mode,
+                t: t_acc,
+                y: yn,
+                records: [Some(impact), Some(rest)],
+            }
+        } else {
+            // The base lifts the frame at once: it restarts from flat.
+            let mode = self.settle(Mode::Rest, t, &mut yn);
+            impact.kind = EventKind::Rest;
+            impact.after = mode;
+            impact.theta_dot_after = 0.0;
+            impact.x_dot = 0.0;
+            Jump {
+                mode,
+                t,
+                y: yn,
+                records: [Some(impact), None],
+            }
+        }
+    }
+}
+
+/// The event record of a switch from `y` to `yn` at `t`.
+fn record(kind: EventKind, t: f64, before: Mode, after: Mode, y: &[f64; N], yn: &[f64; N]) -> EventRecord {
+    EventRecord {
+        tau: t,
+        kind,
+        before,
+        after,
+        theta: y[THETA],
+        theta_dot_before: y[THETA_DOT],
+        theta_dot_after: yn[THETA_DOT],
+        x_dot: yn[X_DOT],
+        x: yn[X],
+    }
+}
+
+/// A flat frame starting to rock about `pivot` from rest.
+fn rock_from_flat(pivot: Sign, y: &mut [f64; N]) -> Mode {
+    y[THETA] = 0.0;
+    y[THETA_DOT] = 0.0;
+    y[X_DOT] = 0.0;
+    Mode::Rock { pivot }
+}
+
+impl HybridSystem<N> for FrameSystem {
+    type Mode = Mode;
+    type Record = EventRecord;
+    type Error = ModelError;
+
+    /// W and D.
+    const QUADRATURES: usize = 2;
+
+    #[inline]
+    fn rhs(&self, mode: Mode, t: f64, y: &[f64; N], dy: &mut [f64; N]) {
+        match mode {
+            Mode::Rock { pivot } => {
+                let fo = self.forcing(t);
+                let geo = &self.model.geo;
+                let acc = self.rocking(pivot, fo, y);
+                let tilt = Tilt::new(geo, pivot, y[THETA]);
+                let y_dot = pivot.value() * tilt.sn * geo.psi * y[THETA_DOT];
+                *dy = [
+                    y[THETA_DOT],
+                    acc.wdd * geo.inv_psi,
+                    y[X_DOT],
+                    acc.x_ddot,
+                    // The base's pseudo-forces on the columns and the beam,
+                    // whose support moves twice as far (docs/model.md §12.2).
+                    -self.frame.lever() * (fo.a * y[X_DOT] + fo.av * y_dot),
+                    0.0,
+                ];
+            }
+            Mode::Rest | Mode::Slide { .. } | Mode::SlideRock { .. } | Mode::Tumbled | Mode::Flight => *dy = [0.0; N],
+        }
+    }
+
+    fn guards(&self, mode: Mode, t: f64, y: &[f64; N], g: &mut [f64; MAX_GUARDS]) -> usize {
+        let fo = self.forcing(t);
+        let geo = &self.model.geo;
+        match mode {
+            Mode::Rest => {
+                g[0] = fo.b();
+                g[1] = dynamics::restoring(geo, Sign::Pos, fo);
+                g[2] = dynamics::restoring(geo, Sign::Neg, fo);
+                3
+            }
+            Mode::Rock { pivot } => {
+                let s = pivot.value();
+                let acc = self.rocking(pivot, fo, y);
+                g[0] = s * y[THETA];
+                g[1] = self.tumble_angle() - s * y[THETA];
+                g[2] = acc.base_normal;
+                g[3] = s * y[THETA_DOT];
+                g[4] = acc.beam_normal;
+                5
+            }
+            Mode::Slide { .. } | Mode::SlideRock { .. } | Mode::Tumbled | Mode::Flight => 0,
+        }
+    }
+
+    #[inline]
+    fn guard(&self, mode: Mode, index: usize, t: f64, y: &[f64; N]) -> f64 {
+        match (mode, index) {
+            (Mode::Rock { pivot }, 0) => pivot.value() * y[THETA],
+            (Mode::Rock { pivot }, 1) => self.tumble_angle() - pivot.value() * y[THETA],
+            (Mode::Rock { pivot }, 3) => pivot.value() * y[THETA_DOT],
+            _ => {
+                let mut g = [0.0; MAX_GUARDS];
+                self.guards(mode, t, y, &mut g);
+                g[index]
+            }
+        }
+    }
+
+    fn guard_is_cheap(&self, mode: Mode, index: usize) -> bool {
+        matches!((mode, index), (Mode::Rock { .. }, 0 | 1 | 3))
+    }
+
+    /// Θ for impact and tumble; Θ and Θ' for the rest of rocking (its
+    /// forces depend on the tilt and its rate alone).
+    fn guard_reads(&self, mode: Mode, index: usize) -> usize {
+        match (mode, index) {
+            (Mode::Rock { .. }, 0 | 1) => THETA + 1,
+            (Mode::Rock { .. }, _) => THETA_DOT + 1,
+            _ => N - Self::QUADRATURES,
+        }
+    }
+
+    fn is_observer(&self, mode: Mode, index: usize) -> bool {
+        match mode {
+            Mode::Rock { .. } => index == 3 || (matches!(index, 2 | 4) && !self.stops_at_flight()),
+            Mode::Rest => index == 0 && !self.stops_at_flight(),
+            Mode::Slide { .. } | Mode::SlideRock { .. } | Mode::Tumbled | Mode::Flight => false,
+        }
+    }
+
+    fn observe(&mut self, mode: Mode, index: usize, _t: f64, y: &[f64; N]) {
+        match (mode, index) {
+            (Mode::Rock { .. }, 3) => self.tally.max_abs_theta = self.tally.max_abs_theta.max(y[THETA].abs()),
+            _ => self.tally.flight_violations += 1,
+        }
+    }
+
+    fn jump(
+        &mut self,
+        mode: Mode,
+        index: usize,
+        t: f64,
+        y: &[f64; N],
+    ) -> Result<Jump<Mode, EventRecord, N>, ModelError> {
+        let mut yn = *y;
+        let jump = match (mode, index) {
+            (Mode::Rest, 1 | 2) => {
+                let pivot = if index == 1 { Sign::Pos } else { Sign::Neg };
+                let target = rock_from_flat(pivot, &mut yn);
+                self.simple(EventKind::Uplift, mode, target, t, y, yn)
+            }
+            (Mode::Rest, _) | (Mode::Rock { .. }, 2 | 4) => self.simple(EventKind::Flight, mode, Mode::Flight, t, y, yn),
+            (Mode::Rock { pivot }, 0) => self.impact(mode, pivot, t, y),
+            (Mode::Rock { .. }, _) => {
+                self.tally.max_abs_theta = self.tally.max_abs_theta.max(y[THETA].abs());
+                self.simple(EventKind::Tumble, mode, Mode::Tumbled, t, y, yn)
+            }
+            (Mode::Slide { .. } | Mode::SlideRock { .. } | Mode::Tumbled | Mode::Flight, _) => Jump {
+                mode,
+                t,
+                y: yn,
+                records: [None, None],
+            },
+        };
+        Ok(jump)
+    }
+
+    fn is_terminal(&self, mode: Mode) -> bool {
+        mode.is_terminal()
+    }
+
+    fn next_breakpoint(&self, t: f64) -> Option<f64> {
+        self.model.excitation.next_breakpoint(t)
+    }
+
+    fn time_scale(&self) -> f64 {
+        self.model.excitation.time_scale()
+    }
+
+    fn step_cap(&self, mode: Mode) -> f64 {
+        match mode {
+            Mode::Rest => self.model.excitation.time_scale(),
+            _ => f64::INFINITY,
+        }
+    }
+}
+
+impl Rocker for FrameSystem {
+    fn build(model: Model) -> Self {
+        FrameSystem::new(model)
+    }
+    fn params(&self) -> &Model {
+        &self.model
+    }
+    fn tallied(&self) -> Tally {
+        self.tally
+    }
+    fn settle_mode(&mut self, mode: Mode, t: f64, y: &mut [f64; N]) -> Mode {
+        self.settle(mode, t, y)
+    }
+    fn mechanical_energy(&self, mode: Mode, y: &[f64; N]) -> f64 {
+        self.energy(mode, y)
+    }
+    fn end_energy(&self, mode: Mode, y: &[f64; N]) -> f64 {
+        self.energy(mode, y)
+    }
+    fn overturn_angle(&self) -> f64 {
+        self.tumble_angle()
+    }
+    /// The base's reactions on one column with its share of the beam, per
+    /// column weight: the columns' and the beam's inertia, the beam's
+    /// support accelerating twice as fast as a column's centre.
+    fn contact_forces(&self, mode: Mode, t: f64, y: &[f64; N]) -> (f64, f64) {
+        let fo = self.model.excitation.forcing(t);
+        match mode {
+            Mode::Rock { pivot } => {
+                let acc = self.rocking(pivot, fo, y);
+                let g = self.frame.beam_mass_ratio;
+                let column = fo.a + GAMMA * acc.x_ddot;
+                let beam = fo.a + 2.0 * GAMMA * acc.x_ddot;
+                (acc.base_normal, column + g * beam)
+            }
+            _ => {
+                let g = self.frame.beam_mass_ratio;
+                (fo.b() * (1.0 + g), fo.a * (1.0 + g))
+            }
+        }
+    }
+}
