@@ -162,7 +162,7 @@ fn lyapunov_summary(cfg: &Scenario) -> Result<Lyapunov, BatchError> {
     };
     let opts = LyapunovOptions::for_scenario(cfg, method);
     lyapunov::lyapunov(&model, &cfg.initial, &opts).map_err(|e| match e {
-        LyapunovError::NotHarmonic | LyapunovError::Option { .. } | LyapunovError::TooShort { .. } => {
+        LyapunovError::NotHarmonic | LyapunovError::NoTangent | LyapunovError::Option { .. } | LyapunovError::TooShort { .. } => {
             BatchError::Input(anyhow::anyhow!("analysis.lyapunov: {e}"))
         }
         LyapunovError::Initial(_) | LyapunovError::Run(_) => {
