@@ -124,7 +124,7 @@ pub struct Body {
 
 /// A frame's bodies: its columns, all rocking alike, then its beam, which
 /// translates on the columns' top corners and rises by
-/// 2R(cos(ψ − |θ|) − cos ψ) (docs/model.md §12.1).
+/// 2R(cos(ψ − |θ|) − cos ψ) (docs/model.md §16.1).
 fn frame_bodies(s: &Scenario, res: &RunResult, overturned: bool) -> Option<Vec<Body>> {
     let frame = s.frame.as_ref()?;
     let geo = s.geometry();
@@ -209,7 +209,7 @@ impl Physical {
     pub fn contact(&self) -> String {
         let law = match (self.impact_law, self.impact_r) {
             ("housner" | "corner-momentum", Some(r)) if self.subject == Some("frame") => {
-                format!("frame impact r = {r:.3} (docs/model.md §12.3)")
+                format!("frame impact r = {r:.3} (docs/model.md §16.3)")
             }
             ("housner", Some(r)) => format!("Housner impact r = {r:.3}"),
             (law, Some(r)) => format!("{law} impact r = {r:.3}"),

@@ -614,7 +614,7 @@ impl Scenario {
         // Housner's ratio is negative for squat blocks (ψ > 54.7°, where a
         // single-corner impact reverses the rotation and the block lands
         // flat, docs/model.md §7.5): the default ratio is then 0.
-        // A frame's own coefficient (docs/model.md §12.3) likewise.
+        // A frame's own coefficient (docs/model.md §16.3) likewise.
         let own = match &self.frame {
             Some(frame) => frame.restitution(&self.geometry()),
             None => self.geometry().housner_r(),

@@ -60,7 +60,7 @@ impl Scenario {
         self.validate_frame_analyses()
     }
 
-    /// A rocking frame's columns, beam and contact (docs/model.md §12).
+    /// A rocking frame's columns, beam and contact (docs/model.md §16).
     fn validate_frame(&self) -> Result<(), ScenarioError> {
         let (Some(frame), b) = (&self.frame, &self.block) else {
             return Ok(());
@@ -83,7 +83,7 @@ impl Scenario {
         if b.mu_s.is_finite() {
             return Err(ScenarioError::new(
                 "friction.static",
-                "a [frame]'s columns rock on stuck corners; sliding of a frame is not modelled (docs/model.md §12)",
+                "a [frame]'s columns rock on stuck corners; sliding of a frame is not modelled (docs/model.md §16)",
             ));
         }
         Ok(())
@@ -98,7 +98,7 @@ impl Scenario {
         if self.impact.law == LawKind::Impulse {
             return Err(ScenarioError::new(
                 "impact.law",
-                "\"impulse\" is the single block's law; a [frame] takes \"housner\" (its own coefficient, docs/model.md §12.3) or \"ratio\"",
+                "\"impulse\" is the single block's law; a [frame] takes \"housner\" (its own coefficient, docs/model.md §16.3) or \"ratio\"",
             ));
         }
         if self.analyses.lyapunov {

@@ -420,7 +420,7 @@ fn frame_alone(table: &Table) -> Result<(), ConfigError> {
     if table.contains_key("friction") {
         return Err(ConfigError::key(
             "friction",
-            "a [frame]'s columns rock on stuck corners; sliding of a frame is not modelled: remove [friction] (docs/model.md §12)",
+            "a [frame]'s columns rock on stuck corners; sliding of a frame is not modelled: remove [friction] (docs/model.md §16)",
         ));
     }
     Ok(())

@@ -2,7 +2,7 @@
 //! under a rigid cap beam that rests on their top corners, the columns
 //! rocking together (Makris & Vassiliou 2013, EESD, doi 10.1002/eqe.2222).
 //! EQUATIONS ONLY, derived from the frame's own Lagrangian in
-//! `docs/model.md` §12.
+//! `docs/model.md` §16.
 //!
 //! Variables are the block's, for one column (τ = p t with the column's p,
 //! Θ = θ/ψ with the column's slenderness ψ, X = x_G/R of the column's
@@ -11,7 +11,7 @@
 //! its share `1/columns` of the beam.
 //!
 //! The columns rock on stuck corners: a frame does not slide (friction is
-//! not a key of a frame; `docs/model.md` §12 says why).
+//! not a key of a frame; `docs/model.md` §16 says why).
 
 mod system;
 #[cfg(test)]
@@ -37,7 +37,7 @@ impl Frame {
     /// acceleration. The beam adds twice a column's lever arm to the
     /// moment (its support is twice as far from the pivot as the column's
     /// centre) and four times its arm squared to the inertia (docs/model.md
-    /// §12.1), so a heavier beam makes the frame rock more slowly.
+    /// §16.1), so a heavier beam makes the frame rock more slowly.
     pub fn kappa(&self) -> f64 {
         let g = self.beam_mass_ratio;
         (1.0 + 2.0 * g) / (1.0 + 3.0 * g)
@@ -45,7 +45,7 @@ impl Frame {
 
     /// The ratio of angular velocities across an impact in which every
     /// column's new pivot and the beam's new supports stick
-    /// (docs/model.md §12.3):
+    /// (docs/model.md §16.3):
     /// r = (1 − 1.5 sin²ψ + 3γ_b cos 2ψ)/(1 + 3γ_b), Housner's for γ_b = 0.
     /// It may be ≤ 0 for a squat column under a heavy beam (cos 2ψ < 0):
     /// the frame then comes to rest.
@@ -56,7 +56,7 @@ impl Frame {
     }
 
     /// Kinetic energy per m_c g R of the frame rocking at w = ψΘ':
-    /// ½(1 + 3γ_b) w² (docs/model.md §12.2).
+    /// ½(1 + 3γ_b) w² (docs/model.md §16.2).
     pub fn kinetic(&self, w: f64) -> f64 {
         0.5 * (1.0 + 3.0 * self.beam_mass_ratio) * w * w
     }
@@ -85,7 +85,7 @@ pub struct FrameAccel {
 }
 
 /// The frame rocking about pivot side `pivot` with tilt `tilt` at
-/// ψΘ' = `w` under `fo` (docs/model.md §12.1–12.2):
+/// ψΘ' = `w` under `fo` (docs/model.md §16.1–16.2):
 /// ψΘ'' = −κ (s b sin φ + a cos φ).
 #[inline]
 pub fn rock(frame: &Frame, kappa: f64, pivot: Sign, tilt: Tilt, w: f64, fo: Forcing) -> FrameAccel {

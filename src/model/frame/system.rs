@@ -83,7 +83,7 @@ impl FrameSystem {
     }
 
     /// Mechanical energy per m_c g R: ½(1 + 3γ_b)w² + (1 + 2γ_b)Y, with Y
-    /// the height of a column's centre (docs/model.md §12.2).
+    /// the height of a column's centre (docs/model.md §16.2).
     pub fn energy(&self, mode: Mode, y: &[f64; N]) -> f64 {
         let geo = &self.model.geo;
         let (height, _) = energy::height(geo, mode, y[THETA], y[THETA_DOT]);
@@ -150,7 +150,7 @@ impl FrameSystem {
         }
     }
 
-    /// The impact at Θ = 0 (docs/model.md §12.3): every column's other
+    /// The impact at Θ = 0 (docs/model.md §16.3): every column's other
     /// corner and the beam's other supports strike and stick; the
     /// angular velocity is multiplied by the frame's coefficient (or the
     /// `ratio` law's r). An accumulation is summed in closed form as the
@@ -307,7 +307,7 @@ impl HybridSystem<N> for FrameSystem {
                     y[X_DOT],
                     acc.x_ddot,
                     // The base's pseudo-forces on the columns and the beam,
-                    // whose support moves twice as far (docs/model.md §12.2).
+                    // whose support moves twice as far (docs/model.md §16.2).
                     -self.frame.lever() * (fo.a * y[X_DOT] + fo.av * y_dot),
                     0.0,
                 ];
