@@ -129,6 +129,7 @@ fn ghost_shapes(h: &Harness<'static, RockingApp>) -> (Vec<egui::Color32>, f64, u
         terminal: None,
         flash: 0.0,
         forces: false,
+        frame: None,
     };
     let (with, scale, _) = build(&input(app.ghosts()), rect, &mut Camera::default());
     let (without, _, _) = build(&input(&[]), rect, &mut Camera::default());

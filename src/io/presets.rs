@@ -37,6 +37,7 @@ pub const PRESETS: &[(&str, &str)] = &[
         "elcentro-statue",
         include_str!("../../assets/presets/elcentro-statue.toml"),
     ),
+    ("rocking-frame", include_str!("../../assets/presets/rocking-frame.toml")),
 ];
 
 /// The TOML text of preset `name`.

@@ -210,6 +210,7 @@ impl RockingApp {
             },
             flash,
             forces: self.forces,
+            frame: info.scenario.frame,
         };
         let (shapes, scale, y_mid) = scene::build(&input, rect, &mut self.camera);
         // Where the block's top and the table's top are drawn (points), for

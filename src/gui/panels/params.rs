@@ -88,6 +88,17 @@ pub fn applies(key: &str, kind: ExcitationKind) -> bool {
     catalogue::spec(key).is_none_or(|s| s.applies.to(kind))
 }
 
+/// Whether the panel shows `group` for `cfg`'s structure: a frame's
+/// columns and beam for a frame, which has no block size and no friction
+/// (its columns do not slide); the block's size and friction otherwise.
+fn describes(group: &str, cfg: &Scenario) -> bool {
+    match group {
+        "Block" | "Friction" => cfg.frame.is_none(),
+        "Frame" => cfg.frame.is_some(),
+        _ => true,
+    }
+}
+
 /// The slider of `key`, for the continuous parameters; `None` for the
 /// rest (integers, choices, files, solver settings, record time steps),
 /// which are typed only. The spans are the catalogue's: they cover every
@@ -194,11 +205,11 @@ pub fn show(
         }
     });
     let json = crate::io::config::to_json(cfg);
-    for (group, keys) in GROUPS.iter() {
+    for (group, keys) in GROUPS.iter().filter(|(g, _)| describes(g, cfg)) {
         egui::CollapsingHeader::new(*group)
             // The floor opens where the scene stands on one.
             .default_open(
-                matches!(*group, "Block" | "Friction" | "Excitation" | "Initial state")
+                matches!(*group, "Block" | "Frame" | "Friction" | "Excitation" | "Initial state")
                     || (*group == "Floor" && cfg.floor.is_some()),
             )
             .show(ui, |ui| {

@@ -12,8 +12,8 @@
 use egui::{Color32, Rect};
 
 use crate::gui::block_view::{SceneCallback, Shape, ViewUniform};
-use crate::model::Mode;
 use crate::model::geometry::Geometry;
+use crate::model::{Frame, Mode};
 use crate::sim::protocol::{GhostState, Sample, pose};
 
 /// Colour of each mode (index order of [`Mode::index`]).
@@ -74,6 +74,52 @@ pub struct SceneInput<'a> {
     pub flash: f32,
     /// Whether to draw the contact force and the friction cone.
     pub forces: bool,
+    /// A rocking frame: its columns are drawn side by side under the beam,
+    /// each with `geometry`; `None`: the single block.
+    pub frame: Option<Frame>,
+}
+
+/// Spacing of a frame's columns on screen, in column widths (the
+/// dynamics do not depend on it, docs/model.md §16).
+const COLUMN_SPACING: f64 = 3.0;
+
+/// Depth of a frame's cap beam on screen, in column heights.
+const BEAM_DEPTH: f64 = 0.12;
+
+/// Horizontal offsets of the bodies drawn from the simulated pose, m: one
+/// block at 0, or a frame's columns spread evenly about it.
+fn column_offsets(geo: &Geometry, frame: Option<&Frame>) -> Vec<f64> {
+    match frame {
+        None => vec![0.0],
+        Some(f) => {
+            let n = f.columns as usize;
+            let step = COLUMN_SPACING * geo.width;
+            (0..n).map(|k| (k as f64 - 0.5 * (n as f64 - 1.0)) * step).collect()
+        }
+    }
+}
+
+/// The cap beam of a frame in pose `p`: its centre and half size, m. It
+/// rides on the columns' top corners diagonally opposite their pivots
+/// (docs/model.md §16.1), so it moves as those corners do and never turns.
+fn beam(geo: &Geometry, offsets: &[f64], p: &crate::sim::protocol::Pose) -> ([f64; 2], [f64; 2]) {
+    let depth = BEAM_DEPTH * geo.height;
+    let span = offsets.last().copied().unwrap_or(0.0) - offsets.first().copied().unwrap_or(0.0);
+    let half = [0.5 * span + 0.75 * geo.width, 0.5 * depth];
+    let (flat_x, shift) = match p.pivot {
+        Some((pivot_x, s)) => {
+            let s = s.value();
+            // The support corner, (−sB/2, H/2) in the column, turned
+            // clockwise by the tilt about the column's centre.
+            let (sn, cs) = p.angle.sin_cos();
+            let (u, v) = (-s * 0.5 * geo.width, 0.5 * geo.height);
+            let corner = [p.x + u * cs + v * sn, p.y - u * sn + v * cs];
+            let flat = pivot_x - s * 0.5 * geo.width;
+            (flat, [corner[0] - (flat + u), corner[1] - geo.height])
+        }
+        None => (p.x, [0.0, 0.0]),
+    };
+    ([flat_x + shift[0], geo.height + 0.5 * depth + shift[1]], half)
 }
 
 /// The camera: follows the block horizontally with a dead zone, so a block
@@ -86,11 +132,11 @@ pub struct Camera {
 
 /// The world-to-screen fit: pixels (points) per metre and the world
 /// rectangle shown, for a block of half-diagonal `r` in a `rect`.
-fn fit(rect: Rect, r: f64) -> (f64, f64) {
+fn fit(rect: Rect, r: f64, half_span: f64) -> (f64, f64) {
     // Room for the block standing on a corner (height up to 2R), the table
-    // below, and sideways sliding.
+    // below, and sideways sliding; a frame's columns side by side.
     let world_h = 2.5 * r;
-    let world_w = 3.2 * r;
+    let world_w = (3.2 * r).max(2.0 * half_span + 1.6 * r);
     let scale = (rect.height() as f64 / world_h).min(rect.width() as f64 / world_w);
     // World y at the rect's vertical centre: the table top sits 15 % above
     // the bottom edge.
@@ -102,7 +148,9 @@ fn fit(rect: Rect, r: f64) -> (f64, f64) {
 pub fn build(input: &SceneInput<'_>, rect: Rect, camera: &mut Camera) -> (Vec<Shape>, f64, f64) {
     let geo = &input.geometry;
     let s = input.sample;
-    let (scale, y_mid) = fit(rect, geo.r);
+    let offsets = column_offsets(geo, input.frame.as_ref());
+    let half_span = offsets.last().copied().unwrap_or(0.0) + 0.5 * geo.width;
+    let (scale, y_mid) = fit(rect, geo.r, half_span);
     let half_w = rect.width() as f64 / scale * 0.5;
     let p = pose(geo, s.theta, s.x, s.mode, s.base_x);
     let dead = 0.3 * half_w;
@@ -150,17 +198,27 @@ pub fn build(input: &SceneInput<'_>, rect: Rect, camera: &mut Camera) -> (Vec<Sh
     }
 
     let half = [0.5 * geo.width, 0.5 * geo.height];
+    let mode = input.terminal.unwrap_or(s.mode);
     if input.flash > 0.0 {
         let grow = 0.06 * geo.width.min(geo.height) + 4.0 * px;
-        shapes.push(Shape::rect(
-            [p.x, p.y],
-            [half[0] + grow, half[1] + grow],
-            p.angle,
-            Color32::from_rgb(255, 245, 200).gamma_multiply(0.85 * input.flash),
-        ));
+        for dx in &offsets {
+            shapes.push(Shape::rect(
+                [p.x + dx, p.y],
+                [half[0] + grow, half[1] + grow],
+                p.angle,
+                Color32::from_rgb(255, 245, 200).gamma_multiply(0.85 * input.flash),
+            ));
+        }
     }
-    let mode = input.terminal.unwrap_or(s.mode);
-    shapes.push(Shape::rect([p.x, p.y], half, p.angle, mode_color(mode)));
+    for dx in &offsets {
+        shapes.push(Shape::rect([p.x + dx, p.y], half, p.angle, mode_color(mode)));
+    }
+    if input.frame.is_some() {
+        // The beam in the mode's colour, darker: it moves with the columns
+        // but is a body of its own.
+        let (centre, beam_half) = beam(geo, &offsets, &p);
+        shapes.push(Shape::rect(centre, beam_half, 0.0, mode_color(mode).gamma_multiply(0.7)));
+    }
     // Ghosts over the block, as outlines in colours of their own: a ghost
     // that still follows the block outlines it, and once chaos separates
     // them each shows as its own coloured frame (filled, or in one shared
@@ -172,13 +230,15 @@ pub fn build(input: &SceneInput<'_>, rect: Rect, camera: &mut Camera) -> (Vec<Sh
     order.sort_by(|a, b| (b.1.theta - s.theta).abs().total_cmp(&(a.1.theta - s.theta).abs()));
     for (k, g) in order {
         let gp = pose(geo, g.theta, g.x, g.mode, s.base_x);
-        shapes.push(Shape::outline(
-            [gp.x, gp.y],
-            half,
-            gp.angle,
-            GHOST_OUTLINE * px,
-            ghost_color(k, n),
-        ));
+        for dx in &offsets {
+            shapes.push(Shape::outline(
+                [gp.x + dx, gp.y],
+                half,
+                gp.angle,
+                GHOST_OUTLINE * px,
+                ghost_color(k, n),
+            ));
+        }
     }
 
     // The centre of mass.
@@ -207,8 +267,10 @@ pub fn build(input: &SceneInput<'_>, rect: Rect, camera: &mut Camera) -> (Vec<Sh
         shapes.push(Shape::circle(tip, 3.5 * px, Color32::from_rgb(255, 90, 90)));
     }
     if let Some((x, _)) = p.pivot {
-        shapes.push(Shape::circle([x, 0.0], 6.0 * px, Color32::from_rgb(255, 230, 60)));
-        shapes.push(Shape::circle([x, 0.0], 3.0 * px, Color32::from_rgb(40, 30, 10)));
+        for dx in &offsets {
+            shapes.push(Shape::circle([x + dx, 0.0], 6.0 * px, Color32::from_rgb(255, 230, 60)));
+            shapes.push(Shape::circle([x + dx, 0.0], 3.0 * px, Color32::from_rgb(40, 30, 10)));
+        }
     }
     (shapes, scale, y_mid)
 }

@@ -147,6 +147,8 @@ pub const CATALOGUE: &[KeySpec] = &[
         written: "m, or \"60 cm\", \"600 mm\"",
         doc: "Width B > 0 of each column of a rocking frame. Required with [frame].",
         range: SIZE,
+        slot: at(Group::Frame, 0),
+        slider: log(0.05, 10.0, 0.1),
         ..B
     },
     KeySpec {
@@ -158,6 +160,8 @@ pub const CATALOGUE: &[KeySpec] = &[
         written: "m, or \"6 m\", \"600 cm\"",
         doc: "Height H > 0 of each column of a rocking frame. Required with [frame].",
         range: SIZE,
+        slot: at(Group::Frame, 1),
+        slider: log(0.05, 10.0, 0.1),
         ..B
     },
     KeySpec {
@@ -167,6 +171,7 @@ pub const CATALOGUE: &[KeySpec] = &[
         meaning: "number of columns of a rocking frame",
         written: "an integer",
         doc: "Columns under the cap beam, 2..=1000. Default 2 (a bridge bent).",
+        slot: at(Group::Frame, 2),
         ..B
     },
     KeySpec {
@@ -180,6 +185,9 @@ pub const CATALOGUE: &[KeySpec] = &[
             ok: non_negative_finite,
             allowed: ">= 0",
         }),
+        slot: at(Group::Frame, 3),
+        // Lone columns to a beam ten times their mass (a bridge deck).
+        slider: lin(0.0, 10.0, 0.1),
         ..B
     },
     // [friction]

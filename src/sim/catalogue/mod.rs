@@ -81,6 +81,8 @@ impl Applies {
 pub enum Group {
     /// The block's size.
     Block,
+    /// A rocking frame's columns and beam.
+    Frame,
     /// Sliding.
     Friction,
     /// The impact law.
@@ -97,8 +99,9 @@ pub enum Group {
 
 impl Group {
     /// Every group, in the panel's order.
-    pub const ALL: [Group; 7] = [
+    pub const ALL: [Group; 8] = [
         Group::Block,
+        Group::Frame,
         Group::Friction,
         Group::Impact,
         Group::Excitation,
@@ -111,6 +114,7 @@ impl Group {
     pub fn title(self) -> &'static str {
         match self {
             Group::Block => "Block",
+            Group::Frame => "Frame",
             Group::Friction => "Friction",
             Group::Impact => "Impact",
             Group::Excitation => "Excitation",

@@ -33,7 +33,7 @@ use std::collections::VecDeque;
 use crate::integrate::Stepper;
 use crate::integrate::hybrid::{Advance, Driver, Limits, Observer, Outputs};
 use crate::model::system::{EventRecord, ModelError, N, THETA, THETA_DOT, X, X_DOT};
-use crate::model::{BlockSystem, Mode};
+use crate::model::{Mode, Model, Rocker, RockerVisitor, with_rocker};
 use crate::sim::Scenario;
 use crate::sim::method::{StepperVisitor, with_stepper};
 use crate::sim::protocol::{BaseMotion, Batch, GhostState, RunEnd, RunId, RunInfo, Sample};
@@ -86,7 +86,7 @@ impl Observer<Mode, EventRecord, N> for Forward<'_> {
     }
 }
 
-impl<S: Stepper<N> + Send> LiveDriver for Driver<S, BlockSystem, N> {
+impl<S: Stepper<N> + Send, R: Rocker> LiveDriver for Driver<S, R, N> {
     fn t(&self) -> f64 {
         Driver::t(self)
     }
@@ -112,31 +112,96 @@ impl<S: Stepper<N> + Send> LiveDriver for Driver<S, BlockSystem, N> {
         Driver::advance(self, t_end, &mut Forward(obs))
     }
     fn peak_theta(&self) -> f64 {
-        self.system().tally.max_abs_theta
+        self.system().tallied().max_abs_theta
     }
 }
 
 type AnyDriver = Box<dyn LiveDriver>;
 
+/// The model's system behind a pointer (the block's or a frame's): what
+/// the session asks of it between chunks, and the driver it starts. The
+/// stepping itself stays monomorphised inside the driver.
+trait LiveSystem: Send {
+    /// The parameters.
+    fn params(&self) -> &Model;
+    /// Normal and horizontal contact force per unit weight, for the plots.
+    fn forces(&self, mode: Mode, t: f64, y: &[f64; N]) -> (f64, f64);
+    /// |Θ| at which the model overturns.
+    fn overturn_angle(&self) -> f64;
+    /// A freshly entered mode made consistent.
+    fn settle_mode(&mut self, mode: Mode, t: f64, y: &mut [f64; N]) -> Mode;
+    /// A copy.
+    fn boxed_clone(&self) -> Box<dyn LiveSystem>;
+    /// A driver of `scenario`'s method for this system from `(t0, mode, y0)`.
+    fn into_driver(
+        self: Box<Self>,
+        scenario: &Scenario,
+        mode: Mode,
+        t0: f64,
+        y0: [f64; N],
+        outputs: Outputs,
+    ) -> AnyDriver;
+}
+
+impl<R: Rocker> LiveSystem for R {
+    fn params(&self) -> &Model {
+        Rocker::params(self)
+    }
+    fn forces(&self, mode: Mode, t: f64, y: &[f64; N]) -> (f64, f64) {
+        self.contact_forces(mode, t, y)
+    }
+    fn overturn_angle(&self) -> f64 {
+        Rocker::overturn_angle(self)
+    }
+    fn settle_mode(&mut self, mode: Mode, t: f64, y: &mut [f64; N]) -> Mode {
+        Rocker::settle_mode(self, mode, t, y)
+    }
+    fn boxed_clone(&self) -> Box<dyn LiveSystem> {
+        Box::new(self.clone())
+    }
+    fn into_driver(
+        self: Box<Self>,
+        scenario: &Scenario,
+        mode: Mode,
+        t0: f64,
+        y0: [f64; N],
+        outputs: Outputs,
+    ) -> AnyDriver {
+        live_driver(scenario, *self, mode, t0, y0, outputs)
+    }
+}
+
+/// The system `model` describes, behind a pointer.
+fn live_system(model: Model) -> Box<dyn LiveSystem> {
+    struct Boxed;
+    impl RockerVisitor for Boxed {
+        type Output = Box<dyn LiveSystem>;
+        fn visit<R: Rocker>(self, system: R) -> Self::Output {
+            Box::new(system)
+        }
+    }
+    with_rocker(model, Boxed)
+}
+
 /// A live driver of `scenario`'s method.
-fn live_driver(
+fn live_driver<R: Rocker>(
     scenario: &Scenario,
-    system: BlockSystem,
+    system: R,
     mode: Mode,
     t0: f64,
     y0: [f64; N],
     outputs: Outputs,
 ) -> AnyDriver {
     /// The driver, waiting for its stepper.
-    struct Make {
-        system: BlockSystem,
+    struct Make<R> {
+        system: R,
         mode: Mode,
         t0: f64,
         y0: [f64; N],
         limits: Limits,
         outputs: Outputs,
     }
-    impl StepperVisitor for Make {
+    impl<R: Rocker> StepperVisitor for Make<R> {
         type Output = AnyDriver;
         fn visit<S: Stepper<N> + Send + 'static>(self, stepper: S) -> AnyDriver {
             Box::new(Driver::new(
@@ -192,7 +257,7 @@ impl Peaks {
 
 /// The main trajectory's observer: turns driver output into protocol data.
 struct MainSink<'a> {
-    probe: &'a BlockSystem,
+    probe: &'a dyn LiveSystem,
     base: &'a mut BaseMotion,
     queue: &'a mut Queue,
     peaks: &'a mut Peaks,
@@ -202,14 +267,13 @@ struct MainSink<'a> {
 
 impl Observer<Mode, EventRecord, N> for MainSink<'_> {
     fn sample(&mut self, t: f64, mode: Mode, y: &[f64; N]) {
-        self.peaks.see(&self.probe.model.geo, y);
-        let fo = self.probe.model.excitation.forcing(t);
+        self.peaks.see(&self.probe.params().geo, y);
+        let fo = self.probe.params().excitation.forcing(t);
         let base_x = self.base.advance(t, fo.a);
         let (normal, friction) = if mode.is_terminal() {
             (0.0, 0.0)
         } else {
-            let acc = self.probe.accel(mode, t, y);
-            (acc.normal, acc.friction)
+            self.probe.forces(mode, t, y)
         };
         self.queue.samples.push_back(Sample {
             state: HistoryRow::of_state(t, mode, y),
@@ -227,7 +291,7 @@ impl Observer<Mode, EventRecord, N> for MainSink<'_> {
 
     fn event(&mut self, _t: f64, _before: Mode, y_before: &[f64; N], record: EventRecord) {
         *self.last_event = record.tau;
-        self.peaks.see(&self.probe.model.geo, y_before);
+        self.peaks.see(&self.probe.params().geo, y_before);
         self.queue.events.push_back(record);
     }
 }
@@ -355,14 +419,14 @@ pub enum Start {
 /// where the pivot sticks (a perturbed Θ changes it), so the perturbed state
 /// is admissible for the same contact.
 fn perturbed_state(
-    system: &mut BlockSystem,
+    system: &mut dyn LiveSystem,
     tau: f64,
     mode: Mode,
     y: &[f64; N],
     eps: f64,
 ) -> Result<(Mode, [f64; N]), String> {
     let theta = y[THETA] + eps;
-    let tumble = system.tumble_angle();
+    let tumble = system.overturn_angle();
     if !theta.is_finite() || theta.abs() >= tumble {
         return Err(format!(
             "perturbed Θ = {theta} is not inside the tumble angle ±{tumble}"
@@ -377,9 +441,9 @@ fn perturbed_state(
         theta_dot: y[THETA_DOT],
         x_dot: keeps_slip.then_some(y[X_DOT]),
     };
-    let (m, mut y0) = initial_mode(&system.model, &init).map_err(|e| e.to_string())?;
+    let (m, mut y0) = initial_mode(system.params(), &init).map_err(|e| e.to_string())?;
     y0[X] = y[X];
-    let m = system.settle(m, tau, &mut y0);
+    let m = system.settle_mode(m, tau, &mut y0);
     Ok((m, y0))
 }
 
@@ -388,7 +452,7 @@ pub struct Session {
     run: RunId,
     info: RunInfo,
     driver: AnyDriver,
-    probe: BlockSystem,
+    probe: Box<dyn LiveSystem>,
     base: BaseMotion,
     queue: Queue,
     ghosts: Vec<Ghost>,
@@ -433,12 +497,6 @@ impl Session {
     /// As [`Session::new`], with stroboscopic section points at forcing
     /// phase `phase` (rad, taken modulo 2π): τ_k = (2πk + φ)/Ω_h.
     pub(crate) fn with_phase(run: RunId, scenario: &Scenario, start: Start, phase: f64) -> Result<Self, String> {
-        if scenario.frame.is_some() {
-            return Err(
-                "the app draws a single block: run a [frame] scene headless (README, \"Rocking frames\")"
-                    .to_string(),
-            );
-        }
         let model = scenario.model().map_err(|e| e.to_string())?;
         let section_period = model.excitation.forcing_period();
         let phase = normalise_phase(phase);
@@ -452,15 +510,15 @@ impl Session {
             _ => 0.0,
         };
         let exact_sections = offset > 0.0;
-        let mut system = BlockSystem::new(model);
+        let mut system = live_system(model);
         let (tau0, mode0, y0) = match start {
             Start::Initial => {
-                let (m, mut y) = initial_mode(&system.model, &scenario.initial).map_err(|e| e.to_string())?;
-                let m = system.settle(m, 0.0, &mut y);
+                let (m, mut y) = initial_mode(system.params(), &scenario.initial).map_err(|e| e.to_string())?;
+                let m = system.settle_mode(m, 0.0, &mut y);
                 (0.0, m, y)
             }
             Start::Perturbed { tau, y, mode, eps } => {
-                let (m, y0) = perturbed_state(&mut system, tau, mode, &y, eps)?;
+                let (m, y0) = perturbed_state(system.as_mut(), tau, mode, &y, eps)?;
                 (tau, m, y0)
             }
         };
@@ -480,16 +538,16 @@ impl Session {
         while grid.end(next_chunk) <= tau0 {
             next_chunk += 1;
         }
-        let probe = system.clone();
-        let base = BaseMotion::new(&system.model.excitation, tau0);
+        let probe = system.boxed_clone();
+        let base = BaseMotion::new(&system.params().excitation, tau0);
         let outputs = Outputs {
             sample_dt: Some(LIVE_SAMPLE_DT),
             section_period: if exact_sections { None } else { section_period },
         };
-        let geometry = system.model.geo;
+        let geometry = system.params().geo;
         let mut peaks = Peaks::default();
         peaks.see(&geometry, &y0);
-        let driver = live_driver(scenario, system, mode0, tau0, y0, outputs);
+        let driver = system.into_driver(scenario, mode0, tau0, y0, outputs);
         let still_base = scenario.excitation.kind == crate::sim::scenario::ExcitationKind::None;
         Ok(Self {
             run,
@@ -619,7 +677,7 @@ impl Session {
         let t_end = self.grid.end(self.next_chunk);
         let horizon = self.horizon(t, t_end);
         let mut sink = MainSink {
-            probe: &self.probe,
+            probe: self.probe.as_ref(),
             base: &mut self.base,
             queue: &mut self.queue,
             peaks: &mut self.peaks,
@@ -751,15 +809,15 @@ impl Session {
         };
         for k in 0..count {
             let delta = eps * (k as f64 + 1.0) / count as f64;
-            let mut system = BlockSystem::new(self.probe.model.clone());
-            let Ok((m, y0)) = perturbed_state(&mut system, tau, mode, &y, delta) else {
+            let mut system = live_system(self.probe.params().clone());
+            let Ok((m, y0)) = perturbed_state(system.as_mut(), tau, mode, &y, delta) else {
                 continue;
             };
             let outputs = Outputs {
                 sample_dt: Some(LIVE_SAMPLE_DT),
                 section_period: None,
             };
-            let mut driver = live_driver(&self.info.scenario, system, m, tau, y0, outputs);
+            let mut driver = system.into_driver(&self.info.scenario, m, tau, y0, outputs);
             let mut states = VecDeque::new();
             // Bring the ghost level with the main trajectory's computed τ.
             let done = self.driver.t() > tau
@@ -797,8 +855,8 @@ impl Session {
             sample_dt: Some(LIVE_SAMPLE_DT),
             section_period: None,
         };
-        let system = BlockSystem::new(self.probe.model.clone());
-        let mut driver = live_driver(&self.info.scenario, system, mode, tau, y, outputs);
+        let system = live_system(self.probe.params().clone());
+        let mut driver = system.into_driver(&self.info.scenario, mode, tau, y, outputs);
         let mut moved = FirstMove(None);
         let mut t = tau;
         while t < self.batch_end {
