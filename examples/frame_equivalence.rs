@@ -84,7 +84,9 @@ impl Figure for Compared {
 }
 
 fn main() {
-    let out = std::env::args().nth(1).unwrap_or_else(|| "frame-equivalence.png".to_string());
+    let out = std::env::args()
+        .nth(1)
+        .unwrap_or_else(|| "frame-equivalence.png".to_string());
     let load = |sets: &[&str]| {
         let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
         rocking::io::config::load(Some("rocking-frame"), None, &sets).expect("scene")
@@ -109,9 +111,19 @@ fn main() {
     let lone = load(&["frame.beam_mass_ratio=0"]);
     let figure = Compared {
         lines: vec![
-            ("columns alone: overturn at 11.09 s".to_string(), history(&lone), RGBColor(150, 150, 150), 2),
+            (
+                "columns alone: overturn at 11.09 s".to_string(),
+                history(&lone),
+                RGBColor(150, 150, 150),
+                2,
+            ),
             ("frame, γ_b = 2".to_string(), history(&frame), RGBColor(31, 119, 180), 5),
-            ("equivalent block 0.98 × 5.88 m".to_string(), history(&block), RGBColor(255, 127, 14), 2),
+            (
+                "equivalent block 0.98 × 5.88 m".to_string(),
+                history(&block),
+                RGBColor(255, 127, 14),
+                2,
+            ),
         ],
         alpha_deg: geo.psi.to_degrees(),
     };

@@ -97,7 +97,8 @@ fn a_frame_rocks_as_the_single_block_it_is_equivalent_to_under_harmonic_motion()
 
 #[test]
 fn a_frame_rocks_as_the_single_block_it_is_equivalent_to_under_el_centro() {
-    let excitation = "[excitation]\nkind = \"record\"\nfile_h = \"shipped:elcentro-1940-ns.dat\"\nunit_h = \"g\"\nscale_h = 2.0";
+    let excitation =
+        "[excitation]\nkind = \"record\"\nfile_h = \"shipped:elcentro-1940-ns.dat\"\nunit_h = \"g\"\nscale_h = 2.0";
     // To 15 s: the response to El Centro at twice its scale is sensitive
     // after that (a difference of 1e-12 s at 13.8 s grows threefold every
     // few impacts in both models alike), so any two solutions part there.
@@ -163,7 +164,11 @@ fn a_frame_that_overturns_is_named_and_its_bodies_are_in_the_answer() {
     let res = run(&s);
     assert_eq!(res.outcome, Outcome::Tumbled);
     let physical = rocking::sim::answer::Physical::of(&s, &res);
-    assert!(physical.line().starts_with("frame overturned at t = "), "{}", physical.line());
+    assert!(
+        physical.line().starts_with("frame overturned at t = "),
+        "{}",
+        physical.line()
+    );
     let bodies = physical.bodies.as_ref().expect("bodies");
     let names: Vec<&str> = bodies.iter().map(|b| b.name.as_str()).collect();
     assert_eq!(names, ["column 1", "column 2", "beam"]);
@@ -180,15 +185,39 @@ fn a_frame_that_overturns_is_named_and_its_bodies_are_in_the_answer() {
 fn a_frame_config_is_refused_where_it_would_be_misread() {
     let frame = "[frame]\nwidth = 1.0\nheight = 6.0\nbeam_mass_ratio = 0.5\n";
     let cases = [
-        (format!("{frame}[block]\nwidth = 1.0"), "block: a config has one of [block] and [frame]"),
-        (format!("{frame}[friction]\nstatic = 0.5"), "friction: a [frame]'s columns rock on stuck corners"),
-        ("[frame]\nwidth = 1.0\nheight = 6.0".to_string(), "frame.beam_mass_ratio: is required with [frame]"),
-        ("[frame]\nheight = 6.0\nbeam_mass_ratio = 1".to_string(), "frame.width: is required with [frame]"),
+        (
+            format!("{frame}[block]\nwidth = 1.0"),
+            "block: a config has one of [block] and [frame]",
+        ),
+        (
+            format!("{frame}[friction]\nstatic = 0.5"),
+            "friction: a [frame]'s columns rock on stuck corners",
+        ),
+        (
+            "[frame]\nwidth = 1.0\nheight = 6.0".to_string(),
+            "frame.beam_mass_ratio: is required with [frame]",
+        ),
+        (
+            "[frame]\nheight = 6.0\nbeam_mass_ratio = 1".to_string(),
+            "frame.width: is required with [frame]",
+        ),
         (format!("{frame}columns = 1"), "frame.columns: 1.0 is out of range"),
-        ("[frame]\nwidth = 1.0\nheight = 6.0\nbeam_mass_ratio = -0.1".to_string(), "frame.beam_mass_ratio: -0.1 is out of range"),
-        (format!("{frame}[impact]\nlaw = \"impulse\""), "impact.law: \"impulse\" is the single block's law"),
-        (format!("{frame}[analysis]\nlyapunov = true"), "analysis.lyapunov: is not available for a [frame]"),
-        ("[[stack]]\nwidth = 1.0\nheight = 2.0".to_string(), "stack: stacks of blocks are not simulated yet"),
+        (
+            "[frame]\nwidth = 1.0\nheight = 6.0\nbeam_mass_ratio = -0.1".to_string(),
+            "frame.beam_mass_ratio: -0.1 is out of range",
+        ),
+        (
+            format!("{frame}[impact]\nlaw = \"impulse\""),
+            "impact.law: \"impulse\" is the single block's law",
+        ),
+        (
+            format!("{frame}[analysis]\nlyapunov = true"),
+            "analysis.lyapunov: is not available for a [frame]",
+        ),
+        (
+            "[[stack]]\nwidth = 1.0\nheight = 2.0".to_string(),
+            "stack: stacks of blocks are not simulated yet",
+        ),
     ];
     for (text, start) in cases {
         let e = refusal(&text);

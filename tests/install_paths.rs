@@ -159,7 +159,10 @@ fn every_preset_names_its_records_as_shipped() {
             );
         }
     }
-    assert_eq!(records, 3, "kobe-rack, kobe-rack-5th-floor and elcentro-statue");
+    assert_eq!(
+        records, 4,
+        "kobe-rack, kobe-rack-5th-floor, elcentro-statue and rocking-frame"
+    );
 }
 
 /// A shipped name that is not shipped is refused naming the key and the

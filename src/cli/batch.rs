@@ -162,9 +162,10 @@ fn lyapunov_summary(cfg: &Scenario) -> Result<Lyapunov, BatchError> {
     };
     let opts = LyapunovOptions::for_scenario(cfg, method);
     lyapunov::lyapunov(&model, &cfg.initial, &opts).map_err(|e| match e {
-        LyapunovError::NotHarmonic | LyapunovError::NoTangent | LyapunovError::Option { .. } | LyapunovError::TooShort { .. } => {
-            BatchError::Input(anyhow::anyhow!("analysis.lyapunov: {e}"))
-        }
+        LyapunovError::NotHarmonic
+        | LyapunovError::NoTangent
+        | LyapunovError::Option { .. }
+        | LyapunovError::TooShort { .. } => BatchError::Input(anyhow::anyhow!("analysis.lyapunov: {e}")),
         LyapunovError::Initial(_) | LyapunovError::Run(_) => {
             BatchError::Run(anyhow::Error::new(e).context("lyapunov exponents failed"))
         }

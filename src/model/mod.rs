@@ -22,10 +22,10 @@ pub mod units;
 pub mod variational;
 
 pub use excitation::{Excitation, Harmonic};
+pub use frame::{Frame, FrameSystem};
 pub use geometry::Geometry;
 pub use impact::ImpactLaw;
 pub use mode::{Mode, Sign};
-pub use frame::{Frame, FrameSystem};
 pub use params::{FlightPolicy, Model};
 pub use rocker::{Rocker, RockerVisitor, with_rocker};
 pub use system::{BlockSystem, EventKind, EventRecord};

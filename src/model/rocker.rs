@@ -14,7 +14,9 @@ use super::system::{BlockSystem, EventRecord, ModelError, Tally};
 use crate::integrate::hybrid::HybridSystem;
 
 /// A planar rocking model with the block's state and modes.
-pub trait Rocker: HybridSystem<N, Mode = Mode, Record = EventRecord, Error = ModelError> + Clone + Send + 'static {
+pub trait Rocker:
+    HybridSystem<N, Mode = Mode, Record = EventRecord, Error = ModelError> + Clone + Send + 'static
+{
     /// A system for `model`, tallies zeroed.
     fn build(model: Model) -> Self;
 
@@ -87,5 +89,32 @@ impl Rocker for BlockSystem {
     fn contact_forces(&self, mode: Mode, t: f64, y: &[f64; N]) -> (f64, f64) {
         let acc = self.accel(mode, t, y);
         (acc.normal, acc.friction)
+    }
+}
+
+impl Rocker for FrameSystem {
+    fn build(model: Model) -> Self {
+        FrameSystem::new(model)
+    }
+    fn params(&self) -> &Model {
+        &self.model
+    }
+    fn tallied(&self) -> Tally {
+        self.tally
+    }
+    fn settle_mode(&mut self, mode: Mode, t: f64, y: &mut [f64; N]) -> Mode {
+        self.settle(mode, t, y)
+    }
+    fn mechanical_energy(&self, mode: Mode, y: &[f64; N]) -> f64 {
+        self.energy(mode, y)
+    }
+    fn end_energy(&self, mode: Mode, y: &[f64; N]) -> f64 {
+        self.energy(mode, y)
+    }
+    fn overturn_angle(&self) -> f64 {
+        self.tumble_angle()
+    }
+    fn contact_forces(&self, mode: Mode, t: f64, y: &[f64; N]) -> (f64, f64) {
+        self.base_forces(mode, t, y)
     }
 }

@@ -5,8 +5,8 @@
 use super::catalogue::{self, KeySpec, Param};
 use super::method::Method;
 use super::scenario::{
-    ExcitationKind, LawKind, MAX_FLOOR_PARTICIPATION, MAX_FLOOR_PERIOD_S, MAX_HISTORY_ROWS, MIN_FLOOR_PERIOD_S, MIN_PSI,
-    MIN_SPECTRUM_SAMPLES, MU_K_LIMIT, PAPER_SPECTRUM_END, Scenario, ScenarioError, SpectrumRange,
+    ExcitationKind, LawKind, MAX_FLOOR_PARTICIPATION, MAX_FLOOR_PERIOD_S, MAX_HISTORY_ROWS, MIN_FLOOR_PERIOD_S,
+    MIN_PSI, MIN_SPECTRUM_SAMPLES, MU_K_LIMIT, PAPER_SPECTRUM_END, Scenario, ScenarioError, SpectrumRange,
 };
 use crate::model::excitation::pulse;
 

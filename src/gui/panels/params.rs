@@ -438,9 +438,10 @@ mod tests {
                 assert!((20.0..=200.0).contains(&points), "{}: {points} points", k.key);
             }
         }
-        // B, H, four friction coefficients, r, e, two amplitudes, two
-        // frequencies, two phases, two PGAs, two scales, the floor's
-        // period, damping and participation, Θ₀, Θ'₀, X'₀.
-        assert_eq!(sliders, 24);
+        // B, H, a frame's B, H and beam mass ratio, four friction
+        // coefficients, r, e, two amplitudes, two frequencies, two phases,
+        // two PGAs, two scales, the floor's period, damping and
+        // participation, Θ₀, Θ'₀, X'₀.
+        assert_eq!(sliders, 27);
     }
 }

@@ -149,7 +149,12 @@ pub fn build(input: &SceneInput<'_>, rect: Rect, camera: &mut Camera) -> (Vec<Sh
     let geo = &input.geometry;
     let s = input.sample;
     let offsets = column_offsets(geo, input.frame.as_ref());
-    let half_span = offsets.last().copied().unwrap_or(0.0) + 0.5 * geo.width;
+    // A frame's outer columns' far edges; the single block keeps its own
+    // framing.
+    let half_span = match input.frame {
+        Some(_) => offsets.last().copied().unwrap_or(0.0) + 0.5 * geo.width,
+        None => 0.0,
+    };
     let (scale, y_mid) = fit(rect, geo.r, half_span);
     let half_w = rect.width() as f64 / scale * 0.5;
     let p = pose(geo, s.theta, s.x, s.mode, s.base_x);
@@ -217,7 +222,12 @@ pub fn build(input: &SceneInput<'_>, rect: Rect, camera: &mut Camera) -> (Vec<Sh
         // The beam in the mode's colour, darker: it moves with the columns
         // but is a body of its own.
         let (centre, beam_half) = beam(geo, &offsets, &p);
-        shapes.push(Shape::rect(centre, beam_half, 0.0, mode_color(mode).gamma_multiply(0.7)));
+        shapes.push(Shape::rect(
+            centre,
+            beam_half,
+            0.0,
+            mode_color(mode).gamma_multiply(0.7),
+        ));
     }
     // Ghosts over the block, as outlines in colours of their own: a ghost
     // that still follows the block outlines it, and once chaos separates
@@ -355,6 +365,57 @@ pub(crate) fn paint(ui: &egui::Ui, rect: Rect, shapes: Vec<Shape>, view: ViewUni
                 painter.add(egui::Shape::closed_line(pts, egui::Stroke::new(stroke, color)));
             } else {
                 painter.add(egui::Shape::convex_polygon(pts, color, egui::Stroke::NONE));
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::Sign;
+
+    /// The beam drawn on a tilted frame lies on the columns' support
+    /// corners: its underside at their height, its ends beyond them, and it
+    /// moves with them (docs/model.md §16.1), computed here from the
+    /// column's corners turned about its pivot.
+    #[test]
+    fn a_frames_beam_rests_on_the_support_corners_of_its_tilted_columns() {
+        let geo = Geometry::new(0.7, 4.2);
+        let frame = Frame {
+            columns: 3,
+            beam_mass_ratio: 1.0,
+        };
+        let offsets = column_offsets(&geo, Some(&frame));
+        assert_eq!(offsets.len(), 3);
+        assert!((offsets[0] + offsets[2]).abs() < 1e-12 && offsets[1].abs() < 1e-12);
+        for theta in [0.4, -0.7, 0.0] {
+            let p = pose(&geo, theta, 0.0, Mode::Rock { pivot: Sign::of(theta) }, 0.0);
+            let (centre, half) = beam(&geo, &offsets, &p);
+            if theta == 0.0 {
+                assert!((centre[1] - half[1] - geo.height).abs() < 1e-12);
+                continue;
+            }
+            // The support corner: opposite the pivot, on the diagonal, at
+            // 2R from it, turned by θ = ψΘ clockwise for θ > 0.
+            let (pivot_x, s) = p.pivot.expect("tilted");
+            let s = s.value();
+            let rest = [-s * geo.width, geo.height];
+            let a = geo.psi * theta;
+            let corner = [
+                pivot_x + rest[0] * a.cos() + rest[1] * a.sin(),
+                -rest[0] * a.sin() + rest[1] * a.cos(),
+            ];
+            assert!(
+                (centre[1] - half[1] - corner[1]).abs() < 1e-12,
+                "θ {theta}: underside at the corners"
+            );
+            for dx in &offsets {
+                let x = corner[0] + dx;
+                assert!(
+                    centre[0] - half[0] < x && x < centre[0] + half[0],
+                    "θ {theta}: corner under the beam"
+                );
             }
         }
     }

@@ -504,9 +504,7 @@ fn resolve(table: &Table, source: &Source, records: [RecordFrom<'_>; 2]) -> Resu
         ),
         Some(f) => {
             frame_alone(table)?;
-            let required = |key: &str, what: &str| {
-                ConfigError::key(key, format!("is required with [frame] ({what})"))
-            };
+            let required = |key: &str, what: &str| ConfigError::key(key, format!("is required with [frame] ({what})"));
             let size = |key: &str, q: Option<Quantity>, what: &str| -> Result<f64, ConfigError> {
                 let q = q.ok_or_else(|| required(key, what))?;
                 q.resolve(key, Dimension::Length, &Geometry::new(1.0, 1.0))
@@ -518,7 +516,10 @@ fn resolve(table: &Table, source: &Source, records: [RecordFrom<'_>; 2]) -> Resu
                 mu_k: None,
             };
             let beam = f.beam_mass_ratio.ok_or_else(|| {
-                required("frame.beam_mass_ratio", "the cap beam's mass over the columns' total mass, e.g. 0.5")
+                required(
+                    "frame.beam_mass_ratio",
+                    "the cap beam's mass over the columns' total mass, e.g. 0.5",
+                )
             })?;
             let frame = Frame {
                 // Past u32, the scenario's range check could not see it.

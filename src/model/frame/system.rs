@@ -20,7 +20,6 @@ use crate::model::geometry::GAMMA;
 use crate::model::impact::ImpactLaw;
 use crate::model::mode::{Mode, Sign};
 use crate::model::params::{FlightPolicy, Model};
-use crate::model::rocker::Rocker;
 use crate::model::state::{N, THETA, THETA_DOT, X, X_DOT};
 use crate::model::system::{EventKind, EventRecord, ModelError, Tally};
 
@@ -70,7 +69,7 @@ impl FrameSystem {
         self.model.flight == FlightPolicy::Stop
     }
 
-    fn tumble_angle(&self) -> f64 {
+    pub(crate) fn tumble_angle(&self) -> f64 {
         self.model.tumble_theta.min(self.model.geo.side_theta())
     }
 
@@ -80,6 +79,26 @@ impl FrameSystem {
         let geo = &self.model.geo;
         let tilt = Tilt::new(geo, pivot, y[THETA]);
         rock(&self.frame, self.kappa, pivot, tilt, geo.psi * y[THETA_DOT], fo)
+    }
+
+    /// The base's reactions on one column with its share of the beam, per
+    /// column weight: the columns' and the beam's inertia, the beam's
+    /// support accelerating twice as fast as a column's centre.
+    pub(crate) fn base_forces(&self, mode: Mode, t: f64, y: &[f64; N]) -> (f64, f64) {
+        let fo = self.model.excitation.forcing(t);
+        match mode {
+            Mode::Rock { pivot } => {
+                let acc = self.rocking(pivot, fo, y);
+                let g = self.frame.beam_mass_ratio;
+                let column = fo.a + GAMMA * acc.x_ddot;
+                let beam = fo.a + 2.0 * GAMMA * acc.x_ddot;
+                (acc.base_normal, column + g * beam)
+            }
+            _ => {
+                let g = self.frame.beam_mass_ratio;
+                (fo.b() * (1.0 + g), fo.a * (1.0 + g))
+            }
+        }
     }
 
     /// Mechanical energy per m_c g R: ½(1 + 3γ_b)w² + (1 + 2γ_b)Y, with Y
@@ -162,9 +181,7 @@ impl FrameSystem {
             ImpactLaw::Ratio { r } => r,
             // The frame's own momentum balance; `impulse` is refused for a
             // frame when the scenario is checked.
-            ImpactLaw::Housner | ImpactLaw::CornerMomentum | ImpactLaw::Impulse { .. } => {
-                self.frame.restitution(&geo)
-            }
+            ImpactLaw::Housner | ImpactLaw::CornerMomentum | ImpactLaw::Impulse { .. } => self.frame.restitution(&geo),
         };
         self.tally.impacts += 1;
         let w_before = geo.psi * y[THETA_DOT];
@@ -397,7 +414,9 @@ impl HybridSystem<N> for FrameSystem {
                 let target = rock_from_flat(pivot, &mut yn);
                 self.simple(EventKind::Uplift, mode, target, t, y, yn)
             }
-            (Mode::Rest, _) | (Mode::Rock { .. }, 2 | 4) => self.simple(EventKind::Flight, mode, Mode::Flight, t, y, yn),
+            (Mode::Rest, _) | (Mode::Rock { .. }, 2 | 4) => {
+                self.simple(EventKind::Flight, mode, Mode::Flight, t, y, yn)
+            }
             (Mode::Rock { pivot }, 0) => self.impact(mode, pivot, t, y),
             (Mode::Rock { .. }, _) => {
                 self.tally.max_abs_theta = self.tally.max_abs_theta.max(y[THETA].abs());
@@ -429,49 +448,6 @@ impl HybridSystem<N> for FrameSystem {
         match mode {
             Mode::Rest => self.model.excitation.time_scale(),
             _ => f64::INFINITY,
-        }
-    }
-}
-
-impl Rocker for FrameSystem {
-    fn build(model: Model) -> Self {
-        FrameSystem::new(model)
-    }
-    fn params(&self) -> &Model {
-        &self.model
-    }
-    fn tallied(&self) -> Tally {
-        self.tally
-    }
-    fn settle_mode(&mut self, mode: Mode, t: f64, y: &mut [f64; N]) -> Mode {
-        self.settle(mode, t, y)
-    }
-    fn mechanical_energy(&self, mode: Mode, y: &[f64; N]) -> f64 {
-        self.energy(mode, y)
-    }
-    fn end_energy(&self, mode: Mode, y: &[f64; N]) -> f64 {
-        self.energy(mode, y)
-    }
-    fn overturn_angle(&self) -> f64 {
-        self.tumble_angle()
-    }
-    /// The base's reactions on one column with its share of the beam, per
-    /// column weight: the columns' and the beam's inertia, the beam's
-    /// support accelerating twice as fast as a column's centre.
-    fn contact_forces(&self, mode: Mode, t: f64, y: &[f64; N]) -> (f64, f64) {
-        let fo = self.model.excitation.forcing(t);
-        match mode {
-            Mode::Rock { pivot } => {
-                let acc = self.rocking(pivot, fo, y);
-                let g = self.frame.beam_mass_ratio;
-                let column = fo.a + GAMMA * acc.x_ddot;
-                let beam = fo.a + 2.0 * GAMMA * acc.x_ddot;
-                (acc.base_normal, column + g * beam)
-            }
-            _ => {
-                let g = self.frame.beam_mass_ratio;
-                (fo.b() * (1.0 + g), fo.a * (1.0 + g))
-            }
         }
     }
 }

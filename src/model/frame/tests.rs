@@ -78,7 +78,15 @@ fn layout(b: f64, h: f64, span: f64, theta: f64) -> Layout {
 /// rad/s) under base acceleration (a, a_v) per g: returns θ̈ (rad/s²), the
 /// first column's centre ẍ (m/s²), each base's normal force per column
 /// weight and the beam's total support force per beam weight.
-fn newton_euler(b: f64, h: f64, beam_mass: f64, theta: f64, theta_dot: f64, a: f64, av: f64) -> (f64, f64, [f64; 2], f64) {
+fn newton_euler(
+    b: f64,
+    h: f64,
+    beam_mass: f64,
+    theta: f64,
+    theta_dot: f64,
+    a: f64,
+    av: f64,
+) -> (f64, f64, [f64; 2], f64) {
     let (m, i_c) = (1.0, (4.0 * b * b + 4.0 * h * h) / 12.0);
     let (mb, i_b) = (beam_mass, beam_mass * 10.0);
     let l = layout(b, h, 5.0, theta);
@@ -119,7 +127,13 @@ fn newton_euler(b: f64, h: f64, beam_mass: f64, theta: f64, theta_dot: f64, a: f
     eq(&[(6, mb), (13, -1.0), (15, -1.0)], -mb * G * a);
     eq(&[(7, mb), (14, -1.0), (16, -1.0)], -mb * G * (1.0 + av));
     eq(
-        &[(8, i_b), (13, rb[0][1]), (14, -rb[0][0]), (15, rb[1][1]), (16, -rb[1][0])],
+        &[
+            (8, i_b),
+            (13, rb[0][1]),
+            (14, -rb[0][0]),
+            (15, rb[1][1]),
+            (16, -rb[1][0]),
+        ],
         0.0,
     );
     let x = solve(rows, rhs);
@@ -146,15 +160,29 @@ fn rocking_accelerations_and_forces_match_a_newton_euler_solve_of_columns_and_be
                 newton_euler(bw / 2.0, hh / 2.0, 2.0 * beam_ratio, theta, theta_dot, a, av);
             let p2 = geo.p * geo.p;
             let close = |x: f64, y: f64| (x - y).abs() <= 1e-11 * (1.0 + y.abs());
-            assert!(close(acc.wdd, theta_ddot / p2), "ψΘ'' {} vs {}", acc.wdd, theta_ddot / p2);
-            assert!(close(acc.x_ddot, x_ddot / (p2 * geo.r)), "X'' {} vs {}", acc.x_ddot, x_ddot / (p2 * geo.r));
+            assert!(
+                close(acc.wdd, theta_ddot / p2),
+                "ψΘ'' {} vs {}",
+                acc.wdd,
+                theta_ddot / p2
+            );
+            assert!(
+                close(acc.x_ddot, x_ddot / (p2 * geo.r)),
+                "X'' {} vs {}",
+                acc.x_ddot,
+                x_ddot / (p2 * geo.r)
+            );
             // A beam whose centre is level with its supports loads both
             // columns alike.
             for n in normals {
                 assert!(close(acc.base_normal, n), "base normal {} vs {n}", acc.base_normal);
             }
             if beam_ratio > 0.0 {
-                assert!(close(acc.beam_normal, beam), "beam normal {} vs {beam}", acc.beam_normal);
+                assert!(
+                    close(acc.beam_normal, beam),
+                    "beam normal {} vs {beam}",
+                    acc.beam_normal
+                );
             }
         }
     }
@@ -212,7 +240,13 @@ fn impact_ratio(b: f64, h: f64, beam_mass: f64) -> ([f64; 2], f64, [f64; 2]) {
     eq(&[(6, mb), (13, -1.0), (15, -1.0)], mb * beam_before[0]);
     eq(&[(7, mb), (14, -1.0), (16, -1.0)], mb * beam_before[1]);
     eq(
-        &[(8, i_b), (13, rb[0][1]), (14, -rb[0][0]), (15, rb[1][1]), (16, -rb[1][0])],
+        &[
+            (8, i_b),
+            (13, rb[0][1]),
+            (14, -rb[0][0]),
+            (15, rb[1][1]),
+            (16, -rb[1][0]),
+        ],
         0.0,
     );
     let x = solve(rows, rhs);
