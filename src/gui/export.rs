@@ -87,6 +87,9 @@ fn range(values: impl Iterator<Item = f64>, min_span: f64) -> (f64, f64) {
     (lo - pad, hi + pad)
 }
 
+/// A panel's chart: plain f64 axes.
+type Panel<'a, DB> = ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
+
 /// One of the three panels: a chart on `area` captioned `caption` over
 /// `x` × `y`, its mesh drawn with the axes named `(x_desc, y_desc)`.
 fn panel<'a, DB: DrawingBackend>(
@@ -94,7 +97,7 @@ fn panel<'a, DB: DrawingBackend>(
     caption: &str,
     (x, y): (Range<f64>, Range<f64>),
     (x_desc, y_desc): (&str, &str),
-) -> Result<ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>, DrawingAreaErrorKind<DB::ErrorType>> {
+) -> Result<Panel<'a, DB>, DrawingAreaErrorKind<DB::ErrorType>> {
     let mut chart = ChartBuilder::on(area)
         .caption(caption, ("sans-serif", 22))
         .margin(12)
