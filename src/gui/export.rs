@@ -6,8 +6,11 @@
 //! `io::output::write_all`, which stages a directory. Errors are one line
 //! naming the file.
 
+use std::ops::Range;
 use std::path::Path;
 
+use plotters::coord::Shift;
+use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 
 use crate::gui::history::{DensityGrid, RunHistory};
@@ -34,31 +37,9 @@ fn temp_beside(path: &Path) -> std::path::PathBuf {
 /// Writes `history.csv` (the samples kept), `poincare.csv` and `events.csv`
 /// into `dir`, in the batch run's formats.
 pub(crate) fn data_csv(dir: &Path, hist: &RunHistory, geo: &crate::model::Geometry) -> Result<(), String> {
-    let history: Vec<HistoryRow> = hist
-        .samples
-        .iter()
-        .map(|s| HistoryRow {
-            tau: s.tau,
-            theta: s.theta,
-            theta_dot: s.theta_dot,
-            x: s.x,
-            x_dot: s.x_dot,
-            mode: s.mode,
-        })
-        .collect();
-    let section: Vec<SectionRow> = hist
-        .section_rows
-        .iter()
-        .map(|p| SectionRow {
-            k: p.k,
-            tau: p.tau,
-            theta: p.theta,
-            theta_dot: p.theta_dot,
-            x: p.x,
-            x_dot: p.x_dot,
-            mode: p.mode,
-        })
-        .collect();
+    // A sample is a batch history row with the base's motion beside it.
+    let history: Vec<HistoryRow> = hist.samples.iter().map(|s| s.state).collect();
+    let section: Vec<SectionRow> = hist.section_rows.iter().copied().collect();
     let events: Vec<_> = hist.events.iter().copied().collect();
     write_all(
         dir,
@@ -106,6 +87,27 @@ fn range(values: impl Iterator<Item = f64>, min_span: f64) -> (f64, f64) {
     (lo - pad, hi + pad)
 }
 
+/// A panel's chart: plain f64 axes.
+type Panel<'a, DB> = ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
+
+/// One of the three panels: a chart on `area` captioned `caption` over
+/// `x` × `y`, its mesh drawn with the axes named `(x_desc, y_desc)`.
+fn panel<'a, DB: DrawingBackend>(
+    area: &'a DrawingArea<DB, Shift>,
+    caption: &str,
+    (x, y): (Range<f64>, Range<f64>),
+    (x_desc, y_desc): (&str, &str),
+) -> Result<Panel<'a, DB>, DrawingAreaErrorKind<DB::ErrorType>> {
+    let mut chart = ChartBuilder::on(area)
+        .caption(caption, ("sans-serif", 22))
+        .margin(12)
+        .x_label_area_size(36)
+        .y_label_area_size(52)
+        .build_cartesian_2d(x, y)?;
+    chart.configure_mesh().x_desc(x_desc).y_desc(y_desc).draw()?;
+    Ok(chart)
+}
+
 fn draw(file: &Path, hist: &RunHistory, now: f64, window: f64, trail: f64) -> Result<(), String> {
     let err = |e: &dyn std::fmt::Display| format!("{}: {e}", file.display());
     let root = BitMapBackend::new(file, (1800, 600)).into_drawing_area();
@@ -121,19 +123,7 @@ fn draw(file: &Path, hist: &RunHistory, now: f64, window: f64, trail: f64) -> Re
         .map(|s| (s.tau, s.theta))
         .collect();
     let (y0, y1) = range(window_samples.iter().map(|p| p.1), 1.0);
-    let mut chart = ChartBuilder::on(&areas[0])
-        .caption("Θ(τ)", ("sans-serif", 22))
-        .margin(12)
-        .x_label_area_size(36)
-        .y_label_area_size(52)
-        .build_cartesian_2d(t0..now.max(t0 + 1e-9), y0..y1)
-        .map_err(|e| err(&e))?;
-    chart
-        .configure_mesh()
-        .x_desc("τ")
-        .y_desc("Θ")
-        .draw()
-        .map_err(|e| err(&e))?;
+    let mut chart = panel(&areas[0], "Θ(τ)", (t0..now.max(t0 + 1e-9), y0..y1), ("τ", "Θ")).map_err(|e| err(&e))?;
     chart
         .draw_series(LineSeries::new(window_samples, &BLUE))
         .map_err(|e| err(&e))?;
@@ -147,19 +137,7 @@ fn draw(file: &Path, hist: &RunHistory, now: f64, window: f64, trail: f64) -> Re
         .collect();
     let (x0, x1) = range(trail_pts.iter().map(|p| p.0).chain([-1.0, 1.0]), 1.0);
     let (y0, y1) = range(trail_pts.iter().map(|p| p.1), 1.0);
-    let mut chart = ChartBuilder::on(&areas[1])
-        .caption("Phase portrait", ("sans-serif", 22))
-        .margin(12)
-        .x_label_area_size(36)
-        .y_label_area_size(52)
-        .build_cartesian_2d(x0..x1, y0..y1)
-        .map_err(|e| err(&e))?;
-    chart
-        .configure_mesh()
-        .x_desc("Θ")
-        .y_desc("Θ'")
-        .draw()
-        .map_err(|e| err(&e))?;
+    let mut chart = panel(&areas[1], "Phase portrait", (x0..x1, y0..y1), ("Θ", "Θ'")).map_err(|e| err(&e))?;
     chart
         .draw_series(LineSeries::new(trail_pts, &BLUE))
         .map_err(|e| err(&e))?;
@@ -169,19 +147,8 @@ fn draw(file: &Path, hist: &RunHistory, now: f64, window: f64, trail: f64) -> Re
     let b = hist.section.bbox().unwrap_or([-1.0, 1.0, -1.0, 1.0]);
     let (x0, x1) = range([b[0], b[1]].into_iter(), 1e-3);
     let (y0, y1) = range([b[2], b[3]].into_iter(), 1e-3);
-    let mut chart = ChartBuilder::on(&areas[2])
-        .caption("Poincaré points", ("sans-serif", 22))
-        .margin(12)
-        .x_label_area_size(36)
-        .y_label_area_size(52)
-        .build_cartesian_2d(x0..x1, y0..y1)
-        .map_err(|e| err(&e))?;
-    chart
-        .configure_mesh()
-        .x_desc("Θ(τ_k)")
-        .y_desc("Θ'(τ_k)")
-        .draw()
-        .map_err(|e| err(&e))?;
+    let mut chart =
+        panel(&areas[2], "Poincaré points", (x0..x1, y0..y1), ("Θ(τ_k)", "Θ'(τ_k)")).map_err(|e| err(&e))?;
     let (w, h) = (520usize, 500usize);
     let mut grid = DensityGrid::default();
     grid.update(&hist.section, [x0, x1, y0, y1], [w, h]);

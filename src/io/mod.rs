@@ -14,6 +14,7 @@ pub mod output;
 pub mod output_error;
 pub mod presets;
 pub mod record;
+mod resolved;
 pub mod shipped;
 pub mod sliding_files;
 pub mod staging;

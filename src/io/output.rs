@@ -20,8 +20,6 @@ use super::staging::{self, Staging};
 use crate::model::geometry::G;
 use crate::model::system::EventRecord;
 use crate::model::{Geometry, Mode};
-use crate::sim::catalogue::Dimension;
-use crate::sim::scenario::ExcitationKind;
 use crate::sim::{HistoryRow, Physical, RunResult, Scenario, SectionRow, Sink};
 
 /// A row of `events.csv`: the normalised state (`tau`, `theta`, …) and the
@@ -191,7 +189,7 @@ pub fn summary_json(cfg: &Scenario, res: &RunResult) -> serde_json::Value {
             "rhs_evals": res.stats.rhs_evals,
             "wall_s": res.wall_s,
         },
-        structure_key(cfg): match &cfg.frame {
+        crate::io::resolved::structure_key(cfg): match &cfg.frame {
             None => json!({
                 "psi_rad": geo.psi,
                 "p_per_s": geo.p,
@@ -348,68 +346,7 @@ impl Sink for RunFiles {
     }
 }
 
-/// Every resolved input both ways, normalised (as the scenario stores it)
-/// and physical (seconds, radians and degrees, metres, g, Hz), so that a
-/// run is understood without arithmetic.
-pub fn resolved_json(cfg: &Scenario) -> serde_json::Value {
-    let geo = cfg.geometry();
-    let (psi, p, r) = (geo.psi, geo.p, geo.r);
-    let x = &cfg.excitation;
-    // Every physical value through the one conversion (`Dimension`).
-    let si = |d: Dimension, bare: f64| d.to_physical(bare, &geo);
-    let amplitude = |a: f64| {
-        let g = si(Dimension::Amplitude, a);
-        json!({ "normalised": a, "g": g, "m_s2": g * G, "over_g_tan_alpha": g / geo.tan_psi })
-    };
-    let frequency = |w: f64| {
-        let rad_s = si(Dimension::Frequency, w);
-        json!({ "normalised": w, "rad_s": rad_s, "hz": rad_s / std::f64::consts::TAU, "period_s": std::f64::consts::TAU / rad_s })
-    };
-    let rotation = |t: f64| {
-        let rad = si(Dimension::Rotation, t);
-        json!({ "normalised": t, "rad": rad, "deg": rad.to_degrees() })
-    };
-    let time = |t: f64| json!({ "tau": t, "s": si(Dimension::Tau, t) });
-    let harmonic_or_pulse = matches!(x.kind, ExcitationKind::Harmonic | ExcitationKind::Pulse);
-    json!({
-        structure_key(cfg): {
-            "width_m": cfg.block.width,
-            "height_m": cfg.block.height,
-            "half_diagonal_m": r,
-            "alpha_rad": psi,
-            "alpha_deg": psi.to_degrees(),
-            "p_rad_s": p,
-            "seconds_per_tau": 1.0 / p,
-            "uplift_acceleration_g": geo.tan_psi,
-        },
-        "excitation": {
-            "kind": x.kind.name(),
-            "a_h": harmonic_or_pulse.then(|| amplitude(x.a_h)),
-            "a_v": harmonic_or_pulse.then(|| amplitude(x.a_v)),
-            "omega_h": harmonic_or_pulse.then(|| frequency(x.omega_h)),
-            "omega_v": harmonic_or_pulse.then(|| frequency(x.omega_v())),
-            "phase_h_deg": x.phase_h.to_degrees(),
-            "phase_v_deg": x.phase_v.to_degrees(),
-        },
-        "initial": {
-            "theta": rotation(cfg.initial.theta),
-            "theta_dot": { "normalised": cfg.initial.theta_dot, "rad_s": si(Dimension::AngularVelocity, cfg.initial.theta_dot) },
-            "x_dot": cfg.initial.x_dot.map(|v| json!({ "normalised": v, "m_s": si(Dimension::Velocity, v) })),
-        },
-        "run": {
-            "end": time(cfg.tau_end()),
-            "record_tail_s": cfg.record_end_tau().and(cfg.run.record_tail_s),
-            "output_dt": time(cfg.run.output_dt),
-            "tumble_theta": rotation(cfg.run.tumble_theta),
-        },
-    })
-}
-
-/// The key of the structure's section: `block`, or `frame` (whose
-/// columns the sizes are).
-fn structure_key(cfg: &Scenario) -> &'static str {
-    if cfg.frame.is_some() { "frame" } else { "block" }
-}
+pub use super::resolved::resolved_json;
 
 /// Checks that `dir` can be written, before a run starts: it is a
 /// directory or can be created, and a file can be made in it.

@@ -8,8 +8,8 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use super::labels::{legend_entries, response_colour, response_label};
-use super::style::Legend;
-use super::{FONT, Figure, PlotError, axis_titles, padded_range, titled};
+use super::style::{Frame, Legend};
+use super::{Figure, PlotError, padded_range, titled};
 use crate::analysis::classify::Response;
 
 /// The data of a bifurcation diagram.
@@ -77,25 +77,10 @@ impl Figure for BifurcationFigure<'_> {
             _ => (0.0, 1.0),
         };
         let (y0, y1) = padded_range(self.points.iter().map(|p| p.1), 0.05, 0.02, (-1.0, 1.0));
-        let mut chart = ChartBuilder::on(&area)
-            .margin(16)
-            .x_label_area_size(56)
-            .y_label_area_size(80)
-            .build_cartesian_2d(x0..x1, y0..y1)
-            .map_err(e)?;
-        chart
-            .configure_mesh()
-            .label_style((FONT, 16))
-            .light_line_style(RGBColor(238, 238, 238))
-            .draw()
-            .map_err(e)?;
-        axis_titles(
-            root,
-            chart.plotting_area().get_pixel_range(),
-            (self.x_label.as_str(), "Θ = θ/ψ at τ_k = 2πk/Ω_h"),
-            19.0,
-            (56, 80),
-        )?;
+        let frame = Frame::whole((56, 80));
+        let mut chart = frame.chart(&area, None, x0..x1, y0..y1)?;
+        frame.grid(&mut chart).draw().map_err(e)?;
+        frame.titles(root, &chart, (self.x_label.as_str(), "Θ = θ/ψ at τ_k = 2πk/Ω_h"))?;
 
         for (band, colour, label) in [
             (Response::Tumbled, TUMBLED_BAND, "tumbled (blank)"),

@@ -7,12 +7,12 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use super::marks::{colour, legend_entry, marker};
-use super::style::Legend;
-use super::{FONT, Figure, PlotError, axis_titles, titled};
+use super::style::{Frame, Legend};
+use super::{Figure, PlotError, titled};
 
-/// Pixels below and left of each panel's plotting area for numbers and
-/// titles.
-const LABEL_AREAS: (i32, i32) = (50, 64);
+/// Each panel's frame: 50 px below and 64 px left of its plotting area
+/// for numbers and titles.
+const FRAME: Frame = Frame::panel((50, 64));
 use crate::analysis::engineering::lognormal::BandPoint;
 
 /// One block in one panel.
@@ -65,26 +65,9 @@ impl Figure for FragilityFigure {
         };
         let cells = area.split_evenly((1, self.panels.len().max(1)));
         for (panel, cell) in self.panels.iter().zip(cells.iter()) {
-            let mut chart = ChartBuilder::on(cell)
-                .caption(panel.caption.as_str(), (FONT, 20))
-                .margin(14)
-                .x_label_area_size(LABEL_AREAS.0)
-                .y_label_area_size(LABEL_AREAS.1)
-                .build_cartesian_2d(0.0..x1, 0.0..1.02)
-                .map_err(e)?;
-            chart
-                .configure_mesh()
-                .label_style((FONT, 15))
-                .light_line_style(RGBColor(238, 238, 238))
-                .draw()
-                .map_err(e)?;
-            axis_titles(
-                root,
-                chart.plotting_area().get_pixel_range(),
-                (self.x_label.as_str(), "probability"),
-                17.0,
-                LABEL_AREAS,
-            )?;
+            let mut chart = FRAME.chart(cell, Some(panel.caption.as_str()), 0.0..x1, 0.0..1.02)?;
+            FRAME.grid(&mut chart).draw().map_err(e)?;
+            FRAME.titles(root, &chart, (self.x_label.as_str(), "probability"))?;
             for (i, curve) in panel.curves.iter().enumerate() {
                 let c = colour(i);
                 // Earlier blocks' markers larger: fractions of 0 and 1 are

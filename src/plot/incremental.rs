@@ -11,13 +11,13 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use super::marks::{colour, marker};
-use super::style::Legend;
-use super::{FONT, Figure, PlotError, axis_titles, titled};
+use super::style::{Frame, Legend};
+use super::{Figure, PlotError, titled};
 use crate::analysis::engineering::EndState;
 
-/// Pixels below and left of each panel's plotting area for numbers and
-/// titles.
-const LABEL_AREAS: (i32, i32) = (50, 64);
+/// Each panel's frame: 50 px below and 64 px left of its plotting area
+/// for numbers and titles.
+const FRAME: Frame = Frame::panel((50, 64));
 
 /// Most records named in the legend (of the first panel): beyond it the
 /// legend would cover the curves, and incremental.csv names each.
@@ -88,26 +88,9 @@ impl Figure for IncrementalFigure {
         let cells = area.split_evenly((rows, cols));
         for (k, (panel, cell)) in self.panels.iter().zip(cells.iter()).enumerate() {
             let first = k == 0;
-            let mut chart = ChartBuilder::on(cell)
-                .caption(panel.caption.as_str(), (FONT, 20))
-                .margin(14)
-                .x_label_area_size(LABEL_AREAS.0)
-                .y_label_area_size(LABEL_AREAS.1)
-                .build_cartesian_2d(0.0..x1, 0.0..y1)
-                .map_err(e)?;
-            chart
-                .configure_mesh()
-                .label_style((FONT, 15))
-                .light_line_style(RGBColor(238, 238, 238))
-                .draw()
-                .map_err(e)?;
-            axis_titles(
-                root,
-                chart.plotting_area().get_pixel_range(),
-                ("peak rotation θ/α", self.y_label.as_str()),
-                17.0,
-                LABEL_AREAS,
-            )?;
+            let mut chart = FRAME.chart(cell, Some(panel.caption.as_str()), 0.0..x1, 0.0..y1)?;
+            FRAME.grid(&mut chart).draw().map_err(e)?;
+            FRAME.titles(root, &chart, ("peak rotation θ/α", self.y_label.as_str()))?;
             // The overturning angle, where the curves end.
             chart
                 .draw_series(LineSeries::new(

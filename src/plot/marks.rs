@@ -2,9 +2,17 @@
 //! marker shape of its own, so that two series stay distinct in grey print
 //! and for readers who do not tell the hues apart.
 
-use plotters::element::{Drawable, PointCollection};
+use plotters::chart::ChartContext;
+use plotters::element::{Drawable, IntoDynElement, PointCollection};
 use plotters::prelude::*;
 use plotters_backend::{BackendCoord, DrawingErrorKind};
+
+use super::PlotError;
+
+/// Grey of the marks no series owns (an overturning line, the legend's
+/// generic overturned cross): dark enough to read, not black like the
+/// axes.
+pub(crate) const MARK: RGBColor = RGBColor(90, 90, 90);
 
 /// Colours of successive series (blocks, slendernesses, pulses): the
 /// matplotlib "tab10" hues, distinct in print and on screen.
@@ -91,6 +99,56 @@ pub(crate) fn legend_entry(i: usize, (x, y): (i32, i32), line: bool) -> Marker<(
         line,
         ..marker(i, (x + 10, y), 4)
     }
+}
+
+/// Adds a legend entry `label` drawn by `entry`, with nothing drawn on the
+/// chart: for a kind of mark that several series share (crosses where a
+/// block overturned), named once.
+pub(crate) fn legend_only<'a, DB, X, Y, E, F>(
+    chart: &mut ChartContext<'a, DB, Cartesian2d<X, Y>>,
+    label: &str,
+    entry: F,
+) -> Result<(), PlotError>
+where
+    DB: DrawingBackend + 'a,
+    X: Ranged<ValueType = f64>,
+    Y: Ranged<ValueType = f64>,
+    E: IntoDynElement<'a, DB, BackendCoord>,
+    F: Fn(BackendCoord) -> E + 'a,
+{
+    chart
+        .draw_series(std::iter::empty::<PathElement<(f64, f64)>>())
+        .map_err(PlotError::from_display)?
+        .label(label)
+        .legend(entry);
+    Ok(())
+}
+
+/// The legend entry of the overturned crosses (drawn in each series'
+/// colour; the entry in [`MARK`] grey stands for all), with `label`
+/// saying where they sit.
+pub(crate) fn overturned_legend<'a, DB, X, Y>(
+    chart: &mut ChartContext<'a, DB, Cartesian2d<X, Y>>,
+    label: &str,
+) -> Result<(), PlotError>
+where
+    DB: DrawingBackend + 'a,
+    X: Ranged<ValueType = f64>,
+    Y: Ranged<ValueType = f64>,
+{
+    legend_only(chart, label, |(x, y)| Cross::new((x + 10, y), 5, MARK.stroke_width(2)))
+}
+
+/// The legend entry of the black flight triangles.
+pub(crate) fn flight_legend<'a, DB, X, Y>(chart: &mut ChartContext<'a, DB, Cartesian2d<X, Y>>) -> Result<(), PlotError>
+where
+    DB: DrawingBackend + 'a,
+    X: Ranged<ValueType = f64>,
+    Y: Ranged<ValueType = f64>,
+{
+    legend_only(chart, "flight (the block left the ground)", |(x, y)| {
+        TriangleMarker::new((x + 10, y), 6, BLACK.filled())
+    })
 }
 
 impl<'a, C> PointCollection<'a, C> for &'a Marker<C> {

@@ -5,7 +5,8 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use super::labels::{legend_entries, legend_key, response_colour, response_label};
-use super::{FONT, Figure, PlotError, axis_titles, titled};
+use super::style::Frame;
+use super::{FONT, Figure, PlotError, titled};
 use crate::analysis::attractor::Attractor;
 use crate::analysis::classify::Response;
 
@@ -162,25 +163,11 @@ impl Figure for OutcomeMapFigure<'_> {
                 self.y.len()
             )));
         }
-        let mut chart = ChartBuilder::on(&plot_area)
-            .margin(16)
-            .x_label_area_size(56)
-            .y_label_area_size(80)
-            .build_cartesian_2d(x0..x1, y0..y1)
-            .map_err(e)?;
-        chart
-            .configure_mesh()
-            .disable_mesh()
-            .label_style((FONT, 16))
-            .draw()
-            .map_err(e)?;
-        axis_titles(
-            root,
-            chart.plotting_area().get_pixel_range(),
-            (self.x_label.as_str(), self.y_label.as_str()),
-            19.0,
-            (56, 80),
-        )?;
+        let frame = Frame::whole((56, 80));
+        let mut chart = frame.chart(&plot_area, None, x0..x1, y0..y1)?;
+        // No grid: the cells fill the plotting area.
+        frame.grid(&mut chart).disable_mesh().draw().map_err(e)?;
+        frame.titles(root, &chart, (self.x_label.as_str(), self.y_label.as_str()))?;
         let scale = self.lyapunov_scale();
         let nx = self.x.len();
         // One rectangle per run of equal colour along a row: a 1000 × 1000

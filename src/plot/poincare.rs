@@ -5,6 +5,7 @@ use std::collections::BTreeSet;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
+use super::style::Frame;
 use super::{FONT, Figure, PlotError, padded_range, titled};
 
 /// The data of a Poincaré-map figure.
@@ -28,19 +29,14 @@ impl Figure for PoincareFigure<'_> {
         let area = titled(root, &self.title, &self.subtitle)?;
         let (x0, x1) = padded_range(self.points.iter().map(|p| p.0), 0.08, 0.02, (-1.0, 1.0));
         let (y0, y1) = padded_range(self.points.iter().map(|p| p.1), 0.08, 0.02, (-1.0, 1.0));
-        let mut chart = ChartBuilder::on(&area)
-            .margin(16)
-            .x_label_area_size(52)
-            .y_label_area_size(80)
-            .build_cartesian_2d(x0..x1, y0..y1)
-            .map_err(e)?;
-        chart
-            .configure_mesh()
+        let frame = Frame::whole((52, 80));
+        let mut chart = frame.chart(&area, None, x0..x1, y0..y1)?;
+        // Titles without subscripts: plotters' own axis descriptions.
+        frame
+            .grid(&mut chart)
             .x_desc("Θ = θ/ψ")
             .y_desc("Θ' = dΘ/dτ")
-            .label_style((FONT, 16))
             .axis_desc_style((FONT, 19))
-            .light_line_style(RGBColor(238, 238, 238))
             .draw()
             .map_err(e)?;
         // Points closer than a small fraction of a pixel are drawn once (a

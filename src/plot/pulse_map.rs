@@ -7,13 +7,9 @@
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use super::marks::{colour, legend_entry, marker};
-use super::rocking_spectrum::ScalePoint;
-use super::style::Legend;
-use super::{FONT, Figure, PlotError, axis_titles, padded_range, titled};
-
-/// Pixels below and left of the plotting area for numbers and titles.
-const LABEL_AREAS: (i32, i32) = (56, 80);
+use super::rocking_spectrum::{ScalePoint, safe_windows_legend, scale_series};
+use super::style::{Frame, Legend};
+use super::{Figure, PlotError, padded_range, titled};
 
 /// One pulse at one slenderness.
 #[derive(Clone, Debug)]
@@ -37,10 +33,6 @@ pub(crate) struct PulseMapFigure {
     pub series: Vec<PulseMapSeries>,
 }
 
-/// Grey of the safe windows' legend entry (each window is drawn in its
-/// series' colour, lightened).
-const SAFE: RGBColor = RGBColor(160, 160, 160);
-
 impl Figure for PulseMapFigure {
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), PlotError> {
         let e = PlotError::from_display;
@@ -56,27 +48,16 @@ impl Figure for PulseMapFigure {
         } else {
             10.0
         };
-        let mut chart = ChartBuilder::on(&area)
-            .margin(16)
-            .x_label_area_size(LABEL_AREAS.0)
-            .y_label_area_size(LABEL_AREAS.1)
-            .build_cartesian_2d(x0.max(0.0)..x1, 0.0..y1)
-            .map_err(e)?;
-        chart
-            .configure_mesh()
-            .label_style((FONT, 16))
-            .light_line_style(RGBColor(238, 238, 238))
-            .draw()
-            .map_err(e)?;
-        axis_titles(
+        let frame = Frame::whole((56, 80));
+        let mut chart = frame.chart(&area, None, x0.max(0.0)..x1, 0.0..y1)?;
+        frame.grid(&mut chart).draw().map_err(e)?;
+        frame.titles(
             root,
-            chart.plotting_area().get_pixel_range(),
+            &chart,
             (
                 "ω_p/p, pulse frequency over the frequency parameter",
                 "a_p/(g tan α), smallest overturning amplitude",
             ),
-            19.0,
-            LABEL_AREAS,
         )?;
         chart
             .draw_series(std::iter::once(PathElement::new(
@@ -86,38 +67,11 @@ impl Figure for PulseMapFigure {
             .map_err(e)?;
         let mut any_window = false;
         for (i, s) in self.series.iter().enumerate() {
-            let c = colour(i);
-            for (x, _, windows) in &s.points {
-                for &(from, to) in windows {
-                    any_window = true;
-                    let top = to.unwrap_or(self.y_max).min(y1);
-                    chart
-                        .draw_series(std::iter::once(PathElement::new(
-                            vec![(*x, from), (*x, top)],
-                            c.mix(0.35).stroke_width(4),
-                        )))
-                        .map_err(e)?;
-                }
-            }
-            let pts: Vec<(f64, f64)> = s
-                .points
-                .iter()
-                .filter_map(|p| p.1.map(|y| (p.0, y)))
-                .filter(|p| p.0.is_finite() && p.1.is_finite())
-                .collect();
-            chart
-                .draw_series(LineSeries::new(pts.iter().copied(), c.stroke_width(2)))
-                .map_err(e)?
-                .label(s.label.as_str())
-                .legend(move |at| legend_entry(i, at, true));
-            chart.draw_series(pts.iter().map(|&p| marker(i, p, 4))).map_err(e)?;
+            // In the order the study gave: pulses are tabulated by ω_p/p.
+            any_window |= scale_series(&mut chart, i, &s.label, &s.points, (self.y_max, y1), false)?;
         }
         if any_window {
-            chart
-                .draw_series(std::iter::empty::<PathElement<(f64, f64)>>())
-                .map_err(e)?
-                .label("light bars: safe windows above it")
-                .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], SAFE.stroke_width(3)));
+            safe_windows_legend(&mut chart)?;
         }
         Legend::at(SeriesLabelPosition::UpperLeft, 16).draw(&mut chart)?;
         Ok(())

@@ -5,25 +5,26 @@
 //! overturning-scale spectrum: the smallest overturning PGA against p, with
 //! the safe windows above it as light bars of the series colour.
 
+use plotters::chart::ChartContext;
 use plotters::coord::Shift;
+use plotters::coord::combinators::{LogCoord, WithKeyPoints};
+use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 
-use super::marks::{legend_entry, marker};
-use super::style::Legend;
+use super::marks::{MARK, flight_legend, legend_entry, legend_only, marker, overturned_legend};
+use super::style::{Frame, Legend};
 use super::ticks::{log_axis, tick_label};
-use super::{FONT, Figure, PlotError, axis_titles, titled};
+use super::{Figure, PlotError, titled};
 use crate::analysis::engineering::EndState;
 
 pub use super::marks::{PALETTE, colour};
 
-/// Grey of the overturning line θ/α = 1 and of the legend's generic marks.
-const MARK: RGBColor = RGBColor(90, 90, 90);
-
 /// Title of the p axis, shared by both figures.
 const P_AXIS: &str = "p = √(3g/4R), frequency parameter (1/s)";
 
-/// Pixels below and left of the plotting area for numbers and titles.
-const LABEL_AREAS: (i32, i32) = (56, 80);
+/// Both figures' frame: 56 px below and 80 px left of the plotting area
+/// for numbers and titles.
+const FRAME: Frame = Frame::whole((56, 80));
 
 /// `[lo, hi]` of the finite positive values, widened by a factor on each
 /// side for a log axis (`default` if none).
@@ -34,6 +35,27 @@ pub(crate) fn log_range(values: impl Iterator<Item = f64>, default: (f64, f64)) 
         hi = hi.max(v);
     }
     if lo > hi { default } else { (lo / 1.15, hi * 1.15) }
+}
+
+/// The chart of both figures on `area`: p over `x` on a log axis numbered
+/// however narrow its range, `y_title` from 0 to `y1`, with its frame and
+/// titles drawn (on `root`, the figure's whole area).
+#[allow(clippy::type_complexity)]
+fn p_chart<'a, DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    area: &'a DrawingArea<DB, Shift>,
+    x: std::ops::Range<f64>,
+    y1: f64,
+    y_title: &str,
+) -> Result<ChartContext<'a, DB, Cartesian2d<WithKeyPoints<LogCoord<f64>>, RangedCoordf64>>, PlotError> {
+    let mut chart = FRAME.chart(area, None, log_axis(x), 0.0..y1)?;
+    FRAME
+        .grid(&mut chart)
+        .x_label_formatter(&|v| tick_label(*v))
+        .draw()
+        .map_err(PlotError::from_display)?;
+    FRAME.titles(root, &chart, (P_AXIS, y_title))?;
+    Ok(chart)
 }
 
 /// One slenderness of a spectrum.
@@ -68,26 +90,7 @@ impl Figure for SpectrumFigure {
             .fold(1.0_f64, f64::max)
             .min(2.0)
             * 1.08;
-        let mut chart = ChartBuilder::on(&area)
-            .margin(16)
-            .x_label_area_size(LABEL_AREAS.0)
-            .y_label_area_size(LABEL_AREAS.1)
-            .build_cartesian_2d(log_axis(x0..x1), 0.0..y1)
-            .map_err(e)?;
-        chart
-            .configure_mesh()
-            .x_label_formatter(&|v| tick_label(*v))
-            .label_style((FONT, 16))
-            .light_line_style(RGBColor(238, 238, 238))
-            .draw()
-            .map_err(e)?;
-        axis_titles(
-            root,
-            chart.plotting_area().get_pixel_range(),
-            (P_AXIS, "peak rotation θ/α"),
-            19.0,
-            LABEL_AREAS,
-        )?;
+        let mut chart = p_chart(root, &area, x0..x1, y1, "peak rotation θ/α")?;
         chart
             .draw_series(std::iter::once(PathElement::new(
                 vec![(x0, 1.0), (x1, 1.0)],
@@ -141,30 +144,14 @@ impl Figure for SpectrumFigure {
                 .map_err(e)?;
         }
         if any_overturned {
-            chart
-                .draw_series(std::iter::empty::<Cross<(f64, f64), i32>>())
-                .map_err(e)?
-                .label("overturned (× on θ/α = 1, in its series' colour)")
-                .legend(|(x, y)| Cross::new((x + 10, y), 5, MARK.stroke_width(2)));
+            overturned_legend(&mut chart, "overturned (× on θ/α = 1, in its series' colour)")?;
         }
         if any_flight {
-            chart
-                .draw_series(std::iter::empty::<TriangleMarker<(f64, f64), i32>>())
-                .map_err(e)?
-                .label("flight (the block left the ground)")
-                .legend(|(x, y)| TriangleMarker::new((x + 10, y), 6, BLACK.filled()));
+            flight_legend(&mut chart)?;
         }
-        chart
-            .configure_series_labels()
-            // Where a spectrum is usually empty: small blocks (high p)
-            // overturn at the top, large ones (low p) rock little at the
-            // bottom left.
-            .position(SeriesLabelPosition::LowerRight)
-            .background_style(WHITE.mix(0.9))
-            .border_style(RGBColor(150, 150, 150))
-            .label_font((FONT, 16))
-            .draw()
-            .map_err(e)?;
+        // Where a spectrum is usually empty: small blocks (high p) overturn
+        // at the top, large ones (low p) rock little at the bottom left.
+        Legend::at(SeriesLabelPosition::LowerRight, 16).draw(&mut chart)?;
         Ok(())
     }
 }
@@ -204,7 +191,6 @@ const SAFE: RGBColor = RGBColor(160, 160, 160);
 
 impl Figure for OverturnScaleFigure {
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), PlotError> {
-        let e = PlotError::from_display;
         let area = titled(root, &self.title, &self.subtitle)?;
         let (x0, x1) = log_range(
             self.series.iter().flat_map(|s| s.points.iter().map(|p| p.0)),
@@ -215,65 +201,81 @@ impl Figure for OverturnScaleFigure {
         } else {
             1.0
         };
-        let mut chart = ChartBuilder::on(&area)
-            .margin(16)
-            .x_label_area_size(LABEL_AREAS.0)
-            .y_label_area_size(LABEL_AREAS.1)
-            .build_cartesian_2d(log_axis(x0..x1), 0.0..y1)
-            .map_err(e)?;
-        chart
-            .configure_mesh()
-            .x_label_formatter(&|v| tick_label(*v))
-            .label_style((FONT, 16))
-            .light_line_style(RGBColor(238, 238, 238))
-            .draw()
-            .map_err(e)?;
-        axis_titles(
-            root,
-            chart.plotting_area().get_pixel_range(),
-            (P_AXIS, self.y_label.as_str()),
-            19.0,
-            LABEL_AREAS,
-        )?;
+        let mut chart = p_chart(root, &area, x0..x1, y1, &self.y_label)?;
         let mut any_window = false;
         for (i, s) in self.series.iter().enumerate() {
-            let c = colour(i);
-            let mut pts: Vec<(f64, f64)> = s
-                .points
-                .iter()
-                .filter_map(|p| p.1.map(|y| (p.0, y)))
-                .filter(|p| p.0.is_finite() && p.1.is_finite())
-                .collect();
-            pts.sort_by(|a, b| a.0.total_cmp(&b.0));
-            for (p, _, windows) in &s.points {
-                for &(from, to) in windows {
-                    any_window = true;
-                    let top = to.unwrap_or(self.y_max).min(y1);
-                    chart
-                        .draw_series(std::iter::once(PathElement::new(
-                            vec![(*p, from), (*p, top)],
-                            c.mix(0.35).stroke_width(4),
-                        )))
-                        .map_err(e)?;
-                }
-            }
-            chart
-                .draw_series(LineSeries::new(pts.iter().copied(), c.stroke_width(2)))
-                .map_err(e)?
-                .label(s.label.as_str())
-                .legend(move |at| legend_entry(i, at, true));
-            chart.draw_series(pts.iter().map(|&p| marker(i, p, 4))).map_err(e)?;
+            any_window |= scale_series(&mut chart, i, &s.label, &s.points, (self.y_max, y1), true)?;
         }
         if any_window {
-            chart
-                .draw_series(std::iter::empty::<PathElement<(f64, f64)>>())
-                .map_err(e)?
-                .label("light bars: safe windows above it")
-                .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], SAFE.stroke_width(3)));
+            safe_windows_legend(&mut chart)?;
         }
         Legend::at(SeriesLabelPosition::UpperRight, 16).draw(&mut chart)?;
         Ok(())
     }
+}
+
+/// Draws series `i` of an overturning-scale figure (this spectrum, the
+/// pulse map) on `chart`: its safe windows as light bars of its colour
+/// (an open window reaches `y_max`; all are cut at the axis top `y_top`),
+/// then its smallest overturning amplitudes as a line with markers, in
+/// increasing x if `sort`. Returns whether it had a window.
+pub(crate) fn scale_series<'a, DB, X, Y>(
+    chart: &mut ChartContext<'a, DB, Cartesian2d<X, Y>>,
+    i: usize,
+    label: &str,
+    points: &[ScalePoint],
+    (y_max, y_top): (f64, f64),
+    sort: bool,
+) -> Result<bool, PlotError>
+where
+    DB: DrawingBackend + 'a,
+    X: Ranged<ValueType = f64>,
+    Y: Ranged<ValueType = f64>,
+{
+    let e = PlotError::from_display;
+    let c = colour(i);
+    let mut any_window = false;
+    for (x, _, windows) in points {
+        for &(from, to) in windows {
+            any_window = true;
+            let top = to.unwrap_or(y_max).min(y_top);
+            chart
+                .draw_series(std::iter::once(PathElement::new(
+                    vec![(*x, from), (*x, top)],
+                    c.mix(0.35).stroke_width(4),
+                )))
+                .map_err(e)?;
+        }
+    }
+    let mut pts: Vec<(f64, f64)> = points
+        .iter()
+        .filter_map(|p| p.1.map(|y| (p.0, y)))
+        .filter(|p| p.0.is_finite() && p.1.is_finite())
+        .collect();
+    if sort {
+        pts.sort_by(|a, b| a.0.total_cmp(&b.0));
+    }
+    chart
+        .draw_series(LineSeries::new(pts.iter().copied(), c.stroke_width(2)))
+        .map_err(e)?
+        .label(label)
+        .legend(move |at| legend_entry(i, at, true));
+    chart.draw_series(pts.iter().map(|&p| marker(i, p, 4))).map_err(e)?;
+    Ok(any_window)
+}
+
+/// The legend entry of the safe windows' light bars.
+pub(crate) fn safe_windows_legend<'a, DB, X, Y>(
+    chart: &mut ChartContext<'a, DB, Cartesian2d<X, Y>>,
+) -> Result<(), PlotError>
+where
+    DB: DrawingBackend + 'a,
+    X: Ranged<ValueType = f64>,
+    Y: Ranged<ValueType = f64>,
+{
+    legend_only(chart, "light bars: safe windows above it", |(x, y)| {
+        PathElement::new(vec![(x, y), (x + 20, y)], SAFE.stroke_width(3))
+    })
 }
 
 #[cfg(test)]

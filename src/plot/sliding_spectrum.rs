@@ -10,17 +10,15 @@
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use super::marks::{colour, legend_entry, marker};
-use super::style::Legend;
-use super::{FONT, Figure, PlotError, axis_titles, padded_range, titled};
+use super::marks::{MARK, colour, flight_legend, legend_entry, marker, overturned_legend};
+use super::style::{Frame, Legend};
+use super::{Figure, PlotError, padded_range, titled};
 use crate::analysis::engineering::EndState;
 
-/// Pixels below and left of each panel's plotting area for numbers and
-/// titles (millimetre numbers such as 0.0125 need the width).
-const LABEL_AREAS: (i32, i32) = (50, 84);
-
-/// Grey of the μ = PGA/g line and of the legend's generic marks.
-const MARK: RGBColor = RGBColor(90, 90, 90);
+/// Each panel's frame: 50 px below and 84 px left of its plotting area
+/// for numbers and titles (millimetre numbers such as 0.0125 need the
+/// width).
+const FRAME: Frame = Frame::panel((50, 84));
 
 /// One block's curve.
 #[derive(Clone, Debug)]
@@ -84,26 +82,9 @@ impl Figure for SlidingFigure {
             ("residual", "residual sliding displacement (m), +x", (r0, r1), true),
         ];
         for ((caption, y_title, (y0, y1), residual), cell) in panels.into_iter().zip(cells.iter()) {
-            let mut chart = ChartBuilder::on(cell)
-                .caption(caption, (FONT, 20))
-                .margin(14)
-                .x_label_area_size(LABEL_AREAS.0)
-                .y_label_area_size(LABEL_AREAS.1)
-                .build_cartesian_2d(x0..x1, y0..y1)
-                .map_err(e)?;
-            chart
-                .configure_mesh()
-                .label_style((FONT, 15))
-                .light_line_style(RGBColor(238, 238, 238))
-                .draw()
-                .map_err(e)?;
-            axis_titles(
-                root,
-                chart.plotting_area().get_pixel_range(),
-                ("friction coefficient μ", y_title),
-                17.0,
-                LABEL_AREAS,
-            )?;
+            let mut chart = FRAME.chart(cell, Some(caption), x0..x1, y0..y1)?;
+            FRAME.grid(&mut chart).draw().map_err(e)?;
+            FRAME.titles(root, &chart, ("friction coefficient μ", y_title))?;
             if residual {
                 chart
                     .draw_series(std::iter::once(PathElement::new(
@@ -185,18 +166,10 @@ impl Figure for SlidingFigure {
                     .map_err(e)?;
             }
             if any_overturned {
-                chart
-                    .draw_series(std::iter::empty::<Cross<(f64, f64), i32>>())
-                    .map_err(e)?
-                    .label("overturned (× at its peak before, no residual)")
-                    .legend(|(x, y)| Cross::new((x + 10, y), 5, MARK.stroke_width(2)));
+                overturned_legend(&mut chart, "overturned (× at its peak before, no residual)")?;
             }
             if any_flight {
-                chart
-                    .draw_series(std::iter::empty::<TriangleMarker<(f64, f64), i32>>())
-                    .map_err(e)?
-                    .label("flight (the block left the ground)")
-                    .legend(|(x, y)| TriangleMarker::new((x + 10, y), 6, BLACK.filled()));
+                flight_legend(&mut chart)?;
             }
             // Sliding falls with μ: the upper right is usually empty.
             Legend::at(SeriesLabelPosition::UpperRight, 14).draw(&mut chart)?;

@@ -4,7 +4,8 @@
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use super::{FONT, Figure, PlotError, axis_titles, titled};
+use super::style::Frame;
+use super::{FONT, Figure, PlotError, titled};
 use crate::analysis::spectrum::Peak;
 
 /// Dynamic range shown below the highest bin (twelve decades: beyond that
@@ -55,28 +56,20 @@ impl Figure for SpectrumFigure<'_> {
         let top = if top > 0.0 { top } else { 1.0 };
         let floor = top * 10f64.powf(-DECADES);
         let (y0, y1) = (floor, top * 10.0);
-        let mut chart = ChartBuilder::on(&area)
-            .margin(16)
-            .x_label_area_size(52)
-            .y_label_area_size(90)
-            .build_cartesian_2d(0.0..x1, (y0..y1).log_scale())
-            .map_err(e)?;
-        chart
-            .configure_mesh()
+        let frame = Frame::whole((52, 90));
+        let mut chart = frame.chart(&area, None, 0.0..x1, (y0..y1).log_scale())?;
+        frame
+            .grid(&mut chart)
             .y_label_formatter(&|v| format!("{v:.0e}"))
-            .label_style((FONT, 16))
-            .light_line_style(RGBColor(238, 238, 238))
             .draw()
             .map_err(e)?;
-        axis_titles(
+        frame.titles(
             root,
-            chart.plotting_area().get_pixel_range(),
+            &chart,
             (
                 "ω/Ω_h (ω = 2πf in units of p; 1 = the forcing frequency)",
                 "PSD of Θ (per cycle per unit τ)",
             ),
-            19.0,
-            (52, 90),
         )?;
         chart
             .draw_series(LineSeries::new(

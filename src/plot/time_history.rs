@@ -3,6 +3,7 @@
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
+use super::style::Frame;
 use super::{FONT, Figure, PlotError, padded_range, titled};
 
 /// The data of a time-history figure.
@@ -38,19 +39,14 @@ impl Figure for TimeHistoryFigure<'_> {
             y0 = y0.min(-1.05 * t);
             y1 = y1.max(1.05 * t);
         }
-        let mut chart = ChartBuilder::on(&area)
-            .margin(16)
-            .x_label_area_size(52)
-            .y_label_area_size(80)
-            .build_cartesian_2d(t0..t1, y0..y1)
-            .map_err(e)?;
-        chart
-            .configure_mesh()
+        let frame = Frame::whole((52, 80));
+        let mut chart = frame.chart(&area, None, t0..t1, y0..y1)?;
+        // Titles without subscripts: plotters' own axis descriptions.
+        frame
+            .grid(&mut chart)
             .x_desc("τ = p t")
             .y_desc("Θ = θ/ψ")
-            .label_style((FONT, 16))
             .axis_desc_style((FONT, 19))
-            .light_line_style(RGBColor(238, 238, 238))
             .draw()
             .map_err(e)?;
         if let Some(t) = tumble {

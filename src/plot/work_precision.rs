@@ -6,9 +6,19 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use super::marks::{Marker, shape};
+use super::style::Frame;
 use super::style::Legend;
 use super::ticks::{log_axis, tick_label};
-use super::{FONT, Figure, PlotError, axis_titles, titled};
+use super::{Figure, PlotError, titled};
+
+/// Each scene's panel: smaller than [`Frame::panel`] (12 px margin, 14 px
+/// numbers, 16 px titles), as four or more panels share the figure.
+const FRAME: Frame = Frame {
+    margin: 12,
+    label_areas: (44, 70),
+    tick_size: 14,
+    title_size: 16.0,
+};
 
 /// One point of a work–precision curve, as the figure draws it: the
 /// benchmark (`bench`) measures it, the figure needs no more of it.
@@ -69,27 +79,22 @@ impl Figure for WorkPrecisionFigure<'_> {
             let recs: Vec<&WorkPoint> = self.points.iter().filter(|r| r.scene == scene.as_str()).collect();
             let (x0, x1) = log_range(recs.iter().map(|r| r.wall_s));
             let (y0, y1) = log_range(recs.iter().map(|r| r.error.max(1e-16)));
-            let mut chart = ChartBuilder::on(panel)
-                .caption(format!("scene: {scene}"), (FONT, 20))
-                .margin(12)
-                .x_label_area_size(44)
-                .y_label_area_size(70)
-                .build_cartesian_2d(log_axis(x0..x1), log_axis(y0..y1))
-                .map_err(e)?;
-            chart
-                .configure_mesh()
+            let mut chart = FRAME.chart(
+                panel,
+                Some(&format!("scene: {scene}")),
+                log_axis(x0..x1),
+                log_axis(y0..y1),
+            )?;
+            FRAME
+                .grid(&mut chart)
                 .x_label_formatter(&|v| tick_label(*v))
                 .y_label_formatter(&|v| tick_label(*v))
-                .label_style((FONT, 14))
-                .light_line_style(RGBColor(238, 238, 238))
                 .draw()
                 .map_err(e)?;
-            axis_titles(
+            FRAME.titles(
                 root,
-                chart.plotting_area().get_pixel_range(),
+                &chart,
                 ("solver wall time (s)", "max error of Θ, Θ', X' at τ_end"),
-                16.0,
-                (44, 70),
             )?;
             for (k, (method, colour)) in METHODS.into_iter().enumerate() {
                 let mut pts: Vec<(f64, f64)> = recs

@@ -469,16 +469,7 @@ pub(crate) fn intermittency_switches(values: &[(f64, Response)]) -> usize {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    const P1: Response = Response::Periodic { period: 1 };
-    const P2: Response = Response::Periodic { period: 2 };
-    const P4: Response = Response::Periodic { period: 4 };
-    const C: Response = Response::Chaotic;
-    const T: Response = Response::Tumbled;
-
-    fn grid(rs: &[Response]) -> Vec<(f64, Response)> {
-        rs.iter().enumerate().map(|(i, r)| (i as f64 * 0.1, *r)).collect()
-    }
+    use crate::reproduce::fixtures::{C, P1, P2, P4, T, grid};
 
     #[test]
     fn ranges_are_compared_by_runs_and_shares() {

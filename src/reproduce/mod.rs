@@ -25,6 +25,8 @@
 //! that tumbles) is a reported outcome, never NaN.
 
 pub mod diagrams;
+#[cfg(test)]
+mod fixtures;
 pub mod format;
 pub mod paper;
 pub mod report;

@@ -79,6 +79,28 @@ pub struct PaperFigure {
 
 const NO_RANGES: &[PaperRange] = &[];
 
+/// The fields a figure's entry leaves out when the paper quotes no number
+/// for it: no ranges, no exponent, no amplitude, no word on chaos. Each
+/// entry sets its number, preset, kind, caption and statements.
+const NOT_QUOTED: PaperFigure = PaperFigure {
+    number: 0,
+    preset: "",
+    kind: FigureKind::Bifurcation,
+    caption: "",
+    statements: &[],
+    ranges: NO_RANGES,
+    lyapunov: None,
+    max_amplitude: None,
+    chaotic: None,
+};
+
+/// What the paper says of Figs. 14 and 15 together: the two friction
+/// levels of one comparison.
+const LOWER_FRICTION: &[&str] = &[
+    "\"The chaotic response region is expanded in these bifurcation diagrams by lowering its frictional coefficient.\"",
+    "\"the chaotic response region is widely extended at higher excitation frequencies and becomes wider in the case with sliding than in the case without sliding.\"",
+];
+
 /// Every figure of the paper's section 4, in order.
 pub(crate) const FIGURES: [PaperFigure; 17] = [
     PaperFigure {
@@ -107,9 +129,7 @@ pub(crate) const FIGURES: [PaperFigure; 17] = [
                 expect: Expect::HigherOrChaotic,
             },
         ],
-        lyapunov: None,
-        max_amplitude: None,
-        chaotic: None,
+        ..NOT_QUOTED
     },
     PaperFigure {
         number: 4,
@@ -142,9 +162,7 @@ pub(crate) const FIGURES: [PaperFigure; 17] = [
                 expect: Expect::Chaotic,
             },
         ],
-        lyapunov: None,
-        max_amplitude: None,
-        chaotic: None,
+        ..NOT_QUOTED
     },
     PaperFigure {
         number: 5,
@@ -155,10 +173,7 @@ pub(crate) const FIGURES: [PaperFigure; 17] = [
             "\"Figs. 5~6 show the same tendency as Figs. 3~4, but the region of the periodic response is wider and the region of tumbling narrower.\"",
             "\"the two diagrams of Figs. 3 and 5 show intermittency bifurcation.\"",
         ],
-        ranges: NO_RANGES,
-        lyapunov: None,
-        max_amplitude: None,
-        chaotic: None,
+        ..NOT_QUOTED
     },
     PaperFigure {
         number: 6,
@@ -169,10 +184,7 @@ pub(crate) const FIGURES: [PaperFigure; 17] = [
             "\"Figs. 5~6 show the same tendency as Figs. 3~4, but the region of the periodic response is wider and the region of tumbling narrower.\"",
             "\"In the case of Fig. 4 and Fig. 6, the diagrams apparently show a periodic-double bifurcation\"",
         ],
-        ranges: NO_RANGES,
-        lyapunov: None,
-        max_amplitude: None,
-        chaotic: None,
+        ..NOT_QUOTED
     },
     PaperFigure {
         number: 7,
@@ -185,10 +197,9 @@ pub(crate) const FIGURES: [PaperFigure; 17] = [
             "\"the chaotic attractor is composed of multiple limit cycles, which are characterized by a unique shape, which is 'asymmetrical' to zero angular displacement and 'whirled' in the counter clockwise direction.\"",
             "\"The Lyapunov exponents for these chaotic responses were 0.74 and 1.02, respectively.\"",
         ],
-        ranges: NO_RANGES,
         lyapunov: Some(0.74),
-        max_amplitude: None,
         chaotic: Some(true),
+        ..NOT_QUOTED
     },
     PaperFigure {
         number: 8,
@@ -200,10 +211,9 @@ pub(crate) const FIGURES: [PaperFigure; 17] = [
             "\"The maximum amplitude of the rocking response when Ω_h = Ω_v = 8 is larger than for Ω_h = Ω_v = 10\"",
             "\"The Lyapunov exponents for these chaotic responses were 0.74 and 1.02, respectively.\"",
         ],
-        ranges: NO_RANGES,
         lyapunov: Some(1.02),
-        max_amplitude: None,
         chaotic: Some(true),
+        ..NOT_QUOTED
     },
     PaperFigure {
         number: 9,
@@ -214,10 +224,7 @@ pub(crate) const FIGURES: [PaperFigure; 17] = [
             "\"The rocking behavior is affected by the sliding motion in the horizontal direction, and the distribution of the rocking response is dependent on the frictional coefficient.\"",
             "Conclusion (2): \"There is a case in which it becomes a chaotic response by sliding, even in the region showing a periodic response in the case of no sliding. That is, the chaotic response region gets wider when sliding occurs.\"",
         ],
-        ranges: NO_RANGES,
-        lyapunov: None,
-        max_amplitude: None,
-        chaotic: None,
+        ..NOT_QUOTED
     },
     PaperFigure {
         number: 10,
@@ -228,10 +235,8 @@ pub(crate) const FIGURES: [PaperFigure; 17] = [
             "\"An example is shown in Fig. 10, in this case, the Lyapunov exponent was 0.51.\" (the paper does not say for which A_v)",
             "Conclusion (3): \"The periodic response region narrows with the lowering of the frictional force and the chaotic response region is expanded.\"",
         ],
-        ranges: NO_RANGES,
         lyapunov: Some(0.51),
-        max_amplitude: None,
-        chaotic: None,
+        ..NOT_QUOTED
     },
     PaperFigure {
         number: 11,
@@ -241,10 +246,8 @@ pub(crate) const FIGURES: [PaperFigure; 17] = [
         statements: &[
             "\"We next examined the two rocking responses to investigate the effect of sliding on rocking response, which shows chaotic behavior even without sliding. Figure 11 shows an example for Ω_h = Ω_v = 8, A_h = 2, and A_v = 2.0\"",
         ],
-        ranges: NO_RANGES,
-        lyapunov: None,
-        max_amplitude: None,
         chaotic: Some(true),
+        ..NOT_QUOTED
     },
     PaperFigure {
         number: 12,
@@ -256,10 +259,10 @@ pub(crate) const FIGURES: [PaperFigure; 17] = [
             "\"Though it had reached a tumbling level in the case of Fig. 6, the maximum amplitude was about 0.75 in Fig. 12, and this became about 0.4 in Fig. 13.\" (\"Fig. 6\" presumably means Fig. 7, the same excitation without sliding)",
             "\"The Lyapunov exponents for the rocking response of Figs. 12~13 were 0.71 and 1.34, respectively.\"",
         ],
-        ranges: NO_RANGES,
         lyapunov: Some(0.71),
         max_amplitude: Some(0.75),
         chaotic: Some(true),
+        ..NOT_QUOTED
     },
     PaperFigure {
         number: 13,
@@ -271,38 +274,26 @@ pub(crate) const FIGURES: [PaperFigure; 17] = [
             "\"Lowering of the frictional force between the block and the base, and this increasing energy dissipation by sliding, produced a smaller rocking response attractor shape and a smaller rocking response maximum amplitude\"",
             "\"The Lyapunov exponents for the rocking response of Figs. 12~13 were 0.71 and 1.34, respectively.\"",
         ],
-        ranges: NO_RANGES,
         lyapunov: Some(1.34),
         max_amplitude: Some(0.4),
         chaotic: Some(true),
+        ..NOT_QUOTED
     },
     PaperFigure {
         number: 14,
         preset: "fig14",
         kind: FigureKind::Bifurcation,
         caption: "Bifurcation diagram for rocking responses (Ω_h = Ω_v = 10, A_h = 3.0, A_v = 0 ~ 3, μ_s = μ̄_s = 0.4, μ_k = μ̄_k = 0.35)",
-        statements: &[
-            "\"The chaotic response region is expanded in these bifurcation diagrams by lowering its frictional coefficient.\"",
-            "\"the chaotic response region is widely extended at higher excitation frequencies and becomes wider in the case with sliding than in the case without sliding.\"",
-        ],
-        ranges: NO_RANGES,
-        lyapunov: None,
-        max_amplitude: None,
-        chaotic: None,
+        statements: LOWER_FRICTION,
+        ..NOT_QUOTED
     },
     PaperFigure {
         number: 15,
         preset: "fig15",
         kind: FigureKind::Bifurcation,
         caption: "Bifurcation diagram for rocking responses (Ω_h = Ω_v = 10, A_h = 3.0, A_v = 0 ~ 3, μ_s = μ̄_s = 0.35, μ_k = μ̄_k = 0.3)",
-        statements: &[
-            "\"The chaotic response region is expanded in these bifurcation diagrams by lowering its frictional coefficient.\"",
-            "\"the chaotic response region is widely extended at higher excitation frequencies and becomes wider in the case with sliding than in the case without sliding.\"",
-        ],
-        ranges: NO_RANGES,
-        lyapunov: None,
-        max_amplitude: None,
-        chaotic: None,
+        statements: LOWER_FRICTION,
+        ..NOT_QUOTED
     },
     PaperFigure {
         number: 16,
@@ -310,10 +301,7 @@ pub(crate) const FIGURES: [PaperFigure; 17] = [
         kind: FigureKind::Response,
         caption: "Rocking response (with sliding) (Ω_h = Ω_v = 10, A_h = 3.0, A_v = 2.0, μ_s = μ̄_s = 0.4, μ_k = μ̄_k = 0.35)",
         statements: &["\"The examples of rocking response in Fig. 14 are shown in Figs. 16~17.\""],
-        ranges: NO_RANGES,
-        lyapunov: None,
-        max_amplitude: None,
-        chaotic: None,
+        ..NOT_QUOTED
     },
     PaperFigure {
         number: 17,
@@ -321,10 +309,7 @@ pub(crate) const FIGURES: [PaperFigure; 17] = [
         kind: FigureKind::Response,
         caption: "Rocking response with sliding (Ω_h = Ω_v = 10, A_h = 3.0, A_v = 2.0, μ_s = μ̄_s = 3.35 [sic: 0.35], μ_k = μ̄_k = 0.3)",
         statements: &["\"The examples of rocking response in Fig. 14 are shown in Figs. 16~17.\""],
-        ranges: NO_RANGES,
-        lyapunov: None,
-        max_amplitude: None,
-        chaotic: None,
+        ..NOT_QUOTED
     },
     PaperFigure {
         number: 18,
@@ -335,10 +320,9 @@ pub(crate) const FIGURES: [PaperFigure; 17] = [
             "\"when the excitation amplitude is comparatively large at A_h = 3, the shape of the attractor is comparable to the case without sliding, as shown in Figs. 18~19.\"",
             "\"when the horizontal displacement produced by sliding is large, and it takes a form which inclines toward the negative direction for the rotational velocity axis. The Lyapunov exponents for these responses were 1.91 and 1.76. Lyapunov exponent increases more so in the presence of sliding.\"",
         ],
-        ranges: NO_RANGES,
         lyapunov: Some(1.91),
-        max_amplitude: None,
         chaotic: Some(true),
+        ..NOT_QUOTED
     },
     PaperFigure {
         number: 19,
@@ -348,10 +332,9 @@ pub(crate) const FIGURES: [PaperFigure; 17] = [
         statements: &[
             "\"The Lyapunov exponents for these responses were 1.91 and 1.76. Lyapunov exponent increases more so in the presence of sliding. It follows that the sliding motion intensifies the chaoticity of the rocking response.\"",
         ],
-        ranges: NO_RANGES,
         lyapunov: Some(1.76),
-        max_amplitude: None,
         chaotic: Some(true),
+        ..NOT_QUOTED
     },
 ];
 

@@ -321,7 +321,7 @@ impl RockingApp {
 
 /// The status-bar line after writing a file: `done()` if it was written,
 /// else why not.
-fn written(r: Result<(), String>, done: impl FnOnce() -> String) -> Message {
+pub(super) fn written(r: Result<(), String>, done: impl FnOnce() -> String) -> Message {
     match r {
         Ok(()) => Message {
             text: done(),

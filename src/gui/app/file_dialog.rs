@@ -20,6 +20,7 @@
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
+use super::controls::written;
 use super::{Message, RockingApp};
 use crate::gui::capture::GifOptions;
 use crate::gui::export;
@@ -417,18 +418,6 @@ impl RockingApp {
 fn file_name(path: &Path) -> String {
     path.file_name()
         .map_or_else(|| path.display().to_string(), |n| n.to_string_lossy().into_owned())
-}
-
-/// The status-bar line after writing a file: `done()` if it was written,
-/// else why not.
-fn written(r: Result<(), String>, done: impl FnOnce() -> String) -> Message {
-    match r {
-        Ok(()) => Message {
-            text: done(),
-            error: false,
-        },
-        Err(e) => Message { text: e, error: true },
-    }
 }
 
 #[cfg(test)]

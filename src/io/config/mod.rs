@@ -13,15 +13,17 @@
 
 use std::path::{Path, PathBuf};
 
-use serde_json::{Value as Json, json};
+use serde_json::Value as Json;
 use toml::Table;
 
+mod echo;
 mod error;
 mod floor;
 mod quantity;
 mod raw;
 mod set;
 
+pub use echo::to_json;
 pub use error::ConfigError;
 pub use set::{apply_sets, line_of, set_dotted, set_dotted_from};
 
@@ -688,92 +690,6 @@ pub fn param(key: &str) -> Result<Param, ConfigError> {
             "is not a numeric parameter (a sweep or map varies a number: amplitudes, frequencies, phases, friction, impact coefficients, block size, initial state, tolerances)",
         )
     })
-}
-
-/// The resolved scenario as JSON, in the same sections and keys as the
-/// TOML (infinite friction as the string `"inf"`, an unset
-/// `initial.x_dot` as `null`): `summary.json`'s `config`, which repeats the
-/// run.
-pub fn to_json(s: &Scenario) -> Json {
-    let num = |x: f64| if x.is_finite() { json!(x) } else { json!("inf") };
-    // A record given as samples names no file: its keys are null, so a
-    // config written from it cannot claim to repeat the run (reading it
-    // back asks for excitation.file_h).
-    fn file(r: &Option<Record>) -> Option<&Record> {
-        r.as_ref().filter(|r| !r.is_in_memory())
-    }
-    let path = |r: &Option<Record>| file(r).map(|r| r.path.display().to_string());
-    let unit = |r: &Option<Record>| file(r).map(|r| r.unit.name());
-    let dt = |r: &Option<Record>| file(r).and_then(|r| r.dt);
-    let crc = |r: &Option<Record>| file(r).map(|r| format!("{:08x}", r.crc32));
-    let channel = |r: &Option<Record>| file(r).and_then(|r| r.channel);
-    // A record that decides the run's length writes its tail and no end;
-    // any other run writes its end (and no tail, which would conflict).
-    let (tau_end, tail_s) = match (s.record_end_tau(), s.run.record_tail_s) {
-        (Some(_), Some(tail)) => (None, Some(tail)),
-        _ => (Some(s.run.tau_end), None),
-    };
-    let x = &s.excitation;
-    let mut config = json!({
-        "block": { "width": s.block.width, "height": s.block.height },
-        "friction": { "static": num(s.block.mu_s), "kinetic": num(s.block.kinetic()) },
-        "impact": {
-            "law": s.impact.law.name(), "r": s.impact_r(), "e": s.impact.e,
-            "static": num(s.impact_mu_s()), "kinetic": num(s.impact_mu_k()),
-        },
-        "excitation": {
-            "kind": x.kind.name(),
-            "a_h": x.a_h, "a_v": x.a_v,
-            "omega_h": x.omega_h, "omega_v": x.omega_v(),
-            "phase_h": x.phase_h, "phase_v": x.phase_v,
-            "shape": x.shape.name(), "cycles": x.cycles,
-            "file_h": path(&x.record_h), "file_v": path(&x.record_v),
-            "unit_h": unit(&x.record_h), "unit_v": unit(&x.record_v),
-            "dt_h": dt(&x.record_h), "dt_v": dt(&x.record_v),
-            "crc32_h": crc(&x.record_h), "crc32_v": crc(&x.record_v),
-            "channel_h": channel(&x.record_h), "channel_v": channel(&x.record_v),
-            "scale_h": x.scale_h, "scale_v": x.scale_v,
-        },
-        "initial": { "theta": s.initial.theta, "theta_dot": s.initial.theta_dot, "x_dot": s.initial.x_dot },
-        "run": {
-            "tau_end": tau_end, "tail_s": tail_s, "method": s.run.method().name(),
-            "rtol": s.run.rtol, "atol": s.run.atol, "step": s.run.step,
-            "output_dt": s.run.output_dt, "tumble_theta": s.run.tumble_theta,
-            "flight": match s.run.flight { FlightPolicy::Stop => "stop", FlightPolicy::Ignore => "ignore" },
-            "zeno_eps": s.run.zeno_eps, "max_steps": s.run.max_steps, "max_events": s.run.max_events,
-        },
-        "analysis": {
-            "lyapunov": s.analyses.lyapunov, "lyapunov_method": s.analyses.lyapunov_method.name(),
-            "spectrum": s.analyses.spectrum, "spectrum_window": s.analyses.spectrum_window.name(),
-        },
-    });
-    if let (Some(floor), Some(out)) = (&s.floor, config.as_object_mut()) {
-        out.insert("floor".to_string(), floor_json(floor));
-    }
-    // A frame is written as the `[frame]` it was read from: its columns'
-    // size, no block and no friction (a frame's columns do not slide).
-    if let (Some(frame), Some(out)) = (&s.frame, config.as_object_mut()) {
-        out.remove("block");
-        out.remove("friction");
-        out.insert(
-            "frame".to_string(),
-            json!({
-                "width": s.block.width, "height": s.block.height,
-                "columns": frame.columns, "beam_mass_ratio": frame.beam_mass_ratio,
-            }),
-        );
-    }
-    config
-}
-
-/// `[floor]` as the config writes it back: one mode's keys, or the
-/// `[[floor.mode]]` tables as they were given.
-fn floor_json(floor: &crate::sim::scenario::FloorSpec) -> Json {
-    let mode = |m: &crate::sim::scenario::FloorModeSpec| json!({ "period": m.period_s, "damping": m.damping, "participation": m.participation });
-    match floor.modes.as_slice() {
-        [one] if !floor.as_tables => mode(one),
-        modes => json!({ "mode": modes.iter().map(mode).collect::<Vec<_>>() }),
-    }
 }
 
 /// The literature's base scene with `sets` applied: every key not given

@@ -1,7 +1,7 @@
 //! The PEER NGA `.AT2` format: four header lines, then NPTS values at a
 //! fixed time step (grammar: [`read_record`](super::read_record)).
 
-use super::{RecordError, check_accel, excerpt, fields, parse_float, parse_number};
+use super::{RecordError, agreed_unit, check_accel, excerpt, fields, parse_float, parse_number};
 use crate::model::excitation::record::{Series, step_in_range};
 use crate::model::units::AccelUnit;
 
@@ -35,23 +35,9 @@ pub(super) fn parse_at2(
             text: excerpt(description),
         });
     };
-    let unit = match (header_unit, stated) {
-        (Some(header), Some(stated)) if header != stated => {
-            return Err(RecordError::UnitConflict {
-                file: file.to_owned(),
-                line: AT2_DESCRIPTION_LINE,
-                header,
-                stated,
-            });
-        }
-        (Some(unit), _) | (None, Some(unit)) => unit,
-        (None, None) => {
-            return Err(RecordError::HeaderNoUnit {
-                file: file.to_owned(),
-                line: AT2_DESCRIPTION_LINE,
-            });
-        }
-    };
+    let unit = agreed_unit(file, AT2_DESCRIPTION_LINE, header_unit, stated, |file, line| {
+        RecordError::HeaderNoUnit { file, line }
+    })?;
     let Some((npts, dt)) = parse_npts_dt(count_line) else {
         return Err(RecordError::Header {
             file: file.to_owned(),

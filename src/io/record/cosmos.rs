@@ -20,7 +20,7 @@
 //! parameter from integer-header value 2 (1 = acceleration).
 
 use super::counted::{FixedWidth, is_data_line, line_values, read_block};
-use super::{RecordError, RecordFormat, check_accel, excerpt};
+use super::{RecordError, RecordFormat, agreed_unit, check_accel, excerpt};
 use crate::model::excitation::record::{Series, step_in_range};
 use crate::model::units::AccelUnit;
 
@@ -187,23 +187,10 @@ fn parse_channel(
             &format!("integer-header value {INT_UNIT} says the unit is {header}, the data line {data_no} says {unit}"),
         ));
     }
-    let unit = match (named, stated) {
-        (Some(header), Some(stated)) if header != stated => {
-            return Err(RecordError::UnitConflict {
-                file: file.to_owned(),
-                line: data_no,
-                header,
-                stated,
-            });
-        }
-        (Some(unit), _) | (None, Some(unit)) => unit,
-        (None, None) => {
-            return Err(RecordError::NoHeaderUnit {
-                file: file.to_owned(),
-                line: data_no,
-            });
-        }
-    };
+    let unit = agreed_unit(file, data_no, named, stated, |file, line| RecordError::NoHeaderUnit {
+        file,
+        line,
+    })?;
     let (step_ms, step_line) = match reals.value(REAL_STEP_MS) {
         Some((ms, line)) if ms != UNKNOWN => (ms, line),
         Some((_, line)) => {

@@ -9,7 +9,7 @@
 //! displacement and spectra in the same layout, which are refused).
 
 use super::counted::read_block;
-use super::{RecordError, check_accel, excerpt, parse_float};
+use super::{RecordError, agreed_unit, check_accel, excerpt, parse_float};
 use crate::model::excitation::record::{Series, step_in_range};
 use crate::model::units::AccelUnit;
 
@@ -87,23 +87,9 @@ pub(super) fn parse_esm(
             text: excerpt(lines[units_line - 1]),
         })?)
     };
-    let unit = match (named, stated) {
-        (Some(header), Some(stated)) if header != stated => {
-            return Err(RecordError::UnitConflict {
-                file: file.to_owned(),
-                line: units_line,
-                header,
-                stated,
-            });
-        }
-        (Some(unit), _) | (None, Some(unit)) => unit,
-        (None, None) => {
-            return Err(RecordError::NoHeaderUnit {
-                file: file.to_owned(),
-                line: units_line,
-            });
-        }
-    };
+    let unit = agreed_unit(file, units_line, named, stated, |file, line| {
+        RecordError::NoHeaderUnit { file, line }
+    })?;
     let (dt_text, dt_line) = require("SAMPLING_INTERVAL_S")?;
     let dt = parse_float(dt_text).unwrap_or(f64::NAN);
     if !step_in_range(dt) {

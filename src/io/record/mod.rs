@@ -703,6 +703,29 @@ fn check_accel(file: &str, line: usize, value: f64) -> Result<(), RecordError> {
 
 /// The fields of a data line: separated by whitespace, commas and/or
 /// semicolons.
+/// The record's unit: the header's or the one the caller stated, which
+/// must agree where both are given (`line`: where the header's unit
+/// stands). Neither is the error `neither` makes of the file and line:
+/// a unit is never guessed.
+fn agreed_unit(
+    file: &str,
+    line: usize,
+    header: Option<AccelUnit>,
+    stated: Option<AccelUnit>,
+    neither: fn(String, usize) -> RecordError,
+) -> Result<AccelUnit, RecordError> {
+    match (header, stated) {
+        (Some(header), Some(stated)) if header != stated => Err(RecordError::UnitConflict {
+            file: file.to_owned(),
+            line,
+            header,
+            stated,
+        }),
+        (Some(unit), _) | (None, Some(unit)) => Ok(unit),
+        (None, None) => Err(neither(file.to_owned(), line)),
+    }
+}
+
 fn fields(line: &str) -> impl Iterator<Item = &str> {
     line.split(|c: char| c.is_whitespace() || c == ',' || c == ';')
         .filter(|field| !field.is_empty())

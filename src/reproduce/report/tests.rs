@@ -3,20 +3,9 @@
 
 use super::claims::*;
 use super::{Row, tally};
-use crate::analysis::classify::Response;
 use crate::analysis::lyapunov::{LyapunovResult, Method};
 use crate::reproduce::diagrams::Shares;
-
-const P1: Response = Response::Periodic { period: 1 };
-const P2: Response = Response::Periodic { period: 2 };
-const P4: Response = Response::Periodic { period: 4 };
-const C: Response = Response::Chaotic;
-const T: Response = Response::Tumbled;
-
-/// Values 0, 0.1, 0.2, … with these responses.
-fn grid(rs: &[Response]) -> Vec<(f64, Response)> {
-    rs.iter().enumerate().map(|(i, r)| (i as f64 * 0.1, *r)).collect()
-}
+use crate::reproduce::fixtures::{C, P1, P2, P4, T, grid};
 
 /// Exponents per τ and per cycle with their standard errors.
 fn exponents(per_tau: f64, stderr: f64, per_cycle: f64, stderr_per_cycle: f64) -> LyapunovResult {
