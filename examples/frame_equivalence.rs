@@ -22,8 +22,11 @@ fn history(s: &Scenario) -> Vec<(f64, f64)> {
         .collect()
 }
 
+/// One curve: its legend, (t, θ) points, colour and width.
+type Line = (String, Vec<(f64, f64)>, RGBColor, u32);
+
 struct Compared {
-    lines: Vec<(String, Vec<(f64, f64)>, RGBColor, u32)>,
+    lines: Vec<Line>,
     alpha_deg: f64,
 }
 
