@@ -108,6 +108,18 @@ pub struct Message {
     pub error: bool,
 }
 
+/// The status-bar line after writing a file: `done()` if it was written,
+/// else why not.
+fn written(r: Result<(), String>, done: impl FnOnce() -> String) -> Message {
+    match r {
+        Ok(()) => Message {
+            text: done(),
+            error: false,
+        },
+        Err(e) => Message { text: e, error: true },
+    }
+}
+
 /// The desktop app.
 pub struct RockingApp {
     link: Link,

@@ -1,7 +1,7 @@
 //! The top bar (File, Presets and View menus, playback, perturbation, speed
 //! and ghosts) and the keyboard shortcuts that mirror its buttons.
 
-use super::{FileAsk, Message, RockingApp};
+use super::{FileAsk, Message, RockingApp, written};
 use crate::gui::export;
 use crate::gui::settings::Settings;
 use crate::gui::units::Units;
@@ -316,17 +316,5 @@ impl RockingApp {
             self.mark_clean();
         }
         self.message = Some(written(r, || format!("saved {}", path.display())));
-    }
-}
-
-/// The status-bar line after writing a file: `done()` if it was written,
-/// else why not.
-pub(super) fn written(r: Result<(), String>, done: impl FnOnce() -> String) -> Message {
-    match r {
-        Ok(()) => Message {
-            text: done(),
-            error: false,
-        },
-        Err(e) => Message { text: e, error: true },
     }
 }

@@ -20,8 +20,7 @@
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
-use super::controls::written;
-use super::{Message, RockingApp};
+use super::{Message, RockingApp, written};
 use crate::gui::capture::GifOptions;
 use crate::gui::export;
 
