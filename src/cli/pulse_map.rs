@@ -14,7 +14,10 @@ use std::time::Instant;
 use anyhow::{Context as _, anyhow};
 use serde_json::json;
 
-use super::eng_args::{BaseArgs, Owns, flag_error, increasing, input, positive_list, search_ladder, show};
+use super::eng_args::{BaseArgs, Owns, flag_error, increasing, input, positive_list, show};
+use super::eng_motion::flagged;
+use crate::analysis::engineering::request::search_ladder;
+use crate::analysis::field::RequestField;
 use super::error::BatchError;
 use super::sweep::{progress_bar, progress_fn, thread_pool};
 use crate::analysis::engineering::BlockSize;
@@ -158,7 +161,7 @@ pub fn run(args: &PulseMapArgs) -> Result<(), BatchError> {
             show(MAX_OMEGA_RATIO)
         )));
     }
-    let ladder = search_ladder("--amp-step", args.amp_step, "--amp-max", args.amp_max)?;
+    let ladder = search_ladder(RequestField::AmpStep, args.amp_step, RequestField::AmpMax, args.amp_max).map_err(flagged)?;
     if !(args.rel_tol > 0.0 && args.rel_tol < 1.0) {
         return Err(input(anyhow!("--rel-tol {}: must be in (0, 1)", show(args.rel_tol))));
     }

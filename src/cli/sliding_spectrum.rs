@@ -22,20 +22,21 @@ use anyhow::{Context as _, anyhow};
 use serde_json::{Value as Json, json};
 
 use super::args::SceneArgs;
-use super::eng_args::{BaseArgs, Owns, RecordUnitArgs, block, input, positive_list, read_record, show};
+use super::eng_args::{BaseArgs, Owns, RecordUnitArgs, block, input, positive_list, show};
+use super::eng_motion::{Motion, MotionArgs};
+use super::flags::Flags;
 use super::error::BatchError;
 use super::pulse_map::MAX_OMEGA_RATIO;
 use super::spectrum::PulseArg;
 use super::sweep::{progress_bar, progress_fn, thread_pool};
 use crate::analysis::engineering::sliding_spectrum::{
-    BlockKind, NO_SLIDING_M, SLIDE_ONLY_B_OVER_H, SlidingPoint, SlidingSpec, SlidingSpecError, sliding_spectrum,
+    BlockKind, NO_SLIDING_M, SLIDE_ONLY_B_OVER_H, SlidingPoint, SlidingSpec, sliding_spectrum,
 };
 use crate::analysis::engineering::{BlockSize, Drive, EndState};
 use crate::io::config::to_json;
 use crate::io::csv::{self, Num};
 use crate::io::output;
 use crate::io::sliding_files::SlidingRow;
-use crate::model::excitation::pulse::MAX_TYPE_C_CYCLES;
 use crate::plot::labels::num;
 use crate::plot::sliding_spectrum::{SlidingCurve, SlidingFigure};
 use crate::sim::scenario::ShapeKind;
@@ -121,16 +122,6 @@ fn owns(args: &SlidingSpectrumArgs) -> Owns {
     }
 }
 
-/// The motion as checked.
-struct Motion {
-    drive: Drive,
-    scale: f64,
-    /// PGA at scale 1, g.
-    pga_g: f64,
-    name: String,
-    json: Json,
-}
-
 /// Refuses flags that the other flags make meaningless.
 fn refuse_ignored_flags(args: &SlidingSpectrumArgs) -> Result<(), BatchError> {
     let given = |v: bool, flag: &'static str| v.then_some(flag);
@@ -171,97 +162,20 @@ fn refuse_ignored_flags(args: &SlidingSpectrumArgs) -> Result<(), BatchError> {
     Ok(())
 }
 
+/// The motion of the flags, read and checked (horizontal only).
 fn motion(args: &SlidingSpectrumArgs) -> Result<Motion, BatchError> {
-    let (drive, pga_g, json) = match (&args.record, args.pulse) {
-        (Some(path), _) => {
-            let spec = args.reading.spec()?;
-            let record = read_record(path, &spec).map_err(|e| input(e.context("--record")))?;
-            let peaks = record.series.peaks(1.0);
-            let json = json!({
-                "kind": "record",
-                "file": path.display().to_string(),
-                "unit": record.unit.name(),
-                "samples": record.series.len(),
-                "duration_s": record.series.duration_s(),
-                "pga_g": peaks.pga_g,
-                "pgv_m_s": peaks.pgv_m_s,
-                "pgd_m": peaks.pgd_m,
-            });
-            (Drive::Record(record), peaks.pga_g, json)
-        }
-        (None, Some(shape)) => {
-            let positive = |flag: &str, v: Option<f64>| match v {
-                Some(v) if v > 0.0 && v.is_finite() => Ok(v),
-                Some(v) => Err(input(anyhow!("{flag} {}: must be a finite number > 0", show(v)))),
-                None => Err(input(anyhow!("{flag}: required with --pulse"))),
-            };
-            let a_p_g = positive("--pulse-accel", args.pulse_accel)?;
-            let period = positive("--pulse-period", args.pulse_period)?;
-            let cycles = args.cycles.unwrap_or(1);
-            if !(1..=MAX_TYPE_C_CYCLES).contains(&cycles) {
-                return Err(input(anyhow!("--cycles {cycles}: must be in 1..={MAX_TYPE_C_CYCLES}")));
-            }
-            let drive = Drive::PhysicalPulse {
-                shape: shape.into(),
-                cycles,
-                a_p_g,
-                omega_p: std::f64::consts::TAU / period,
-            };
-            let json = json!({
-                "kind": "pulse",
-                "shape": ShapeKind::from(shape).name(),
-                "cycles": cycles,
-                "a_p_g": a_p_g,
-                "period_s": period,
-                "pga_g": a_p_g,
-            });
-            (drive, a_p_g, json)
-        }
-        (None, None) => return Err(input(anyhow!("--record FILE or --pulse SHAPE: one is required"))),
+    let flags = MotionArgs {
+        record: args.record.as_deref(),
+        reading: &args.reading,
+        vertical: None,
+        pulse: args.pulse,
+        cycles: args.cycles,
+        pulse_accel: args.pulse_accel,
+        pulse_period: args.pulse_period,
+        scale: args.scale,
+        pga: args.pga,
     };
-    if pga_g <= 0.0 {
-        return Err(input(anyhow!("--record: the record is all zeros (PGA 0 g)")));
-    }
-    let scale = match (args.scale, args.pga) {
-        (Some(s), _) if !(s > 0.0 && s.is_finite()) => {
-            return Err(input(anyhow!("--scale {}: must be > 0", show(s))));
-        }
-        (Some(s), _) => s,
-        (None, Some(p)) if !(p > 0.0 && p.is_finite()) => {
-            return Err(input(anyhow!("--pga {}: must be > 0 (g)", show(p))));
-        }
-        (None, Some(p)) => p / pga_g,
-        (None, None) => 1.0,
-    };
-    let name = drive.name();
-    Ok(Motion {
-        drive,
-        scale,
-        pga_g,
-        name,
-        json,
-    })
-}
-
-/// `e` in the words of the flags.
-fn spec_error(e: SlidingSpecError) -> BatchError {
-    match e {
-        SlidingSpecError::Mu(m) => input(anyhow!("--mu: {m}")),
-        SlidingSpecError::KineticRatio(r) => {
-            input(anyhow!("--kinetic-ratio {}: must be in (0, 1] (μ_k ≤ μ_s)", show(r)))
-        }
-        SlidingSpecError::FrictionTooLarge(mu_k) => input(anyhow!(
-            "--mu: μ_k = {} reaches {}, where the block that cannot rock could tip; give coefficients below it",
-            show(mu_k),
-            show(SLIDE_ONLY_B_OVER_H)
-        )),
-        SlidingSpecError::MotionTooStrong(pga) => input(anyhow!(
-            "--scale/--pga: PGA {} g reaches {} g, where the block that cannot rock could lift; give a smaller scale",
-            show(pga),
-            show(SLIDE_ONLY_B_OVER_H)
-        )),
-        other @ (SlidingSpecError::NormalisedPulse | SlidingSpecError::Scenario { .. }) => input(anyhow!(other)),
-    }
+    super::eng_motion::motion(&flags, false)
 }
 
 /// Runs `rocking sliding-spectrum`.
@@ -295,7 +209,7 @@ pub fn run(args: &SlidingSpectrumArgs) -> Result<(), BatchError> {
         mu,
         kinetic_ratio: args.kinetic_ratio,
     };
-    spec.check().map_err(spec_error)?;
+    spec.check().map_err(|e| input(anyhow!(e.render(&Flags))))?;
     // A pulse far shorter than the block's time scale is refused as in
     // `pulse-map` (see MAX_OMEGA_RATIO); both blocks share R, hence p.
     if let Drive::PhysicalPulse { omega_p, .. } = motion.drive

@@ -39,6 +39,7 @@ use rayon::prelude::*;
 
 use super::response::{BlockSize, Drive, EndState, ResponseError, scenario_for};
 use crate::analysis::{Progress, ProgressFn};
+use crate::analysis::field::{FieldNames, RequestField, show};
 use crate::sim::{Scenario, ScenarioError, simulate};
 
 /// B/H of the slide-only block: tan α = 1000, far above any ground motion
@@ -125,6 +126,33 @@ pub enum SlidingSpecError {
         /// What is wrong.
         error: ScenarioError,
     },
+}
+
+impl SlidingSpecError {
+    /// The error in the words of a surface (its names of the inputs).
+    pub fn render(&self, names: &impl FieldNames<RequestField>) -> String {
+        match self {
+            SlidingSpecError::Mu(m) => format!("{}: {m}", names.name(RequestField::Mu)),
+            SlidingSpecError::KineticRatio(r) => format!(
+                "{}: must be in (0, 1] (μ_k ≤ μ_s)",
+                names.valued(RequestField::KineticRatio, &show(*r))
+            ),
+            SlidingSpecError::FrictionTooLarge(mu_k) => format!(
+                "{}: μ_k = {} reaches {}, where the block that cannot rock could tip; give coefficients below it",
+                names.name(RequestField::Mu),
+                show(*mu_k),
+                show(SLIDE_ONLY_B_OVER_H)
+            ),
+            SlidingSpecError::MotionTooStrong(pga) => format!(
+                "{}/{}: PGA {} g reaches {} g, where the block that cannot rock could lift; give a smaller scale",
+                names.name(RequestField::Scale),
+                names.name(RequestField::Pga),
+                show(*pga),
+                show(SLIDE_ONLY_B_OVER_H)
+            ),
+            SlidingSpecError::NormalisedPulse | SlidingSpecError::Scenario { .. } => self.to_string(),
+        }
+    }
 }
 
 /// One block's answer at one μ.
