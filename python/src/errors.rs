@@ -164,17 +164,6 @@ pub const MAP_ARGS: &[(&str, &str)] = &[
     ("--threads", "threads"),
 ];
 
-/// The Python arguments of `rocking.fragility`, by CLI flag.
-pub const FRAGILITY_ARGS: &[(&str, &str)] = &[
-    ("--im", "im"),
-    ("--unit", "unit"),
-    ("--levels", "levels"),
-    ("--block", "blocks"),
-    ("--records", "records"),
-    ("--threshold", "threshold"),
-    ("--threads", "threads"),
-];
-
 /// `message` with each CLI flag of `args` written as the Python argument
 /// that gave the value: `--threads 0: …` → `threads=0: …`, a flag not
 /// followed by its value (`… below --from 3`, `--levels and --block: …`)

@@ -56,6 +56,11 @@ impl FieldNames<RequestField> for Keywords {
             RequestField::RelTol => "rel_tol",
             RequestField::Mu => "mu",
             RequestField::KineticRatio => "kinetic_ratio",
+            RequestField::Im => "im",
+            RequestField::SaPeriod => "sa_period",
+            RequestField::Levels => "levels",
+            RequestField::Blocks => "blocks",
+            RequestField::Threshold => "threshold",
         })
     }
 

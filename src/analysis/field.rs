@@ -93,6 +93,16 @@ pub enum RequestField {
     Mu,
     /// μ_k/μ_s of a sliding spectrum.
     KineticRatio,
+    /// A fragility study's intensity measure.
+    Im,
+    /// The period of the spectral acceleration Sa(T), s.
+    SaPeriod,
+    /// A fragility study's intensity levels.
+    Levels,
+    /// A fragility study's blocks.
+    Blocks,
+    /// The θ/α whose exceedance a fragility study counts.
+    Threshold,
 }
 
 impl RequestField {
@@ -119,6 +129,11 @@ impl RequestField {
             RequestField::RelTol => "rel_tol",
             RequestField::Mu => "mu",
             RequestField::KineticRatio => "kinetic_ratio",
+            RequestField::Im => "im",
+            RequestField::SaPeriod => "sa_period",
+            RequestField::Levels => "levels",
+            RequestField::Blocks => "blocks",
+            RequestField::Threshold => "threshold",
         }
     }
 }

@@ -52,6 +52,11 @@ impl FieldNames<RequestField> for Flags {
             RequestField::RelTol => "--rel-tol",
             RequestField::Mu => "--mu",
             RequestField::KineticRatio => "--kinetic-ratio",
+            RequestField::Im => "--im",
+            RequestField::SaPeriod => "--sa-period",
+            RequestField::Levels => "--levels",
+            RequestField::Blocks => "--block",
+            RequestField::Threshold => "--threshold",
         })
     }
 

@@ -31,10 +31,12 @@ use super::merge::MergeArgs;
 use super::suite::{SuiteEntry, suite};
 use super::sweep::{progress_bar, progress_fn, thread_pool};
 use crate::analysis::engineering::fragility::{
-    FragilitySpec, Intensity, LevelSummary, MAX_RUNS, SuiteRecord, fit_block, run_fragility, summarise,
+    FragilityCheckError, FragilitySpec, Intensity, LevelSummary, SuiteRecord, fit_block, run_fragility, summarise,
 };
 use crate::analysis::engineering::lognormal::{FitError, LognormalFit};
-use crate::analysis::engineering::response::scenario_for;
+use crate::analysis::engineering::request;
+use super::eng_motion::flagged;
+use super::flags::Flags;
 use crate::analysis::engineering::{BlockSize, Drive, EndState};
 use crate::analysis::orbit_diagram::Shard;
 use crate::io::config::to_json;
@@ -241,29 +243,7 @@ pub fn run(args: &FragilityArgs) -> Result<(), BatchError> {
         ImArg::PgvPTanAlpha => Intensity::PgvPTanAlpha,
         ImArg::Sa => Intensity::Sa,
     };
-    let sa_period = match (im, args.sa_period) {
-        (Intensity::Sa, None) => {
-            return Err(input(anyhow!("--im sa: give the period with --sa-period S (seconds)")));
-        }
-        (Intensity::Sa, Some(t))
-            if !(t > 0.0 && t.is_finite())
-                || crate::model::oscillator::Oscillator::new(
-                    t,
-                    crate::analysis::engineering::fragility::SA_DAMPING,
-                )
-                .is_none() =>
-        {
-            return Err(input(anyhow!("--sa-period {}: must be a period > 0 (s)", show(t))));
-        }
-        (Intensity::Sa, Some(t)) => Some(t),
-        (_, Some(t)) => {
-            return Err(input(anyhow!(
-                "--sa-period {}: only with --im sa; remove it or give --im sa",
-                show(t)
-            )));
-        }
-        (_, None) => None,
-    };
+    let sa_period = request::sa_period(im, args.sa_period).map_err(flagged)?;
     let levels = positive_list("--levels", &args.levels)?;
     let blocks: Vec<BlockSize> = args
         .blocks
@@ -287,12 +267,7 @@ pub fn run(args: &FragilityArgs) -> Result<(), BatchError> {
             )));
         }
     }
-    if !(args.threshold > 0.0 && args.threshold.is_finite()) {
-        return Err(input(anyhow!(
-            "--threshold {}: must be a θ/α > 0",
-            show(args.threshold)
-        )));
-    }
+    request::threshold(args.threshold).map_err(flagged)?;
     let shard = args
         .shard
         .as_deref()
@@ -317,14 +292,8 @@ pub fn run(args: &FragilityArgs) -> Result<(), BatchError> {
         };
         let record = read_record(path, spec).map_err(named)?;
         let peaks = record.series.peaks(1.0);
-        let intensity = im.record_value(&record.series, sa_period).unwrap_or(0.0);
-        if !(intensity > 0.0 && intensity.is_finite()) {
-            return Err(named(anyhow!(
-                "{}: {} is 0, it cannot be scaled",
-                path.display(),
-                im.column()
-            )));
-        }
+        let intensity = request::record_intensity(path, &record.series, im, sa_period)
+            .map_err(|e| named(anyhow!(e.render(&Flags))))?;
         for warning in record_warnings(
             &Drive::Record(record.clone()).name(),
             &record,
@@ -378,26 +347,15 @@ pub fn run(args: &FragilityArgs) -> Result<(), BatchError> {
         blocks: &blocks,
         im,
     };
-    if spec.run_count() > MAX_RUNS {
-        return Err(input(anyhow!(
-            "{} runs (blocks × levels × records): at most {MAX_RUNS}",
-            spec.run_count()
-        )));
-    }
-    let top = levels.iter().copied().fold(0.0, f64::max);
-    for (k, &b) in blocks.iter().enumerate() {
-        for (j, r) in records.iter().enumerate() {
-            let scale = spec.scale_of(k, top, j);
-            scenario_for(&base, b, &r.drive, scale).map_err(|e| {
-                input(anyhow!(
-                    "--block {}x{}: {}",
-                    show(b.width_m),
-                    show(b.height_m),
-                    flag_error(&e, &[("excitation.scale_h", "--levels")])
-                ))
-            })?;
-        }
-    }
+    spec.check().map_err(|e| match e {
+        FragilityCheckError::Scenario { block: b, error } => input(anyhow!(
+            "--block {}x{}: {}",
+            show(b.width_m),
+            show(b.height_m),
+            flag_error(&error, &[("excitation.scale_h", "--levels")])
+        )),
+        too_many @ FragilityCheckError::TooManyRuns(_) => input(anyhow!(too_many)),
+    })?;
     let pool = thread_pool(args.threads)?;
     output::check_writable(&args.out)
         .context("--out: cannot write the output directory")

@@ -12,11 +12,14 @@
 
 use std::f64::consts::TAU;
 
+use super::fragility::{Intensity, SA_DAMPING};
 use super::overturn_scale::ladder;
 use super::response::Drive;
 use super::rocking_spectrum::{MAX_BLOCKS, OverturnOptions, SizeAxis, SizeRange, SizeRangeError};
 use crate::analysis::field::{FieldNames, OwnNames, RequestField, show};
 use crate::model::excitation::pulse::MAX_TYPE_C_CYCLES;
+use crate::model::excitation::record::Series;
+use crate::model::oscillator::Oscillator;
 use crate::model::units::AccelUnit;
 use crate::sim::scenario::ShapeKind;
 
@@ -107,6 +110,26 @@ pub enum RequestError {
     },
     /// A refinement width outside (0, 1).
     RelTol(f64),
+    /// Sa(T) without its period.
+    SaPeriodMissing,
+    /// An Sa period that is not a period > 0, s.
+    SaPeriod(f64),
+    /// An Sa period with another intensity measure.
+    SaPeriodWithoutSa(f64),
+    /// A fragility level that is not finite and > 0.
+    Level(f64),
+    /// No level or no block.
+    NoLevelsOrBlocks,
+    /// A threshold θ/α that is not finite and > 0.
+    Threshold(f64),
+    /// A record whose intensity measure at scale 1 is 0: no factor scales
+    /// it to a level.
+    ZeroIntensity {
+        /// The record's file.
+        file: String,
+        /// The measure's column name (`pga_g`).
+        column: &'static str,
+    },
 }
 
 impl RequestError {
@@ -201,6 +224,29 @@ impl RequestError {
                 valued(*max_field, *max)
             ),
             RequestError::RelTol(r) => format!("{}: must be in (0, 1)", valued(RequestField::RelTol, *r)),
+            RequestError::SaPeriodMissing => format!(
+                "{}: give the period with {} S (seconds)",
+                names.valued(RequestField::Im, "sa"),
+                name(RequestField::SaPeriod)
+            ),
+            RequestError::SaPeriod(t) => format!("{}: must be a period > 0 (s)", valued(RequestField::SaPeriod, *t)),
+            RequestError::SaPeriodWithoutSa(t) => format!(
+                "{}: only with {}; remove it or give {}",
+                valued(RequestField::SaPeriod, *t),
+                names.valued(RequestField::Im, "sa"),
+                names.valued(RequestField::Im, "sa")
+            ),
+            RequestError::Level(v) => format!(
+                "{}: every level must be finite and > 0",
+                valued(RequestField::Levels, *v)
+            ),
+            RequestError::NoLevelsOrBlocks => format!(
+                "{} and {}: give at least one of each",
+                name(RequestField::Levels),
+                name(RequestField::Blocks)
+            ),
+            RequestError::Threshold(t) => format!("{}: must be a θ/α > 0", valued(RequestField::Threshold, *t)),
+            RequestError::ZeroIntensity { file, column } => format!("{file}: {column} is 0, it cannot be scaled"),
         }
     }
 }
@@ -212,6 +258,60 @@ impl std::fmt::Display for RequestError {
 }
 
 impl std::error::Error for RequestError {}
+
+/// The period of Sa(T), s, given exactly when the intensity measure is
+/// Sa (a period the 5 %-damped oscillator cannot have is refused).
+pub fn sa_period(im: Intensity, sa_period_s: Option<f64>) -> Result<Option<f64>, RequestError> {
+    match (im, sa_period_s) {
+        (Intensity::Sa, None) => Err(RequestError::SaPeriodMissing),
+        (Intensity::Sa, Some(t)) if !(t > 0.0 && t.is_finite()) || Oscillator::new(t, SA_DAMPING).is_none() => {
+            Err(RequestError::SaPeriod(t))
+        }
+        (Intensity::Sa, Some(t)) => Ok(Some(t)),
+        (_, Some(t)) => Err(RequestError::SaPeriodWithoutSa(t)),
+        (_, None) => Ok(None),
+    }
+}
+
+/// A fragility study's levels (each finite and > 0) and blocks: at least
+/// one of each.
+pub fn levels_and_blocks(levels: &[f64], blocks: usize) -> Result<(), RequestError> {
+    if let Some(&v) = levels.iter().find(|v| !(v.is_finite() && **v > 0.0)) {
+        return Err(RequestError::Level(v));
+    }
+    if levels.is_empty() || blocks == 0 {
+        return Err(RequestError::NoLevelsOrBlocks);
+    }
+    Ok(())
+}
+
+/// The θ/α whose exceedance is counted, finite and > 0.
+pub fn threshold(theta_over_alpha: f64) -> Result<f64, RequestError> {
+    if theta_over_alpha > 0.0 && theta_over_alpha.is_finite() {
+        Ok(theta_over_alpha)
+    } else {
+        Err(RequestError::Threshold(theta_over_alpha))
+    }
+}
+
+/// The intensity measure `im` of the record at `path` at scale 1, which
+/// must be > 0 for any factor to scale the record to a level.
+pub fn record_intensity(
+    path: &std::path::Path,
+    series: &Series,
+    im: Intensity,
+    sa_period_s: Option<f64>,
+) -> Result<f64, RequestError> {
+    let value = im.record_value(series, sa_period_s).unwrap_or(0.0);
+    if value > 0.0 && value.is_finite() {
+        Ok(value)
+    } else {
+        Err(RequestError::ZeroIntensity {
+            file: path.display().to_string(),
+            column: im.column(),
+        })
+    }
+}
 
 /// The unit named `text` (g, m/s2, cm/s2), given as `field`.
 pub fn unit(field: RequestField, text: &str) -> Result<AccelUnit, RequestError> {
