@@ -3,18 +3,18 @@
 //! record with its unit, and number lists. Every error names the flag (or
 //! the file and line) and is bad input (exit 2).
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use anyhow::anyhow;
 
 use super::args::SceneArgs;
 use super::error::BatchError;
-pub use crate::analysis::field::show;
-use crate::io::config;
-use crate::io::record::{RecordError, RecordSpec, read_record_as};
 use super::flags::Flags;
 use crate::analysis::engineering::request::unit;
 use crate::analysis::field::RequestField;
+pub use crate::analysis::field::show;
+use crate::io::config;
+use crate::io::record::{RecordError, RecordSpec, read_record_as};
 use crate::sim::scenario::Record;
 use crate::sim::{Scenario, ScenarioError};
 
@@ -36,6 +36,21 @@ pub struct BaseArgs {
     /// excitation are replaced by the command's.
     #[command(flatten)]
     pub scene: SceneArgs,
+}
+
+/// How an engineering command runs and where it writes.
+#[derive(Debug, Clone, clap::Args)]
+pub struct RunArgs {
+    /// Worker threads (default: one per core; at most 4 per core). The
+    /// output does not depend on it.
+    #[arg(long, value_name = "N")]
+    pub threads: Option<usize>,
+    /// Output directory.
+    #[arg(long, value_name = "DIR")]
+    pub out: PathBuf,
+    /// Print nothing but errors.
+    #[arg(long, short)]
+    pub quiet: bool,
 }
 
 /// What an engineering command sets itself on every run, so that a

@@ -19,6 +19,28 @@ use crate::analysis::field::RequestField;
 use crate::io::record::RecordSpec;
 use crate::sim::scenario::{Record, ShapeKind};
 
+/// The flags of a pulse's numbers and of the motion's scale (after
+/// `--pulse` in `spectrum` and `sliding-spectrum`).
+#[derive(Debug, Clone, clap::Args)]
+pub struct PulseScaleArgs {
+    /// Main cycles n of a type-C pulse (default 1; only with --pulse
+    /// type-c).
+    #[arg(long, value_name = "N")]
+    pub cycles: Option<u32>,
+    /// Peak acceleration a_p of the pulse, g.
+    #[arg(long, value_name = "G", requires = "pulse")]
+    pub pulse_accel: Option<f64>,
+    /// Period T_p = 2π/ω_p of the pulse, s.
+    #[arg(long, value_name = "S", requires = "pulse")]
+    pub pulse_period: Option<f64>,
+    /// Factor on the motion (1 plays it as recorded).
+    #[arg(long, value_name = "F", conflicts_with = "pga")]
+    pub scale: Option<f64>,
+    /// Scale the motion to this peak ground acceleration, g.
+    #[arg(long, value_name = "G")]
+    pub pga: Option<f64>,
+}
+
 /// The motion flags of a command, as given.
 pub(crate) struct MotionArgs<'a> {
     /// `--record`.
@@ -29,16 +51,8 @@ pub(crate) struct MotionArgs<'a> {
     pub vertical: Option<(&'a PathBuf, Option<&'a str>)>,
     /// `--pulse`.
     pub pulse: Option<PulseArg>,
-    /// `--cycles`.
-    pub cycles: Option<u32>,
-    /// `--pulse-accel`, g.
-    pub pulse_accel: Option<f64>,
-    /// `--pulse-period`, s.
-    pub pulse_period: Option<f64>,
-    /// `--scale`.
-    pub scale: Option<f64>,
-    /// `--pga`, g.
-    pub pga: Option<f64>,
+    /// `--cycles`, `--pulse-accel`, `--pulse-period`, `--scale`, `--pga`.
+    pub numbers: &'a PulseScaleArgs,
 }
 
 /// The motion as checked: what to run and what to write about it.
@@ -113,9 +127,9 @@ pub(crate) fn motion(args: &MotionArgs<'_>, with_vertical_key: bool) -> Result<M
         (None, Some(shape)) => {
             let pulse = PulseRequest {
                 shape: shape.into(),
-                cycles: args.cycles,
-                accel_g: args.pulse_accel,
-                period_s: args.pulse_period,
+                cycles: args.numbers.cycles,
+                accel_g: args.numbers.pulse_accel,
+                period_s: args.numbers.pulse_period,
             }
             .checked()
             .map_err(flagged)?;
@@ -132,8 +146,8 @@ pub(crate) fn motion(args: &MotionArgs<'_>, with_vertical_key: bool) -> Result<M
         (None, None) => return Err(input(anyhow!("--record FILE or --pulse SHAPE: one is required"))),
     };
     let scale = Scaling {
-        scale: args.scale,
-        pga_g: args.pga,
+        scale: args.numbers.scale,
+        pga_g: args.numbers.pga,
     }
     .factor(pga_g)
     .map_err(flagged)?;

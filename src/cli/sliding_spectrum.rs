@@ -22,10 +22,10 @@ use anyhow::{Context as _, anyhow};
 use serde_json::{Value as Json, json};
 
 use super::args::SceneArgs;
-use super::eng_args::{BaseArgs, Owns, RecordUnitArgs, block, input, positive_list, show};
-use super::eng_motion::{Motion, MotionArgs};
-use super::flags::Flags;
+use super::eng_args::{BaseArgs, Owns, RecordUnitArgs, RunArgs, block, input, positive_list, show};
+use super::eng_motion::{Motion, MotionArgs, PulseScaleArgs};
 use super::error::BatchError;
+use super::flags::Flags;
 use super::pulse_map::MAX_OMEGA_RATIO;
 use super::spectrum::PulseArg;
 use super::sweep::{progress_bar, progress_fn, thread_pool};
@@ -60,22 +60,9 @@ pub struct SlidingSpectrumArgs {
     /// --pulse-period.
     #[arg(long, value_enum, value_name = "SHAPE")]
     pub pulse: Option<PulseArg>,
-    /// Main cycles n of a type-C pulse (default 1; only with --pulse
-    /// type-c).
-    #[arg(long, value_name = "N")]
-    pub cycles: Option<u32>,
-    /// Peak acceleration a_p of the pulse, g.
-    #[arg(long, value_name = "G", requires = "pulse")]
-    pub pulse_accel: Option<f64>,
-    /// Period T_p = 2π/ω_p of the pulse, s.
-    #[arg(long, value_name = "S", requires = "pulse")]
-    pub pulse_period: Option<f64>,
-    /// Factor on the motion (1 plays it as recorded).
-    #[arg(long, value_name = "F", conflicts_with = "pga")]
-    pub scale: Option<f64>,
-    /// Scale the motion to this peak ground acceleration, g.
-    #[arg(long, value_name = "G")]
-    pub pga: Option<f64>,
+    /// The pulse's numbers and the motion's scale.
+    #[command(flatten)]
+    pub motion: PulseScaleArgs,
     /// Friction coefficients μ (μ_s), each > 0, increasing:
     /// comma-separated, or FROM:TO:N for N evenly spaced values.
     #[arg(long, value_name = "LIST", allow_hyphen_values = true)]
@@ -94,16 +81,9 @@ pub struct SlidingSpectrumArgs {
     /// command's.
     #[command(flatten)]
     pub scene: SceneArgs,
-    /// Worker threads (default: one per core; at most 4 per core). The
-    /// output does not depend on it.
-    #[arg(long, value_name = "N")]
-    pub threads: Option<usize>,
-    /// Output directory.
-    #[arg(long, value_name = "DIR")]
-    pub out: PathBuf,
-    /// Print nothing but errors.
-    #[arg(long, short)]
-    pub quiet: bool,
+    /// Threads, output folder, quiet.
+    #[command(flatten)]
+    pub run: RunArgs,
 }
 
 /// What the command sets itself, for refusing `--set` keys it would ignore.
@@ -127,9 +107,9 @@ fn refuse_ignored_flags(args: &SlidingSpectrumArgs) -> Result<(), BatchError> {
     let given = |v: bool, flag: &'static str| v.then_some(flag);
     if args.record.is_some() {
         let pulse_flags = [
-            given(args.pulse_accel.is_some(), "--pulse-accel"),
-            given(args.pulse_period.is_some(), "--pulse-period"),
-            given(args.cycles.is_some(), "--cycles"),
+            given(args.motion.pulse_accel.is_some(), "--pulse-accel"),
+            given(args.motion.pulse_period.is_some(), "--pulse-period"),
+            given(args.motion.cycles.is_some(), "--cycles"),
         ];
         if let Some(flag) = pulse_flags.into_iter().flatten().next() {
             return Err(input(anyhow!("{flag}: describes a --pulse, not a --record; remove it")));
@@ -143,7 +123,7 @@ fn refuse_ignored_flags(args: &SlidingSpectrumArgs) -> Result<(), BatchError> {
             return Err(input(anyhow!("{flag}: reads a --record, not a --pulse; remove it")));
         }
     }
-    if let (Some(n), Some(shape)) = (args.cycles, args.pulse)
+    if let (Some(n), Some(shape)) = (args.motion.cycles, args.pulse)
         && shape != PulseArg::TypeC
     {
         return Err(input(anyhow!(
@@ -169,11 +149,7 @@ fn motion(args: &SlidingSpectrumArgs) -> Result<Motion, BatchError> {
         reading: &args.reading,
         vertical: None,
         pulse: args.pulse,
-        cycles: args.cycles,
-        pulse_accel: args.pulse_accel,
-        pulse_period: args.pulse_period,
-        scale: args.scale,
-        pga: args.pga,
+        numbers: &args.motion,
     };
     super::eng_motion::motion(&flags, false)
 }
@@ -217,19 +193,19 @@ pub fn run(args: &SlidingSpectrumArgs) -> Result<(), BatchError> {
     {
         return Err(input(anyhow!(
             "--pulse-period {}: ω_p/p = {} for the block R = {} m, above {} (see pulse-map --omega); give a longer period or a larger block",
-            show(args.pulse_period.unwrap_or(f64::NAN)),
+            show(args.motion.pulse_period.unwrap_or(f64::NAN)),
             show(omega_p / size.p_per_s()),
             show(size.half_diagonal_m()),
             show(MAX_OMEGA_RATIO)
         )));
     }
-    let pool = thread_pool(args.threads)?;
-    output::check_writable(&args.out)
+    let pool = thread_pool(args.run.threads)?;
+    output::check_writable(&args.run.out)
         .context("--out: cannot write the output directory")
         .map_err(input)?;
 
     let start = Instant::now();
-    let bar = progress_bar(2 * spec.mu.len(), "runs", args.quiet);
+    let bar = progress_bar(2 * spec.mu.len(), "runs", args.run.quiet);
     let points = pool
         .install(|| sliding_spectrum(&spec, &progress_fn(&bar)))
         .map_err(|e| BatchError::Run(anyhow!(e)))?;
@@ -302,13 +278,13 @@ pub fn run(args: &SlidingSpectrumArgs) -> Result<(), BatchError> {
         ],
     };
 
-    super::write::staged(&args.out, |staging| {
+    super::write::staged(&args.run.out, |staging| {
         staging.text("sliding_spectrum.csv", &csv::to_string(rows))?;
         staging.text("sliding_spectrum.json", &(serde_json::to_string_pretty(&meta)? + "\n"))?;
         super::write::figure(staging, "sliding_spectrum", &fig)?;
         Ok(())
     })?;
-    if !args.quiet {
+    if !args.run.quiet {
         crate::say!(
             "rocking sliding-spectrum under {} (PGA {pga:.3} g), {} coefficients, {friction}: {} runs in {wall:.2} s",
             motion.name,
@@ -318,7 +294,7 @@ pub fn run(args: &SlidingSpectrumArgs) -> Result<(), BatchError> {
         for s in &summary {
             crate::say!("  {}", s["text"].as_str().unwrap_or_default());
         }
-        crate::say!("wrote {}", args.out.display());
+        crate::say!("wrote {}", args.run.out.display());
     }
     Ok(())
 }

@@ -20,8 +20,8 @@ use std::time::Instant;
 use anyhow::{Context as _, anyhow};
 use serde_json::{Value as Json, json};
 
-use super::eng_args::{BaseArgs, Owns, RecordUnitArgs, VerticalArg, flag_error, input, positive_list, show};
-use super::eng_motion::{Motion, MotionArgs, flagged};
+use super::eng_args::{BaseArgs, Owns, RecordUnitArgs, RunArgs, VerticalArg, flag_error, input, positive_list, show};
+use super::eng_motion::{Motion, MotionArgs, PulseScaleArgs, flagged};
 use super::error::BatchError;
 use super::pulse_map::MAX_OMEGA_RATIO;
 use super::sweep::{progress_bar, progress_fn, thread_pool};
@@ -98,22 +98,9 @@ pub struct SpectrumArgs {
     /// block to block); give --pulse-accel and --pulse-period.
     #[arg(long, value_enum, value_name = "SHAPE")]
     pub pulse: Option<PulseArg>,
-    /// Main cycles n of a type-C pulse (default 1; only with --pulse
-    /// type-c).
-    #[arg(long, value_name = "N")]
-    pub cycles: Option<u32>,
-    /// Peak acceleration a_p of the pulse, g.
-    #[arg(long, value_name = "G", requires = "pulse")]
-    pub pulse_accel: Option<f64>,
-    /// Period T_p = 2π/ω_p of the pulse, s.
-    #[arg(long, value_name = "S", requires = "pulse")]
-    pub pulse_period: Option<f64>,
-    /// Factor on the motion (1 plays it as recorded).
-    #[arg(long, value_name = "F", conflicts_with = "pga")]
-    pub scale: Option<f64>,
-    /// Scale the motion to this peak ground acceleration, g.
-    #[arg(long, value_name = "G")]
-    pub pga: Option<f64>,
+    /// The pulse's numbers and the motion's scale.
+    #[command(flatten)]
+    pub motion: PulseScaleArgs,
     /// What the sizes step through: the half-diagonal R or the height H.
     #[arg(long, value_enum, default_value = "r")]
     pub size: AxisArg,
@@ -154,16 +141,9 @@ pub struct SpectrumArgs {
     /// Friction and the base scene.
     #[command(flatten)]
     pub base: BaseArgs,
-    /// Worker threads (default: one per core; at most 4 per core). The
-    /// output does not depend on it.
-    #[arg(long, value_name = "N")]
-    pub threads: Option<usize>,
-    /// Output directory.
-    #[arg(long, value_name = "DIR")]
-    pub out: PathBuf,
-    /// Print nothing but errors.
-    #[arg(long, short)]
-    pub quiet: bool,
+    /// Threads, output folder, quiet.
+    #[command(flatten)]
+    pub run: RunArgs,
 }
 
 /// Default step of the overturning-scale search: a tenth of the motion as
@@ -207,9 +187,9 @@ fn refuse_ignored_flags(args: &SpectrumArgs) -> Result<(), BatchError> {
         ("--dt", args.reading.dt.is_some()),
     ];
     let pulse_flags = [
-        ("--pulse-accel", args.pulse_accel.is_some()),
-        ("--pulse-period", args.pulse_period.is_some()),
-        ("--cycles", args.cycles.is_some()),
+        ("--pulse-accel", args.motion.pulse_accel.is_some()),
+        ("--pulse-period", args.motion.pulse_period.is_some()),
+        ("--cycles", args.motion.cycles.is_some()),
     ];
     if args.vertical == Some(VerticalArg::Record) && args.record_v.is_none() {
         return Err(input(anyhow!(
@@ -223,7 +203,7 @@ fn refuse_ignored_flags(args: &SpectrumArgs) -> Result<(), BatchError> {
     } else if let Some((flag, _)) = record_flags.iter().find(|(_, given)| *given) {
         return Err(input(anyhow!("{flag}: reads a --record, not a --pulse; remove it")));
     }
-    if let (Some(n), Some(shape)) = (args.cycles, args.pulse)
+    if let (Some(n), Some(shape)) = (args.motion.cycles, args.pulse)
         && shape != PulseArg::TypeC
     {
         return Err(input(anyhow!(
@@ -260,11 +240,7 @@ fn motion(args: &SpectrumArgs) -> Result<Motion, BatchError> {
         reading: &args.reading,
         vertical,
         pulse: args.pulse,
-        cycles: args.cycles,
-        pulse_accel: args.pulse_accel,
-        pulse_period: args.pulse_period,
-        scale: args.scale,
-        pga: args.pga,
+        numbers: &args.motion,
     };
     super::eng_motion::motion(&flags, true)
 }
@@ -311,7 +287,7 @@ pub fn run(args: &SpectrumArgs) -> Result<(), BatchError> {
     {
         return Err(input(anyhow!(
             "--pulse-period {}: ω_p/p = {} for the block R = {} m, above {} (see pulse-map --omega); give a longer period or larger blocks",
-            show(args.pulse_period.unwrap_or(f64::NAN)),
+            show(args.motion.pulse_period.unwrap_or(f64::NAN)),
             show(omega_p / b.p_per_s()),
             show(b.half_diagonal_m()),
             show(MAX_OMEGA_RATIO)
@@ -330,13 +306,13 @@ pub fn run(args: &SpectrumArgs) -> Result<(), BatchError> {
             },
         )?;
     }
-    let pool = thread_pool(args.threads)?;
-    output::check_writable(&args.out)
+    let pool = thread_pool(args.run.threads)?;
+    output::check_writable(&args.run.out)
         .context("--out: cannot write the output directory")
         .map_err(input)?;
 
     let start = Instant::now();
-    let bar = progress_bar(spec.sizes.count * spec.b_over_h.len(), "blocks", args.quiet);
+    let bar = progress_bar(spec.sizes.count * spec.b_over_h.len(), "blocks", args.run.quiet);
     let points = pool
         .install(|| rocking_spectrum(&spec, &progress_fn(&bar)))
         .map_err(|e| BatchError::Run(anyhow!(e)))?;
@@ -454,7 +430,7 @@ pub fn run(args: &SpectrumArgs) -> Result<(), BatchError> {
             .collect(),
     });
 
-    super::write::staged(&args.out, |staging| {
+    super::write::staged(&args.run.out, |staging| {
         staging.text("spectrum.csv", &csv::to_string(rows))?;
         if spec.overturn.is_some() {
             staging.text("safe_windows.csv", &csv::to_string(windows))?;
@@ -466,7 +442,7 @@ pub fn run(args: &SpectrumArgs) -> Result<(), BatchError> {
         }
         Ok(())
     })?;
-    if !args.quiet {
+    if !args.run.quiet {
         crate::say!(
             "rocking spectrum under {} (PGA {:.3} g{}): {} blocks in {wall:.2} s",
             motion.name,
@@ -484,7 +460,7 @@ pub fn run(args: &SpectrumArgs) -> Result<(), BatchError> {
         for s in summary.as_array().into_iter().flatten() {
             crate::say!("  {}", s["text"].as_str().unwrap_or_default());
         }
-        crate::say!("wrote {}", args.out.display());
+        crate::say!("wrote {}", args.run.out.display());
     }
     Ok(())
 }

@@ -26,3 +26,17 @@ pub mod rocking_spectrum;
 pub mod sliding_spectrum;
 
 pub use response::{BlockResponse, BlockSize, Drive, EndState};
+
+/// A record of accelerations `a_g` (g) at times `t` (s), named `path`,
+/// driving a test run.
+#[cfg(test)]
+pub(crate) fn test_record(path: &str, t: Vec<f64>, a_g: Vec<f64>) -> Drive {
+    Drive::Record(crate::sim::scenario::Record {
+        path: path.into(),
+        series: crate::model::excitation::record::Series::new(t, a_g).unwrap(),
+        unit: crate::model::units::AccelUnit::G,
+        dt: None,
+        crc32: 0,
+        channel: None,
+    })
+}

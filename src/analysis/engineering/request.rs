@@ -143,12 +143,18 @@ impl RequestError {
             }
             RequestError::ZeroRecord => format!("{}: the record is all zeros (PGA 0 g)", name(RequestField::Record)),
             RequestError::ScaleAndPga => {
-                format!("{} and {}: give one", name(RequestField::Scale), name(RequestField::Pga))
+                format!(
+                    "{} and {}: give one",
+                    name(RequestField::Scale),
+                    name(RequestField::Pga)
+                )
             }
             RequestError::Scale(s) => format!("{}: must be > 0", valued(RequestField::Scale, *s)),
             RequestError::Pga(p) => format!("{}: must be > 0 (g)", valued(RequestField::Pga, *p)),
             RequestError::PulseValue(field, v) => format!("{}: must be a finite number > 0", valued(*field, *v)),
-            RequestError::PulseMissing(field) => format!("{}: required with {}", name(*field), name(RequestField::Pulse)),
+            RequestError::PulseMissing(field) => {
+                format!("{}: required with {}", name(*field), name(RequestField::Pulse))
+            }
             RequestError::Cycles(n) => format!(
                 "{}: must be in 1..={MAX_TYPE_C_CYCLES}",
                 names.valued(RequestField::Cycles, &n.to_string())
@@ -489,7 +495,12 @@ impl SpectrumRequest {
         let overturn = match self.overturn {
             None => None,
             Some(o) => {
-                let ladder = search_ladder(RequestField::SearchStep, o.search_step, RequestField::SearchMax, o.search_max)?;
+                let ladder = search_ladder(
+                    RequestField::SearchStep,
+                    o.search_step,
+                    RequestField::SearchMax,
+                    o.search_max,
+                )?;
                 if !(o.rel_tol > 0.0 && o.rel_tol < 1.0) {
                     return Err(RequestError::RelTol(o.rel_tol));
                 }
@@ -574,7 +585,10 @@ mod tests {
             scale: Some(1.0),
             pga_g: Some(1.0),
         };
-        assert_eq!(both.factor(0.25).unwrap_err().render(&Angled), "<scale> and <pga>: give one");
+        assert_eq!(
+            both.factor(0.25).unwrap_err().render(&Angled),
+            "<scale> and <pga>: give one"
+        );
     }
 
     #[test]
@@ -592,7 +606,10 @@ mod tests {
             e(request(1.0, 2.0, 5, vec![0.3, 0.2])),
             "<b_over_h>: values must increase (0.3 then 0.2)"
         );
-        assert_eq!(e(request(1.0, 2.0, 5, vec![-1.0])), "<b_over_h>:-1: every ratio must be finite and > 0");
+        assert_eq!(
+            e(request(1.0, 2.0, 5, vec![-1.0])),
+            "<b_over_h>:-1: every ratio must be finite and > 0"
+        );
         let mut search = request(1.0, 2.0, 5, vec![0.25]);
         search.overturn = Some(OverturnRequest {
             search_step: 0.5,

@@ -38,8 +38,8 @@
 use rayon::prelude::*;
 
 use super::response::{BlockSize, Drive, EndState, ResponseError, scenario_for};
-use crate::analysis::{Progress, ProgressFn};
 use crate::analysis::field::{FieldNames, RequestField, show};
+use crate::analysis::{Progress, ProgressFn};
 use crate::sim::{Scenario, ScenarioError, simulate};
 
 /// B/H of the slide-only block: tan α = 1000, far above any ground motion
@@ -332,8 +332,6 @@ pub fn sliding_spectrum(spec: &SlidingSpec<'_>, progress: &ProgressFn<'_>) -> Re
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::model::excitation::record::Series;
-    use crate::sim::scenario::Record;
 
     /// A constant acceleration `a_g` (g) for `dur_s`, then 0, sampled
     /// every 10 ms.
@@ -341,14 +339,7 @@ mod tests {
         let n = (dur_s / 0.01).round() as usize;
         let t: Vec<f64> = (0..=n + 1).map(|i| i as f64 * 0.01).collect();
         let a: Vec<f64> = (0..=n + 1).map(|i| if i <= n { a_g } else { 0.0 }).collect();
-        Drive::Record(Record {
-            path: "step.txt".into(),
-            series: Series::new(t, a).unwrap(),
-            unit: crate::model::units::AccelUnit::G,
-            dt: None,
-            crc32: 0,
-            channel: None,
-        })
+        super::super::test_record("step.txt", t, a)
     }
 
     #[test]

@@ -63,14 +63,19 @@ impl Source {
     }
 }
 
-/// Reads a preset shipped in `assets/presets/NAME.toml`.
+/// Reads a preset shipped in `assets/presets/NAME.toml`. An unknown name
+/// is refused naming the preset (`preset fig99: unknown preset (known:
+/// …)`), not a surface's flag: the CLI words it as `--preset fig99: …`.
 pub fn preset_text(name: &str) -> Result<&'static str, ConfigError> {
-    super::presets::get(name).ok_or_else(|| {
-        ConfigError::Usage(format!(
-            "--preset {name}: unknown preset (known: {})",
-            super::presets::names().join(", ")
-        ))
-    })
+    super::presets::get(name).ok_or_else(|| ConfigError::Usage(unknown_preset(name)))
+}
+
+/// Why `name` is not a preset, listing the known ones.
+pub fn unknown_preset(name: &str) -> String {
+    format!(
+        "preset {name}: unknown preset (known: {})",
+        super::presets::names().join(", ")
+    )
 }
 
 /// Parses TOML text, naming `file` and the line in errors.
@@ -727,7 +732,9 @@ pub fn base_table(sets: &[String]) -> Result<(Table, Source), ConfigError> {
 pub fn load_table(preset: Option<&str>, file: Option<&Path>, sets: &[String]) -> Result<(Table, Source), ConfigError> {
     let (mut table, source) = match (preset, file) {
         (Some(_), Some(_)) => {
-            return Err(ConfigError::Usage("give either --preset or --config, not both".into()));
+            return Err(ConfigError::Usage(
+                "give either a preset or a config file, not both".into(),
+            ));
         }
         (_, Some(path)) => read_file(path)?,
         (None, None) if !sets.is_empty() => return base_table(sets),
