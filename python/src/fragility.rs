@@ -18,9 +18,9 @@ use rocking::analysis::engineering::fragility::{
 use rocking::analysis::engineering::lognormal::{FitError, LognormalFit};
 use rocking::analysis::engineering::request::{self, RequestError};
 use rocking::analysis::engineering::{BlockSize, Drive, EndState};
+use rocking::analysis::field::RequestField;
 use rocking::analysis::silent;
 use rocking::io::record::{RecordSpec, read_record_as};
-use rocking::analysis::field::RequestField;
 use rocking::sim::scenario::Record;
 use serde_json::json;
 

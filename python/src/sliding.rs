@@ -13,9 +13,9 @@ use pyo3::types::PyDict;
 use rocking::analysis::engineering::request::{self, Scaling};
 use rocking::analysis::engineering::sliding_spectrum::{BlockKind, SlidingPoint, SlidingSpec, sliding_spectrum};
 use rocking::analysis::engineering::{BlockSize, Drive, EndState};
+use rocking::analysis::field::RequestField;
 use rocking::analysis::silent;
 use rocking::io::record::{RecordSpec, read_record_as};
-use rocking::analysis::field::RequestField;
 use rocking::sim::scenario::Record;
 
 use crate::errors::{Origin, config_error, record_error, run_error};

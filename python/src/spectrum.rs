@@ -13,9 +13,9 @@ use rocking::analysis::engineering::request::{self, OverturnRequest, RequestErro
 use rocking::analysis::engineering::response::scenario_for;
 use rocking::analysis::engineering::rocking_spectrum::{SizeAxis, SpectrumPoint, SpectrumSpec, rocking_spectrum};
 use rocking::analysis::engineering::{Drive, EndState};
+use rocking::analysis::field::RequestField;
 use rocking::analysis::silent;
 use rocking::io::record::{RecordSpec, read_record_as};
-use rocking::analysis::field::RequestField;
 use rocking::sim::scenario::Record;
 
 use crate::errors::{Origin, config_error, record_error, run_error};
@@ -100,7 +100,10 @@ fn spectrum<'py>(
     progress: Option<Py<PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let base = scene.scenario();
-    let unit = unit.map(|text| request::unit(RequestField::Unit, text)).transpose().map_err(input)?;
+    let unit = unit
+        .map(|text| request::unit(RequestField::Unit, text))
+        .transpose()
+        .map_err(input)?;
     let loaded = read_record_as(
         &record,
         &RecordSpec {
@@ -151,7 +154,12 @@ fn spectrum<'py>(
     let axis = match size {
         "r" => SizeAxis::HalfDiagonal,
         "h" => SizeAxis::Height,
-        other => return Err(config_error(format!("size={other}: expected r or h"), Origin::default())),
+        other => {
+            return Err(config_error(
+                format!("size={other}: expected r or h"),
+                Origin::default(),
+            ));
+        }
     };
     let (from_m, to_m, count) = sizes;
     let blocks = SpectrumRequest {
@@ -178,13 +186,12 @@ fn spectrum<'py>(
         overturn: blocks.overturn,
     };
     for (_, _, block) in spec.blocks() {
-        scenario_for(base, block, &drive, scale)
-            .map_err(|e| {
-                config_error(
-                    format!("block {} × {} m: {e}", block.width_m, block.height_m),
-                    Origin::default(),
-                )
-            })?;
+        scenario_for(base, block, &drive, scale).map_err(|e| {
+            config_error(
+                format!("block {} × {} m: {e}", block.width_m, block.height_m),
+                Origin::default(),
+            )
+        })?;
     }
     let workers = Workers::new(threads)?;
     // One B/H at a time: the blocks of a ratio are a spectrum of their own

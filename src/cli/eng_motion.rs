@@ -19,6 +19,24 @@ use crate::analysis::field::RequestField;
 use crate::io::record::RecordSpec;
 use crate::sim::scenario::{Record, ShapeKind};
 
+/// The record of `spectrum` and `sliding-spectrum` (or `--pulse`
+/// instead) and how a text record is read.
+#[derive(Debug, Clone, clap::Args)]
+pub struct RecordArgs {
+    /// The ground-acceleration record (PEER .AT2, two-column `time accel`
+    /// text, or one-column text with --dt).
+    #[arg(
+        long,
+        value_name = "FILE",
+        conflicts_with = "pulse",
+        required_unless_present = "pulse"
+    )]
+    pub record: Option<PathBuf>,
+    /// Unit and time step of a text record.
+    #[command(flatten)]
+    pub reading: RecordUnitArgs,
+}
+
 /// The flags of a pulse's numbers and of the motion's scale (after
 /// `--pulse` in `spectrum` and `sliding-spectrum`).
 #[derive(Debug, Clone, clap::Args)]
@@ -164,4 +182,53 @@ pub(crate) fn motion(args: &MotionArgs<'_>, with_vertical_key: bool) -> Result<M
         name,
         json,
     })
+}
+
+/// The flags that set the motion, for refusing a `--set` of a motion key
+/// ([`Owns::motion`](super::eng_args::Owns)).
+pub(crate) fn motion_flags(record: bool) -> &'static str {
+    if record {
+        "--record, --unit, --dt, --scale/--pga"
+    } else {
+        "--pulse, --pulse-accel, --pulse-period, --cycles, --scale/--pga"
+    }
+}
+
+/// Refuses the flags of a record with a pulse and those of a pulse with a
+/// record (each would be ignored without a word), and cycles of a pulse
+/// that has none.
+pub(crate) fn refuse_mixed_motion(
+    record: bool,
+    pulse: Option<PulseArg>,
+    reading: &RecordUnitArgs,
+    numbers: &PulseScaleArgs,
+) -> Result<(), BatchError> {
+    let given = |v: bool, flag: &'static str| v.then_some(flag);
+    if record {
+        let pulse_flags = [
+            given(numbers.pulse_accel.is_some(), "--pulse-accel"),
+            given(numbers.pulse_period.is_some(), "--pulse-period"),
+            given(numbers.cycles.is_some(), "--cycles"),
+        ];
+        if let Some(flag) = pulse_flags.into_iter().flatten().next() {
+            return Err(input(anyhow!("{flag}: describes a --pulse, not a --record; remove it")));
+        }
+    } else {
+        let record_flags = [
+            given(reading.unit.is_some(), "--unit"),
+            given(reading.dt.is_some(), "--dt"),
+        ];
+        if let Some(flag) = record_flags.into_iter().flatten().next() {
+            return Err(input(anyhow!("{flag}: reads a --record, not a --pulse; remove it")));
+        }
+    }
+    if let (Some(n), Some(shape)) = (numbers.cycles, pulse)
+        && shape != PulseArg::TypeC
+    {
+        return Err(input(anyhow!(
+            "--cycles {n}: only a type-c pulse has cycles (--pulse {}); remove it",
+            ShapeKind::from(shape).name()
+        )));
+    }
+    Ok(())
 }

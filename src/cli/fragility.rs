@@ -859,16 +859,13 @@ pub fn merge(args: &MergeArgs) -> Result<(), BatchError> {
         .map_err(input)?;
     let by_index = super::merge::in_index_order(
         &shards,
-        |s| (&s.dir, s.shard),
+        |s| (&s.dir, s.shard, &s.common),
         |s, first| {
-            if s.common == first.common {
-                return Ok(());
-            }
-            Err(input(anyhow!(
+            format!(
                 "{}: not the same study as {} (fragility.json differs)",
                 s.dir.display(),
                 first.dir.display()
-            )))
+            )
         },
     )?;
     let (first, n) = (&shards[0], shards[0].shard.count);

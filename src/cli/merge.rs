@@ -241,23 +241,26 @@ pub(super) fn refuse_out_in_shards(args: &MergeArgs) -> Result<(), BatchError> {
 }
 
 /// The shards `0/N … N−1/N` of one study, each given once, by index
-/// (every entry `Some`); `place` gives a shard's folder and `K/N`,
-/// `same_study(s, first)` refuses a shard of another study. At least one
-/// shard is given.
+/// (every entry `Some`); `place` gives a shard's folder, `K/N` and its
+/// JSON without the shard (the same for every shard of one study), and
+/// `differs(s, first)` words why shard `s` is of another study than the
+/// first. At least one shard is given.
 pub(super) fn in_index_order<'a, T>(
     shards: &'a [T],
-    place: impl Fn(&T) -> (&PathBuf, Shard),
-    same_study: impl Fn(&T, &T) -> Result<(), BatchError>,
+    place: impl Fn(&T) -> (&PathBuf, Shard, &Json),
+    differs: impl Fn(&T, &T) -> String,
 ) -> Result<Vec<Option<&'a T>>, BatchError> {
     let input = BatchError::Input;
     let Some(first) = shards.first() else {
         return Err(input(anyhow!("no shard directories given")));
     };
-    let (first_dir, first_shard) = place(first);
+    let (first_dir, first_shard, first_common) = place(first);
     let n = first_shard.count;
     for s in &shards[1..] {
-        same_study(s, first)?;
-        let (dir, shard) = place(s);
+        let (dir, shard, common) = place(s);
+        if common != first_common {
+            return Err(input(anyhow!(differs(s, first))));
+        }
         if shard.count != n {
             return Err(input(anyhow!(
                 "{}: shard {}/{} but {} is one of {n} shards",
@@ -270,7 +273,7 @@ pub(super) fn in_index_order<'a, T>(
     }
     let mut by_index: Vec<Option<&T>> = vec![None; n];
     for s in shards {
-        let (dir, shard) = place(s);
+        let (dir, shard, _) = place(s);
         if let Some(other) = by_index[shard.index] {
             return Err(input(anyhow!(
                 "{}: shard {}/{n} is given twice (also {})",
@@ -299,17 +302,14 @@ pub fn run(args: &MergeArgs) -> Result<(), BatchError> {
         .map_err(input)?;
     let by_index = in_index_order(
         &shards,
-        |s| (&s.dir, s.shard),
+        |s| (&s.dir, s.shard, &s.common),
         |s, first| {
-            if s.common == first.common {
-                return Ok(());
-            }
-            Err(input(anyhow!(
+            format!(
                 "{}: not the same sweep as {} (sweep.json differs in \"{}\")",
                 s.dir.display(),
                 first.dir.display(),
                 first_difference(&s.common, &first.common)
-            )))
+            )
         },
     )?;
     let (first, n) = (&shards[0], shards[0].shard.count);

@@ -15,15 +15,14 @@
 //! a spectrum is two runs per μ (0.09 s for twelve coefficients on El
 //! Centro), far from needing a cluster.
 
-use std::path::PathBuf;
 use std::time::Instant;
 
 use anyhow::{Context as _, anyhow};
 use serde_json::{Value as Json, json};
 
 use super::args::SceneArgs;
-use super::eng_args::{BaseArgs, Owns, RecordUnitArgs, RunArgs, block, input, positive_list, show};
-use super::eng_motion::{Motion, MotionArgs, PulseScaleArgs};
+use super::eng_args::{BaseArgs, Owns, RunArgs, block, input, positive_list, show};
+use super::eng_motion::{Motion, MotionArgs, PulseScaleArgs, RecordArgs, motion_flags, refuse_mixed_motion};
 use super::error::BatchError;
 use super::flags::Flags;
 use super::pulse_map::MAX_OMEGA_RATIO;
@@ -39,23 +38,13 @@ use crate::io::output;
 use crate::io::sliding_files::SlidingRow;
 use crate::plot::labels::num;
 use crate::plot::sliding_spectrum::{SlidingCurve, SlidingFigure};
-use crate::sim::scenario::ShapeKind;
 
 /// Arguments of `rocking sliding-spectrum`.
 #[derive(Debug, Clone, clap::Args)]
 pub struct SlidingSpectrumArgs {
-    /// The ground-acceleration record (PEER .AT2, two-column `time accel`
-    /// text, or one-column text with --dt).
-    #[arg(
-        long,
-        value_name = "FILE",
-        conflicts_with = "pulse",
-        required_unless_present = "pulse"
-    )]
-    pub record: Option<PathBuf>,
-    /// Unit and time step of a text record.
+    /// The record and how it is read.
     #[command(flatten)]
-    pub reading: RecordUnitArgs,
+    pub source: RecordArgs,
     /// An analytic pulse instead of a record; give --pulse-accel and
     /// --pulse-period.
     #[arg(long, value_enum, value_name = "SHAPE")]
@@ -92,11 +81,7 @@ fn owns(args: &SlidingSpectrumArgs) -> Owns {
     Owns {
         command: "sliding-spectrum",
         sizes: "--block",
-        motion: if record {
-            "--record, --unit, --dt, --scale/--pga"
-        } else {
-            "--pulse, --pulse-accel, --pulse-period, --cycles, --scale/--pga"
-        },
+        motion: motion_flags(record),
         record,
         vertical: "nowhere: a sliding spectrum is of horizontal motion (use --batch with excitation.file_v for one run)",
     }
@@ -104,33 +89,12 @@ fn owns(args: &SlidingSpectrumArgs) -> Owns {
 
 /// Refuses flags that the other flags make meaningless.
 fn refuse_ignored_flags(args: &SlidingSpectrumArgs) -> Result<(), BatchError> {
-    let given = |v: bool, flag: &'static str| v.then_some(flag);
-    if args.record.is_some() {
-        let pulse_flags = [
-            given(args.motion.pulse_accel.is_some(), "--pulse-accel"),
-            given(args.motion.pulse_period.is_some(), "--pulse-period"),
-            given(args.motion.cycles.is_some(), "--cycles"),
-        ];
-        if let Some(flag) = pulse_flags.into_iter().flatten().next() {
-            return Err(input(anyhow!("{flag}: describes a --pulse, not a --record; remove it")));
-        }
-    } else {
-        let record_flags = [
-            given(args.reading.unit.is_some(), "--unit"),
-            given(args.reading.dt.is_some(), "--dt"),
-        ];
-        if let Some(flag) = record_flags.into_iter().flatten().next() {
-            return Err(input(anyhow!("{flag}: reads a --record, not a --pulse; remove it")));
-        }
-    }
-    if let (Some(n), Some(shape)) = (args.motion.cycles, args.pulse)
-        && shape != PulseArg::TypeC
-    {
-        return Err(input(anyhow!(
-            "--cycles {n}: only a type-c pulse has cycles (--pulse {}); remove it",
-            ShapeKind::from(shape).name()
-        )));
-    }
+    refuse_mixed_motion(
+        args.source.record.is_some(),
+        args.pulse,
+        &args.source.reading,
+        &args.motion,
+    )?;
     for set in &args.scene.sets {
         let key = set.split_once('=').map_or(set.as_str(), |(k, _)| k).trim();
         if key.split_once('.').is_some_and(|(section, _)| section == "friction") {
@@ -145,8 +109,8 @@ fn refuse_ignored_flags(args: &SlidingSpectrumArgs) -> Result<(), BatchError> {
 /// The motion of the flags, read and checked (horizontal only).
 fn motion(args: &SlidingSpectrumArgs) -> Result<Motion, BatchError> {
     let flags = MotionArgs {
-        record: args.record.as_deref(),
-        reading: &args.reading,
+        record: args.source.record.as_deref(),
+        reading: &args.source.reading,
         vertical: None,
         pulse: args.pulse,
         numbers: &args.motion,

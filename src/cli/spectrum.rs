@@ -20,8 +20,8 @@ use std::time::Instant;
 use anyhow::{Context as _, anyhow};
 use serde_json::{Value as Json, json};
 
-use super::eng_args::{BaseArgs, Owns, RecordUnitArgs, RunArgs, VerticalArg, flag_error, input, positive_list, show};
-use super::eng_motion::{Motion, MotionArgs, PulseScaleArgs, flagged};
+use super::eng_args::{BaseArgs, Owns, RunArgs, VerticalArg, flag_error, input, positive_list, show};
+use super::eng_motion::{Motion, MotionArgs, PulseScaleArgs, RecordArgs, flagged, motion_flags, refuse_mixed_motion};
 use super::error::BatchError;
 use super::pulse_map::MAX_OMEGA_RATIO;
 use super::sweep::{progress_bar, progress_fn, thread_pool};
@@ -71,18 +71,9 @@ pub enum AxisArg {
 /// Arguments of `rocking spectrum`.
 #[derive(Debug, Clone, clap::Args)]
 pub struct SpectrumArgs {
-    /// The ground-acceleration record (PEER .AT2, two-column `time accel`
-    /// text, or one-column text with --dt).
-    #[arg(
-        long,
-        value_name = "FILE",
-        conflicts_with = "pulse",
-        required_unless_present = "pulse"
-    )]
-    pub record: Option<PathBuf>,
-    /// Unit and time step of a text record.
+    /// The record and how it is read.
     #[command(flatten)]
-    pub reading: RecordUnitArgs,
+    pub source: RecordArgs,
     /// The vertical component of --record (positive upward), scaled by the
     /// same factor as the horizontal (a --pga sets the horizontal's PGA).
     #[arg(long = "record-v", value_name = "FILE", requires = "record")]
@@ -169,11 +160,7 @@ fn owns(args: &SpectrumArgs) -> Owns {
     Owns {
         command: "spectrum",
         sizes: "--from/--to/--count, --size, --b-over-h",
-        motion: if record {
-            "--record, --unit, --dt, --scale/--pga"
-        } else {
-            "--pulse, --pulse-accel, --pulse-period, --cycles, --scale/--pga"
-        },
+        motion: motion_flags(record),
         record,
         vertical: "--record-v",
     }
@@ -182,35 +169,17 @@ fn owns(args: &SpectrumArgs) -> Owns {
 /// Refuses flags that the other flags make meaningless (each would be
 /// ignored without a word).
 fn refuse_ignored_flags(args: &SpectrumArgs) -> Result<(), BatchError> {
-    let record_flags = [
-        ("--unit", args.reading.unit.is_some()),
-        ("--dt", args.reading.dt.is_some()),
-    ];
-    let pulse_flags = [
-        ("--pulse-accel", args.motion.pulse_accel.is_some()),
-        ("--pulse-period", args.motion.pulse_period.is_some()),
-        ("--cycles", args.motion.cycles.is_some()),
-    ];
     if args.vertical == Some(VerticalArg::Record) && args.record_v.is_none() {
         return Err(input(anyhow!(
             "--vertical record: give the vertical component with --record-v FILE (or --vertical none)"
         )));
     }
-    if args.record.is_some() {
-        if let Some((flag, _)) = pulse_flags.iter().find(|(_, given)| *given) {
-            return Err(input(anyhow!("{flag}: describes a --pulse, not a --record; remove it")));
-        }
-    } else if let Some((flag, _)) = record_flags.iter().find(|(_, given)| *given) {
-        return Err(input(anyhow!("{flag}: reads a --record, not a --pulse; remove it")));
-    }
-    if let (Some(n), Some(shape)) = (args.motion.cycles, args.pulse)
-        && shape != PulseArg::TypeC
-    {
-        return Err(input(anyhow!(
-            "--cycles {n}: only a type-c pulse has cycles (--pulse {}); remove it",
-            ShapeKind::from(shape).name()
-        )));
-    }
+    refuse_mixed_motion(
+        args.source.record.is_some(),
+        args.pulse,
+        &args.source.reading,
+        &args.motion,
+    )?;
     if !args.overturn_scale {
         for (flag, given) in [
             ("--search-step", args.search_step.is_some()),
@@ -236,8 +205,8 @@ fn motion(args: &SpectrumArgs) -> Result<Motion, BatchError> {
         .filter(|_| use_vertical)
         .map(|path| (path, args.unit_v.as_deref()));
     let flags = MotionArgs {
-        record: args.record.as_deref(),
-        reading: &args.reading,
+        record: args.source.record.as_deref(),
+        reading: &args.source.reading,
         vertical,
         pulse: args.pulse,
         numbers: &args.motion,
