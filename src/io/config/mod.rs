@@ -63,19 +63,16 @@ impl Source {
     }
 }
 
-/// Reads a preset shipped in `assets/presets/NAME.toml`. An unknown name
-/// is refused naming the preset (`preset fig99: unknown preset (known:
-/// …)`), not a surface's flag: the CLI words it as `--preset fig99: …`.
+/// Reads a preset shipped in `assets/presets/NAME.toml`. The message for
+/// an unknown name keeps the CLI's `--preset` wording: the Python package's
+/// `Scene(name)` is tested to raise the CLI's very message.
 pub fn preset_text(name: &str) -> Result<&'static str, ConfigError> {
-    super::presets::get(name).ok_or_else(|| ConfigError::Usage(unknown_preset(name)))
-}
-
-/// Why `name` is not a preset, listing the known ones.
-pub fn unknown_preset(name: &str) -> String {
-    format!(
-        "preset {name}: unknown preset (known: {})",
-        super::presets::names().join(", ")
-    )
+    super::presets::get(name).ok_or_else(|| {
+        ConfigError::Usage(format!(
+            "--preset {name}: unknown preset (known: {})",
+            super::presets::names().join(", ")
+        ))
+    })
 }
 
 /// Parses TOML text, naming `file` and the line in errors.
