@@ -245,11 +245,11 @@ pub(super) fn refuse_out_in_shards(args: &MergeArgs) -> Result<(), BatchError> {
 /// JSON without the shard (the same for every shard of one study), and
 /// `differs(s, first)` words why shard `s` is of another study than the
 /// first. At least one shard is given.
-pub(super) fn in_index_order<'a, T>(
-    shards: &'a [T],
+pub(super) fn in_index_order<T>(
+    shards: &[T],
     place: impl Fn(&T) -> (&PathBuf, Shard, &Json),
     differs: impl Fn(&T, &T) -> String,
-) -> Result<Vec<Option<&'a T>>, BatchError> {
+) -> Result<Vec<Option<&T>>, BatchError> {
     let input = BatchError::Input;
     let Some(first) = shards.first() else {
         return Err(input(anyhow!("no shard directories given")));
