@@ -28,6 +28,7 @@ use super::flags::Flags;
 use super::pulse_map::MAX_OMEGA_RATIO;
 use super::spectrum::PulseArg;
 use super::sweep::{progress_bar, progress_fn, thread_pool};
+use crate::analysis::engineering::response::end_time_as;
 use crate::analysis::engineering::sliding_spectrum::{
     BlockKind, NO_SLIDING_M, SLIDE_ONLY_B_OVER_H, SlidingPoint, SlidingSpec, sliding_spectrum,
 };
@@ -277,14 +278,8 @@ fn row(kind: BlockKind, p: &SlidingPoint, size: BlockSize) -> SlidingRow {
         peak_sliding_m: Num(r.peak_sliding_m),
         residual_sliding_m: r.residual_sliding_m.map(Num),
         peak_theta_over_alpha: Num(r.peak_theta_over_alpha),
-        t_overturn_s: (r.end == EndState::Overturned)
-            .then_some(r.t_end_event_s)
-            .flatten()
-            .map(Num),
-        t_flight_s: (r.end == EndState::Flight)
-            .then_some(r.t_end_event_s)
-            .flatten()
-            .map(Num),
+        t_overturn_s: end_time_as(r.end, r.t_end_event_s, EndState::Overturned).map(Num),
+        t_flight_s: end_time_as(r.end, r.t_end_event_s, EndState::Flight).map(Num),
     }
 }
 

@@ -27,6 +27,7 @@ use super::pulse_map::MAX_OMEGA_RATIO;
 use super::sweep::{progress_bar, progress_fn, thread_pool};
 use crate::analysis::engineering::overturn_scale::Failing as _;
 use crate::analysis::engineering::request::{OverturnRequest, SpectrumRequest};
+use crate::analysis::engineering::response::end_time_as;
 use crate::analysis::engineering::rocking_spectrum::{SizeAxis, SpectrumPoint, SpectrumSpec, rocking_spectrum};
 use crate::analysis::engineering::{Drive, EndState};
 use crate::io::config::to_json;
@@ -449,14 +450,8 @@ fn row(p: &SpectrumPoint, scale: f64, pga_of: &impl Fn(f64) -> f64) -> SpectrumR
         pga_g: Num(pga_of(scale)),
         end: r.end.name().to_string(),
         peak_theta_over_alpha: Num(r.peak_theta_over_alpha),
-        t_overturn_s: (r.end == EndState::Overturned)
-            .then_some(r.t_end_event_s)
-            .flatten()
-            .map(Num),
-        t_flight_s: (r.end == EndState::Flight)
-            .then_some(r.t_end_event_s)
-            .flatten()
-            .map(Num),
+        t_overturn_s: end_time_as(r.end, r.t_end_event_s, EndState::Overturned).map(Num),
+        t_flight_s: end_time_as(r.end, r.t_end_event_s, EndState::Flight).map(Num),
         overturn_scale: first.map(|(a, _)| Num(a)),
         overturn_pga_g: first.map(|(a, _)| Num(pga_of(a))),
         overturn_end: first.map(|(_, r)| r.end.name().to_string()),
