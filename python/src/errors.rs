@@ -164,36 +164,6 @@ pub const MAP_ARGS: &[(&str, &str)] = &[
     ("--threads", "threads"),
 ];
 
-/// The Python arguments of `rocking.fragility`, by CLI flag.
-pub const FRAGILITY_ARGS: &[(&str, &str)] = &[
-    ("--im", "im"),
-    ("--unit", "unit"),
-    ("--levels", "levels"),
-    ("--block", "blocks"),
-    ("--records", "records"),
-    ("--threshold", "threshold"),
-    ("--threads", "threads"),
-];
-
-/// The Python arguments of `rocking.spectrum`, by CLI flag.
-pub const SPECTRUM_ARGS: &[(&str, &str)] = &[
-    ("--record-v", "record_v"),
-    ("--unit-v", "unit_v"),
-    ("--record", "record"),
-    ("--unit", "unit"),
-    ("--size", "size"),
-    ("--from", "sizes[0]"),
-    ("--to", "sizes[1]"),
-    ("--count", "sizes[2]"),
-    ("--b-over-h", "b_over_h"),
-    ("--scale", "scale"),
-    ("--pga", "pga"),
-    ("--search-step", "search_step"),
-    ("--search-max", "search_max"),
-    ("--rel-tol", "rel_tol"),
-    ("--threads", "threads"),
-];
-
 /// `message` with each CLI flag of `args` written as the Python argument
 /// that gave the value: `--threads 0: …` → `threads=0: …`, a flag not
 /// followed by its value (`… below --from 3`, `--levels and --block: …`)

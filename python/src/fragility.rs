@@ -13,25 +13,31 @@ use numpy::IntoPyArray as _;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use rocking::analysis::engineering::fragility::{
-    FragilitySpec, Intensity, MAX_RUNS, SuiteRecord, fit_block, run_fragility, summarise,
+    FragilityCheckError, FragilitySpec, Intensity, SuiteRecord, fit_block, run_fragility, summarise,
 };
 use rocking::analysis::engineering::lognormal::{FitError, LognormalFit};
-use rocking::analysis::engineering::response::scenario_for;
+use rocking::analysis::engineering::request::{self, RequestError};
 use rocking::analysis::engineering::{BlockSize, Drive, EndState};
+use rocking::analysis::field::RequestField;
 use rocking::analysis::silent;
 use rocking::io::record::{RecordSpec, read_record_as};
-use rocking::model::units::AccelUnit;
 use rocking::sim::scenario::Record;
 use serde_json::json;
 
 use crate::convert::json_to_py;
-use crate::errors::{FRAGILITY_ARGS, Origin, config_error, record_error, run_error, with_python_args};
+use crate::errors::{Origin, config_error, record_error, run_error};
+use crate::names::Keywords;
 use crate::scene::Scene;
 use crate::study::{Workers, checkpoint};
 
 /// Bad input without a key.
 fn input(message: impl std::fmt::Display) -> PyErr {
     config_error(message.to_string(), Origin::default())
+}
+
+/// A request the core refuses, in the words of the keywords.
+fn refused(e: RequestError) -> PyErr {
+    input(e.render(&Keywords))
 }
 
 /// The intensity measure named `im`.
@@ -43,7 +49,7 @@ fn intensity(im: &str) -> PyResult<Intensity> {
         "pgv-p-tan-alpha" => Ok(Intensity::PgvPTanAlpha),
         "sa" => Ok(Intensity::Sa),
         other => Err(input(format!(
-            "--im {other}: expected pga, pgv, pga-tan-alpha, pgv-p-tan-alpha or sa"
+            "im={other}: expected pga, pgv, pga-tan-alpha, pgv-p-tan-alpha or sa"
         ))),
     }
 }
@@ -55,13 +61,10 @@ pub type RecordArg = (PathBuf, Option<String>, Option<PathBuf>, Option<String>);
 /// Reads one component in its unit (text files need one; an AT2 header
 /// states its own).
 fn component(path: &Path, unit: Option<&str>) -> PyResult<Record> {
-    let unit = match unit {
-        None => None,
-        Some(text) => Some(
-            AccelUnit::parse(text)
-                .ok_or_else(|| input(format!("--unit {text}: unknown unit (known: g, m/s2, cm/s2)")))?,
-        ),
-    };
+    let unit = unit
+        .map(|text| request::unit(RequestField::Unit, text))
+        .transpose()
+        .map_err(refused)?;
     let spec = RecordSpec {
         unit,
         dt: None,
@@ -110,14 +113,7 @@ fn suite(
     let mut out = Vec::with_capacity(records.len());
     for (path, unit, path_v, unit_v) in records {
         let record = component(&path, unit.as_deref())?;
-        let value = im.record_value(&record.series, sa_period).unwrap_or(0.0);
-        if !(value > 0.0 && value.is_finite()) {
-            return Err(input(format!(
-                "{}: {} is 0, it cannot be scaled",
-                path.display(),
-                im.column()
-            )));
-        }
+        let value = request::record_intensity(&path, &record.series, im, sa_period).map_err(refused)?;
         let drive = match path_v {
             Some(pv) if with_vertical => Drive::Paired {
                 horizontal: record,
@@ -131,7 +127,7 @@ fn suite(
         });
     }
     if out.is_empty() {
-        return Err(input("--records: no records given"));
+        return Err(input("records: no records given"));
     }
     Ok(out)
 }
@@ -160,7 +156,6 @@ pub fn _fragility_runs<'py>(
     fragility_runs(
         py, scene, records, levels, blocks, im, sa_period, vertical, threads, indices, check_only, progress,
     )
-    .map_err(|e| with_python_args(e, FRAGILITY_ARGS))
 }
 
 #[allow(clippy::too_many_arguments)]
@@ -180,12 +175,7 @@ fn fragility_runs<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     let base = scene.scenario();
     let im = intensity(im)?;
-    if let Some(bad) = levels.iter().find(|v| !(v.is_finite() && **v > 0.0)) {
-        return Err(input(format!("--levels {bad}: every level must be finite and > 0")));
-    }
-    if levels.is_empty() || blocks.is_empty() {
-        return Err(input("--levels and --block: give at least one of each"));
-    }
+    request::levels_and_blocks(&levels, blocks.len()).map_err(refused)?;
     // As the CLI: a value given twice would count its runs twice and
     // narrow the fits' bands without a word.
     for (j, v) in levels.iter().enumerate() {
@@ -220,21 +210,7 @@ fn fragility_runs<'py>(
         .map(|(width_m, height_m)| BlockSize { width_m, height_m })
         .collect();
     let with_vertical = vertical_choice(vertical, &records)?;
-    let sa_period = match (im, sa_period) {
-        (Intensity::Sa, None) => return Err(input("im=\"sa\": give the period with sa_period= (seconds)")),
-        (Intensity::Sa, Some(t))
-            if rocking::model::oscillator::Oscillator::new(
-                t,
-                rocking::analysis::engineering::fragility::SA_DAMPING,
-            )
-            .is_none() =>
-        {
-            return Err(input(format!("sa_period={t}: must be a period > 0 (s)")));
-        }
-        (Intensity::Sa, Some(t)) => Some(t),
-        (_, Some(t)) => return Err(input(format!("sa_period={t}: only with im=\"sa\""))),
-        (_, None) => None,
-    };
+    let sa_period = request::sa_period(im, sa_period).map_err(refused)?;
     let records = suite(records, im, sa_period, with_vertical)?;
     let spec = FragilitySpec {
         base,
@@ -243,21 +219,12 @@ fn fragility_runs<'py>(
         blocks: &blocks,
         im,
     };
-    if spec.run_count() > MAX_RUNS {
-        return Err(input(format!(
-            "{} runs (blocks × levels × records): at most {MAX_RUNS}",
-            spec.run_count()
-        )));
-    }
-    // As the CLI: every block under every record at the largest level is
-    // a valid scenario, before anything runs.
-    let top = levels.iter().copied().fold(0.0, f64::max);
-    for (k, &b) in blocks.iter().enumerate() {
-        for (j, r) in records.iter().enumerate() {
-            scenario_for(base, b, &r.drive, spec.scale_of(k, top, j))
-                .map_err(|e| input(format!("--block {}x{}: {e}", b.width_m, b.height_m)))?;
+    spec.check().map_err(|e| match e {
+        FragilityCheckError::Scenario { block: b, error } => {
+            input(format!("blocks={}x{}: {error}", b.width_m, b.height_m))
         }
-    }
+        too_many @ FragilityCheckError::TooManyRuns(_) => input(too_many),
+    })?;
     let indices = indices.unwrap_or_else(|| (0..spec.run_count()).collect());
     if let Some(i) = indices.iter().find(|&&i| i >= spec.run_count()) {
         return Err(input(format!("run {i}: there are {} runs", spec.run_count())));
@@ -353,9 +320,7 @@ pub fn _fragility_fits<'py>(
     end: Vec<String>,
     peak: Vec<f64>,
 ) -> PyResult<Bound<'py, PyAny>> {
-    if !(threshold > 0.0 && threshold.is_finite()) {
-        return Err(input(format!("threshold={threshold}: must be a θ/α > 0")));
-    }
+    request::threshold(threshold).map_err(refused)?;
     let (nl, nr) = (levels.len(), records.max(1));
     let mut rows = Vec::with_capacity(run.len());
     for ((&i, e), &p) in run.iter().zip(&end).zip(&peak) {

@@ -5,11 +5,12 @@
 
 use std::borrow::Cow;
 
-use rocking::analysis::field::{FieldNames, StudyField};
+use rocking::analysis::field::{FieldNames, RequestField, StudyField};
 
-/// Study inputs named as `rocking.sweep` and `rocking.outcome_map` name
-/// their parameters (`start`/`stop`/`step` for a grid, `shard=(K, N)` as
-/// the private `_sweep` takes it).
+/// Study inputs named as `rocking.sweep`, `rocking.outcome_map`,
+/// `rocking.spectrum` and `rocking.sliding_spectrum` name their parameters
+/// (`start`/`stop`/`step` for a grid, `shard=(K, N)` as the private
+/// `_sweep` takes it, `sizes=(from, to, count)` for a spectrum's sizes).
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Keywords;
 
@@ -28,6 +29,42 @@ impl FieldNames for Keywords {
 
     /// `name=value`, as the argument is written in the call.
     fn valued(&self, field: StudyField, value: &str) -> String {
+        format!("{}={value}", self.name(field))
+    }
+}
+
+impl FieldNames<RequestField> for Keywords {
+    fn name(&self, field: RequestField) -> Cow<'static, str> {
+        Cow::Borrowed(match field {
+            RequestField::Record => "record",
+            RequestField::Unit => "unit",
+            RequestField::UnitV => "unit_v",
+            RequestField::Scale => "scale",
+            RequestField::Pga => "pga",
+            RequestField::Pulse => "pulse",
+            RequestField::PulseAccel => "pulse_accel",
+            RequestField::PulsePeriod => "pulse_period",
+            RequestField::Cycles => "cycles",
+            RequestField::SizeFrom => "sizes[0]",
+            RequestField::SizeTo => "sizes[1]",
+            RequestField::SizeCount => "sizes[2]",
+            RequestField::BOverH => "b_over_h",
+            RequestField::SearchStep => "search_step",
+            RequestField::SearchMax => "search_max",
+            RequestField::AmpStep => "amp_step",
+            RequestField::AmpMax => "amp_max",
+            RequestField::RelTol => "rel_tol",
+            RequestField::Mu => "mu",
+            RequestField::KineticRatio => "kinetic_ratio",
+            RequestField::Im => "im",
+            RequestField::SaPeriod => "sa_period",
+            RequestField::Levels => "levels",
+            RequestField::Blocks => "blocks",
+            RequestField::Threshold => "threshold",
+        })
+    }
+
+    fn valued(&self, field: RequestField, value: &str) -> String {
         format!("{}={value}", self.name(field))
     }
 }

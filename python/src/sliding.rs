@@ -10,30 +10,18 @@ use anyhow::anyhow;
 use numpy::IntoPyArray as _;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use rocking::analysis::engineering::sliding_spectrum::{
-    BlockKind, SLIDE_ONLY_B_OVER_H, SlidingPoint, SlidingSpec, SlidingSpecError, sliding_spectrum,
-};
+use rocking::analysis::engineering::request::{self, Scaling};
+use rocking::analysis::engineering::sliding_spectrum::{BlockKind, SlidingPoint, SlidingSpec, sliding_spectrum};
 use rocking::analysis::engineering::{BlockSize, Drive, EndState};
+use rocking::analysis::field::RequestField;
 use rocking::analysis::silent;
 use rocking::io::record::{RecordSpec, read_record_as};
-use rocking::model::units::AccelUnit;
 use rocking::sim::scenario::Record;
 
-use crate::errors::{Origin, config_error, record_error, run_error, with_python_args};
+use crate::errors::{Origin, config_error, record_error, run_error};
+use crate::names::Keywords;
 use crate::scene::Scene;
 use crate::study::{Workers, checkpoint};
-
-/// The Python arguments of `rocking.sliding_spectrum`, by CLI flag.
-const SLIDING_ARGS: &[(&str, &str)] = &[
-    ("--record", "record"),
-    ("--unit", "unit"),
-    ("--mu", "mu"),
-    ("--kinetic-ratio", "kinetic_ratio"),
-    ("--block", "block"),
-    ("--scale", "scale"),
-    ("--pga", "pga"),
-    ("--threads", "threads"),
-];
 
 fn input(message: impl std::fmt::Display) -> PyErr {
     config_error(message.to_string(), Origin::default())
@@ -43,8 +31,8 @@ fn input(message: impl std::fmt::Display) -> PyErr {
 /// files) scaled by `scale` or to `pga` (g), at the friction coefficients
 /// `mu` (μ_s, increasing; μ_k = `kinetic_ratio`·μ_s), for the block that
 /// cannot rock and for `block` = (width, height) m (default: the scene's).
-/// Checked with the CLI's messages; Ctrl-C is checked between chunks of
-/// coefficients.
+/// Checked by the core's request and spec, whose messages name these
+/// keywords; Ctrl-C is checked between chunks of coefficients.
 #[pyfunction]
 #[pyo3(signature = (scene, record, mu, *, unit=None, block=None, kinetic_ratio=1.0, scale=None, pga=None, threads=None, progress=None))]
 #[allow(clippy::too_many_arguments)]
@@ -74,7 +62,6 @@ pub fn _sliding_spectrum<'py>(
         threads,
         progress,
     )
-    .map_err(|e| with_python_args(e, SLIDING_ARGS))
 }
 
 #[allow(clippy::too_many_arguments)]
@@ -97,13 +84,10 @@ fn sliding<'py>(
             "base: excitation.file_v: sliding-spectrum runs horizontal motions only; use a scene without a vertical record",
         ));
     }
-    let unit = match unit {
-        None => None,
-        Some(text) => Some(
-            AccelUnit::parse(text)
-                .ok_or_else(|| input(format!("--unit {text}: unknown unit (known: g, m/s2, cm/s2)")))?,
-        ),
-    };
+    let unit = unit
+        .map(|text| request::unit(RequestField::Unit, text))
+        .transpose()
+        .map_err(|e| input(e.render(&Keywords)))?;
     let loaded = read_record_as(
         &record,
         &RecordSpec {
@@ -114,9 +98,9 @@ fn sliding<'py>(
     )
     .map_err(|e| record_error(&record, &e))?;
     let pga_g = loaded.series.peaks(1.0).pga_g;
-    if pga_g <= 0.0 {
-        return Err(input("--record: the record is all zeros (PGA 0 g)"));
-    }
+    let scale = Scaling { scale, pga_g: pga }
+        .factor(pga_g)
+        .map_err(|e| input(e.render(&Keywords)))?;
     let drive = Drive::Record(Record {
         path: record.clone(),
         series: loaded.series,
@@ -125,16 +109,6 @@ fn sliding<'py>(
         crc32: loaded.crc32,
         channel: None,
     });
-    if scale.is_some() && pga.is_some() {
-        return Err(input("--scale and --pga: give one"));
-    }
-    let scale = match (scale, pga) {
-        (Some(s), _) if !(s > 0.0 && s.is_finite()) => return Err(input(format!("--scale {s}: must be > 0"))),
-        (Some(s), _) => s,
-        (None, Some(p)) if !(p > 0.0 && p.is_finite()) => return Err(input(format!("--pga {p}: must be > 0 (g)"))),
-        (None, Some(p)) => p / pga_g,
-        (None, None) => 1.0,
-    };
     let size = match block {
         Some((w, h)) if w > 0.0 && h > 0.0 && w.is_finite() && h.is_finite() => BlockSize {
             width_m: w,
@@ -142,7 +116,7 @@ fn sliding<'py>(
         },
         Some((w, h)) => {
             return Err(input(format!(
-                "--block {w}x{h}: expected WIDTHxHEIGHT in metres, both > 0"
+                "block={w}x{h}: expected WIDTHxHEIGHT in metres, both > 0"
             )));
         }
         None => BlockSize {
@@ -158,17 +132,7 @@ fn sliding<'py>(
         mu: mu.clone(),
         kinetic_ratio,
     };
-    spec.check().map_err(|e| match e {
-        SlidingSpecError::Mu(m) => input(format!("--mu: {m}")),
-        SlidingSpecError::KineticRatio(r) => input(format!("--kinetic-ratio {r}: must be in (0, 1] (μ_k ≤ μ_s)")),
-        SlidingSpecError::FrictionTooLarge(mu_k) => input(format!(
-            "--mu: μ_k = {mu_k} reaches {SLIDE_ONLY_B_OVER_H}, where the block that cannot rock could tip; give coefficients below it"
-        )),
-        SlidingSpecError::MotionTooStrong(pga) => input(format!(
-            "--scale/--pga: PGA {pga} g reaches {SLIDE_ONLY_B_OVER_H} g, where the block that cannot rock could lift; give a smaller scale"
-        )),
-        other @ (SlidingSpecError::NormalisedPulse | SlidingSpecError::Scenario { .. }) => input(other),
-    })?;
+    spec.check().map_err(|e| input(e.render(&Keywords)))?;
     let workers = Workers::new(threads)?;
     // Chunks of coefficients, each a spectrum of its own (both blocks per
     // μ), so the rows are those of one call; Ctrl-C between chunks.

@@ -9,23 +9,23 @@ use anyhow::anyhow;
 use numpy::IntoPyArray as _;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use rocking::analysis::engineering::overturn_scale::ladder;
+use rocking::analysis::engineering::request::{self, OverturnRequest, RequestError, Scaling, SpectrumRequest};
 use rocking::analysis::engineering::response::scenario_for;
-use rocking::analysis::engineering::rocking_spectrum::{
-    MAX_BLOCKS, OverturnOptions, SizeAxis, SizeRange, SizeRangeError, SpectrumPoint, SpectrumSpec, rocking_spectrum,
-};
+use rocking::analysis::engineering::rocking_spectrum::{SizeAxis, SpectrumPoint, SpectrumSpec, rocking_spectrum};
 use rocking::analysis::engineering::{Drive, EndState};
+use rocking::analysis::field::RequestField;
 use rocking::analysis::silent;
 use rocking::io::record::{RecordSpec, read_record_as};
-use rocking::model::units::AccelUnit;
 use rocking::sim::scenario::Record;
 
-use crate::errors::{Origin, SPECTRUM_ARGS, config_error, record_error, run_error, with_python_args};
+use crate::errors::{Origin, config_error, record_error, run_error};
+use crate::names::Keywords;
 use crate::scene::Scene;
 use crate::study::{Workers, checkpoint};
 
-fn input(message: impl std::fmt::Display) -> PyErr {
-    config_error(message.to_string(), Origin::default())
+/// A request the core refuses, in the words of the keywords.
+fn input(e: RequestError) -> PyErr {
+    config_error(e.render(&Keywords), Origin::default())
 }
 
 /// The rocking spectrum of the record at `record` (in `unit`, for text
@@ -34,7 +34,8 @@ fn input(message: impl std::fmt::Display) -> PyErr {
 /// (`"h"`), for each B/H in `b_over_h`; with `overturn_scale`, each
 /// block's smallest overturning scale, searched on the ladder
 /// `search_step … search_max` and refined to `rel_tol`. Checked with the
-/// CLI's messages; Ctrl-C is checked between B/H ratios.
+/// core's request ([`SpectrumRequest`]), whose messages name these
+/// keywords; Ctrl-C is checked between B/H ratios.
 #[pyfunction]
 #[pyo3(signature = (scene, record, sizes, *, unit=None, record_v=None, unit_v=None, size="r", b_over_h=vec![0.25], scale=None, pga=None, overturn_scale=false, search_step=0.1, search_max=5.0, rel_tol=1e-3, threads=None, progress=None))]
 #[allow(clippy::too_many_arguments)]
@@ -76,7 +77,6 @@ pub fn _spectrum<'py>(
         threads,
         progress,
     )
-    .map_err(|e| with_python_args(e, SPECTRUM_ARGS))
 }
 
 #[allow(clippy::too_many_arguments)]
@@ -100,13 +100,10 @@ fn spectrum<'py>(
     progress: Option<Py<PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let base = scene.scenario();
-    let unit = match unit {
-        None => None,
-        Some(text) => Some(
-            AccelUnit::parse(text)
-                .ok_or_else(|| input(format!("--unit {text}: unknown unit (known: g, m/s2, cm/s2)")))?,
-        ),
-    };
+    let unit = unit
+        .map(|text| request::unit(RequestField::Unit, text))
+        .transpose()
+        .map_err(input)?;
     let loaded = read_record_as(
         &record,
         &RecordSpec {
@@ -117,9 +114,6 @@ fn spectrum<'py>(
     )
     .map_err(|e| record_error(&record, &e))?;
     let pga_g = loaded.series.peaks(1.0).pga_g;
-    if pga_g <= 0.0 {
-        return Err(input("--record: the record is all zeros (PGA 0 g)"));
-    }
     let horizontal = Record {
         path: record.clone(),
         series: loaded.series,
@@ -135,10 +129,7 @@ fn spectrum<'py>(
         Some(path_v) => {
             let unit_v = match unit_v {
                 None => unit,
-                Some(text) => Some(
-                    AccelUnit::parse(text)
-                        .ok_or_else(|| input(format!("--unit-v {text}: unknown unit (known: g, m/s2, cm/s2)")))?,
-                ),
+                Some(text) => Some(request::unit(RequestField::UnitV, text).map_err(input)?),
             };
             let spec = RecordSpec {
                 unit: unit_v,
@@ -159,66 +150,55 @@ fn spectrum<'py>(
             }
         }
     };
-    if scale.is_some() && pga.is_some() {
-        return Err(input("--scale and --pga: give one"));
-    }
-    let scale = match (scale, pga) {
-        (Some(s), _) if !(s > 0.0 && s.is_finite()) => return Err(input(format!("--scale {s}: must be > 0"))),
-        (Some(s), _) => s,
-        (None, Some(p)) if !(p > 0.0 && p.is_finite()) => return Err(input(format!("--pga {p}: must be > 0 (g)"))),
-        (None, Some(p)) => p / pga_g,
-        (None, None) => 1.0,
-    };
+    let scale = Scaling { scale, pga_g: pga }.factor(pga_g).map_err(input)?;
     let axis = match size {
         "r" => SizeAxis::HalfDiagonal,
         "h" => SizeAxis::Height,
-        other => return Err(input(format!("--size {other}: expected r or h"))),
-    };
-    let (from, to, count) = sizes;
-    let range = SizeRange::new(axis, from, to, count).map_err(|e| match e {
-        SizeRangeError::From(v) => input(format!("--from {v}: must be a size > 0 (m)")),
-        SizeRangeError::Reversed { from, to } => input(format!("--to {to}: below --from {from}; give from <= to")),
-        SizeRangeError::Count(n) => input(format!(
-            "--count {n}: must be >= 2 (or 1 when --from = --to) and at most 1000000"
-        )),
-    })?;
-    if let Some(bad) = b_over_h.iter().find(|v| !(v.is_finite() && **v > 0.0)) {
-        return Err(input(format!("--b-over-h {bad}: every ratio must be finite and > 0")));
-    }
-    if b_over_h.is_empty() || b_over_h.windows(2).any(|w| w[0] >= w[1]) {
-        return Err(input("--b-over-h: give increasing ratios"));
-    }
-    let total = range.count * b_over_h.len();
-    if total > MAX_BLOCKS {
-        return Err(input("--count × --b-over-h: at most 1000000 blocks"));
-    }
-    let overturn = if overturn_scale {
-        let ladder = ladder(search_step, search_max).map_err(|e| input(format!("--search-step/--search-max: {e}")))?;
-        if !(rel_tol > 0.0 && rel_tol < 1.0) {
-            return Err(input(format!("--rel-tol {rel_tol}: must be in (0, 1)")));
+        other => {
+            return Err(config_error(
+                format!("size={other}: expected r or h"),
+                Origin::default(),
+            ));
         }
-        Some(OverturnOptions { ladder, rel_tol })
-    } else {
-        None
     };
+    let (from_m, to_m, count) = sizes;
+    let blocks = SpectrumRequest {
+        axis,
+        from_m,
+        to_m,
+        count,
+        b_over_h,
+        overturn: overturn_scale.then_some(OverturnRequest {
+            search_step,
+            search_max,
+            rel_tol,
+        }),
+    }
+    .checked()
+    .map_err(input)?;
+    let total = blocks.sizes.count * blocks.b_over_h.len();
     let spec = SpectrumSpec {
         base,
         drive: &drive,
         scale,
-        sizes: range,
-        b_over_h: b_over_h.clone(),
-        overturn,
+        sizes: blocks.sizes,
+        b_over_h: blocks.b_over_h,
+        overturn: blocks.overturn,
     };
     for (_, _, block) in spec.blocks() {
-        scenario_for(base, block, &drive, scale)
-            .map_err(|e| input(format!("block {} × {} m: {e}", block.width_m, block.height_m)))?;
+        scenario_for(base, block, &drive, scale).map_err(|e| {
+            config_error(
+                format!("block {} × {} m: {e}", block.width_m, block.height_m),
+                Origin::default(),
+            )
+        })?;
     }
     let workers = Workers::new(threads)?;
     // One B/H at a time: the blocks of a ratio are a spectrum of their own
     // (ratio outer, size inner), so the rows are the same.
     let points: Vec<SpectrumPoint> = py.detach(|| -> PyResult<_> {
         let mut all = Vec::new();
-        for &ratio in &b_over_h {
+        for &ratio in &spec.b_over_h {
             let one = SpectrumSpec {
                 b_over_h: vec![ratio],
                 ..spec.clone()

@@ -1,6 +1,6 @@
-//! The inputs of a steady-response study (a sweep's grid, shard and
-//! continuation; the sampling window) named by what they mean, and how a
-//! surface spells them in its messages.
+//! The inputs of a study (a sweep's grid, shard and continuation; the
+//! sampling window; an engineering spectrum's motion, sizes and searches)
+//! named by what they mean, and how a surface spells them in its messages.
 //!
 //! Contract: the analysis layer never writes a surface's word for an input
 //! (a CLI flag, a Python keyword). Its errors carry a [`StudyField`] with
@@ -49,13 +49,116 @@ impl StudyField {
     }
 }
 
-/// How a surface names study inputs in its messages.
-pub trait FieldNames {
+/// One input of an engineering study (a spectrum's motion, sizes and
+/// searches; [`request`](super::engineering::request)), by meaning.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum RequestField {
+    /// The ground-motion record (its file).
+    Record,
+    /// The unit of a text record's accelerations.
+    Unit,
+    /// The unit of a text vertical record's accelerations.
+    UnitV,
+    /// The factor on the motion.
+    Scale,
+    /// The peak ground acceleration the motion is scaled to, g.
+    Pga,
+    /// An analytic pulse's shape.
+    Pulse,
+    /// A pulse's peak acceleration, g.
+    PulseAccel,
+    /// A pulse's period, s.
+    PulsePeriod,
+    /// The main cycles of a type-C pulse.
+    Cycles,
+    /// A spectrum's smallest block size, m.
+    SizeFrom,
+    /// A spectrum's largest block size, m.
+    SizeTo,
+    /// A spectrum's number of block sizes.
+    SizeCount,
+    /// Slenderness ratios B/H.
+    BOverH,
+    /// Step of the scales an overturning-scale search tries.
+    SearchStep,
+    /// Largest scale an overturning-scale search tries.
+    SearchMax,
+    /// Step of the amplitudes a pulse map's search tries.
+    AmpStep,
+    /// Largest amplitude a pulse map's search tries.
+    AmpMax,
+    /// Relative width to which a search's boundaries are refined.
+    RelTol,
+    /// Friction coefficients μ_s of a sliding spectrum.
+    Mu,
+    /// μ_k/μ_s of a sliding spectrum.
+    KineticRatio,
+    /// A fragility study's intensity measure.
+    Im,
+    /// The period of the spectral acceleration Sa(T), s.
+    SaPeriod,
+    /// A fragility study's intensity levels.
+    Levels,
+    /// A fragility study's blocks.
+    Blocks,
+    /// The θ/α whose exceedance a fragility study counts.
+    Threshold,
+}
+
+impl RequestField {
+    /// The name of the field in the core's structs (`scale`, `from_m`).
+    pub fn name(self) -> &'static str {
+        match self {
+            RequestField::Record => "record",
+            RequestField::Unit => "unit",
+            RequestField::UnitV => "unit_v",
+            RequestField::Scale => "scale",
+            RequestField::Pga => "pga",
+            RequestField::Pulse => "pulse",
+            RequestField::PulseAccel => "pulse_accel",
+            RequestField::PulsePeriod => "pulse_period",
+            RequestField::Cycles => "cycles",
+            RequestField::SizeFrom => "from_m",
+            RequestField::SizeTo => "to_m",
+            RequestField::SizeCount => "count",
+            RequestField::BOverH => "b_over_h",
+            RequestField::SearchStep => "search_step",
+            RequestField::SearchMax => "search_max",
+            RequestField::AmpStep => "amp_step",
+            RequestField::AmpMax => "amp_max",
+            RequestField::RelTol => "rel_tol",
+            RequestField::Mu => "mu",
+            RequestField::KineticRatio => "kinetic_ratio",
+            RequestField::Im => "im",
+            RequestField::SaPeriod => "sa_period",
+            RequestField::Levels => "levels",
+            RequestField::Blocks => "blocks",
+            RequestField::Threshold => "threshold",
+        }
+    }
+}
+
+/// A number for a message: as typed when it is of everyday size
+/// (`0.35`, `120`), else in scientific form (`1e-300`, `2.5e12`), so no
+/// message prints a 300-digit decimal.
+pub fn show(x: f64) -> String {
+    let a = x.abs();
+    if a == 0.0 || !a.is_finite() || (1e-4..1e9).contains(&a) {
+        format!("{x}")
+    } else {
+        format!("{x:e}")
+    }
+}
+
+/// How a surface names study inputs in its messages: the inputs of a
+/// sweep or map ([`StudyField`], the default) or of an engineering study
+/// ([`RequestField`]).
+pub trait FieldNames<F = StudyField> {
     /// `field` alone, e.g. `--tau-end` or `tau_end`.
-    fn name(&self, field: StudyField) -> Cow<'static, str>;
+    fn name(&self, field: F) -> Cow<'static, str>;
 
     /// `field` given as `value`, e.g. `--tau-end 700` or `tau_end=700`.
-    fn valued(&self, field: StudyField, value: &str) -> String;
+    fn valued(&self, field: F, value: &str) -> String;
 }
 
 /// The core's own names ([`StudyField::name`]), a value after ` = `: what
@@ -69,6 +172,16 @@ impl FieldNames for OwnNames {
     }
 
     fn valued(&self, field: StudyField, value: &str) -> String {
+        format!("{} = {value}", field.name())
+    }
+}
+
+impl FieldNames<RequestField> for OwnNames {
+    fn name(&self, field: RequestField) -> Cow<'static, str> {
+        Cow::Borrowed(field.name())
+    }
+
+    fn valued(&self, field: RequestField, value: &str) -> String {
         format!("{} = {value}", field.name())
     }
 }

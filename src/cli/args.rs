@@ -28,8 +28,13 @@ pub struct SceneArgs {
 }
 
 impl SceneArgs {
-    /// The scenario these arguments name, validated.
+    /// The scenario these arguments name, validated. The config layer
+    /// names a preset and a file by what they are; giving both is worded
+    /// here, as the flags.
     pub fn load(&self) -> Result<Scenario, ConfigError> {
+        if self.preset.is_some() && self.config.is_some() {
+            return Err(ConfigError::Usage("give either --preset or --config, not both".into()));
+        }
         config::load(self.preset.as_deref(), self.config.as_deref(), &self.sets)
     }
 }

@@ -3,16 +3,18 @@
 //! record with its unit, and number lists. Every error names the flag (or
 //! the file and line) and is bad input (exit 2).
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use anyhow::anyhow;
 
 use super::args::SceneArgs;
 use super::error::BatchError;
-use crate::analysis::engineering::overturn_scale::ladder;
+use super::flags::Flags;
+use crate::analysis::engineering::request::unit;
+use crate::analysis::field::RequestField;
+pub use crate::analysis::field::show;
 use crate::io::config;
 use crate::io::record::{RecordError, RecordSpec, read_record_as};
-use crate::model::units::AccelUnit;
 use crate::sim::scenario::Record;
 use crate::sim::{Scenario, ScenarioError};
 
@@ -34,6 +36,21 @@ pub struct BaseArgs {
     /// excitation are replaced by the command's.
     #[command(flatten)]
     pub scene: SceneArgs,
+}
+
+/// How an engineering command runs and where it writes.
+#[derive(Debug, Clone, clap::Args)]
+pub struct RunArgs {
+    /// Worker threads (default: one per core; at most 4 per core). The
+    /// output does not depend on it.
+    #[arg(long, value_name = "N")]
+    pub threads: Option<usize>,
+    /// Output directory.
+    #[arg(long, value_name = "DIR")]
+    pub out: PathBuf,
+    /// Print nothing but errors.
+    #[arg(long, short)]
+    pub quiet: bool,
 }
 
 /// What an engineering command sets itself on every run, so that a
@@ -191,10 +208,7 @@ impl RecordUnitArgs {
     pub fn spec(&self) -> Result<RecordSpec, BatchError> {
         let unit = match &self.unit {
             None => None,
-            Some(text) => Some(
-                AccelUnit::parse(text)
-                    .ok_or_else(|| input(anyhow!("--unit {text}: unknown unit (known: g, m/s2, cm/s2)")))?,
-            ),
+            Some(text) => Some(unit(RequestField::Unit, text).map_err(|e| input(anyhow!(e.render(&Flags))))?),
         };
         if self.channel == Some(0) {
             return Err(input(anyhow!("--channel 0: channels are counted from 1")));
@@ -327,32 +341,6 @@ pub fn increasing(flag: &str, values: &[f64]) -> Result<(), BatchError> {
     }
 }
 
-/// The amplitudes or scales a search tries, `step`, 2·step, … `max`
-/// (`analysis::engineering::overturn_scale::ladder`), checked here so that
-/// errors name the flags and print the numbers as [`show`] does.
-pub(crate) fn search_ladder(step_flag: &str, step: f64, max_flag: &str, max: f64) -> Result<Vec<f64>, BatchError> {
-    if !(step > 0.0 && step.is_finite()) {
-        return Err(input(anyhow!(
-            "{step_flag} {}: must be a finite number > 0",
-            show(step)
-        )));
-    }
-    if !(max >= step && max.is_finite()) {
-        return Err(input(anyhow!(
-            "{max_flag} {}: must be finite and >= {step_flag} {}",
-            show(max),
-            show(step)
-        )));
-    }
-    ladder(step, max).map_err(|_| {
-        input(anyhow!(
-            "{step_flag} {} up to {max_flag} {}: more than 100000 steps; give a larger step",
-            show(step),
-            show(max)
-        ))
-    })
-}
-
 /// A block `BxH` in metres (`0.6x2.0`), both > 0.
 pub fn block(flag: &str, text: &str) -> Result<(f64, f64), BatchError> {
     let parsed = text
@@ -363,18 +351,6 @@ pub fn block(flag: &str, text: &str) -> Result<(f64, f64), BatchError> {
         _ => Err(input(anyhow!(
             "{flag} {text}: expected WIDTHxHEIGHT in metres, both > 0, e.g. 0.6x2.0"
         ))),
-    }
-}
-
-/// A number for a message: as typed when it is of everyday size
-/// (`0.35`, `120`), else in scientific form (`1e-300`, `2.5e12`), so no
-/// message prints a 300-digit decimal.
-pub fn show(x: f64) -> String {
-    let a = x.abs();
-    if a == 0.0 || !a.is_finite() || (1e-4..1e9).contains(&a) {
-        format!("{x}")
-    } else {
-        format!("{x:e}")
     }
 }
 

@@ -4,9 +4,10 @@
 
 use std::borrow::Cow;
 
-use crate::analysis::field::{FieldNames, StudyField};
+use crate::analysis::field::{FieldNames, RequestField, StudyField};
 
-/// Study inputs named as `rocking sweep`, `map` and `merge` name them.
+/// Study inputs named as `rocking sweep`, `map`, `merge` and the
+/// engineering commands (`spectrum`, `sliding-spectrum`, `pulse-map`) name them.
 #[derive(Clone, Copy, Debug, Default)]
 pub(crate) struct Flags;
 
@@ -24,6 +25,42 @@ impl FieldNames for Flags {
     }
 
     fn valued(&self, field: StudyField, value: &str) -> String {
+        format!("{} {value}", self.name(field))
+    }
+}
+
+impl FieldNames<RequestField> for Flags {
+    fn name(&self, field: RequestField) -> Cow<'static, str> {
+        Cow::Borrowed(match field {
+            RequestField::Record => "--record",
+            RequestField::Unit => "--unit",
+            RequestField::UnitV => "--unit-v",
+            RequestField::Scale => "--scale",
+            RequestField::Pga => "--pga",
+            RequestField::Pulse => "--pulse",
+            RequestField::PulseAccel => "--pulse-accel",
+            RequestField::PulsePeriod => "--pulse-period",
+            RequestField::Cycles => "--cycles",
+            RequestField::SizeFrom => "--from",
+            RequestField::SizeTo => "--to",
+            RequestField::SizeCount => "--count",
+            RequestField::BOverH => "--b-over-h",
+            RequestField::SearchStep => "--search-step",
+            RequestField::SearchMax => "--search-max",
+            RequestField::AmpStep => "--amp-step",
+            RequestField::AmpMax => "--amp-max",
+            RequestField::RelTol => "--rel-tol",
+            RequestField::Mu => "--mu",
+            RequestField::KineticRatio => "--kinetic-ratio",
+            RequestField::Im => "--im",
+            RequestField::SaPeriod => "--sa-period",
+            RequestField::Levels => "--levels",
+            RequestField::Blocks => "--block",
+            RequestField::Threshold => "--threshold",
+        })
+    }
+
+    fn valued(&self, field: RequestField, value: &str) -> String {
         format!("{} {value}", self.name(field))
     }
 }

@@ -24,17 +24,19 @@ use anyhow::{Context as _, anyhow, bail};
 use serde_json::{Value as Json, json};
 
 use super::eng_args::{
-    BaseArgs, Owns, RecordUnitArgs, VerticalArg, block, flag_error, input, positive_list, read_record, show,
+    BaseArgs, Owns, RecordUnitArgs, RunArgs, VerticalArg, block, flag_error, input, positive_list, read_record, show,
 };
+use super::eng_motion::flagged;
 use super::error::BatchError;
+use super::flags::Flags;
 use super::merge::MergeArgs;
 use super::suite::{SuiteEntry, suite};
 use super::sweep::{progress_bar, progress_fn, thread_pool};
 use crate::analysis::engineering::fragility::{
-    FragilitySpec, Intensity, LevelSummary, MAX_RUNS, SuiteRecord, fit_block, run_fragility, summarise,
+    FragilityCheckError, FragilitySpec, Intensity, LevelSummary, SuiteRecord, fit_block, run_fragility, summarise,
 };
 use crate::analysis::engineering::lognormal::{FitError, LognormalFit};
-use crate::analysis::engineering::response::scenario_for;
+use crate::analysis::engineering::request;
 use crate::analysis::engineering::{BlockSize, Drive, EndState};
 use crate::analysis::orbit_diagram::Shard;
 use crate::io::config::to_json;
@@ -117,16 +119,9 @@ pub struct FragilityArgs {
     /// Friction and the base scene.
     #[command(flatten)]
     pub base: BaseArgs,
-    /// Worker threads (default: one per core; at most 4 per core). The
-    /// output does not depend on it.
-    #[arg(long, value_name = "N")]
-    pub threads: Option<usize>,
-    /// Output directory.
-    #[arg(long, value_name = "DIR")]
-    pub out: PathBuf,
-    /// Print nothing but errors.
-    #[arg(long, short)]
-    pub quiet: bool,
+    /// Threads, output folder, quiet.
+    #[command(flatten)]
+    pub run: RunArgs,
 }
 
 /// What the files are computed from besides the runs: read back from
@@ -241,29 +236,7 @@ pub fn run(args: &FragilityArgs) -> Result<(), BatchError> {
         ImArg::PgvPTanAlpha => Intensity::PgvPTanAlpha,
         ImArg::Sa => Intensity::Sa,
     };
-    let sa_period = match (im, args.sa_period) {
-        (Intensity::Sa, None) => {
-            return Err(input(anyhow!("--im sa: give the period with --sa-period S (seconds)")));
-        }
-        (Intensity::Sa, Some(t))
-            if !(t > 0.0 && t.is_finite())
-                || crate::model::oscillator::Oscillator::new(
-                    t,
-                    crate::analysis::engineering::fragility::SA_DAMPING,
-                )
-                .is_none() =>
-        {
-            return Err(input(anyhow!("--sa-period {}: must be a period > 0 (s)", show(t))));
-        }
-        (Intensity::Sa, Some(t)) => Some(t),
-        (_, Some(t)) => {
-            return Err(input(anyhow!(
-                "--sa-period {}: only with --im sa; remove it or give --im sa",
-                show(t)
-            )));
-        }
-        (_, None) => None,
-    };
+    let sa_period = request::sa_period(im, args.sa_period).map_err(flagged)?;
     let levels = positive_list("--levels", &args.levels)?;
     let blocks: Vec<BlockSize> = args
         .blocks
@@ -287,12 +260,7 @@ pub fn run(args: &FragilityArgs) -> Result<(), BatchError> {
             )));
         }
     }
-    if !(args.threshold > 0.0 && args.threshold.is_finite()) {
-        return Err(input(anyhow!(
-            "--threshold {}: must be a θ/α > 0",
-            show(args.threshold)
-        )));
-    }
+    request::threshold(args.threshold).map_err(flagged)?;
     let shard = args
         .shard
         .as_deref()
@@ -317,14 +285,8 @@ pub fn run(args: &FragilityArgs) -> Result<(), BatchError> {
         };
         let record = read_record(path, spec).map_err(named)?;
         let peaks = record.series.peaks(1.0);
-        let intensity = im.record_value(&record.series, sa_period).unwrap_or(0.0);
-        if !(intensity > 0.0 && intensity.is_finite()) {
-            return Err(named(anyhow!(
-                "{}: {} is 0, it cannot be scaled",
-                path.display(),
-                im.column()
-            )));
-        }
+        let intensity = request::record_intensity(path, &record.series, im, sa_period)
+            .map_err(|e| named(anyhow!(e.render(&Flags))))?;
         for warning in record_warnings(
             &Drive::Record(record.clone()).name(),
             &record,
@@ -378,28 +340,17 @@ pub fn run(args: &FragilityArgs) -> Result<(), BatchError> {
         blocks: &blocks,
         im,
     };
-    if spec.run_count() > MAX_RUNS {
-        return Err(input(anyhow!(
-            "{} runs (blocks × levels × records): at most {MAX_RUNS}",
-            spec.run_count()
-        )));
-    }
-    let top = levels.iter().copied().fold(0.0, f64::max);
-    for (k, &b) in blocks.iter().enumerate() {
-        for (j, r) in records.iter().enumerate() {
-            let scale = spec.scale_of(k, top, j);
-            scenario_for(&base, b, &r.drive, scale).map_err(|e| {
-                input(anyhow!(
-                    "--block {}x{}: {}",
-                    show(b.width_m),
-                    show(b.height_m),
-                    flag_error(&e, &[("excitation.scale_h", "--levels")])
-                ))
-            })?;
-        }
-    }
-    let pool = thread_pool(args.threads)?;
-    output::check_writable(&args.out)
+    spec.check().map_err(|e| match e {
+        FragilityCheckError::Scenario { block: b, error } => input(anyhow!(
+            "--block {}x{}: {}",
+            show(b.width_m),
+            show(b.height_m),
+            flag_error(&error, &[("excitation.scale_h", "--levels")])
+        )),
+        too_many @ FragilityCheckError::TooManyRuns(_) => input(anyhow!(too_many)),
+    })?;
+    let pool = thread_pool(args.run.threads)?;
+    output::check_writable(&args.run.out)
         .context("--out: cannot write the output directory")
         .map_err(input)?;
     let indices: Vec<usize> = match shard {
@@ -408,7 +359,7 @@ pub fn run(args: &FragilityArgs) -> Result<(), BatchError> {
     };
 
     let start = Instant::now();
-    let bar = progress_bar(indices.len(), "runs", args.quiet);
+    let bar = progress_bar(indices.len(), "runs", args.run.quiet);
     let runs = pool
         .install(|| run_fragility(&spec, &indices, &progress_fn(&bar)))
         .map_err(|e| BatchError::Run(anyhow!(e)))?;
@@ -501,7 +452,7 @@ pub fn run(args: &FragilityArgs) -> Result<(), BatchError> {
             // What makes a shard checkable by `merge`, as a sweep shard: the
             // file's rows and CRC-32, so a cut or edited file is noticed.
             meta["files"] = json!({ "runs.csv": super::sweep::file_check(&runs_csv) });
-            super::write::staged(&args.out, |staging| {
+            super::write::staged(&args.run.out, |staging| {
                 staging.text("runs.csv", &runs_csv)?;
                 staging.text("fragility.json", &(serde_json::to_string_pretty(&meta)? + "\n"))?;
                 Ok(())
@@ -514,9 +465,9 @@ pub fn run(args: &FragilityArgs) -> Result<(), BatchError> {
                 spec.run_count()
             )]
         }
-        None => write_whole(&args.out, common, &layout, rows)?,
+        None => write_whole(&args.run.out, common, &layout, rows)?,
     };
-    if !args.quiet {
+    if !args.run.quiet {
         crate::say!(
             "fragility: {} blocks × {} levels × {} records = {} runs in {wall:.2} s",
             blocks.len(),
@@ -541,7 +492,7 @@ pub fn run(args: &FragilityArgs) -> Result<(), BatchError> {
         for l in lines {
             crate::say!("  {l}");
         }
-        crate::say!("wrote {}", args.out.display());
+        crate::say!("wrote {}", args.run.out.display());
     }
     Ok(())
 }
@@ -814,22 +765,8 @@ struct ShardDir {
 }
 
 fn read_shard(dir: &Path) -> anyhow::Result<ShardDir> {
-    let path = dir.join("fragility.json");
-    let text = std::fs::read_to_string(&path).with_context(|| path.display().to_string())?;
-    let mut common: Json =
-        serde_json::from_str(&text).with_context(|| format!("{}: not valid JSON", path.display()))?;
-    if common.get("command").and_then(Json::as_str) != Some("rocking fragility") {
-        bail!("{}: not written by `rocking fragility`", path.display());
-    }
-    let shard_value = common.get_mut("shard").map(Json::take).unwrap_or(Json::Null);
-    if shard_value.is_null() {
-        bail!(
-            "{}: not a shard (fragility.json has no shard; it is a whole study)",
-            dir.display()
-        );
-    }
-    let shard: Shard =
-        serde_json::from_value(shard_value).with_context(|| format!("{}: bad \"shard\" entry", path.display()))?;
+    let (path, mut common, shard) =
+        super::merge::shard_json(dir, "fragility.json", "rocking fragility", "it is a whole study")?;
     if shard.count == 0 || shard.index >= shard.count {
         bail!(
             "{}: shard {}/{} is out of range",
@@ -913,56 +850,25 @@ fn layout_of(common: &Json, path: &Path) -> anyhow::Result<Layout> {
 /// 0 … N−1 of one study, each once, with exactly their runs, and writes
 /// the files one run writes.
 pub fn merge(args: &MergeArgs) -> Result<(), BatchError> {
-    if let Some(shard) = args.shards.iter().find(|s| super::merge::contains(&args.out, s)) {
-        return Err(input(anyhow!(
-            "--out {}: is or contains the shard {} being merged; write the merge elsewhere",
-            args.out.display(),
-            shard.display()
-        )));
-    }
+    super::merge::refuse_out_in_shards(args)?;
     let shards: Vec<ShardDir> = args
         .shards
         .iter()
         .map(|d| read_shard(d))
         .collect::<anyhow::Result<_>>()
         .map_err(input)?;
-    let Some(first) = shards.first() else {
-        return Err(input(anyhow!("no shard directories given")));
-    };
-    let n = first.shard.count;
-    for s in &shards[1..] {
-        if s.common != first.common {
-            return Err(input(anyhow!(
+    let by_index = super::merge::in_index_order(
+        &shards,
+        |s| (&s.dir, s.shard, &s.common),
+        |s, first| {
+            format!(
                 "{}: not the same study as {} (fragility.json differs)",
                 s.dir.display(),
                 first.dir.display()
-            )));
-        }
-        if s.shard.count != n {
-            return Err(input(anyhow!(
-                "{}: shard {}/{} but {} is one of {n} shards",
-                s.dir.display(),
-                s.shard.index,
-                s.shard.count,
-                first.dir.display()
-            )));
-        }
-    }
-    let mut by_index: Vec<Option<&ShardDir>> = vec![None; n];
-    for s in &shards {
-        if let Some(other) = by_index[s.shard.index] {
-            return Err(input(anyhow!(
-                "{}: shard {}/{n} is given twice (also {})",
-                s.dir.display(),
-                s.shard.index,
-                other.dir.display()
-            )));
-        }
-        by_index[s.shard.index] = Some(s);
-    }
-    if let Some(missing) = by_index.iter().position(Option::is_none) {
-        return Err(input(anyhow!("shard {missing}/{n} is missing")));
-    }
+            )
+        },
+    )?;
+    let (first, n) = (&shards[0], shards[0].shard.count);
     let layout = layout_of(&first.common, &first.dir.join("fragility.json")).map_err(input)?;
     let total = layout.runs();
     let mut rows: Vec<FragilityRunRow> = Vec::with_capacity(total);

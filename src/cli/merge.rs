@@ -58,25 +58,29 @@ fn read_text(path: &Path) -> anyhow::Result<String> {
     std::fs::read_to_string(path).with_context(|| path.display().to_string())
 }
 
-fn read_shard(dir: &Path) -> anyhow::Result<ShardDir> {
-    let json_path = dir.join("sweep.json");
+/// A shard's JSON `file` in `dir`, written by `command` (`rocking
+/// sweep`): the JSON with its `shard` entry taken out in place (left as
+/// null, so that the rest is exactly the JSON of the whole study, key order
+/// included) and that entry; `whole` says what a JSON without one is.
+pub(super) fn shard_json(dir: &Path, file: &str, command: &str, whole: &str) -> anyhow::Result<(PathBuf, Json, Shard)> {
+    let json_path = dir.join(file);
     let text = read_text(&json_path)?;
     let mut common: Json =
         serde_json::from_str(&text).with_context(|| format!("{}: not valid JSON", json_path.display()))?;
-    if common.get("command").and_then(Json::as_str) != Some("rocking sweep") {
-        bail!("{}: not written by `rocking sweep`", json_path.display());
+    if common.get("command").and_then(Json::as_str) != Some(command) {
+        bail!("{}: not written by `{command}`", json_path.display());
     }
-    // Taken out in place (left as null), so that the common part is exactly
-    // the `sweep.json` of the whole sweep, key order included.
     let shard_value = common.get_mut("shard").map(Json::take).unwrap_or(Json::Null);
     if shard_value.is_null() {
-        bail!(
-            "{}: not a shard (sweep.json has no shard; it is already a whole sweep)",
-            dir.display()
-        );
+        bail!("{}: not a shard ({file} has no shard; {whole})", dir.display());
     }
     let shard: Shard =
         serde_json::from_value(shard_value).with_context(|| format!("{}: bad \"shard\" entry", json_path.display()))?;
+    Ok((json_path, common, shard))
+}
+
+fn read_shard(dir: &Path) -> anyhow::Result<ShardDir> {
+    let (json_path, mut common, shard) = shard_json(dir, "sweep.json", "rocking sweep", "it is already a whole sweep")?;
     // The files' rows and checksums, written by the shard's run: removed
     // from the common part (a whole sweep has none) and checked here.
     let files = common.as_object_mut().and_then(|o| o.remove("files")).ok_or_else(|| {
@@ -223,60 +227,92 @@ pub(super) fn contains(out: &Path, shard: &Path) -> bool {
     resolved(shard).starts_with(resolved(out))
 }
 
-/// Runs `rocking merge`.
-pub fn run(args: &MergeArgs) -> Result<(), BatchError> {
-    let input = BatchError::Input;
-    if let Some(shard) = args.shards.iter().find(|s| contains(&args.out, s)) {
-        return Err(input(anyhow!(
+/// Refuses an `--out` that is or contains a shard being merged (writing it
+/// would replace what is read).
+pub(super) fn refuse_out_in_shards(args: &MergeArgs) -> Result<(), BatchError> {
+    match args.shards.iter().find(|s| contains(&args.out, s)) {
+        Some(shard) => Err(BatchError::Input(anyhow!(
             "--out {}: is or contains the shard {} being merged; write the merge elsewhere",
             args.out.display(),
             shard.display()
-        )));
+        ))),
+        None => Ok(()),
     }
+}
+
+/// The shards `0/N … N−1/N` of one study, each given once, by index
+/// (every entry `Some`); `place` gives a shard's folder, `K/N` and its
+/// JSON without the shard (the same for every shard of one study), and
+/// `differs(s, first)` words why shard `s` is of another study than the
+/// first. At least one shard is given.
+pub(super) fn in_index_order<T>(
+    shards: &[T],
+    place: impl Fn(&T) -> (&PathBuf, Shard, &Json),
+    differs: impl Fn(&T, &T) -> String,
+) -> Result<Vec<Option<&T>>, BatchError> {
+    let input = BatchError::Input;
+    let Some(first) = shards.first() else {
+        return Err(input(anyhow!("no shard directories given")));
+    };
+    let (first_dir, first_shard, first_common) = place(first);
+    let n = first_shard.count;
+    for s in &shards[1..] {
+        let (dir, shard, common) = place(s);
+        if common != first_common {
+            return Err(input(anyhow!(differs(s, first))));
+        }
+        if shard.count != n {
+            return Err(input(anyhow!(
+                "{}: shard {}/{} but {} is one of {n} shards",
+                dir.display(),
+                shard.index,
+                shard.count,
+                first_dir.display()
+            )));
+        }
+    }
+    let mut by_index: Vec<Option<&T>> = vec![None; n];
+    for s in shards {
+        let (dir, shard, _) = place(s);
+        if let Some(other) = by_index[shard.index] {
+            return Err(input(anyhow!(
+                "{}: shard {}/{n} is given twice (also {})",
+                dir.display(),
+                shard.index,
+                place(other).0.display()
+            )));
+        }
+        by_index[shard.index] = Some(s);
+    }
+    if let Some(missing) = by_index.iter().position(Option::is_none) {
+        return Err(input(anyhow!("shard {missing}/{n} is missing")));
+    }
+    Ok(by_index)
+}
+
+/// Runs `rocking merge`.
+pub fn run(args: &MergeArgs) -> Result<(), BatchError> {
+    let input = BatchError::Input;
+    refuse_out_in_shards(args)?;
     let shards: Vec<ShardDir> = args
         .shards
         .iter()
         .map(|d| read_shard(d))
         .collect::<anyhow::Result<_>>()
         .map_err(input)?;
-    let Some(first) = shards.first() else {
-        return Err(input(anyhow!("no shard directories given")));
-    };
-    let n = first.shard.count;
-    for s in &shards[1..] {
-        if s.common != first.common {
-            return Err(input(anyhow!(
+    let by_index = in_index_order(
+        &shards,
+        |s| (&s.dir, s.shard, &s.common),
+        |s, first| {
+            format!(
                 "{}: not the same sweep as {} (sweep.json differs in \"{}\")",
                 s.dir.display(),
                 first.dir.display(),
                 first_difference(&s.common, &first.common)
-            )));
-        }
-        if s.shard.count != n {
-            return Err(input(anyhow!(
-                "{}: shard {}/{} but {} is one of {n} shards",
-                s.dir.display(),
-                s.shard.index,
-                s.shard.count,
-                first.dir.display()
-            )));
-        }
-    }
-    let mut by_index: Vec<Option<&ShardDir>> = vec![None; n];
-    for s in &shards {
-        if let Some(other) = by_index[s.shard.index] {
-            return Err(input(anyhow!(
-                "{}: shard {}/{n} is given twice (also {})",
-                s.dir.display(),
-                s.shard.index,
-                other.dir.display()
-            )));
-        }
-        by_index[s.shard.index] = Some(s);
-    }
-    if let Some(missing) = by_index.iter().position(Option::is_none) {
-        return Err(input(anyhow!("shard {missing}/{n} is missing")));
-    }
+            )
+        },
+    )?;
+    let (first, n) = (&shards[0], shards[0].shard.count);
     let meta = meta_of(&first.common, &first.dir.join("sweep.json")).map_err(input)?;
     let grid = meta.grid;
 

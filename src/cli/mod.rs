@@ -17,6 +17,7 @@ pub mod args;
 pub mod batch;
 pub mod bench;
 pub mod eng_args;
+pub(crate) mod eng_motion;
 pub mod error;
 pub mod flags;
 pub mod fragility;

@@ -8,19 +8,21 @@
 //! version) and `pulse_map.png/svg`. Bad input exits 2 naming the flag;
 //! nothing is written on error.
 
-use std::path::PathBuf;
 use std::time::Instant;
 
 use anyhow::{Context as _, anyhow};
 use serde_json::json;
 
-use super::eng_args::{BaseArgs, Owns, flag_error, increasing, input, positive_list, search_ladder, show};
+use super::eng_args::{BaseArgs, Owns, RunArgs, flag_error, increasing, input, positive_list, show};
+use super::eng_motion::flagged;
 use super::error::BatchError;
 use super::sweep::{progress_bar, progress_fn, thread_pool};
 use crate::analysis::engineering::BlockSize;
 use crate::analysis::engineering::Drive;
 use crate::analysis::engineering::pulse_map::{MAP_BLOCK_R_M, PulseKind, PulseMapSpec, pulse_map};
+use crate::analysis::engineering::request::search_ladder;
 use crate::analysis::engineering::response::scenario_for;
+use crate::analysis::field::RequestField;
 use crate::io::config::to_json;
 use crate::io::csv::{self, Num};
 use crate::io::engineering_files::{PulseMapRow, PulseWindowRow};
@@ -65,16 +67,9 @@ pub struct PulseMapArgs {
     /// Friction and the base scene.
     #[command(flatten)]
     pub base: BaseArgs,
-    /// Worker threads (default: one per core; at most 4 per core). The
-    /// output does not depend on it.
-    #[arg(long, value_name = "N")]
-    pub threads: Option<usize>,
-    /// Output directory.
-    #[arg(long, value_name = "DIR")]
-    pub out: PathBuf,
-    /// Print nothing but errors.
-    #[arg(long, short)]
-    pub quiet: bool,
+    /// Threads, output folder, quiet.
+    #[command(flatten)]
+    pub run: RunArgs,
 }
 
 /// Largest pulse frequency ω_p/p a map (or a pulse spectrum) runs. Ground
@@ -158,7 +153,8 @@ pub fn run(args: &PulseMapArgs) -> Result<(), BatchError> {
             show(MAX_OMEGA_RATIO)
         )));
     }
-    let ladder = search_ladder("--amp-step", args.amp_step, "--amp-max", args.amp_max)?;
+    let ladder =
+        search_ladder(RequestField::AmpStep, args.amp_step, RequestField::AmpMax, args.amp_max).map_err(flagged)?;
     if !(args.rel_tol > 0.0 && args.rel_tol < 1.0) {
         return Err(input(anyhow!("--rel-tol {}: must be in (0, 1)", show(args.rel_tol))));
     }
@@ -190,13 +186,13 @@ pub fn run(args: &PulseMapArgs) -> Result<(), BatchError> {
         ladder,
         rel_tol: args.rel_tol,
     };
-    let pool = thread_pool(args.threads)?;
-    output::check_writable(&args.out)
+    let pool = thread_pool(args.run.threads)?;
+    output::check_writable(&args.run.out)
         .context("--out: cannot write the output directory")
         .map_err(input)?;
     let start = Instant::now();
     let cells = spec.pulses.len() * spec.b_over_h.len() * spec.omega_ratios.len();
-    let bar = progress_bar(cells, "points", args.quiet);
+    let bar = progress_bar(cells, "points", args.run.quiet);
     let points = pool
         .install(|| pulse_map(&spec, &progress_fn(&bar)))
         .map_err(|e| BatchError::Run(anyhow!(e)))?;
@@ -276,14 +272,14 @@ pub fn run(args: &PulseMapArgs) -> Result<(), BatchError> {
         y_max: spec.ladder.last().copied().unwrap_or(1.0),
         series,
     };
-    super::write::staged(&args.out, |staging| {
+    super::write::staged(&args.run.out, |staging| {
         staging.text("pulse_map.csv", &csv::to_string(rows))?;
         staging.text("safe_windows.csv", &csv::to_string(windows))?;
         staging.text("pulse_map.json", &(serde_json::to_string_pretty(&meta)? + "\n"))?;
         super::write::figure(staging, "pulse_map", &fig)?;
         Ok(())
     })?;
-    if !args.quiet {
+    if !args.run.quiet {
         crate::say!("pulse overturning map: {} points in {wall:.2} s", points.len());
         for p in &points {
             let windows = &p.search.safe_windows;
@@ -302,7 +298,7 @@ pub fn run(args: &PulseMapArgs) -> Result<(), BatchError> {
                 }
             );
         }
-        crate::say!("wrote {}", args.out.display());
+        crate::say!("wrote {}", args.run.out.display());
     }
     Ok(())
 }

@@ -15,66 +15,44 @@
 //! a spectrum is two runs per μ (0.09 s for twelve coefficients on El
 //! Centro), far from needing a cluster.
 
-use std::path::PathBuf;
 use std::time::Instant;
 
 use anyhow::{Context as _, anyhow};
 use serde_json::{Value as Json, json};
 
 use super::args::SceneArgs;
-use super::eng_args::{BaseArgs, Owns, RecordUnitArgs, block, input, positive_list, read_record, show};
+use super::eng_args::{BaseArgs, Owns, RunArgs, block, input, positive_list, show};
+use super::eng_motion::{Motion, MotionArgs, PulseScaleArgs, RecordArgs, motion_flags, refuse_mixed_motion};
 use super::error::BatchError;
+use super::flags::Flags;
 use super::pulse_map::MAX_OMEGA_RATIO;
 use super::spectrum::PulseArg;
 use super::sweep::{progress_bar, progress_fn, thread_pool};
+use crate::analysis::engineering::response::end_time_as;
 use crate::analysis::engineering::sliding_spectrum::{
-    BlockKind, NO_SLIDING_M, SLIDE_ONLY_B_OVER_H, SlidingPoint, SlidingSpec, SlidingSpecError, sliding_spectrum,
+    BlockKind, NO_SLIDING_M, SLIDE_ONLY_B_OVER_H, SlidingPoint, SlidingSpec, sliding_spectrum,
 };
 use crate::analysis::engineering::{BlockSize, Drive, EndState};
 use crate::io::config::to_json;
 use crate::io::csv::{self, Num};
 use crate::io::output;
 use crate::io::sliding_files::SlidingRow;
-use crate::model::excitation::pulse::MAX_TYPE_C_CYCLES;
 use crate::plot::labels::num;
 use crate::plot::sliding_spectrum::{SlidingCurve, SlidingFigure};
-use crate::sim::scenario::ShapeKind;
 
 /// Arguments of `rocking sliding-spectrum`.
 #[derive(Debug, Clone, clap::Args)]
 pub struct SlidingSpectrumArgs {
-    /// The ground-acceleration record (PEER .AT2, two-column `time accel`
-    /// text, or one-column text with --dt).
-    #[arg(
-        long,
-        value_name = "FILE",
-        conflicts_with = "pulse",
-        required_unless_present = "pulse"
-    )]
-    pub record: Option<PathBuf>,
-    /// Unit and time step of a text record.
+    /// The record and how it is read.
     #[command(flatten)]
-    pub reading: RecordUnitArgs,
+    pub source: RecordArgs,
     /// An analytic pulse instead of a record; give --pulse-accel and
     /// --pulse-period.
     #[arg(long, value_enum, value_name = "SHAPE")]
     pub pulse: Option<PulseArg>,
-    /// Main cycles n of a type-C pulse (default 1; only with --pulse
-    /// type-c).
-    #[arg(long, value_name = "N")]
-    pub cycles: Option<u32>,
-    /// Peak acceleration a_p of the pulse, g.
-    #[arg(long, value_name = "G", requires = "pulse")]
-    pub pulse_accel: Option<f64>,
-    /// Period T_p = 2π/ω_p of the pulse, s.
-    #[arg(long, value_name = "S", requires = "pulse")]
-    pub pulse_period: Option<f64>,
-    /// Factor on the motion (1 plays it as recorded).
-    #[arg(long, value_name = "F", conflicts_with = "pga")]
-    pub scale: Option<f64>,
-    /// Scale the motion to this peak ground acceleration, g.
-    #[arg(long, value_name = "G")]
-    pub pga: Option<f64>,
+    /// The pulse's numbers and the motion's scale.
+    #[command(flatten)]
+    pub motion: PulseScaleArgs,
     /// Friction coefficients μ (μ_s), each > 0, increasing:
     /// comma-separated, or FROM:TO:N for N evenly spaced values.
     #[arg(long, value_name = "LIST", allow_hyphen_values = true)]
@@ -93,16 +71,9 @@ pub struct SlidingSpectrumArgs {
     /// command's.
     #[command(flatten)]
     pub scene: SceneArgs,
-    /// Worker threads (default: one per core; at most 4 per core). The
-    /// output does not depend on it.
-    #[arg(long, value_name = "N")]
-    pub threads: Option<usize>,
-    /// Output directory.
-    #[arg(long, value_name = "DIR")]
-    pub out: PathBuf,
-    /// Print nothing but errors.
-    #[arg(long, short)]
-    pub quiet: bool,
+    /// Threads, output folder, quiet.
+    #[command(flatten)]
+    pub run: RunArgs,
 }
 
 /// What the command sets itself, for refusing `--set` keys it would ignore.
@@ -111,55 +82,20 @@ fn owns(args: &SlidingSpectrumArgs) -> Owns {
     Owns {
         command: "sliding-spectrum",
         sizes: "--block",
-        motion: if record {
-            "--record, --unit, --dt, --scale/--pga"
-        } else {
-            "--pulse, --pulse-accel, --pulse-period, --cycles, --scale/--pga"
-        },
+        motion: motion_flags(record),
         record,
         vertical: "nowhere: a sliding spectrum is of horizontal motion (use --batch with excitation.file_v for one run)",
     }
 }
 
-/// The motion as checked.
-struct Motion {
-    drive: Drive,
-    scale: f64,
-    /// PGA at scale 1, g.
-    pga_g: f64,
-    name: String,
-    json: Json,
-}
-
 /// Refuses flags that the other flags make meaningless.
 fn refuse_ignored_flags(args: &SlidingSpectrumArgs) -> Result<(), BatchError> {
-    let given = |v: bool, flag: &'static str| v.then_some(flag);
-    if args.record.is_some() {
-        let pulse_flags = [
-            given(args.pulse_accel.is_some(), "--pulse-accel"),
-            given(args.pulse_period.is_some(), "--pulse-period"),
-            given(args.cycles.is_some(), "--cycles"),
-        ];
-        if let Some(flag) = pulse_flags.into_iter().flatten().next() {
-            return Err(input(anyhow!("{flag}: describes a --pulse, not a --record; remove it")));
-        }
-    } else {
-        let record_flags = [
-            given(args.reading.unit.is_some(), "--unit"),
-            given(args.reading.dt.is_some(), "--dt"),
-        ];
-        if let Some(flag) = record_flags.into_iter().flatten().next() {
-            return Err(input(anyhow!("{flag}: reads a --record, not a --pulse; remove it")));
-        }
-    }
-    if let (Some(n), Some(shape)) = (args.cycles, args.pulse)
-        && shape != PulseArg::TypeC
-    {
-        return Err(input(anyhow!(
-            "--cycles {n}: only a type-c pulse has cycles (--pulse {}); remove it",
-            ShapeKind::from(shape).name()
-        )));
-    }
+    refuse_mixed_motion(
+        args.source.record.is_some(),
+        args.pulse,
+        &args.source.reading,
+        &args.motion,
+    )?;
     for set in &args.scene.sets {
         let key = set.split_once('=').map_or(set.as_str(), |(k, _)| k).trim();
         if key.split_once('.').is_some_and(|(section, _)| section == "friction") {
@@ -171,97 +107,16 @@ fn refuse_ignored_flags(args: &SlidingSpectrumArgs) -> Result<(), BatchError> {
     Ok(())
 }
 
+/// The motion of the flags, read and checked (horizontal only).
 fn motion(args: &SlidingSpectrumArgs) -> Result<Motion, BatchError> {
-    let (drive, pga_g, json) = match (&args.record, args.pulse) {
-        (Some(path), _) => {
-            let spec = args.reading.spec()?;
-            let record = read_record(path, &spec).map_err(|e| input(e.context("--record")))?;
-            let peaks = record.series.peaks(1.0);
-            let json = json!({
-                "kind": "record",
-                "file": path.display().to_string(),
-                "unit": record.unit.name(),
-                "samples": record.series.len(),
-                "duration_s": record.series.duration_s(),
-                "pga_g": peaks.pga_g,
-                "pgv_m_s": peaks.pgv_m_s,
-                "pgd_m": peaks.pgd_m,
-            });
-            (Drive::Record(record), peaks.pga_g, json)
-        }
-        (None, Some(shape)) => {
-            let positive = |flag: &str, v: Option<f64>| match v {
-                Some(v) if v > 0.0 && v.is_finite() => Ok(v),
-                Some(v) => Err(input(anyhow!("{flag} {}: must be a finite number > 0", show(v)))),
-                None => Err(input(anyhow!("{flag}: required with --pulse"))),
-            };
-            let a_p_g = positive("--pulse-accel", args.pulse_accel)?;
-            let period = positive("--pulse-period", args.pulse_period)?;
-            let cycles = args.cycles.unwrap_or(1);
-            if !(1..=MAX_TYPE_C_CYCLES).contains(&cycles) {
-                return Err(input(anyhow!("--cycles {cycles}: must be in 1..={MAX_TYPE_C_CYCLES}")));
-            }
-            let drive = Drive::PhysicalPulse {
-                shape: shape.into(),
-                cycles,
-                a_p_g,
-                omega_p: std::f64::consts::TAU / period,
-            };
-            let json = json!({
-                "kind": "pulse",
-                "shape": ShapeKind::from(shape).name(),
-                "cycles": cycles,
-                "a_p_g": a_p_g,
-                "period_s": period,
-                "pga_g": a_p_g,
-            });
-            (drive, a_p_g, json)
-        }
-        (None, None) => return Err(input(anyhow!("--record FILE or --pulse SHAPE: one is required"))),
+    let flags = MotionArgs {
+        record: args.source.record.as_deref(),
+        reading: &args.source.reading,
+        vertical: None,
+        pulse: args.pulse,
+        numbers: &args.motion,
     };
-    if pga_g <= 0.0 {
-        return Err(input(anyhow!("--record: the record is all zeros (PGA 0 g)")));
-    }
-    let scale = match (args.scale, args.pga) {
-        (Some(s), _) if !(s > 0.0 && s.is_finite()) => {
-            return Err(input(anyhow!("--scale {}: must be > 0", show(s))));
-        }
-        (Some(s), _) => s,
-        (None, Some(p)) if !(p > 0.0 && p.is_finite()) => {
-            return Err(input(anyhow!("--pga {}: must be > 0 (g)", show(p))));
-        }
-        (None, Some(p)) => p / pga_g,
-        (None, None) => 1.0,
-    };
-    let name = drive.name();
-    Ok(Motion {
-        drive,
-        scale,
-        pga_g,
-        name,
-        json,
-    })
-}
-
-/// `e` in the words of the flags.
-fn spec_error(e: SlidingSpecError) -> BatchError {
-    match e {
-        SlidingSpecError::Mu(m) => input(anyhow!("--mu: {m}")),
-        SlidingSpecError::KineticRatio(r) => {
-            input(anyhow!("--kinetic-ratio {}: must be in (0, 1] (μ_k ≤ μ_s)", show(r)))
-        }
-        SlidingSpecError::FrictionTooLarge(mu_k) => input(anyhow!(
-            "--mu: μ_k = {} reaches {}, where the block that cannot rock could tip; give coefficients below it",
-            show(mu_k),
-            show(SLIDE_ONLY_B_OVER_H)
-        )),
-        SlidingSpecError::MotionTooStrong(pga) => input(anyhow!(
-            "--scale/--pga: PGA {} g reaches {} g, where the block that cannot rock could lift; give a smaller scale",
-            show(pga),
-            show(SLIDE_ONLY_B_OVER_H)
-        )),
-        other @ (SlidingSpecError::NormalisedPulse | SlidingSpecError::Scenario { .. }) => input(anyhow!(other)),
-    }
+    super::eng_motion::motion(&flags, false)
 }
 
 /// Runs `rocking sliding-spectrum`.
@@ -295,7 +150,7 @@ pub fn run(args: &SlidingSpectrumArgs) -> Result<(), BatchError> {
         mu,
         kinetic_ratio: args.kinetic_ratio,
     };
-    spec.check().map_err(spec_error)?;
+    spec.check().map_err(|e| input(anyhow!(e.render(&Flags))))?;
     // A pulse far shorter than the block's time scale is refused as in
     // `pulse-map` (see MAX_OMEGA_RATIO); both blocks share R, hence p.
     if let Drive::PhysicalPulse { omega_p, .. } = motion.drive
@@ -303,19 +158,19 @@ pub fn run(args: &SlidingSpectrumArgs) -> Result<(), BatchError> {
     {
         return Err(input(anyhow!(
             "--pulse-period {}: ω_p/p = {} for the block R = {} m, above {} (see pulse-map --omega); give a longer period or a larger block",
-            show(args.pulse_period.unwrap_or(f64::NAN)),
+            show(args.motion.pulse_period.unwrap_or(f64::NAN)),
             show(omega_p / size.p_per_s()),
             show(size.half_diagonal_m()),
             show(MAX_OMEGA_RATIO)
         )));
     }
-    let pool = thread_pool(args.threads)?;
-    output::check_writable(&args.out)
+    let pool = thread_pool(args.run.threads)?;
+    output::check_writable(&args.run.out)
         .context("--out: cannot write the output directory")
         .map_err(input)?;
 
     let start = Instant::now();
-    let bar = progress_bar(2 * spec.mu.len(), "runs", args.quiet);
+    let bar = progress_bar(2 * spec.mu.len(), "runs", args.run.quiet);
     let points = pool
         .install(|| sliding_spectrum(&spec, &progress_fn(&bar)))
         .map_err(|e| BatchError::Run(anyhow!(e)))?;
@@ -388,13 +243,13 @@ pub fn run(args: &SlidingSpectrumArgs) -> Result<(), BatchError> {
         ],
     };
 
-    super::write::staged(&args.out, |staging| {
+    super::write::staged(&args.run.out, |staging| {
         staging.text("sliding_spectrum.csv", &csv::to_string(rows))?;
         staging.text("sliding_spectrum.json", &(serde_json::to_string_pretty(&meta)? + "\n"))?;
         super::write::figure(staging, "sliding_spectrum", &fig)?;
         Ok(())
     })?;
-    if !args.quiet {
+    if !args.run.quiet {
         crate::say!(
             "rocking sliding-spectrum under {} (PGA {pga:.3} g), {} coefficients, {friction}: {} runs in {wall:.2} s",
             motion.name,
@@ -404,7 +259,7 @@ pub fn run(args: &SlidingSpectrumArgs) -> Result<(), BatchError> {
         for s in &summary {
             crate::say!("  {}", s["text"].as_str().unwrap_or_default());
         }
-        crate::say!("wrote {}", args.out.display());
+        crate::say!("wrote {}", args.run.out.display());
     }
     Ok(())
 }
@@ -423,14 +278,8 @@ fn row(kind: BlockKind, p: &SlidingPoint, size: BlockSize) -> SlidingRow {
         peak_sliding_m: Num(r.peak_sliding_m),
         residual_sliding_m: r.residual_sliding_m.map(Num),
         peak_theta_over_alpha: Num(r.peak_theta_over_alpha),
-        t_overturn_s: (r.end == EndState::Overturned)
-            .then_some(r.t_end_event_s)
-            .flatten()
-            .map(Num),
-        t_flight_s: (r.end == EndState::Flight)
-            .then_some(r.t_end_event_s)
-            .flatten()
-            .map(Num),
+        t_overturn_s: end_time_as(r.end, r.t_end_event_s, EndState::Overturned).map(Num),
+        t_flight_s: end_time_as(r.end, r.t_end_event_s, EndState::Flight).map(Num),
     }
 }
 

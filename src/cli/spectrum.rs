@@ -20,23 +20,20 @@ use std::time::Instant;
 use anyhow::{Context as _, anyhow};
 use serde_json::{Value as Json, json};
 
-use super::eng_args::{
-    BaseArgs, Owns, RecordUnitArgs, VerticalArg, flag_error, increasing, input, positive_list, read_record,
-    search_ladder, show,
-};
+use super::eng_args::{BaseArgs, Owns, RunArgs, VerticalArg, flag_error, input, positive_list, show};
+use super::eng_motion::{Motion, MotionArgs, PulseScaleArgs, RecordArgs, flagged, motion_flags, refuse_mixed_motion};
 use super::error::BatchError;
 use super::pulse_map::MAX_OMEGA_RATIO;
 use super::sweep::{progress_bar, progress_fn, thread_pool};
 use crate::analysis::engineering::overturn_scale::Failing as _;
-use crate::analysis::engineering::rocking_spectrum::{
-    OverturnOptions, SizeAxis, SizeRange, SizeRangeError, SpectrumPoint, SpectrumSpec, rocking_spectrum,
-};
+use crate::analysis::engineering::request::{OverturnRequest, SpectrumRequest};
+use crate::analysis::engineering::response::end_time_as;
+use crate::analysis::engineering::rocking_spectrum::{SizeAxis, SpectrumPoint, SpectrumSpec, rocking_spectrum};
 use crate::analysis::engineering::{Drive, EndState};
 use crate::io::config::to_json;
 use crate::io::csv::{self, Num};
 use crate::io::engineering_files::{SpectrumRow, SpectrumWindowRow};
 use crate::io::output;
-use crate::model::excitation::pulse::MAX_TYPE_C_CYCLES;
 use crate::plot::labels::{friction_text, num};
 use crate::plot::rocking_spectrum::{OverturnScaleFigure, OverturnSeries, SpectrumFigure, SpectrumSeries};
 use crate::sim::scenario::ShapeKind;
@@ -75,18 +72,9 @@ pub enum AxisArg {
 /// Arguments of `rocking spectrum`.
 #[derive(Debug, Clone, clap::Args)]
 pub struct SpectrumArgs {
-    /// The ground-acceleration record (PEER .AT2, two-column `time accel`
-    /// text, or one-column text with --dt).
-    #[arg(
-        long,
-        value_name = "FILE",
-        conflicts_with = "pulse",
-        required_unless_present = "pulse"
-    )]
-    pub record: Option<PathBuf>,
-    /// Unit and time step of a text record.
+    /// The record and how it is read.
     #[command(flatten)]
-    pub reading: RecordUnitArgs,
+    pub source: RecordArgs,
     /// The vertical component of --record (positive upward), scaled by the
     /// same factor as the horizontal (a --pga sets the horizontal's PGA).
     #[arg(long = "record-v", value_name = "FILE", requires = "record")]
@@ -102,22 +90,9 @@ pub struct SpectrumArgs {
     /// block to block); give --pulse-accel and --pulse-period.
     #[arg(long, value_enum, value_name = "SHAPE")]
     pub pulse: Option<PulseArg>,
-    /// Main cycles n of a type-C pulse (default 1; only with --pulse
-    /// type-c).
-    #[arg(long, value_name = "N")]
-    pub cycles: Option<u32>,
-    /// Peak acceleration a_p of the pulse, g.
-    #[arg(long, value_name = "G", requires = "pulse")]
-    pub pulse_accel: Option<f64>,
-    /// Period T_p = 2π/ω_p of the pulse, s.
-    #[arg(long, value_name = "S", requires = "pulse")]
-    pub pulse_period: Option<f64>,
-    /// Factor on the motion (1 plays it as recorded).
-    #[arg(long, value_name = "F", conflicts_with = "pga")]
-    pub scale: Option<f64>,
-    /// Scale the motion to this peak ground acceleration, g.
-    #[arg(long, value_name = "G")]
-    pub pga: Option<f64>,
+    /// The pulse's numbers and the motion's scale.
+    #[command(flatten)]
+    pub motion: PulseScaleArgs,
     /// What the sizes step through: the half-diagonal R or the height H.
     #[arg(long, value_enum, default_value = "r")]
     pub size: AxisArg,
@@ -158,31 +133,9 @@ pub struct SpectrumArgs {
     /// Friction and the base scene.
     #[command(flatten)]
     pub base: BaseArgs,
-    /// Worker threads (default: one per core; at most 4 per core). The
-    /// output does not depend on it.
-    #[arg(long, value_name = "N")]
-    pub threads: Option<usize>,
-    /// Output directory.
-    #[arg(long, value_name = "DIR")]
-    pub out: PathBuf,
-    /// Print nothing but errors.
-    #[arg(long, short)]
-    pub quiet: bool,
-}
-
-/// The motion as checked: what to run and what to write about it.
-struct Motion {
-    drive: Drive,
-    /// Scale of the peak-rotation runs.
-    scale: f64,
-    /// PGA at scale 1, g.
-    pga_g: f64,
-    /// The vertical component's PGA at scale 1, g, when it is applied.
-    pga_v_g: Option<f64>,
-    /// Name for titles.
-    name: String,
-    /// Its description for spectrum.json.
-    json: Json,
+    /// Threads, output folder, quiet.
+    #[command(flatten)]
+    pub run: RunArgs,
 }
 
 /// Default step of the overturning-scale search: a tenth of the motion as
@@ -208,11 +161,7 @@ fn owns(args: &SpectrumArgs) -> Owns {
     Owns {
         command: "spectrum",
         sizes: "--from/--to/--count, --size, --b-over-h",
-        motion: if record {
-            "--record, --unit, --dt, --scale/--pga"
-        } else {
-            "--pulse, --pulse-accel, --pulse-period, --cycles, --scale/--pga"
-        },
+        motion: motion_flags(record),
         record,
         vertical: "--record-v",
     }
@@ -221,35 +170,17 @@ fn owns(args: &SpectrumArgs) -> Owns {
 /// Refuses flags that the other flags make meaningless (each would be
 /// ignored without a word).
 fn refuse_ignored_flags(args: &SpectrumArgs) -> Result<(), BatchError> {
-    let record_flags = [
-        ("--unit", args.reading.unit.is_some()),
-        ("--dt", args.reading.dt.is_some()),
-    ];
-    let pulse_flags = [
-        ("--pulse-accel", args.pulse_accel.is_some()),
-        ("--pulse-period", args.pulse_period.is_some()),
-        ("--cycles", args.cycles.is_some()),
-    ];
     if args.vertical == Some(VerticalArg::Record) && args.record_v.is_none() {
         return Err(input(anyhow!(
             "--vertical record: give the vertical component with --record-v FILE (or --vertical none)"
         )));
     }
-    if args.record.is_some() {
-        if let Some((flag, _)) = pulse_flags.iter().find(|(_, given)| *given) {
-            return Err(input(anyhow!("{flag}: describes a --pulse, not a --record; remove it")));
-        }
-    } else if let Some((flag, _)) = record_flags.iter().find(|(_, given)| *given) {
-        return Err(input(anyhow!("{flag}: reads a --record, not a --pulse; remove it")));
-    }
-    if let (Some(n), Some(shape)) = (args.cycles, args.pulse)
-        && shape != PulseArg::TypeC
-    {
-        return Err(input(anyhow!(
-            "--cycles {n}: only a type-c pulse has cycles (--pulse {}); remove it",
-            ShapeKind::from(shape).name()
-        )));
-    }
+    refuse_mixed_motion(
+        args.source.record.is_some(),
+        args.pulse,
+        &args.source.reading,
+        &args.motion,
+    )?;
     if !args.overturn_scale {
         for (flag, given) in [
             ("--search-step", args.search_step.is_some()),
@@ -266,148 +197,22 @@ fn refuse_ignored_flags(args: &SpectrumArgs) -> Result<(), BatchError> {
     Ok(())
 }
 
+/// The motion of the flags, read and checked.
 fn motion(args: &SpectrumArgs) -> Result<Motion, BatchError> {
-    let (drive, pga_g, json) = match (&args.record, args.pulse) {
-        (Some(path), _) => {
-            let spec = args.reading.spec()?;
-            let record = read_record(path, &spec).map_err(|e| input(e.context("--record")))?;
-            let peaks = record.series.peaks(1.0);
-            let mut json = json!({
-                "kind": "record",
-                "file": path.display().to_string(),
-                "unit": record.unit.name(),
-                "samples": record.series.len(),
-                "duration_s": record.series.duration_s(),
-                "pga_g": peaks.pga_g,
-                "pgv_m_s": peaks.pgv_m_s,
-                "pgd_m": peaks.pgd_m,
-                "vertical": Json::Null,
-            });
-            let use_vertical = args.vertical.unwrap_or(VerticalArg::Record) == VerticalArg::Record;
-            let drive = match &args.record_v {
-                Some(path_v) if use_vertical => {
-                    let mut spec_v = spec;
-                    if let Some(u) = &args.unit_v {
-                        spec_v.unit = Some(
-                            crate::model::units::AccelUnit::parse(u)
-                                .ok_or_else(|| input(anyhow!("--unit-v {u}: unknown unit (known: g, m/s2, cm/s2)")))?,
-                        );
-                    }
-                    let vertical = read_record(path_v, &spec_v).map_err(|e| input(e.context("--record-v")))?;
-                    let pv = vertical.series.peaks(1.0);
-                    json["vertical"] = json!({
-                        "file": path_v.display().to_string(),
-                        "unit": vertical.unit.name(),
-                        "samples": vertical.series.len(),
-                        "duration_s": vertical.series.duration_s(),
-                        "pga_g": pv.pga_g,
-                        "pgv_m_s": pv.pgv_m_s,
-                        "pgd_m": pv.pgd_m,
-                    });
-                    Drive::Paired {
-                        horizontal: record,
-                        vertical,
-                    }
-                }
-                _ => Drive::Record(record),
-            };
-            (drive, peaks.pga_g, json)
-        }
-        (None, Some(shape)) => {
-            let positive = |flag: &str, v: Option<f64>| match v {
-                Some(v) if v > 0.0 && v.is_finite() => Ok(v),
-                Some(v) => Err(input(anyhow!("{flag} {}: must be a finite number > 0", show(v)))),
-                None => Err(input(anyhow!("{flag}: required with --pulse"))),
-            };
-            let a_p_g = positive("--pulse-accel", args.pulse_accel)?;
-            let period = positive("--pulse-period", args.pulse_period)?;
-            let cycles = args.cycles.unwrap_or(1);
-            if !(1..=MAX_TYPE_C_CYCLES).contains(&cycles) {
-                return Err(input(anyhow!("--cycles {cycles}: must be in 1..={MAX_TYPE_C_CYCLES}")));
-            }
-            let drive = Drive::PhysicalPulse {
-                shape: shape.into(),
-                cycles,
-                a_p_g,
-                omega_p: std::f64::consts::TAU / period,
-            };
-            let json = json!({
-                "kind": "pulse",
-                "shape": ShapeKind::from(shape).name(),
-                "cycles": cycles,
-                "a_p_g": a_p_g,
-                "period_s": period,
-                "pga_g": a_p_g,
-            });
-            (drive, a_p_g, json)
-        }
-        (None, None) => return Err(input(anyhow!("--record FILE or --pulse SHAPE: one is required"))),
+    let use_vertical = args.vertical.unwrap_or(VerticalArg::Record) == VerticalArg::Record;
+    let vertical = args
+        .record_v
+        .as_ref()
+        .filter(|_| use_vertical)
+        .map(|path| (path, args.unit_v.as_deref()));
+    let flags = MotionArgs {
+        record: args.source.record.as_deref(),
+        reading: &args.source.reading,
+        vertical,
+        pulse: args.pulse,
+        numbers: &args.motion,
     };
-    if pga_g <= 0.0 {
-        return Err(input(anyhow!("--record: the record is all zeros (PGA 0 g)")));
-    }
-    let scale = match (args.scale, args.pga) {
-        (Some(s), _) if !(s > 0.0 && s.is_finite()) => {
-            return Err(input(anyhow!("--scale {}: must be > 0", show(s))));
-        }
-        (Some(s), _) => s,
-        (None, Some(p)) if !(p > 0.0 && p.is_finite()) => {
-            return Err(input(anyhow!("--pga {}: must be > 0 (g)", show(p))));
-        }
-        (None, Some(p)) => p / pga_g,
-        (None, None) => 1.0,
-    };
-    let name = drive.name();
-    let pga_v_g = match &drive {
-        Drive::Paired { vertical, .. } => Some(vertical.series.peak_abs_g()),
-        _ => None,
-    };
-    Ok(Motion {
-        drive,
-        scale,
-        pga_g,
-        pga_v_g,
-        name,
-        json,
-    })
-}
-
-fn size_range(args: &SpectrumArgs) -> Result<SizeRange, BatchError> {
-    let axis = match args.size {
-        AxisArg::R => SizeAxis::HalfDiagonal,
-        AxisArg::H => SizeAxis::Height,
-    };
-    if args.from == args.to && args.count > 1 {
-        return Err(input(anyhow!(
-            "--count {}: --from = --to = {} m gives {} identical blocks; give --count 1 or a --to above --from",
-            args.count,
-            show(args.from),
-            args.count
-        )));
-    }
-    let range = SizeRange::new(axis, args.from, args.to, args.count).map_err(|e| match e {
-        SizeRangeError::From(v) => input(anyhow!("--from {}: must be a size > 0 (m)", show(v))),
-        SizeRangeError::Reversed { from, to } => input(anyhow!(
-            "--to {}: below --from {}; give from <= to",
-            show(to),
-            show(from)
-        )),
-        SizeRangeError::Count(n) => input(anyhow!(
-            "--count {n}: must be >= 2 (or 1 when --from = --to) and at most 1000000"
-        )),
-    })?;
-    // Sizes so close that they round to one value are the same block twice.
-    if let Some(w) = range.values().windows(2).find(|w| w[1] <= w[0]) {
-        return Err(input(anyhow!(
-            "--count {}: --from {} to --to {} m are too close for {} distinct sizes ({} twice); give fewer",
-            args.count,
-            show(args.from),
-            show(args.to),
-            args.count,
-            show(w[0])
-        )));
-    }
-    Ok(range)
+    super::eng_motion::motion(&flags, true)
 }
 
 /// Runs `rocking spectrum`.
@@ -415,33 +220,32 @@ pub fn run(args: &SpectrumArgs) -> Result<(), BatchError> {
     refuse_ignored_flags(args)?;
     let base = args.base.load(&owns(args))?;
     let motion = motion(args)?;
-    let sizes = size_range(args)?;
-    let ratios = positive_list("--b-over-h", &args.b_over_h)?;
-    increasing("--b-over-h", &ratios)?;
-    if sizes.count * ratios.len() > crate::analysis::engineering::rocking_spectrum::MAX_BLOCKS {
-        return Err(input(anyhow!("--count × --b-over-h: at most 1000000 blocks")));
-    }
-    let overturn = if args.overturn_scale {
-        let (step, max) = (
-            args.search_step.unwrap_or(SEARCH_STEP),
-            args.search_max.unwrap_or(SEARCH_MAX),
-        );
-        let ladder = search_ladder("--search-step", step, "--search-max", max)?;
-        let rel_tol = args.rel_tol.unwrap_or(REL_TOL);
-        if !(rel_tol > 0.0 && rel_tol < 1.0) {
-            return Err(input(anyhow!("--rel-tol {}: must be in (0, 1)", show(rel_tol))));
-        }
-        Some(OverturnOptions { ladder, rel_tol })
-    } else {
-        None
+    let mut request = SpectrumRequest {
+        axis: match args.size {
+            AxisArg::R => SizeAxis::HalfDiagonal,
+            AxisArg::H => SizeAxis::Height,
+        },
+        from_m: args.from,
+        to_m: args.to,
+        count: args.count,
+        b_over_h: Vec::new(),
+        overturn: args.overturn_scale.then(|| OverturnRequest {
+            search_step: args.search_step.unwrap_or(SEARCH_STEP),
+            search_max: args.search_max.unwrap_or(SEARCH_MAX),
+            rel_tol: args.rel_tol.unwrap_or(REL_TOL),
+        }),
     };
+    // The sizes before the ratios' list, as the flags are documented.
+    request.size_range().map_err(flagged)?;
+    request.b_over_h = positive_list("--b-over-h", &args.b_over_h)?;
+    let blocks = request.checked().map_err(flagged)?;
     let spec = SpectrumSpec {
         base: &base,
         drive: &motion.drive,
         scale: motion.scale,
-        sizes,
-        b_over_h: ratios,
-        overturn,
+        sizes: blocks.sizes,
+        b_over_h: blocks.b_over_h,
+        overturn: blocks.overturn,
     };
     // A pulse far shorter than the block's time scale is refused as in
     // `pulse-map` (see MAX_OMEGA_RATIO).
@@ -453,7 +257,7 @@ pub fn run(args: &SpectrumArgs) -> Result<(), BatchError> {
     {
         return Err(input(anyhow!(
             "--pulse-period {}: ω_p/p = {} for the block R = {} m, above {} (see pulse-map --omega); give a longer period or larger blocks",
-            show(args.pulse_period.unwrap_or(f64::NAN)),
+            show(args.motion.pulse_period.unwrap_or(f64::NAN)),
             show(omega_p / b.p_per_s()),
             show(b.half_diagonal_m()),
             show(MAX_OMEGA_RATIO)
@@ -472,13 +276,13 @@ pub fn run(args: &SpectrumArgs) -> Result<(), BatchError> {
             },
         )?;
     }
-    let pool = thread_pool(args.threads)?;
-    output::check_writable(&args.out)
+    let pool = thread_pool(args.run.threads)?;
+    output::check_writable(&args.run.out)
         .context("--out: cannot write the output directory")
         .map_err(input)?;
 
     let start = Instant::now();
-    let bar = progress_bar(spec.sizes.count * spec.b_over_h.len(), "blocks", args.quiet);
+    let bar = progress_bar(spec.sizes.count * spec.b_over_h.len(), "blocks", args.run.quiet);
     let points = pool
         .install(|| rocking_spectrum(&spec, &progress_fn(&bar)))
         .map_err(|e| BatchError::Run(anyhow!(e)))?;
@@ -596,7 +400,7 @@ pub fn run(args: &SpectrumArgs) -> Result<(), BatchError> {
             .collect(),
     });
 
-    super::write::staged(&args.out, |staging| {
+    super::write::staged(&args.run.out, |staging| {
         staging.text("spectrum.csv", &csv::to_string(rows))?;
         if spec.overturn.is_some() {
             staging.text("safe_windows.csv", &csv::to_string(windows))?;
@@ -608,7 +412,7 @@ pub fn run(args: &SpectrumArgs) -> Result<(), BatchError> {
         }
         Ok(())
     })?;
-    if !args.quiet {
+    if !args.run.quiet {
         crate::say!(
             "rocking spectrum under {} (PGA {:.3} g{}): {} blocks in {wall:.2} s",
             motion.name,
@@ -626,7 +430,7 @@ pub fn run(args: &SpectrumArgs) -> Result<(), BatchError> {
         for s in summary.as_array().into_iter().flatten() {
             crate::say!("  {}", s["text"].as_str().unwrap_or_default());
         }
-        crate::say!("wrote {}", args.out.display());
+        crate::say!("wrote {}", args.run.out.display());
     }
     Ok(())
 }
@@ -646,14 +450,8 @@ fn row(p: &SpectrumPoint, scale: f64, pga_of: &impl Fn(f64) -> f64) -> SpectrumR
         pga_g: Num(pga_of(scale)),
         end: r.end.name().to_string(),
         peak_theta_over_alpha: Num(r.peak_theta_over_alpha),
-        t_overturn_s: (r.end == EndState::Overturned)
-            .then_some(r.t_end_event_s)
-            .flatten()
-            .map(Num),
-        t_flight_s: (r.end == EndState::Flight)
-            .then_some(r.t_end_event_s)
-            .flatten()
-            .map(Num),
+        t_overturn_s: end_time_as(r.end, r.t_end_event_s, EndState::Overturned).map(Num),
+        t_flight_s: end_time_as(r.end, r.t_end_event_s, EndState::Flight).map(Num),
         overturn_scale: first.map(|(a, _)| Num(a)),
         overturn_pga_g: first.map(|(a, _)| Num(pga_of(a))),
         overturn_end: first.map(|(_, r)| r.end.name().to_string()),

@@ -14,11 +14,11 @@
 use rayon::prelude::*;
 
 use super::lognormal::{self, FitError, LevelCount, LognormalFit};
-use super::response::{BlockResponse, BlockSize, Drive, EndState, ResponseError, respond};
+use super::response::{BlockResponse, BlockSize, Drive, EndState, ResponseError, respond, scenario_for};
 use crate::analysis::{Progress, ProgressFn};
 use crate::model::excitation::record::Series;
 use crate::model::oscillator::pseudo_acceleration;
-use crate::sim::Scenario;
+use crate::sim::{Scenario, ScenarioError};
 
 /// Most runs (blocks × levels × records) of one fragility study.
 pub const MAX_RUNS: usize = 10_000_000;
@@ -192,6 +192,39 @@ impl FragilitySpec<'_> {
     pub fn scale_of(&self, block: usize, level: f64, record: usize) -> f64 {
         level / (self.records[record].intensity * self.im.block_factor(self.blocks[block]))
     }
+
+    /// Checks the study before anything runs: at most [`MAX_RUNS`] runs,
+    /// and every block under every record at the largest level a valid
+    /// scenario (a smaller level only scales the motion down).
+    pub fn check(&self) -> Result<(), FragilityCheckError> {
+        if self.run_count() > MAX_RUNS {
+            return Err(FragilityCheckError::TooManyRuns(self.run_count()));
+        }
+        let top = self.levels.iter().copied().fold(0.0, f64::max);
+        for (k, &block) in self.blocks.iter().enumerate() {
+            for (j, r) in self.records.iter().enumerate() {
+                scenario_for(self.base, block, &r.drive, self.scale_of(k, top, j))
+                    .map_err(|error| FragilityCheckError::Scenario { block, error })?;
+            }
+        }
+        Ok(())
+    }
+}
+
+/// A fragility study refused before it runs.
+#[derive(Clone, Debug, thiserror::Error)]
+pub enum FragilityCheckError {
+    /// More than [`MAX_RUNS`] runs.
+    #[error("{0} runs (blocks × levels × records): at most {MAX_RUNS}")]
+    TooManyRuns(usize),
+    /// A block's scenario at the largest level is invalid.
+    #[error("block {} x {} m: {error}", block.width_m, block.height_m)]
+    Scenario {
+        /// The block.
+        block: BlockSize,
+        /// What is wrong (its config key names the input).
+        error: ScenarioError,
+    },
 }
 
 /// One run of the study.

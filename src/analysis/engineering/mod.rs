@@ -11,6 +11,8 @@
 //! - Nothing here reads files, draws or parses flags; records arrive as
 //!   [`Series`](crate::model::excitation::record::Series) inside a
 //!   [`Record`](crate::sim::scenario::Record).
+//! - What a study is asked is checked in [`request`] (and each spec's own
+//!   `check`), with errors that name inputs by meaning, never a flag.
 //! - No NaN leaves this module: a quantity that does not exist (no
 //!   overturning, no fit) is `None` or an error that says why.
 
@@ -18,8 +20,23 @@ pub mod fragility;
 pub mod lognormal;
 pub mod overturn_scale;
 pub mod pulse_map;
+pub mod request;
 pub mod response;
 pub mod rocking_spectrum;
 pub mod sliding_spectrum;
 
 pub use response::{BlockResponse, BlockSize, Drive, EndState};
+
+/// A record of accelerations `a_g` (g) at times `t` (s), named `path`,
+/// driving a test run.
+#[cfg(test)]
+pub(crate) fn test_record(path: &str, t: Vec<f64>, a_g: Vec<f64>) -> Drive {
+    Drive::Record(crate::sim::scenario::Record {
+        path: path.into(),
+        series: crate::model::excitation::record::Series::new(t, a_g).unwrap(),
+        unit: crate::model::units::AccelUnit::G,
+        dt: None,
+        crc32: 0,
+        channel: None,
+    })
+}

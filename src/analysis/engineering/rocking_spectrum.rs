@@ -217,8 +217,6 @@ mod tests {
     use super::*;
     use crate::analysis::engineering::EndState;
     use crate::analysis::engineering::overturn_scale::ladder;
-    use crate::model::excitation::record::Series;
-    use crate::sim::scenario::Record;
 
     #[test]
     fn sizes_are_log_spaced_and_checked() {
@@ -255,14 +253,7 @@ mod tests {
                 }
             })
             .collect();
-        Drive::Record(Record {
-            path: "sine.txt".into(),
-            series: Series::new(t, a).unwrap(),
-            unit: crate::model::units::AccelUnit::G,
-            dt: None,
-            crc32: 0,
-            channel: None,
-        })
+        super::super::test_record("sine.txt", t, a)
     }
 
     #[test]

@@ -38,6 +38,7 @@
 use rayon::prelude::*;
 
 use super::response::{BlockSize, Drive, EndState, ResponseError, scenario_for};
+use crate::analysis::field::{FieldNames, RequestField, show};
 use crate::analysis::{Progress, ProgressFn};
 use crate::sim::{Scenario, ScenarioError, simulate};
 
@@ -125,6 +126,33 @@ pub enum SlidingSpecError {
         /// What is wrong.
         error: ScenarioError,
     },
+}
+
+impl SlidingSpecError {
+    /// The error in the words of a surface (its names of the inputs).
+    pub fn render(&self, names: &impl FieldNames<RequestField>) -> String {
+        match self {
+            SlidingSpecError::Mu(m) => format!("{}: {m}", names.name(RequestField::Mu)),
+            SlidingSpecError::KineticRatio(r) => format!(
+                "{}: must be in (0, 1] (μ_k ≤ μ_s)",
+                names.valued(RequestField::KineticRatio, &show(*r))
+            ),
+            SlidingSpecError::FrictionTooLarge(mu_k) => format!(
+                "{}: μ_k = {} reaches {}, where the block that cannot rock could tip; give coefficients below it",
+                names.name(RequestField::Mu),
+                show(*mu_k),
+                show(SLIDE_ONLY_B_OVER_H)
+            ),
+            SlidingSpecError::MotionTooStrong(pga) => format!(
+                "{}/{}: PGA {} g reaches {} g, where the block that cannot rock could lift; give a smaller scale",
+                names.name(RequestField::Scale),
+                names.name(RequestField::Pga),
+                show(*pga),
+                show(SLIDE_ONLY_B_OVER_H)
+            ),
+            SlidingSpecError::NormalisedPulse | SlidingSpecError::Scenario { .. } => self.to_string(),
+        }
+    }
 }
 
 /// One block's answer at one μ.
@@ -304,8 +332,6 @@ pub fn sliding_spectrum(spec: &SlidingSpec<'_>, progress: &ProgressFn<'_>) -> Re
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::model::excitation::record::Series;
-    use crate::sim::scenario::Record;
 
     /// A constant acceleration `a_g` (g) for `dur_s`, then 0, sampled
     /// every 10 ms.
@@ -313,14 +339,7 @@ mod tests {
         let n = (dur_s / 0.01).round() as usize;
         let t: Vec<f64> = (0..=n + 1).map(|i| i as f64 * 0.01).collect();
         let a: Vec<f64> = (0..=n + 1).map(|i| if i <= n { a_g } else { 0.0 }).collect();
-        Drive::Record(Record {
-            path: "step.txt".into(),
-            series: Series::new(t, a).unwrap(),
-            unit: crate::model::units::AccelUnit::G,
-            dt: None,
-            crc32: 0,
-            channel: None,
-        })
+        super::super::test_record("step.txt", t, a)
     }
 
     #[test]

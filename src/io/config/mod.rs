@@ -65,7 +65,9 @@ impl Source {
     }
 }
 
-/// Reads a preset shipped in `assets/presets/NAME.toml`.
+/// Reads a preset shipped in `assets/presets/NAME.toml`. The message for
+/// an unknown name keeps the CLI's `--preset` wording: the Python package's
+/// `Scene(name)` is tested to raise the CLI's very message.
 pub fn preset_text(name: &str) -> Result<&'static str, ConfigError> {
     super::presets::get(name).ok_or_else(|| {
         ConfigError::Usage(format!(
@@ -713,7 +715,9 @@ pub fn base_table(sets: &[String]) -> Result<(Table, Source), ConfigError> {
 pub fn load_table(preset: Option<&str>, file: Option<&Path>, sets: &[String]) -> Result<(Table, Source), ConfigError> {
     let (mut table, source) = match (preset, file) {
         (Some(_), Some(_)) => {
-            return Err(ConfigError::Usage("give either --preset or --config, not both".into()));
+            return Err(ConfigError::Usage(
+                "give either a preset or a config file, not both".into(),
+            ));
         }
         (_, Some(path)) => read_file(path)?,
         (None, None) if !sets.is_empty() => return base_table(sets),

@@ -1,0 +1,234 @@
+//! The ground motion of `spectrum` and `sliding-spectrum`: a record (with
+//! `spectrum`'s optional vertical) or an analytic pulse, and its scale,
+//! checked by the core's requests
+//! ([`request`](crate::analysis::engineering::request)) and worded as
+//! flags; what the output JSON says about it.
+
+use std::path::{Path, PathBuf};
+
+use anyhow::anyhow;
+use serde_json::{Value as Json, json};
+
+use super::eng_args::{RecordUnitArgs, input, read_record};
+use super::error::BatchError;
+use super::flags::Flags;
+use super::spectrum::PulseArg;
+use crate::analysis::engineering::Drive;
+use crate::analysis::engineering::request::{PulseRequest, RequestError, Scaling, unit};
+use crate::analysis::field::RequestField;
+use crate::io::record::RecordSpec;
+use crate::sim::scenario::{Record, ShapeKind};
+
+/// The record of `spectrum` and `sliding-spectrum` (or `--pulse`
+/// instead) and how a text record is read.
+#[derive(Debug, Clone, clap::Args)]
+pub struct RecordArgs {
+    /// The ground-acceleration record (PEER .AT2, two-column `time accel`
+    /// text, or one-column text with --dt).
+    #[arg(
+        long,
+        value_name = "FILE",
+        conflicts_with = "pulse",
+        required_unless_present = "pulse"
+    )]
+    pub record: Option<PathBuf>,
+    /// Unit and time step of a text record.
+    #[command(flatten)]
+    pub reading: RecordUnitArgs,
+}
+
+/// The flags of a pulse's numbers and of the motion's scale (after
+/// `--pulse` in `spectrum` and `sliding-spectrum`).
+#[derive(Debug, Clone, clap::Args)]
+pub struct PulseScaleArgs {
+    /// Main cycles n of a type-C pulse (default 1; only with --pulse
+    /// type-c).
+    #[arg(long, value_name = "N")]
+    pub cycles: Option<u32>,
+    /// Peak acceleration a_p of the pulse, g.
+    #[arg(long, value_name = "G", requires = "pulse")]
+    pub pulse_accel: Option<f64>,
+    /// Period T_p = 2π/ω_p of the pulse, s.
+    #[arg(long, value_name = "S", requires = "pulse")]
+    pub pulse_period: Option<f64>,
+    /// Factor on the motion (1 plays it as recorded).
+    #[arg(long, value_name = "F", conflicts_with = "pga")]
+    pub scale: Option<f64>,
+    /// Scale the motion to this peak ground acceleration, g.
+    #[arg(long, value_name = "G")]
+    pub pga: Option<f64>,
+}
+
+/// The motion flags of a command, as given.
+pub(crate) struct MotionArgs<'a> {
+    /// `--record`.
+    pub record: Option<&'a Path>,
+    /// `--unit`, `--dt`, `--channel`.
+    pub reading: &'a RecordUnitArgs,
+    /// `--record-v` and `--unit-v`, when the vertical is applied.
+    pub vertical: Option<(&'a PathBuf, Option<&'a str>)>,
+    /// `--pulse`.
+    pub pulse: Option<PulseArg>,
+    /// `--cycles`, `--pulse-accel`, `--pulse-period`, `--scale`, `--pga`.
+    pub numbers: &'a PulseScaleArgs,
+}
+
+/// The motion as checked: what to run and what to write about it.
+pub(crate) struct Motion {
+    /// What drives the runs.
+    pub drive: Drive,
+    /// Scale of the runs.
+    pub scale: f64,
+    /// PGA at scale 1, g.
+    pub pga_g: f64,
+    /// The vertical component's PGA at scale 1, g, when it is applied.
+    pub pga_v_g: Option<f64>,
+    /// Name for titles.
+    pub name: String,
+    /// Its description for the output JSON.
+    pub json: Json,
+}
+
+/// A request error in the words of the flags.
+pub(crate) fn flagged(e: RequestError) -> BatchError {
+    input(anyhow!(e.render(&Flags)))
+}
+
+/// What the output JSON says about one record component.
+fn component_json(path: &Path, record: &Record) -> Json {
+    let series = &record.series;
+    let peaks = series.peaks(1.0);
+    json!({
+        "file": path.display().to_string(),
+        "unit": record.unit.name(),
+        "samples": series.len(),
+        "duration_s": series.duration_s(),
+        "pga_g": peaks.pga_g,
+        "pgv_m_s": peaks.pgv_m_s,
+        "pgd_m": peaks.pgd_m,
+    })
+}
+
+/// Reads and checks the motion of `args`; `with_vertical_key` writes
+/// `"vertical"` into a record's JSON (`spectrum`, which can apply one).
+pub(crate) fn motion(args: &MotionArgs<'_>, with_vertical_key: bool) -> Result<Motion, BatchError> {
+    let (drive, pga_g, json) = match (args.record, args.pulse) {
+        (Some(path), _) => {
+            let spec = args.reading.spec()?;
+            let record = read_record(path, &spec).map_err(|e| input(e.context("--record")))?;
+            let pga_g = record.series.peaks(1.0).pga_g;
+            let mut json = component_json(path, &record);
+            json["kind"] = json!("record");
+            if with_vertical_key {
+                json["vertical"] = Json::Null;
+            }
+            let drive = match args.vertical {
+                Some((path_v, unit_v)) => {
+                    let spec_v = RecordSpec {
+                        unit: match unit_v {
+                            Some(u) => Some(unit(RequestField::UnitV, u).map_err(flagged)?),
+                            None => spec.unit,
+                        },
+                        ..spec
+                    };
+                    let vertical = read_record(path_v, &spec_v).map_err(|e| input(e.context("--record-v")))?;
+                    json["vertical"] = component_json(path_v, &vertical);
+                    Drive::Paired {
+                        horizontal: record,
+                        vertical,
+                    }
+                }
+                None => Drive::Record(record),
+            };
+            (drive, pga_g, json)
+        }
+        (None, Some(shape)) => {
+            let pulse = PulseRequest {
+                shape: shape.into(),
+                cycles: args.numbers.cycles,
+                accel_g: args.numbers.pulse_accel,
+                period_s: args.numbers.pulse_period,
+            }
+            .checked()
+            .map_err(flagged)?;
+            let json = json!({
+                "kind": "pulse",
+                "shape": ShapeKind::from(shape).name(),
+                "cycles": pulse.cycles,
+                "a_p_g": pulse.a_p_g,
+                "period_s": pulse.period_s,
+                "pga_g": pulse.a_p_g,
+            });
+            (pulse.drive, pulse.a_p_g, json)
+        }
+        (None, None) => return Err(input(anyhow!("--record FILE or --pulse SHAPE: one is required"))),
+    };
+    let scale = Scaling {
+        scale: args.numbers.scale,
+        pga_g: args.numbers.pga,
+    }
+    .factor(pga_g)
+    .map_err(flagged)?;
+    let name = drive.name();
+    let pga_v_g = match &drive {
+        Drive::Paired { vertical, .. } => Some(vertical.series.peak_abs_g()),
+        _ => None,
+    };
+    Ok(Motion {
+        drive,
+        scale,
+        pga_g,
+        pga_v_g,
+        name,
+        json,
+    })
+}
+
+/// The flags that set the motion, for refusing a `--set` of a motion key
+/// ([`Owns::motion`](super::eng_args::Owns)).
+pub(crate) fn motion_flags(record: bool) -> &'static str {
+    if record {
+        "--record, --unit, --dt, --scale/--pga"
+    } else {
+        "--pulse, --pulse-accel, --pulse-period, --cycles, --scale/--pga"
+    }
+}
+
+/// Refuses the flags of a record with a pulse and those of a pulse with a
+/// record (each would be ignored without a word), and cycles of a pulse
+/// that has none.
+pub(crate) fn refuse_mixed_motion(
+    record: bool,
+    pulse: Option<PulseArg>,
+    reading: &RecordUnitArgs,
+    numbers: &PulseScaleArgs,
+) -> Result<(), BatchError> {
+    let given = |v: bool, flag: &'static str| v.then_some(flag);
+    if record {
+        let pulse_flags = [
+            given(numbers.pulse_accel.is_some(), "--pulse-accel"),
+            given(numbers.pulse_period.is_some(), "--pulse-period"),
+            given(numbers.cycles.is_some(), "--cycles"),
+        ];
+        if let Some(flag) = pulse_flags.into_iter().flatten().next() {
+            return Err(input(anyhow!("{flag}: describes a --pulse, not a --record; remove it")));
+        }
+    } else {
+        let record_flags = [
+            given(reading.unit.is_some(), "--unit"),
+            given(reading.dt.is_some(), "--dt"),
+        ];
+        if let Some(flag) = record_flags.into_iter().flatten().next() {
+            return Err(input(anyhow!("{flag}: reads a --record, not a --pulse; remove it")));
+        }
+    }
+    if let (Some(n), Some(shape)) = (numbers.cycles, pulse)
+        && shape != PulseArg::TypeC
+    {
+        return Err(input(anyhow!(
+            "--cycles {n}: only a type-c pulse has cycles (--pulse {}); remove it",
+            ShapeKind::from(shape).name()
+        )));
+    }
+    Ok(())
+}
