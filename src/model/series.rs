@@ -467,6 +467,9 @@ fn slide_rock(geo: &Geometry, sg: f64, sigma: f64, mu_k: f64, tilt: Tilt, f: &Fo
     }
 }
 
+/// The same coefficients generated from `dynamics::field` over jets.
+pub mod generated;
+
 /// The straightforward recurrences, one convolution per product and two
 /// forcing series always apart: the oracle the fused expansions above are
 /// tested against.
