@@ -119,8 +119,10 @@ impl Tilt {
 
 impl<S: Scalar> Tilt<S> {
     /// [`Tilt::new`] of a generic Θ: the values are those of `Tilt::new`
-    /// at Θ's value, the derivatives those of φ = ψ − sψΘ.
-    #[inline]
+    /// at Θ's value, the derivatives those of φ = ψ − sψΘ. Always inlined:
+    /// over `f64` it must be `Tilt::new` itself (the derivative part is dead
+    /// code there), and a call in the vector field cost a fifth of it.
+    #[inline(always)]
     pub fn of(geo: &Geometry, s: Sign, theta: S) -> Self {
         let value = Tilt::new(geo, s, theta.value());
         let phi = theta * -(s.value() * geo.psi) + geo.psi;
@@ -274,7 +276,7 @@ pub fn rest<S: Scalar>(fo: Forcing<S>) -> Accel<S> {
 /// the centre of mass's vertical velocity) and the friction dissipation
 /// rate D' = −f (X' − cos φ w) (docs/model.md §8). Rest and the terminal
 /// modes stand still.
-#[inline]
+#[inline(always)]
 pub(crate) fn field<S: Scalar>(geo: &Geometry, mu_k: f64, mode: Mode, fo: Forcing<S>, y: &[S; N]) -> [S; N] {
     let zero = y[THETA].constant(0.0);
     match mode {
