@@ -376,3 +376,29 @@ fn jacobian_generated(bencher: divan::Bencher, mode: &str) {
         ));
     });
 }
+
+/// The gradient of rocking's normal-force guard (index 2), as the
+/// saltation matrix needs it at every event: the hand-written partials of
+/// `model::variational`, or dual numbers over the guards
+/// (`model::variational::generated`).
+#[divan::bench(args = ["hand", "generated"])]
+fn guard_gradient(bencher: divan::Bencher, form: &str) {
+    use rocking::model::variational;
+    let (sys, mode, y) = rocking_state();
+    let mut t = 0.0;
+    bencher.bench_local(|| {
+        t += 1e-3;
+        let t = black_box(t);
+        let fo = sys.model.excitation.forcing(t);
+        let rate = rocking::model::dynamics::Forcing {
+            a: 0.1 * t.cos(),
+            av: 0.05 * t.cos(),
+        };
+        let g = if form == "hand" {
+            variational::guard_gradient(&sys.model, mode, 2, fo, rate, black_box(&y))
+        } else {
+            variational::generated::guard_gradient(&sys.model, mode, 2, fo, rate, black_box(&y))
+        };
+        black_box(g);
+    });
+}

@@ -25,11 +25,10 @@
 //!
 //! # Accuracy
 //!
-//! The field's Jacobian is hand-derived (faster in the Lyapunov run than
-//! the one [`generated`] derives from `dynamics` by dual numbers, and
-//! tested against it); the guard gradients are that automatic
-//! differentiation of the guards themselves. Everything is exact up to
-//! round-off, except the Jacobian of the impact laws other
+//! The field's Jacobian and the guard gradients are hand-derived: faster
+//! than the ones [`generated`] derives from `dynamics` and `system` by dual
+//! numbers, and tested against them to round-off. Everything is analytic,
+//! except the Jacobian of the impact laws other
 //! than `ratio`: those laws are piecewise *linear* in the pre-impact
 //! velocities `(w, X')`, so a central difference inside one branch is exact
 //! up to round-off (relative error ~1e-10 with the step used here).
@@ -110,25 +109,31 @@ pub(crate) fn forcing_rate(excitation: &Excitation, tau: f64) -> Option<Forcing>
     }
 }
 
-/// Derivatives of the accelerations of a grounded tilted mode at one
-/// state, with respect to `u = Θ` and `v = Θ'` (no mode depends on `X'`).
-///
-/// Hand-written because they are faster than the generated Jacobian
-/// ([`generated::field_jacobian`], checked against these to round-off)
-/// in the Lyapunov run, which evaluates them at every stage (docs/model.md
-/// §16).
+/// Derivatives of a grounded tilted mode at one state, with respect to
+/// `u = Θ` and `v = Θ'` (no mode depends on `X'`).
 #[derive(Clone, Copy, Debug, PartialEq)]
 struct Partials {
-    /// Partials of w' = ψΘ''.
+    /// w' = ψΘ'' and its partials.
+    wdd: f64,
     wdd_u: f64,
     wdd_v: f64,
+    /// ∂w'/∂τ per unit of db/dτ and of da/dτ: w'_τ = wdd_b·b' + wdd_a·a'.
+    wdd_b: f64,
+    wdd_a: f64,
     /// X'' and its partials.
     x_ddot_u: f64,
     x_ddot_v: f64,
+    /// Normal force n and its partials.
+    n_u: f64,
+    n_v: f64,
+    /// Horizontal contact force f and its partials.
+    f_u: f64,
+    f_v: f64,
 }
 
 /// Partials of rock about `pivot` (docs/model.md §3):
-/// w' = −(s b sn + a c), X'' = c w' + s sn w². With φ = ψ(1 − sΘ): ∂sn/∂Θ = −sψc, ∂c/∂Θ = sψ sn.
+/// w' = −(s b sn + a c), X'' = c w' + s sn w², n = b + γ(s sn w' − c w²),
+/// f = a + γ X''. With φ = ψ(1 − sΘ): ∂sn/∂Θ = −sψc, ∂c/∂Θ = sψ sn.
 fn rock_partials(geo: &Geometry, pivot: Sign, theta: f64, theta_dot: f64, fo: Forcing) -> Partials {
     let s = pivot.value();
     let psi = geo.psi;
@@ -141,17 +146,24 @@ fn rock_partials(geo: &Geometry, pivot: Sign, theta: f64, theta_dot: f64, fo: Fo
     let x_ddot_u = s * psi * sn * wdd + c * wdd_u - psi * c * ww;
     let x_ddot_v = 2.0 * s * sn * w * psi;
     Partials {
+        wdd,
         wdd_u,
         wdd_v: 0.0,
+        wdd_b: -s * sn,
+        wdd_a: -c,
         x_ddot_u,
         x_ddot_v,
+        n_u: GAMMA * (-psi * c * wdd + s * sn * wdd_u - s * psi * sn * ww),
+        n_v: -2.0 * GAMMA * c * w * psi,
+        f_u: GAMMA * x_ddot_u,
+        f_v: GAMMA * x_ddot_v,
     }
 }
 
 /// Partials of slide-rock about `pivot` slipping towards `slip`
 /// (docs/model.md §4): w' = −k Q/D with k = s sn − σμ_k c,
 /// Q = b − γ c w², D = (1−γ) + γ(sn² − sσμ_k sn c); n = b + γ(s sn w' − c w²);
-/// f = −σμ_k n; X'' = (f − a)/γ, so ∂X'' = −σμ_k ∂n/γ.
+/// f = −σμ_k n; X'' = (f − a)/γ.
 fn slide_rock_partials(
     geo: &Geometry,
     pivot: Sign,
@@ -181,26 +193,28 @@ fn slide_rock_partials(
     let n_u = GAMMA * (-psi * c * wdd + s * sn * wdd_u - s * psi * sn * ww);
     let n_v = GAMMA * (s * sn * wdd_v - 2.0 * c * w * psi);
     Partials {
+        wdd,
         wdd_u,
         wdd_v,
+        wdd_b: -k / den,
+        wdd_a: 0.0,
         x_ddot_u: -sigma * mu_k * n_u / GAMMA,
         x_ddot_v: -sigma * mu_k * n_v / GAMMA,
+        n_u,
+        n_v,
+        f_u: -sigma * mu_k * n_u,
+        f_v: -sigma * mu_k * n_v,
     }
 }
 
 /// Partials of a tilted mode, `None` for the flat and terminal modes.
-fn tilted_partials(model: &Model, mode: Mode, fo: Forcing, y: &[f64; N]) -> Option<Partials> {
+fn tilted_partials(model: &Model, mode: Mode, fo: Forcing, y: &[f64; N]) -> Option<(Sign, Partials)> {
     let geo = &model.geo;
     match mode {
-        Mode::Rock { pivot } => Some(rock_partials(geo, pivot, y[THETA], y[THETA_DOT], fo)),
-        Mode::SlideRock { pivot, slip } => Some(slide_rock_partials(
-            geo,
+        Mode::Rock { pivot } => Some((pivot, rock_partials(geo, pivot, y[THETA], y[THETA_DOT], fo))),
+        Mode::SlideRock { pivot, slip } => Some((
             pivot,
-            slip,
-            model.mu_k,
-            y[THETA],
-            y[THETA_DOT],
-            fo,
+            slide_rock_partials(geo, pivot, slip, model.mu_k, y[THETA], y[THETA_DOT], fo),
         )),
         Mode::Rest | Mode::Slide { .. } | Mode::Tumbled | Mode::Flight => None,
     }
@@ -212,7 +226,7 @@ fn tilted_partials(model: &Model, mode: Mode, fo: Forcing, y: &[f64; N]) -> Opti
 /// last column is always zero.
 pub(crate) fn field_jacobian(model: &Model, mode: Mode, fo: Forcing, y: &[f64; N]) -> Matrix {
     match tilted_partials(model, mode, fo, y) {
-        Some(p) => {
+        Some((_, p)) => {
             let psi = model.geo.psi;
             [
                 [0.0, 1.0, 0.0],
@@ -227,10 +241,6 @@ pub(crate) fn field_jacobian(model: &Model, mode: Mode, fo: Forcing, y: &[f64; N
 /// Gradient of guard `index` of `mode` (the table in `model::system`) at
 /// forcing `fo`, forcing rate `rate` (from [`forcing_rate`]) and state `y`.
 /// `None` for an index the mode does not have.
-///
-/// Generated from the guards themselves by dual numbers
-/// ([`generated::guard_gradient`]): a gradient is needed once per event,
-/// a negligible share of a run, so no hand-written form is kept.
 pub fn guard_gradient(
     model: &Model,
     mode: Mode,
@@ -239,7 +249,85 @@ pub fn guard_gradient(
     rate: Forcing,
     y: &[f64; N],
 ) -> Option<GuardGradient> {
-    generated::guard_gradient(model, mode, index, fo, rate, y)
+    let geo = &model.geo;
+    let time_only = |time: f64| GuardGradient {
+        state: [0.0; DIM],
+        time,
+    };
+    match mode {
+        Mode::Tumbled | Mode::Flight => None,
+        // Every rest guard is a function of τ alone (b, κ±, μ_s b ± a).
+        Mode::Rest => {
+            let db = rate.av;
+            let mu_s = model.mu_s;
+            match index {
+                0 => Some(time_only(db)),
+                1 => Some(time_only(db * geo.sin_psi + rate.a * geo.cos_psi)),
+                2 => Some(time_only(db * geo.sin_psi - rate.a * geo.cos_psi)),
+                3 if mu_s.is_finite() => Some(time_only(mu_s * db + rate.a)),
+                4 if mu_s.is_finite() => Some(time_only(mu_s * db - rate.a)),
+                _ => None,
+            }
+        }
+        Mode::Slide { slip } => match index {
+            0 => Some(GuardGradient {
+                state: [0.0, 0.0, slip.value()],
+                time: 0.0,
+            }),
+            1 => Some(time_only(rate.av)),
+            _ => None,
+        },
+        Mode::Rock { .. } | Mode::SlideRock { .. } => {
+            let (pivot, p) = tilted_partials(model, mode, fo, y)?;
+            let s = pivot.value();
+            let Tilt { sn, c } = Tilt::new(geo, pivot, y[THETA]);
+            let wdd_t = p.wdd_b * rate.av + p.wdd_a * rate.a;
+            let n_t = rate.av + GAMMA * s * sn * wdd_t;
+            let normal = GuardGradient {
+                state: [p.n_u, p.n_v, 0.0],
+                time: n_t,
+            };
+            match (mode, index) {
+                (_, 0) => Some(GuardGradient {
+                    state: [s, 0.0, 0.0],
+                    time: 0.0,
+                }),
+                (_, 1) => Some(GuardGradient {
+                    state: [-s, 0.0, 0.0],
+                    time: 0.0,
+                }),
+                (_, 2) => Some(normal),
+                (_, 3) => Some(GuardGradient {
+                    state: [0.0, s, 0.0],
+                    time: 0.0,
+                }),
+                (Mode::Rock { .. }, 4 | 5) if model.mu_s.is_finite() => {
+                    // μ_s n ∓ s f, with f = a + γ X'' (rock).
+                    let side = if index == 4 { -s } else { s };
+                    let f_t = rate.a + GAMMA * c * wdd_t;
+                    Some(GuardGradient {
+                        state: [
+                            model.mu_s * p.n_u + side * p.f_u,
+                            model.mu_s * p.n_v + side * p.f_v,
+                            0.0,
+                        ],
+                        time: model.mu_s * n_t + side * f_t,
+                    })
+                }
+                (Mode::SlideRock { slip, .. }, 4) => {
+                    // σ X_p' = σ(X' − c ψ Θ').
+                    let sigma = slip.value();
+                    let psi = geo.psi;
+                    let w = psi * y[THETA_DOT];
+                    Some(GuardGradient {
+                        state: [-sigma * s * psi * sn * w, -sigma * c * psi, sigma],
+                        time: 0.0,
+                    })
+                }
+                _ => None,
+            }
+        }
+    }
 }
 
 /// Projection of `z` onto the tangent space of `mode` at state `y`: what a

@@ -1,7 +1,5 @@
-//! The generated Jacobian against the hand-written one of `variational`
-//! (the one the Lyapunov run uses), on random states of every mode, pivot
-//! and slip sign. The guard gradients have only the generated form, which
-//! `variational::tests` checks against central differences of the guards.
+//! The generated tangent dynamics against the hand-written ones of
+//! `variational`, on random states of every mode, pivot and slip sign.
 
 use super::*;
 use crate::model::excitation::{Excitation, Harmonic};
@@ -55,7 +53,7 @@ fn close(a: f64, b: f64) -> bool {
 
 proptest::proptest! {
     #[test]
-    fn the_generated_jacobian_equals_the_hand_written_one(
+    fn the_generated_jacobians_and_guard_gradients_equal_the_hand_written_ones(
         bh in 0.1f64..1.0,
         mu in 0.1f64..0.9,
         finite in proptest::bool::ANY,
@@ -66,6 +64,7 @@ proptest::proptest! {
     ) {
         let m = model(bh, if finite { mu + 0.05 } else { f64::INFINITY }, if finite { mu } else { f64::INFINITY });
         let fo = m.excitation.forcing(t);
+        let rate = hand::forcing_rate(&m.excitation, t).unwrap();
         // Without friction limits the block never slides (no slide guard
         // fires), and the sliding modes' fields are infinite there.
         let reachable = |mode: &Mode| finite || matches!(mode, Mode::Rest | Mode::Rock { .. } | Mode::Tumbled | Mode::Flight);
@@ -81,6 +80,18 @@ proptest::proptest! {
                 for k in 0..DIM {
                     proptest::prop_assert!(close(j_hand[i][k], j_gen[i][k]),
                         "{mode:?} J[{i}][{k}]: {} vs {}", j_hand[i][k], j_gen[i][k]);
+                }
+            }
+            for index in 0..=MAX_GUARDS {
+                let (h, g) = (hand::guard_gradient(&m, mode, index, fo, rate, &y), guard_gradient(&m, mode, index, fo, rate, &y));
+                proptest::prop_assert_eq!(h.is_some(), g.is_some(), "{:?} guard {}", mode, index);
+                if let (Some(h), Some(g)) = (h, g) {
+                    for k in 0..DIM {
+                        proptest::prop_assert!(close(h.state[k], g.state[k]),
+                            "{mode:?} guard {index} ∂/∂z{k}: {} vs {}", h.state[k], g.state[k]);
+                    }
+                    proptest::prop_assert!(close(h.time, g.time),
+                        "{mode:?} guard {index} ∂/∂τ: {} vs {}", h.time, g.time);
                 }
             }
         }
