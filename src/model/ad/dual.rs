@@ -72,7 +72,9 @@ impl<const D: usize> Sub for Dual<D> {
 
 impl<const D: usize> Mul for Dual<D> {
     type Output = Self;
+    /// The product rule.
     #[inline(always)]
+    #[allow(clippy::suspicious_arithmetic_impl)]
     fn mul(self, o: Self) -> Self {
         self.zip(o, self.v * o.v, |a, b| a * o.v + self.v * b)
     }
@@ -82,6 +84,7 @@ impl<const D: usize> Div for Dual<D> {
     type Output = Self;
     /// (a/b)' = (a' − (a/b) b')/b.
     #[inline(always)]
+    #[allow(clippy::suspicious_arithmetic_impl)]
     fn div(self, o: Self) -> Self {
         let q = self.v / o.v;
         self.zip(o, q, |a, b| (a - q * b) / o.v)

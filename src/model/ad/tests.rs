@@ -83,8 +83,16 @@ fn a_quotient_of_jets_is_the_geometric_series_and_sine_the_closed_form() {
         // w^k/k! · sin⁽ᵏ⁾(a): the derivatives cycle sin, cos, −sin, −cos.
         let ds = [a.sin(), a.cos(), -a.sin(), -a.cos()];
         let (ws, wc) = (scale * ds[k % 4], scale * ds[(k + 1) % 4]);
-        assert!((s[k] - ws).abs() < 1e-15 * (1.0 + ws.abs()), "sin order {k}: {} vs {ws}", s[k]);
-        assert!((c[k] - wc).abs() < 1e-15 * (1.0 + wc.abs()), "cos order {k}: {} vs {wc}", c[k]);
+        assert!(
+            (s[k] - ws).abs() < 1e-15 * (1.0 + ws.abs()),
+            "sin order {k}: {} vs {ws}",
+            s[k]
+        );
+        assert!(
+            (c[k] - wc).abs() < 1e-15 * (1.0 + wc.abs()),
+            "cos order {k}: {} vs {wc}",
+            c[k]
+        );
         scale *= w / (k + 1) as f64;
     }
 }

@@ -86,7 +86,10 @@ fn the_generated_series_refuse_what_the_hand_written_ones_refuse() {
     let y = [0.1, 0.2, 0.0, 0.0, 0.0, 0.0];
     let mode = Mode::Rock { pivot: Sign::Pos };
     let mut c = vec![[0.0; N]; MAX_ORDER + 1];
-    assert!(!taylor(&m, mode, 0.0, &y, MAX_ORDER, &mut c), "an order without reserve");
+    assert!(
+        !taylor(&m, mode, 0.0, &y, MAX_ORDER, &mut c),
+        "an order without reserve"
+    );
     assert!(!taylor(&m, mode, 0.0, &y, 5, &mut c[..5]), "too few rows");
     let mut pulse = m.clone();
     pulse.excitation = Excitation::None;
