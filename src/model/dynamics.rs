@@ -120,8 +120,8 @@ impl Tilt {
 impl<S: Scalar> Tilt<S> {
     /// [`Tilt::new`] of a generic Θ: the values are those of `Tilt::new`
     /// at Θ's value, the derivatives those of φ = ψ − sψΘ. Always inlined:
-    /// over `f64` it must be `Tilt::new` itself (the derivative part is dead
-    /// code there), and a call in the vector field cost a fifth of it.
+    /// over `f64` it must reduce to `Tilt::new` (the derivative part is dead
+    /// code there), which the optimiser sees only inside the caller.
     #[inline(always)]
     pub fn of(geo: &Geometry, s: Sign, theta: S) -> Self {
         let value = Tilt::new(geo, s, theta.value());

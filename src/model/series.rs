@@ -12,6 +12,11 @@
 //! Only the harmonic excitation (and none) has a closed-form series; pulses
 //! and records return `false`, and the method takes DOP853 steps there.
 //! `tests/taylor.rs` checks every mode against DOP853.
+//!
+//! [`generated`] derives the same coefficients from `dynamics::field`
+//! evaluated over jets; the hand-written expansions below are 5–8 times
+//! faster (docs/model.md §16), so they are the ones used, and
+//! `generated`'s tests check them against it.
 
 use super::dynamics::Tilt;
 use super::excitation::Excitation;
