@@ -10,47 +10,55 @@
 //! flipped) negates the odd outputs and keeps the even ones **bit for bit**.
 //! The functions use `u = sΘ` (not `|Θ|`) so they stay smooth slightly past
 //! Θ = 0, where the integrator's stages and the root finder evaluate them.
+//!
+//! The equations are written once, over a generic [`Scalar`]: over `f64`
+//! they are the vector field (the same operations as code written for
+//! `f64`), over dual numbers its Jacobian (`variational`), over jets its
+//! Taylor series (`series`). Constants multiply on the right (`sn * s`
+//! for `s sin φ`), which has the bits of the left.
 
+use super::ad::Scalar;
 use super::geometry::{GAMMA, Geometry};
-use super::mode::Sign;
+use super::mode::{Mode, Sign};
+use super::state::{N, THETA, THETA_DOT, X_DOT};
 
-/// Base acceleration at one instant, per unit g.
+/// Base acceleration at one instant, per unit g (`S`: see the module docs).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Forcing {
+pub struct Forcing<S = f64> {
     /// a_h/g.
-    pub a: f64,
+    pub a: S,
     /// a_v/g (upward positive).
-    pub av: f64,
+    pub av: S,
 }
 
-impl Forcing {
+impl<S: Scalar> Forcing<S> {
     /// b = 1 + a_v/g: effective gravity per unit g.
     #[inline]
-    pub fn b(&self) -> f64 {
-        1.0 + self.av
+    pub fn b(&self) -> S {
+        self.av + 1.0
     }
 }
 
 /// Accelerations and contact forces of one mode at one state.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Accel {
+pub struct Accel<S = f64> {
     /// Θ''.
-    pub theta_ddot: f64,
+    pub theta_ddot: S,
     /// X''.
-    pub x_ddot: f64,
+    pub x_ddot: S,
     /// Normal force per unit weight, n = N/(mg).
-    pub normal: f64,
+    pub normal: S,
     /// Horizontal contact force on the block per unit weight, f = F/(mg).
-    pub friction: f64,
+    pub friction: S,
 }
 
 /// Angle quantities of a tilted block: φ = ψ(1 − sΘ) and its sine/cosine.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Tilt {
+pub struct Tilt<S = f64> {
     /// sin φ.
-    pub sn: f64,
+    pub sn: S,
     /// cos φ.
-    pub c: f64,
+    pub c: S,
 }
 
 /// Largest |θ| = |ψΘ| for which [`Tilt::new`] uses its series: there the
@@ -109,6 +117,20 @@ impl Tilt {
     }
 }
 
+impl<S: Scalar> Tilt<S> {
+    /// [`Tilt::new`] of a generic Θ: the values are those of `Tilt::new`
+    /// at Θ's value, the derivatives those of φ = ψ − sψΘ. Always inlined:
+    /// over `f64` it must reduce to `Tilt::new` (the derivative part is dead
+    /// code there), which the optimiser sees only inside the caller.
+    #[inline(always)]
+    pub fn of(geo: &Geometry, s: Sign, theta: S) -> Self {
+        let value = Tilt::new(geo, s, theta.value());
+        let phi = theta * -(s.value() * geo.psi) + geo.psi;
+        let (sn, c) = phi.sin_cos_from(value.sn, value.c);
+        Self { sn, c }
+    }
+}
+
 /// Rocking about a stuck corner (not printed in the paper; docs/model.md §3):
 /// ψΘ'' = −(s b sin φ + a cos φ).
 #[inline]
@@ -118,19 +140,30 @@ pub fn rock(geo: &Geometry, pivot: Sign, theta: f64, theta_dot: f64, fo: Forcing
 
 /// [`rock`] with the tilt already computed.
 #[inline]
-pub(crate) fn rock_at(geo: &Geometry, pivot: Sign, tilt: Tilt, theta_dot: f64, fo: Forcing) -> Accel {
+pub(crate) fn rock_at<S: Scalar>(geo: &Geometry, pivot: Sign, tilt: Tilt<S>, theta_dot: S, fo: Forcing<S>) -> Accel<S> {
+    let (theta_ddot, x_ddot, wdd, ww) = rock_motion(geo, pivot, tilt, theta_dot, fo);
+    let s = pivot.value();
+    let Tilt { sn, c } = tilt;
+    Accel {
+        theta_ddot,
+        x_ddot,
+        normal: fo.b() + (sn * s * wdd - c * ww) * GAMMA,
+        friction: fo.a + x_ddot * GAMMA,
+    }
+}
+
+/// The motion part of [`rock_at`]: `(Θ'', X'', ψΘ'', w²)`, without the
+/// contact forces (the vector field needs no more; a jet computes only
+/// what it is asked for).
+#[inline]
+fn rock_motion<S: Scalar>(geo: &Geometry, pivot: Sign, tilt: Tilt<S>, theta_dot: S, fo: Forcing<S>) -> (S, S, S, S) {
     let s = pivot.value();
     let Tilt { sn, c } = tilt;
     let b = fo.b();
-    let w = geo.psi * theta_dot;
-    let wdd = -(s * b * sn + fo.a * c);
+    let w = theta_dot * geo.psi;
+    let wdd = -(b * s * sn + fo.a * c);
     let ww = w * w;
-    Accel {
-        theta_ddot: wdd * geo.inv_psi,
-        x_ddot: c * wdd + s * sn * ww,
-        normal: b + GAMMA * (s * sn * wdd - c * ww),
-        friction: fo.a + GAMMA * (c * wdd + s * sn * ww),
-    }
+    (wdd * geo.inv_psi, c * wdd + sn * s * ww, wdd, ww)
 }
 
 /// A lower bound of the normal force n of [`rock_at`] over every state with
@@ -178,26 +211,26 @@ pub fn slide_rock(
 
 /// [`slide_rock`] with the tilt already computed.
 #[inline]
-pub(crate) fn slide_rock_at(
+pub(crate) fn slide_rock_at<S: Scalar>(
     geo: &Geometry,
     pivot: Sign,
     slip: Sign,
     mu_k: f64,
-    tilt: Tilt,
-    theta_dot: f64,
-    fo: Forcing,
-) -> Accel {
+    tilt: Tilt<S>,
+    theta_dot: S,
+    fo: Forcing<S>,
+) -> Accel<S> {
     let s = pivot.value();
     let sigma = slip.value();
     let Tilt { sn, c } = tilt;
     let b = fo.b();
-    let w = geo.psi * theta_dot;
+    let w = theta_dot * geo.psi;
     let ww = w * w;
-    let k = s * sn - sigma * mu_k * c;
-    let den = (1.0 - GAMMA) + GAMMA * (sn * sn - s * sigma * mu_k * sn * c);
-    let wdd = -k * (b - GAMMA * c * ww) / den;
-    let normal = b + GAMMA * (s * sn * wdd - c * ww);
-    let friction = -sigma * mu_k * normal;
+    let k = sn * s - c * (sigma * mu_k);
+    let den = (sn * sn - sn * (s * sigma * mu_k) * c) * GAMMA + (1.0 - GAMMA);
+    let wdd = -k * (b - c * GAMMA * ww) / den;
+    let normal = b + (sn * s * wdd - c * ww) * GAMMA;
+    let friction = normal * (-sigma * mu_k);
     Accel {
         theta_ddot: wdd / geo.psi,
         x_ddot: (friction - fo.a) / GAMMA,
@@ -216,11 +249,11 @@ pub(crate) fn slide_rock_denominator(geo: &Geometry, pivot: Sign, slip: Sign, mu
 
 /// Flat block sliding in direction `slip`: X'' = −(σ μ_k b + a)/γ.
 #[inline]
-pub fn slide(slip: Sign, mu_k: f64, fo: Forcing) -> Accel {
+pub fn slide<S: Scalar>(slip: Sign, mu_k: f64, fo: Forcing<S>) -> Accel<S> {
     let b = fo.b();
-    let friction = -slip.value() * mu_k * b;
+    let friction = b * (-slip.value() * mu_k);
     Accel {
-        theta_ddot: 0.0,
+        theta_ddot: b.constant(0.0),
         x_ddot: (friction - fo.a) / GAMMA,
         normal: b,
         friction,
@@ -229,12 +262,65 @@ pub fn slide(slip: Sign, mu_k: f64, fo: Forcing) -> Accel {
 
 /// Flat block stuck to the base: the base supplies f = a, n = b.
 #[inline]
-pub fn rest(fo: Forcing) -> Accel {
+pub fn rest<S: Scalar>(fo: Forcing<S>) -> Accel<S> {
     Accel {
-        theta_ddot: 0.0,
-        x_ddot: 0.0,
+        theta_ddot: fo.a.constant(0.0),
+        x_ddot: fo.a.constant(0.0),
         normal: fo.b(),
         friction: fo.a,
+    }
+}
+
+/// The vector field of `mode`: `y' = [Θ', Θ'', X', X'', W', D']` with the
+/// work rate of the base's pseudo-forces W' = −a X' − a_v ẏ (ẏ = s sin φ w,
+/// the centre of mass's vertical velocity) and the friction dissipation
+/// rate D' = −f (X' − cos φ w) (docs/model.md §8). Rest and the terminal
+/// modes stand still.
+#[inline(always)]
+pub(crate) fn field<S: Scalar>(geo: &Geometry, mu_k: f64, mode: Mode, fo: Forcing<S>, y: &[S; N]) -> [S; N] {
+    let zero = y[THETA].constant(0.0);
+    match mode {
+        Mode::Rest | Mode::Tumbled | Mode::Flight => [zero; N],
+        Mode::Slide { slip } => {
+            let acc = slide(slip, mu_k, fo);
+            [
+                zero,
+                zero,
+                y[X_DOT],
+                acc.x_ddot,
+                -fo.a * y[X_DOT],
+                -acc.friction * y[X_DOT],
+            ]
+        }
+        Mode::Rock { pivot } => {
+            let tilt = Tilt::of(geo, pivot, y[THETA]);
+            let (theta_ddot, x_ddot, _, _) = rock_motion(geo, pivot, tilt, y[THETA_DOT], fo);
+            let w = y[THETA_DOT] * geo.psi;
+            let y_dot = tilt.sn * pivot.value() * w;
+            [
+                y[THETA_DOT],
+                theta_ddot,
+                y[X_DOT],
+                x_ddot,
+                -fo.a * y[X_DOT] - fo.av * y_dot,
+                zero,
+            ]
+        }
+        Mode::SlideRock { pivot, slip } => {
+            let tilt = Tilt::of(geo, pivot, y[THETA]);
+            let acc = slide_rock_at(geo, pivot, slip, mu_k, tilt, y[THETA_DOT], fo);
+            let w = y[THETA_DOT] * geo.psi;
+            let y_dot = tilt.sn * pivot.value() * w;
+            let vp = y[X_DOT] - tilt.c * w;
+            [
+                y[THETA_DOT],
+                acc.theta_ddot,
+                y[X_DOT],
+                acc.x_ddot,
+                -fo.a * y[X_DOT] - fo.av * y_dot,
+                -acc.friction * vp,
+            ]
+        }
     }
 }
 
@@ -260,8 +346,8 @@ pub fn pivot_slip_accel(geo: &Geometry, pivot: Sign, theta: f64, theta_dot: f64,
 /// released: κ_s = b sin ψ + s a cos ψ = −s ψΘ''(Θ = 0). The base lifts the
 /// block about corner `s` when κ_s < 0 (paper eq. 1 with |a_h| and a_v).
 #[inline]
-pub fn restoring(geo: &Geometry, pivot: Sign, fo: Forcing) -> f64 {
-    fo.b() * geo.sin_psi + pivot.value() * fo.a * geo.cos_psi
+pub fn restoring<S: Scalar>(geo: &Geometry, pivot: Sign, fo: Forcing<S>) -> S {
+    fo.b() * geo.sin_psi + fo.a * pivot.value() * geo.cos_psi
 }
 
 #[cfg(test)]

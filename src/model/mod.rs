@@ -4,6 +4,7 @@
 //! right bottom corner; τ = p t, Θ = θ/ψ, X = x_G/R; base accelerations
 //! per unit g. Derivations and the paper's equation numbers: `docs/model.md`.
 
+pub mod ad;
 pub mod dynamics;
 pub mod energy;
 pub mod excitation;

@@ -12,6 +12,11 @@
 //! Only the harmonic excitation (and none) has a closed-form series; pulses
 //! and records return `false`, and the method takes DOP853 steps there.
 //! `tests/taylor.rs` checks every mode against DOP853.
+//!
+//! [`generated`] derives the same coefficients from `dynamics::field`
+//! evaluated over jets; the hand-written expansions below are 5–8 times
+//! faster (docs/model.md §17), so they are the ones used, and
+//! `generated`'s tests check them against it.
 
 use super::dynamics::Tilt;
 use super::excitation::Excitation;
@@ -466,6 +471,9 @@ fn slide_rock(geo: &Geometry, sg: f64, sigma: f64, mu_k: f64, tilt: Tilt, f: &Fo
         row[FRICTION_LOSS] = ddot * inv;
     }
 }
+
+/// The same coefficients generated from `dynamics::field` over jets.
+pub mod generated;
 
 /// The straightforward recurrences, one convolution per product and two
 /// forcing series always apart: the oracle the fused expansions above are

@@ -21,6 +21,7 @@ mod reset;
 use std::cell::Cell;
 
 use self::reset::rock_from_flat;
+use super::ad::Scalar;
 use super::dynamics::{self, Accel, Forcing, Tilt};
 use super::energy;
 use super::mode::{Mode, Sign};
@@ -167,7 +168,7 @@ impl BlockSystem {
 
     /// The effective tumble angle: `tumble_theta` capped at the side landing.
     pub(crate) fn tumble_angle(&self) -> f64 {
-        self.model.tumble_theta.min(self.model.geo.side_theta())
+        tumble_angle(&self.model)
     }
 
     fn friction_finite(&self) -> bool {
@@ -185,15 +186,7 @@ impl BlockSystem {
     }
 
     fn accel_with(&self, mode: Mode, fo: Forcing, y: &[f64; N]) -> Accel {
-        let geo = &self.model.geo;
-        match mode {
-            Mode::Rest | Mode::Tumbled | Mode::Flight => dynamics::rest(fo),
-            Mode::Slide { slip } => dynamics::slide(slip, self.model.mu_k, fo),
-            Mode::Rock { pivot } => dynamics::rock(geo, pivot, y[THETA], y[THETA_DOT], fo),
-            Mode::SlideRock { pivot, slip } => {
-                dynamics::slide_rock(geo, pivot, slip, self.model.mu_k, y[THETA], y[THETA_DOT], fo)
-            }
-        }
+        accel_of(&self.model, mode, fo, y)
     }
 
     /// Mechanical energy / (m g R) of `y` in `mode`.
@@ -215,6 +208,98 @@ impl BlockSystem {
     }
 }
 
+/// The effective tumble angle of `model`: `tumble_theta` capped at the side
+/// landing.
+pub(crate) fn tumble_angle(model: &Model) -> f64 {
+    model.tumble_theta.min(model.geo.side_theta())
+}
+
+/// Accelerations and contact forces of `mode` at forcing `fo` and state `y`.
+#[inline]
+fn accel_of<S: Scalar>(model: &Model, mode: Mode, fo: Forcing<S>, y: &[S; N]) -> Accel<S> {
+    let geo = &model.geo;
+    match mode {
+        Mode::Rest | Mode::Tumbled | Mode::Flight => dynamics::rest(fo),
+        Mode::Slide { slip } => dynamics::slide(slip, model.mu_k, fo),
+        Mode::Rock { pivot } => dynamics::rock_at(geo, pivot, Tilt::of(geo, pivot, y[THETA]), y[THETA_DOT], fo),
+        Mode::SlideRock { pivot, slip } => dynamics::slide_rock_at(
+            geo,
+            pivot,
+            slip,
+            model.mu_k,
+            Tilt::of(geo, pivot, y[THETA]),
+            y[THETA_DOT],
+            fo,
+        ),
+    }
+}
+
+/// The guards of `mode` (the table in the module docs) at forcing `fo` and
+/// state `y`, written once over a generic scalar: over `f64` for the
+/// driver, over dual numbers for their gradients (`variational`). Returns
+/// how many there are; `tumble` is [`tumble_angle`].
+#[inline]
+pub(crate) fn guard_values<S: Scalar>(
+    model: &Model,
+    tumble: f64,
+    mode: Mode,
+    fo: Forcing<S>,
+    y: &[S; N],
+    g: &mut [S; MAX_GUARDS],
+) -> usize {
+    let geo = &model.geo;
+    let mu_s = model.mu_s;
+    let friction_finite = mu_s.is_finite();
+    match mode {
+        Mode::Tumbled | Mode::Flight => 0,
+        Mode::Rest => {
+            let b = fo.b();
+            // Flight first: when b reaches 0 the uplift guards κ = b sin ψ
+            // ± a cos ψ may reach 0 at the same instant, and ties go to
+            // the lowest index.
+            g[0] = b;
+            g[1] = dynamics::restoring(geo, Sign::Pos, fo);
+            g[2] = dynamics::restoring(geo, Sign::Neg, fo);
+            if friction_finite {
+                g[3] = b * mu_s + fo.a;
+                g[4] = b * mu_s - fo.a;
+                5
+            } else {
+                3
+            }
+        }
+        Mode::Slide { slip } => {
+            g[0] = y[X_DOT] * slip.value();
+            g[1] = fo.b();
+            2
+        }
+        Mode::Rock { pivot } | Mode::SlideRock { pivot, .. } => {
+            let s = pivot.value();
+            let acc = accel_of(model, mode, fo, y);
+            g[0] = y[THETA] * s;
+            // tumble − sΘ, with the bits of the subtraction.
+            g[1] = -(y[THETA] * s) + tumble;
+            g[2] = acc.normal;
+            g[3] = y[THETA_DOT] * s;
+            match mode {
+                Mode::SlideRock { slip, .. } => {
+                    let c = Tilt::of(geo, pivot, y[THETA]).c;
+                    let vp = y[X_DOT] - c * geo.psi * y[THETA_DOT];
+                    g[4] = vp * slip.value();
+                    5
+                }
+                _ if friction_finite => {
+                    let f_side = acc.friction * s;
+                    g[4] = acc.normal * mu_s - f_side;
+                    g[5] = acc.normal * mu_s + f_side;
+                    6
+                }
+                _ => 4,
+            }
+        }
+    }
+}
+
 impl HybridSystem<N> for BlockSystem {
     type Mode = Mode;
     type Record = EventRecord;
@@ -225,51 +310,7 @@ impl HybridSystem<N> for BlockSystem {
 
     #[inline]
     fn rhs(&self, mode: Mode, t: f64, y: &[f64; N], dy: &mut [f64; N]) {
-        let fo = self.forcing(t);
-        let geo = &self.model.geo;
-        match mode {
-            Mode::Rest | Mode::Tumbled | Mode::Flight => *dy = [0.0; N],
-            Mode::Slide { slip } => {
-                let acc = dynamics::slide(slip, self.model.mu_k, fo);
-                *dy = [
-                    0.0,
-                    0.0,
-                    y[X_DOT],
-                    acc.x_ddot,
-                    -fo.a * y[X_DOT],
-                    -acc.friction * y[X_DOT],
-                ];
-            }
-            Mode::Rock { pivot } => {
-                let tilt = Tilt::new(geo, pivot, y[THETA]);
-                let acc = dynamics::rock_at(geo, pivot, tilt, y[THETA_DOT], fo);
-                let w = geo.psi * y[THETA_DOT];
-                let y_dot = pivot.value() * tilt.sn * w;
-                *dy = [
-                    y[THETA_DOT],
-                    acc.theta_ddot,
-                    y[X_DOT],
-                    acc.x_ddot,
-                    -fo.a * y[X_DOT] - fo.av * y_dot,
-                    0.0,
-                ];
-            }
-            Mode::SlideRock { pivot, slip } => {
-                let tilt = Tilt::new(geo, pivot, y[THETA]);
-                let acc = dynamics::slide_rock_at(geo, pivot, slip, self.model.mu_k, tilt, y[THETA_DOT], fo);
-                let w = geo.psi * y[THETA_DOT];
-                let y_dot = pivot.value() * tilt.sn * w;
-                let vp = y[X_DOT] - tilt.c * w;
-                *dy = [
-                    y[THETA_DOT],
-                    acc.theta_ddot,
-                    y[X_DOT],
-                    acc.x_ddot,
-                    -fo.a * y[X_DOT] - fo.av * y_dot,
-                    -acc.friction * vp,
-                ];
-            }
-        }
+        *dy = dynamics::field(&self.model.geo, self.model.mu_k, mode, self.forcing(t), y);
     }
 
     #[inline]
@@ -278,55 +319,7 @@ impl HybridSystem<N> for BlockSystem {
     }
 
     fn guards(&self, mode: Mode, t: f64, y: &[f64; N], g: &mut [f64; MAX_GUARDS]) -> usize {
-        let fo = self.forcing(t);
-        let geo = &self.model.geo;
-        let mu_s = self.model.mu_s;
-        match mode {
-            Mode::Tumbled | Mode::Flight => 0,
-            Mode::Rest => {
-                let b = fo.b();
-                // Flight first: when b reaches 0 the uplift guards κ = b sin ψ
-                // ± a cos ψ may reach 0 at the same instant, and ties go to
-                // the lowest index.
-                g[0] = b;
-                g[1] = dynamics::restoring(geo, Sign::Pos, fo);
-                g[2] = dynamics::restoring(geo, Sign::Neg, fo);
-                if self.friction_finite() {
-                    g[3] = mu_s * b + fo.a;
-                    g[4] = mu_s * b - fo.a;
-                    5
-                } else {
-                    3
-                }
-            }
-            Mode::Slide { slip } => {
-                g[0] = slip.value() * y[X_DOT];
-                g[1] = fo.b();
-                2
-            }
-            Mode::Rock { pivot } | Mode::SlideRock { pivot, .. } => {
-                let s = pivot.value();
-                let acc = self.accel_with(mode, fo, y);
-                g[0] = s * y[THETA];
-                g[1] = self.tumble_angle() - s * y[THETA];
-                g[2] = acc.normal;
-                g[3] = s * y[THETA_DOT];
-                match mode {
-                    Mode::SlideRock { slip, .. } => {
-                        let vp = dynamics::pivot_slip_velocity(geo, pivot, y[THETA], y[THETA_DOT], y[X_DOT]);
-                        g[4] = slip.value() * vp;
-                        5
-                    }
-                    _ if self.friction_finite() => {
-                        let f_side = s * acc.friction;
-                        g[4] = mu_s * acc.normal - f_side;
-                        g[5] = mu_s * acc.normal + f_side;
-                        6
-                    }
-                    _ => 4,
-                }
-            }
-        }
+        guard_values(&self.model, self.tumble_angle(), mode, self.forcing(t), y, g)
     }
 
     #[inline]
