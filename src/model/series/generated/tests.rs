@@ -25,6 +25,7 @@ fn model(shared: bool, mu_k: f64) -> Model {
         tumble_theta: 1.0,
         flight: crate::model::FlightPolicy::Stop,
         zeno_eps: 1e-5,
+        frame: None,
     }
 }
 

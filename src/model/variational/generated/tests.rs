@@ -28,6 +28,7 @@ fn model(bh: f64, mu_s: f64, mu_k: f64) -> Model {
         tumble_theta: 1.0,
         flight: FlightPolicy::Ignore,
         zeno_eps: 1e-5,
+        frame: None,
     }
 }
 
