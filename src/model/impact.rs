@@ -272,3 +272,18 @@ pub(crate) fn apply_law(geo: &Geometry, law: &ImpactLaw, pre: &PreImpact) -> Pos
         ImpactLaw::Impulse { e, mu_s, mu_k } => impulse_law(geo, pre, e, mu_s, mu_k),
     }
 }
+
+/// When an impact accumulation that starts at τ with post-impact rate `v`
+/// (|ψΘ'|) and ratio `r` ends, summed in closed form (docs/model.md §10):
+/// Δτ = 2v(1/k₊ + r/k₋)/(1 − r²), with k the deceleration ψ|Θ''| on the
+/// side it rocks to next (k₊) and the other (k₋); a later τ than `t` in
+/// every case (the next float when Δτ vanishes in round-off).
+pub(crate) fn accumulation_end(t: f64, v: f64, r: f64, k_next: f64, k_after: f64) -> f64 {
+    let dt = if r < 1.0 {
+        2.0 * v * (1.0 / k_next + r / k_after) / (1.0 - r * r)
+    } else {
+        2.0 * v / k_next
+    };
+    let t_acc = t + dt;
+    if t_acc <= t { t.next_up() } else { t_acc }
+}

@@ -13,13 +13,9 @@ use super::state::N;
 use super::system::{BlockSystem, EventRecord, ModelError, Tally};
 use crate::integrate::hybrid::HybridSystem;
 
-/// A planar rocking model with the block's state and modes.
-pub trait Rocker:
-    HybridSystem<N, Mode = Mode, Record = EventRecord, Error = ModelError> + Clone + Send + 'static
-{
-    /// A system for `model`, tallies zeroed.
-    fn build(model: Model) -> Self;
-
+/// What the simulation asks of a model between steps; object-safe, so the
+/// live session can hold any model behind a pointer.
+pub trait RockerCore: Send {
     /// The parameters it was built from.
     fn params(&self) -> &Model;
 
@@ -44,6 +40,14 @@ pub trait Rocker:
     fn contact_forces(&self, mode: Mode, t: f64, y: &[f64; N]) -> (f64, f64);
 }
 
+/// A planar rocking model with the block's state and modes.
+pub trait Rocker:
+    RockerCore + HybridSystem<N, Mode = Mode, Record = EventRecord, Error = ModelError> + Clone + 'static
+{
+    /// A system for `model`, tallies zeroed.
+    fn build(model: Model) -> Self;
+}
+
 /// What to do with the system of a model (a generic closure, which Rust
 /// spells as a trait).
 pub trait RockerVisitor {
@@ -64,57 +68,41 @@ pub fn with_rocker<V: RockerVisitor>(model: Model, visitor: V) -> V::Output {
     }
 }
 
-impl Rocker for BlockSystem {
-    fn build(model: Model) -> Self {
-        BlockSystem::new(model)
-    }
-    fn params(&self) -> &Model {
-        &self.model
-    }
-    fn tallied(&self) -> Tally {
-        self.tally
-    }
-    fn settle_mode(&mut self, mode: Mode, t: f64, y: &mut [f64; N]) -> Mode {
-        self.settle(mode, t, y)
-    }
-    fn mechanical_energy(&self, mode: Mode, y: &[f64; N]) -> f64 {
-        self.energy(mode, y)
-    }
-    fn end_energy(&self, mode: Mode, y: &[f64; N]) -> f64 {
-        self.final_energy(mode, y)
-    }
-    fn overturn_angle(&self) -> f64 {
-        self.tumble_angle()
-    }
-    fn contact_forces(&self, mode: Mode, t: f64, y: &[f64; N]) -> (f64, f64) {
-        let acc = self.accel(mode, t, y);
-        (acc.normal, acc.friction)
-    }
+/// Both systems keep their parameters in `model`, their tallies in `tally`,
+/// and name their own methods alike.
+macro_rules! rocker {
+    ($system:ty) => {
+        impl RockerCore for $system {
+            fn params(&self) -> &Model {
+                &self.model
+            }
+            fn tallied(&self) -> Tally {
+                self.tally
+            }
+            fn settle_mode(&mut self, mode: Mode, t: f64, y: &mut [f64; N]) -> Mode {
+                self.settle(mode, t, y)
+            }
+            fn mechanical_energy(&self, mode: Mode, y: &[f64; N]) -> f64 {
+                self.energy(mode, y)
+            }
+            fn end_energy(&self, mode: Mode, y: &[f64; N]) -> f64 {
+                self.final_energy(mode, y)
+            }
+            fn overturn_angle(&self) -> f64 {
+                self.tumble_angle()
+            }
+            fn contact_forces(&self, mode: Mode, t: f64, y: &[f64; N]) -> (f64, f64) {
+                self.base_forces(mode, t, y)
+            }
+        }
+
+        impl Rocker for $system {
+            fn build(model: Model) -> Self {
+                <$system>::new(model)
+            }
+        }
+    };
 }
 
-impl Rocker for FrameSystem {
-    fn build(model: Model) -> Self {
-        FrameSystem::new(model)
-    }
-    fn params(&self) -> &Model {
-        &self.model
-    }
-    fn tallied(&self) -> Tally {
-        self.tally
-    }
-    fn settle_mode(&mut self, mode: Mode, t: f64, y: &mut [f64; N]) -> Mode {
-        self.settle(mode, t, y)
-    }
-    fn mechanical_energy(&self, mode: Mode, y: &[f64; N]) -> f64 {
-        self.energy(mode, y)
-    }
-    fn end_energy(&self, mode: Mode, y: &[f64; N]) -> f64 {
-        self.energy(mode, y)
-    }
-    fn overturn_angle(&self) -> f64 {
-        self.tumble_angle()
-    }
-    fn contact_forces(&self, mode: Mode, t: f64, y: &[f64; N]) -> (f64, f64) {
-        self.base_forces(mode, t, y)
-    }
-}
+rocker!(BlockSystem);
+rocker!(FrameSystem);

@@ -189,6 +189,13 @@ impl BlockSystem {
         accel_of(&self.model, mode, fo, y)
     }
 
+    /// Normal and horizontal contact force per unit weight (what the app
+    /// plots).
+    pub(crate) fn base_forces(&self, mode: Mode, t: f64, y: &[f64; N]) -> (f64, f64) {
+        let acc = self.accel(mode, t, y);
+        (acc.normal, acc.friction)
+    }
+
     /// Mechanical energy / (m g R) of `y` in `mode`.
     pub fn energy(&self, mode: Mode, y: &[f64; N]) -> f64 {
         energy::total(&self.model.geo, mode, y[THETA], y[THETA_DOT], y[X_DOT])

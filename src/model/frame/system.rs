@@ -17,7 +17,7 @@ use crate::integrate::hybrid::{HybridSystem, Jump, MAX_GUARDS};
 use crate::model::dynamics::{self, Forcing, Tilt};
 use crate::model::energy;
 use crate::model::geometry::GAMMA;
-use crate::model::impact::ImpactLaw;
+use crate::model::impact::{self, ImpactLaw};
 use crate::model::mode::{Mode, Sign};
 use crate::model::params::{FlightPolicy, Model};
 use crate::model::state::{N, THETA, THETA_DOT, X, X_DOT};
@@ -107,6 +107,12 @@ impl FrameSystem {
         let geo = &self.model.geo;
         let (height, _) = energy::height(geo, mode, y[THETA], y[THETA_DOT]);
         self.frame.kinetic(geo.psi * y[THETA_DOT]) + self.frame.lever() * height
+    }
+
+    /// Mechanical energy at a run's end: a frame keeps no velocity outside
+    /// its state (no impact throws it off the base).
+    pub fn final_energy(&self, mode: Mode, y: &[f64; N]) -> f64 {
+        self.energy(mode, y)
     }
 
     /// Brings a freshly entered mode to a consistent one at `t`: a rest
@@ -233,16 +239,7 @@ impl FrameSystem {
         yn[THETA_DOT] = 0.0;
         yn[X_DOT] = 0.0;
         if k_next > 0.0 && k_after > 0.0 {
-            let v = w_after.abs();
-            let dt = if r < 1.0 {
-                2.0 * v * (1.0 / k_next + r / k_after) / (1.0 - r * r)
-            } else {
-                2.0 * v / k_next
-            };
-            let mut t_acc = t + dt;
-            if t_acc <= t {
-                t_acc = t.next_up();
-            }
+            let t_acc = impact::accumulation_end(t, w_after.abs(), r, k_next, k_after);
             let mode = self.settle(Mode::Rest, t_acc, &mut yn);
             let rest = EventRecord {
                 tau: t_acc,

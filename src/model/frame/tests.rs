@@ -35,6 +35,46 @@ fn solve(mut a: Vec<Vec<f64>>, mut b: Vec<f64>) -> Vec<f64> {
     x
 }
 
+/// The two columns' and the beam's equations, one row each: 17 unknowns
+/// (each column's and the beam's (ẍ, ÿ, angular) at 0, 3 and 6, each base
+/// force at 9 + 2k, the force on the beam from column k at 13 + 2k), or the
+/// same with velocities and impulses.
+#[derive(Default)]
+struct Linear {
+    rows: Vec<Vec<f64>>,
+    rhs: Vec<f64>,
+}
+
+impl Linear {
+    fn eq(&mut self, coef: &[(usize, f64)], value: f64) {
+        let mut row = vec![0.0; 17];
+        for &(j, c) in coef {
+            row[j] += c;
+        }
+        self.rows.push(row);
+        self.rhs.push(value);
+    }
+
+    /// The beam's balance: mass `mb`, inertia `i_b`, the forces from the
+    /// columns at `rb` from its centre, `free` its right-hand sides.
+    fn beam(&mut self, mb: f64, i_b: f64, rb: [[f64; 2]; 2], free: [f64; 2]) {
+        self.eq(&[(6, mb), (13, -1.0), (15, -1.0)], free[0]);
+        self.eq(&[(7, mb), (14, -1.0), (16, -1.0)], free[1]);
+        let torque = [
+            (8, i_b),
+            (13, rb[0][1]),
+            (14, -rb[0][0]),
+            (15, rb[1][1]),
+            (16, -rb[1][0]),
+        ];
+        self.eq(&torque, 0.0);
+    }
+
+    fn solve(self) -> Vec<f64> {
+        solve(self.rows, self.rhs)
+    }
+}
+
 fn sub(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
     [a[0] - b[0], a[1] - b[1]]
 }
@@ -95,50 +135,29 @@ fn newton_euler(
     let w = -theta_dot; // counter-clockwise
     // Unknowns: column k (ax, ay, α) at 3k, beam (ax, ay, α) at 6, base
     // force k at 9 + 2k, force on the beam from column k at 13 + 2k.
-    let n = 17;
-    let mut rows = Vec::new();
-    let mut rhs = Vec::new();
-    let mut eq = |coef: &[(usize, f64)], value: f64| {
-        let mut row = vec![0.0; n];
-        for &(j, c) in coef {
-            row[j] += c;
-        }
-        rows.push(row);
-        rhs.push(value);
-    };
+    let mut sys = Linear::default();
     for k in 0..2 {
         let (c, f, q) = (3 * k, 9 + 2 * k, 13 + 2 * k);
         let ro = sub(l.pivot[k], l.centre[k]);
         let rt = sub(l.top[k], l.centre[k]);
-        eq(&[(c, m), (f, -1.0), (q, 1.0)], -m * G * a);
-        eq(&[(c + 1, m), (f + 1, -1.0), (q + 1, 1.0)], -m * G * (1.0 + av));
+        sys.eq(&[(c, m), (f, -1.0), (q, 1.0)], -m * G * a);
+        sys.eq(&[(c + 1, m), (f + 1, -1.0), (q + 1, 1.0)], -m * G * (1.0 + av));
         // I α = ro × F − rt × Q.
-        eq(
+        sys.eq(
             &[(c + 2, i_c), (f, ro[1]), (f + 1, -ro[0]), (q, -rt[1]), (q + 1, rt[0])],
             0.0,
         );
         // The pivot does not accelerate: a + α × ro − w² ro = 0.
-        eq(&[(c, 1.0), (c + 2, -ro[1])], w * w * ro[0]);
-        eq(&[(c + 1, 1.0), (c + 2, ro[0])], w * w * ro[1]);
+        sys.eq(&[(c, 1.0), (c + 2, -ro[1])], w * w * ro[0]);
+        sys.eq(&[(c + 1, 1.0), (c + 2, ro[0])], w * w * ro[1]);
         // The beam's support moves with the column's corner.
         let rb = sub(l.top[k], l.beam);
-        eq(&[(6, 1.0), (8, -rb[1]), (c, -1.0), (c + 2, rt[1])], -w * w * rt[0]);
-        eq(&[(7, 1.0), (8, rb[0]), (c + 1, -1.0), (c + 2, -rt[0])], -w * w * rt[1]);
+        sys.eq(&[(6, 1.0), (8, -rb[1]), (c, -1.0), (c + 2, rt[1])], -w * w * rt[0]);
+        sys.eq(&[(7, 1.0), (8, rb[0]), (c + 1, -1.0), (c + 2, -rt[0])], -w * w * rt[1]);
     }
     let rb = [sub(l.top[0], l.beam), sub(l.top[1], l.beam)];
-    eq(&[(6, mb), (13, -1.0), (15, -1.0)], -mb * G * a);
-    eq(&[(7, mb), (14, -1.0), (16, -1.0)], -mb * G * (1.0 + av));
-    eq(
-        &[
-            (8, i_b),
-            (13, rb[0][1]),
-            (14, -rb[0][0]),
-            (15, rb[1][1]),
-            (16, -rb[1][0]),
-        ],
-        0.0,
-    );
-    let x = solve(rows, rhs);
+    sys.beam(mb, i_b, rb, [-mb * G * a, -mb * G * (1.0 + av)]);
+    let x = sys.solve();
     let normals = [x[10] / (m * G), x[12] / (m * G)];
     (-x[2], x[0], normals, (x[14] + x[16]) / (mb * G))
 }
@@ -200,17 +219,7 @@ fn impact_ratio(b: f64, h: f64, beam_mass: f64) -> ([f64; 2], f64, [f64; 2]) {
     let span = 5.0;
     let l = layout(b, h, span, 0.0);
     let w0 = 1.0; // counter-clockwise: back towards upright from θ > 0
-    let n = 17;
-    let mut rows = Vec::new();
-    let mut rhs = Vec::new();
-    let mut eq = |coef: &[(usize, f64)], value: f64| {
-        let mut row = vec![0.0; n];
-        for &(j, c) in coef {
-            row[j] += c;
-        }
-        rows.push(row);
-        rhs.push(value);
-    };
+    let mut sys = Linear::default();
     // Velocities before: each column about its right corner, the beam with
     // the corner it rested on.
     let vel = |o: [f64; 2], p: [f64; 2]| {
@@ -226,32 +235,21 @@ fn impact_ratio(b: f64, h: f64, beam_mass: f64) -> ([f64; 2], f64, [f64; 2]) {
         let new_top = [x + b, 2.0 * h];
         let ro = sub(new_pivot, l.centre[k]);
         let rt = sub(new_top, l.centre[k]);
-        eq(&[(c, m), (f, -1.0), (q, 1.0)], m * v_before[0]);
-        eq(&[(c + 1, m), (f + 1, -1.0), (q + 1, 1.0)], m * v_before[1]);
-        eq(
+        sys.eq(&[(c, m), (f, -1.0), (q, 1.0)], m * v_before[0]);
+        sys.eq(&[(c + 1, m), (f + 1, -1.0), (q + 1, 1.0)], m * v_before[1]);
+        sys.eq(
             &[(c + 2, i_c), (f, ro[1]), (f + 1, -ro[0]), (q, -rt[1]), (q + 1, rt[0])],
             i_c * w0,
         );
-        eq(&[(c, 1.0), (c + 2, -ro[1])], 0.0);
-        eq(&[(c + 1, 1.0), (c + 2, ro[0])], 0.0);
+        sys.eq(&[(c, 1.0), (c + 2, -ro[1])], 0.0);
+        sys.eq(&[(c + 1, 1.0), (c + 2, ro[0])], 0.0);
         let rb = sub(new_top, l.beam);
-        eq(&[(6, 1.0), (8, -rb[1]), (c, -1.0), (c + 2, rt[1])], 0.0);
-        eq(&[(7, 1.0), (8, rb[0]), (c + 1, -1.0), (c + 2, -rt[0])], 0.0);
+        sys.eq(&[(6, 1.0), (8, -rb[1]), (c, -1.0), (c + 2, rt[1])], 0.0);
+        sys.eq(&[(7, 1.0), (8, rb[0]), (c + 1, -1.0), (c + 2, -rt[0])], 0.0);
     }
     let rb = [sub([b, 2.0 * h], l.beam), sub([span + b, 2.0 * h], l.beam)];
-    eq(&[(6, mb), (13, -1.0), (15, -1.0)], mb * beam_before[0]);
-    eq(&[(7, mb), (14, -1.0), (16, -1.0)], mb * beam_before[1]);
-    eq(
-        &[
-            (8, i_b),
-            (13, rb[0][1]),
-            (14, -rb[0][0]),
-            (15, rb[1][1]),
-            (16, -rb[1][0]),
-        ],
-        0.0,
-    );
-    let x = solve(rows, rhs);
+    sys.beam(mb, i_b, rb, [mb * beam_before[0], mb * beam_before[1]]);
+    let x = sys.solve();
     ([x[2] / w0, x[5] / w0], x[8], [x[10], x[12]])
 }
 

@@ -292,15 +292,7 @@ impl BlockSystem {
         if k_next > 0.0 && k_after > 0.0 {
             let v = post.w.abs();
             let r = if pre.w != 0.0 { (post.w / pre.w).abs() } else { 0.0 };
-            let dt = if r < 1.0 {
-                2.0 * v * (1.0 / k_next + r / k_after) / (1.0 - r * r)
-            } else {
-                2.0 * v / k_next
-            };
-            let mut t_acc = t + dt;
-            if t_acc <= t {
-                t_acc = t.next_up();
-            }
+            let t_acc = impact::accumulation_end(t, v, r, k_next, k_after);
             let mode = self.settle(flat, t_acc, &mut yn);
             record.after = Mode::Rock { pivot: striking };
             let rest = EventRecord {

@@ -32,6 +32,7 @@ use std::collections::VecDeque;
 
 use crate::integrate::Stepper;
 use crate::integrate::hybrid::{Advance, Driver, Limits, Observer, Outputs};
+use crate::model::rocker::RockerCore;
 use crate::model::system::{EventRecord, ModelError, N, THETA, THETA_DOT, X, X_DOT};
 use crate::model::{Mode, Model, Rocker, RockerVisitor, with_rocker};
 use crate::sim::Scenario;
@@ -119,17 +120,10 @@ impl<S: Stepper<N> + Send, R: Rocker> LiveDriver for Driver<S, R, N> {
 type AnyDriver = Box<dyn LiveDriver>;
 
 /// The model's system behind a pointer (the block's or a frame's): what
-/// the session asks of it between chunks, and the driver it starts. The
-/// stepping itself stays monomorphised inside the driver.
-trait LiveSystem: Send {
-    /// The parameters.
-    fn params(&self) -> &Model;
-    /// Normal and horizontal contact force per unit weight, for the plots.
-    fn forces(&self, mode: Mode, t: f64, y: &[f64; N]) -> (f64, f64);
-    /// |Θ| at which the model overturns.
-    fn overturn_angle(&self) -> f64;
-    /// A freshly entered mode made consistent.
-    fn settle_mode(&mut self, mode: Mode, t: f64, y: &mut [f64; N]) -> Mode;
+/// the session asks of it between chunks ([`RockerCore`]), a copy, and the
+/// driver it starts. The stepping itself stays monomorphised inside the
+/// driver.
+trait LiveSystem: RockerCore {
     /// A copy.
     fn boxed_clone(&self) -> Box<dyn LiveSystem>;
     /// A driver of `scenario`'s method for this system from `(t0, mode, y0)`.
@@ -144,18 +138,6 @@ trait LiveSystem: Send {
 }
 
 impl<R: Rocker> LiveSystem for R {
-    fn params(&self) -> &Model {
-        Rocker::params(self)
-    }
-    fn forces(&self, mode: Mode, t: f64, y: &[f64; N]) -> (f64, f64) {
-        self.contact_forces(mode, t, y)
-    }
-    fn overturn_angle(&self) -> f64 {
-        Rocker::overturn_angle(self)
-    }
-    fn settle_mode(&mut self, mode: Mode, t: f64, y: &mut [f64; N]) -> Mode {
-        Rocker::settle_mode(self, mode, t, y)
-    }
     fn boxed_clone(&self) -> Box<dyn LiveSystem> {
         Box::new(self.clone())
     }
@@ -273,7 +255,7 @@ impl Observer<Mode, EventRecord, N> for MainSink<'_> {
         let (normal, friction) = if mode.is_terminal() {
             (0.0, 0.0)
         } else {
-            self.probe.forces(mode, t, y)
+            self.probe.contact_forces(mode, t, y)
         };
         self.queue.samples.push_back(Sample {
             state: HistoryRow::of_state(t, mode, y),
