@@ -142,6 +142,13 @@ fn paths(code: &str) -> (Vec<Vec<String>>, Vec<Vec<String>>) {
         if code[..at].chars().next_back().is_some_and(is_ident) {
             continue;
         }
+        // A `use` item starts its line (after `pub` or `pub(…)`): the word
+        // in a string or a comment ("use --batch …") is not one.
+        let line = &code[code[..at].rfind('\n').map_or(0, |i| i + 1)..at];
+        let before = line.trim();
+        if !(before.is_empty() || before == "pub" || (before.starts_with("pub(") && before.ends_with(')'))) {
+            continue;
+        }
         let Some(end) = code[at..].find(';') else { continue };
         let trees = expand(&code[at + 4..at + end]);
         let head = code[..at].trim_end();

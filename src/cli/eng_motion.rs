@@ -12,7 +12,6 @@ use serde_json::{Value as Json, json};
 use super::eng_args::{RecordUnitArgs, input, read_record};
 use super::error::BatchError;
 use super::flags::Flags;
-use super::spectrum::PulseArg;
 use crate::analysis::engineering::Drive;
 use crate::analysis::engineering::request::{PulseRequest, RequestError, Scaling, unit};
 use crate::analysis::field::RequestField;
@@ -231,4 +230,26 @@ pub(crate) fn refuse_mixed_motion(
         )));
     }
     Ok(())
+}
+
+/// Pulse shapes on the command line.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum PulseArg {
+    /// Makris type A: a_p sin(ω_p t) over one period.
+    OneSine,
+    /// Makris type B: a_p cos(ω_p t) over one period.
+    OneCosine,
+    /// Makris type C_n (n = --cycles): zero final ground velocity and
+    /// displacement.
+    TypeC,
+}
+
+impl From<PulseArg> for ShapeKind {
+    fn from(p: PulseArg) -> Self {
+        match p {
+            PulseArg::OneSine => ShapeKind::OneSine,
+            PulseArg::OneCosine => ShapeKind::OneCosine,
+            PulseArg::TypeC => ShapeKind::TypeC,
+        }
+    }
 }

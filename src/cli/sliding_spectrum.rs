@@ -22,11 +22,11 @@ use serde_json::{Value as Json, json};
 
 use super::args::SceneArgs;
 use super::eng_args::{BaseArgs, Owns, RunArgs, block, input, positive_list, show};
+use super::eng_motion::PulseArg;
 use super::eng_motion::{Motion, MotionArgs, PulseScaleArgs, RecordArgs, motion_flags, refuse_mixed_motion};
 use super::error::BatchError;
 use super::flags::Flags;
 use super::pulse_map::MAX_OMEGA_RATIO;
-use super::spectrum::PulseArg;
 use super::sweep::{progress_bar, progress_fn, thread_pool};
 use crate::analysis::engineering::response::end_time_as;
 use crate::analysis::engineering::sliding_spectrum::{

@@ -21,7 +21,9 @@ use anyhow::{Context as _, anyhow};
 use serde_json::{Value as Json, json};
 
 use super::eng_args::{BaseArgs, Owns, RunArgs, VerticalArg, flag_error, input, positive_list, show};
-use super::eng_motion::{Motion, MotionArgs, PulseScaleArgs, RecordArgs, flagged, motion_flags, refuse_mixed_motion};
+use super::eng_motion::{
+    Motion, MotionArgs, PulseArg, PulseScaleArgs, RecordArgs, flagged, motion_flags, refuse_mixed_motion,
+};
 use super::error::BatchError;
 use super::pulse_map::MAX_OMEGA_RATIO;
 use super::sweep::{progress_bar, progress_fn, thread_pool};
@@ -36,29 +38,6 @@ use crate::io::engineering_files::{SpectrumRow, SpectrumWindowRow};
 use crate::io::output;
 use crate::plot::labels::{friction_text, num};
 use crate::plot::rocking_spectrum::{OverturnScaleFigure, OverturnSeries, SpectrumFigure, SpectrumSeries};
-use crate::sim::scenario::ShapeKind;
-
-/// Pulse shapes on the command line.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
-pub enum PulseArg {
-    /// Makris type A: a_p sin(ω_p t) over one period.
-    OneSine,
-    /// Makris type B: a_p cos(ω_p t) over one period.
-    OneCosine,
-    /// Makris type C_n (n = --cycles): zero final ground velocity and
-    /// displacement.
-    TypeC,
-}
-
-impl From<PulseArg> for ShapeKind {
-    fn from(p: PulseArg) -> Self {
-        match p {
-            PulseArg::OneSine => ShapeKind::OneSine,
-            PulseArg::OneCosine => ShapeKind::OneCosine,
-            PulseArg::TypeC => ShapeKind::TypeC,
-        }
-    }
-}
 
 /// The size axis on the command line.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
