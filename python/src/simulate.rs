@@ -46,7 +46,10 @@ pub fn scenario_lyapunov(cfg: &Scenario, method: Method) -> Result<Lyapunov, Fai
     })?;
     let opts = LyapunovOptions::for_scenario(cfg, method);
     lyapunov::lyapunov(&model, &cfg.initial, &opts).map_err(|e| match e {
-        LyapunovError::NotHarmonic | LyapunovError::NoTangent | LyapunovError::Option { .. } | LyapunovError::TooShort { .. } => Failure::Input {
+        LyapunovError::NotHarmonic
+        | LyapunovError::NoTangent
+        | LyapunovError::Option { .. }
+        | LyapunovError::TooShort { .. } => Failure::Input {
             key: "analysis.lyapunov".to_string(),
             message: format!("analysis.lyapunov: {e}"),
         },
