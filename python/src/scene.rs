@@ -64,14 +64,19 @@ impl Scene {
 }
 
 /// The section of an undotted keyword: the one section that has the key
-/// (`_norm` spellings stripped).
+/// (`_norm` spellings stripped). `width` and `height` are the block's, as
+/// they always were; a rocking frame's columns are `frame={"width": …}` or
+/// `"frame.width"`.
 fn section_of(typed: &str) -> PyResult<&'static str> {
     let (name, _) = strip_norm(None, typed);
-    let sections: Vec<&'static str> = KNOWN_KEYS
+    let mut sections: Vec<&'static str> = KNOWN_KEYS
         .iter()
         .filter(|(_, keys)| keys.contains(&name))
         .map(|(s, _)| *s)
         .collect();
+    if sections.contains(&"block") {
+        sections.retain(|s| *s != "frame");
+    }
     match sections.as_slice() {
         [one] => Ok(one),
         [] => {

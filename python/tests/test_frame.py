@@ -1,0 +1,29 @@
+"""A rocking frame ([frame], docs/model.md §16) from Python: the CLI's run and answer."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+import rocking
+from conftest import read_json
+
+
+def test_the_frame_preset_runs_as_the_cli_runs_it(cli, tmp_path: Path) -> None:
+    cli.ok("--batch", "--preset", "rocking-frame", "--out", str(tmp_path / "o"), "-q")
+    summary = read_json(tmp_path / "o" / "summary.json")
+    run = rocking.simulate("rocking-frame")
+    physical = run.summary["physical"]
+    assert physical == summary["physical"]
+    assert [b["name"] for b in physical["bodies"]] == ["column 1", "column 2", "beam"]
+    assert run.summary["config"]["frame"] == {"width": 0.7, "height": 4.2, "columns": 2, "beam_mass_ratio": 2.0}
+
+
+def test_a_frame_from_its_section_and_the_blocks_width_keyword_stay_apart() -> None:
+    lone = rocking.Scene("rocking-frame", frame={"beam_mass_ratio": 0.0})
+    assert lone.to_dict()["frame"]["beam_mass_ratio"] == 0.0
+    assert rocking.simulate(lone).summary["physical"]["overturned"]
+    # `width=` is the block's, as it always was: with [frame] it is refused.
+    with pytest.raises(rocking.ConfigError, match="one of \\[block\\] and \\[frame\\]"):
+        rocking.Scene("rocking-frame", width=1.0)
