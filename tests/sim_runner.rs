@@ -408,3 +408,40 @@ fn dropping_the_handle_shuts_the_thread_down_and_joins_it() {
         assert!(start.elapsed() < Duration::from_secs(2), "shutdown is prompt");
     }
 }
+
+/// The live app ends a rocking frame's scene as `--batch` does: the lone
+/// columns overturn at the batch run's tumble time, bit for bit, and the
+/// frame under its heavy beam comes to rest with the batch run's peak.
+#[test]
+fn a_frame_ends_live_as_its_batch_run_ends() {
+    for (sets, tumbles) in [(&["frame.beam_mass_ratio=0"][..], true), (&[][..], false)] {
+        let cfg = preset("rocking-frame", sets);
+        let batch = simulate(cfg.model().expect("model"), &cfg.initial, &cfg.run_options()).expect("batch run");
+        let h = SimHandle::spawn(cfg, Speed::Max, false, no_waker()).expect("thread starts");
+        let got = collect(&h, Duration::from_secs(60), |u| {
+            u.iter().any(|x| matches!(x, SimUpdate::Finished { .. }))
+        });
+        let end = got
+            .iter()
+            .find_map(|u| match u {
+                SimUpdate::Finished { end, .. } => Some(end.clone()),
+                _ => None,
+            })
+            .expect("the run finished");
+        match end {
+            RunEnd::Terminal { tau, .. } => {
+                assert!(tumbles, "{end:?}");
+                assert_eq!(Some(tau), batch.tumble_tau);
+            }
+            RunEnd::Rest { tau, max_abs_theta, .. } => {
+                assert!(!tumbles, "{end:?}");
+                // The live run stops on the chunk grid after coming to rest
+                // where the batch run did, with the same peak.
+                let last_rest = batch.tallies.last_rest_tau.expect("the batch run rests");
+                assert!(tau >= last_rest, "stopped at τ {tau} before the rest at {last_rest}");
+                assert_eq!(max_abs_theta, batch.max_abs_theta);
+            }
+            other => panic!("{other:?}"),
+        }
+    }
+}
