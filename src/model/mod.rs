@@ -17,6 +17,7 @@ pub mod oscillator;
 pub mod params;
 pub mod rocker;
 pub mod series;
+pub mod stack;
 pub mod state;
 pub mod system;
 pub mod units;

@@ -1,0 +1,257 @@
+//! A stack's equations of motion, the loads its interfaces carry and the
+//! impulse of an impact (docs/model.md §18.3–18.5).
+//!
+//! With the open interfaces' rotations q_f as coordinates, the partial
+//! velocity of block j's centre is v_jf = J(c_j − P_f) (f ≤ j) and of its
+//! rotation 1, so Lagrange's equations read M q'' = b with
+//! M_fg = Σ_{j ≥ max(f, g)} (m_j v_jf·v_jg + I_j) and
+//! b_f = −Σ_{j ≥ f} m_j v_jf·(κ_j − g_e), where κ_j = Σ_f q_f' J(c_j' − P_f')
+//! is the part of c_j'' that does not depend on q'' and g_e the effective
+//! gravity in the base frame, (−a_h, −(g + a_v)). Contact forces at stuck
+//! pivots and closed faces do no work in these coordinates, so they do
+//! not appear.
+
+use super::pose::{Pose, V2, dot, quarter, sub};
+use super::{Contact, MAX_BLOCKS, StackGeometry};
+
+/// Accelerations of a stack at one state.
+#[derive(Clone, Copy, Debug)]
+pub struct StackAccel {
+    /// Each interface's q_i'', rad per τ² (0 when closed or glued).
+    pub q_ddot: [f64; MAX_BLOCKS],
+    /// Each block's centre's acceleration, m per τ².
+    pub centre_acc: [V2; MAX_BLOCKS],
+    /// Each block's angular acceleration φ_j'', rad per τ².
+    pub alpha: [f64; MAX_BLOCKS],
+}
+
+/// What interface i carries, per weight of the blocks above it
+/// (M_i G, G = g/p²): the resultant of the contact forces on the blocks
+/// above, and its generalised force about each end of the overlap.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct InterfaceLoad {
+    /// Normal force, along the lower face's normal (> 0: pressing).
+    pub normal: f64,
+    /// Tangential force, along the lower face.
+    pub tangential: f64,
+    /// Λ_L/(M_i G), m: −N times the resultant's distance from the left
+    /// corner. ≤ 0 while the resultant is right of the left corner.
+    pub about_left: f64,
+    /// Λ_R/(M_i G), m: N times the resultant's distance from the right
+    /// corner. ≥ 0 while the resultant is left of the right corner.
+    pub about_right: f64,
+}
+
+impl InterfaceLoad {
+    /// How far a closed face is from opening on its right corner (≥ 0:
+    /// the resultant is inside), per weight times m.
+    pub fn right_margin(&self) -> f64 {
+        self.about_right
+    }
+
+    /// How far a closed face is from opening on its left corner.
+    pub fn left_margin(&self) -> f64 {
+        -self.about_left
+    }
+}
+
+/// Whether interface `i` is a coordinate in `contacts`.
+#[inline]
+pub(crate) fn is_open(geo: &StackGeometry, contacts: &[Contact; MAX_BLOCKS], i: usize) -> bool {
+    contacts[i] != Contact::Closed && !geo.glued[i]
+}
+
+/// Solves the symmetric positive definite `a x = b` of size `n` in place
+/// (Cholesky; n ≤ [`MAX_BLOCKS`]).
+fn solve_spd(a: &mut [[f64; MAX_BLOCKS]; MAX_BLOCKS], b: &mut [f64; MAX_BLOCKS], n: usize) {
+    for j in 0..n {
+        let mut d = a[j][j];
+        for k in 0..j {
+            d -= a[j][k] * a[j][k];
+        }
+        let d = d.sqrt();
+        a[j][j] = d;
+        for i in j + 1..n {
+            let mut s = a[i][j];
+            for k in 0..j {
+                s -= a[i][k] * a[j][k];
+            }
+            a[i][j] = s / d;
+        }
+    }
+    for i in 0..n {
+        let mut s = b[i];
+        for k in 0..i {
+            s -= a[i][k] * b[k];
+        }
+        b[i] = s / a[i][i];
+    }
+    for i in (0..n).rev() {
+        let mut s = b[i];
+        for k in i + 1..n {
+            s -= a[k][i] * b[k];
+        }
+        b[i] = s / a[i][i];
+    }
+}
+
+/// The open interfaces of `contacts`, bottom to top, and their count.
+fn open_set(geo: &StackGeometry, contacts: &[Contact; MAX_BLOCKS]) -> ([usize; MAX_BLOCKS], usize) {
+    let mut free = [0; MAX_BLOCKS];
+    let mut n = 0;
+    for i in 0..geo.k {
+        if is_open(geo, contacts, i) {
+            free[n] = i;
+            n += 1;
+        }
+    }
+    (free, n)
+}
+
+/// The mass matrix of the open coordinates `free[..n]` at `pose`.
+fn mass_matrix(geo: &StackGeometry, pose: &Pose, free: &[usize], n: usize) -> [[f64; MAX_BLOCKS]; MAX_BLOCKS] {
+    let mut m = [[0.0; MAX_BLOCKS]; MAX_BLOCKS];
+    for a in 0..n {
+        for b in 0..=a {
+            let lo = free[a].max(free[b]);
+            let mut s = 0.0;
+            for j in lo..geo.k {
+                let va = quarter(sub(pose.centre[j], pose.pivot[free[a]]));
+                let vb = quarter(sub(pose.centre[j], pose.pivot[free[b]]));
+                s += geo.mass[j] * dot(va, vb) + geo.inertia[j];
+            }
+            m[a][b] = s;
+            m[b][a] = s;
+        }
+    }
+    m
+}
+
+/// The accelerations of `pose` with contacts `contacts` under the
+/// effective gravity `g_e` (m per τ², base frame).
+pub fn accelerations(geo: &StackGeometry, contacts: &[Contact; MAX_BLOCKS], pose: &Pose, g_e: V2) -> StackAccel {
+    let k = geo.k;
+    // κ_j: the centre's acceleration at q'' = 0.
+    let mut kappa = [[0.0; 2]; MAX_BLOCKS];
+    for (j, kj) in kappa.iter_mut().enumerate().take(k) {
+        for i in 0..=j {
+            let qd = pose.q_dot[i];
+            if qd != 0.0 {
+                let u = quarter(sub(pose.centre_vel[j], pose.pivot_vel[i]));
+                kj[0] += qd * u[0];
+                kj[1] += qd * u[1];
+            }
+        }
+    }
+    let (free, n) = open_set(geo, contacts);
+    let mut m = mass_matrix(geo, pose, &free, n);
+    let mut b = [0.0; MAX_BLOCKS];
+    for a in 0..n {
+        let f = free[a];
+        let mut s = 0.0;
+        for j in f..k {
+            let v = quarter(sub(pose.centre[j], pose.pivot[f]));
+            s -= geo.mass[j] * dot(v, sub(kappa[j], g_e));
+        }
+        b[a] = s;
+    }
+    solve_spd(&mut m, &mut b, n);
+    let mut q_ddot = [0.0; MAX_BLOCKS];
+    for a in 0..n {
+        q_ddot[free[a]] = b[a];
+    }
+    let mut centre_acc = kappa;
+    let mut alpha = [0.0; MAX_BLOCKS];
+    let mut turn = 0.0;
+    for j in 0..k {
+        turn += q_ddot[j];
+        alpha[j] = turn;
+        for (i, &qdd) in q_ddot.iter().enumerate().take(j + 1) {
+            if qdd != 0.0 {
+                let v = quarter(sub(pose.centre[j], pose.pivot[i]));
+                centre_acc[j][0] += qdd * v[0];
+                centre_acc[j][1] += qdd * v[1];
+            }
+        }
+    }
+    StackAccel {
+        q_ddot,
+        centre_acc,
+        alpha,
+    }
+}
+
+/// The load on interface `i` at `pose` with accelerations `acc`, per
+/// weight of the blocks above at gravity `g_unit` (g/p², m per τ²).
+pub fn interface_load(geo: &StackGeometry, pose: &Pose, acc: &StackAccel, g_e: V2, g_unit: f64, i: usize) -> InterfaceLoad {
+    let (normal_dir, along, left, right) = if i == 0 {
+        ([0.0, 1.0], [1.0, 0.0], geo.corners[0][0], geo.corners[0][1])
+    } else {
+        (
+            pose.direction(i - 1, [0.0, 1.0]),
+            pose.direction(i - 1, [1.0, 0.0]),
+            pose.place(i - 1, geo.corners[i][0]),
+            pose.place(i - 1, geo.corners[i][1]),
+        )
+    };
+    let mut force = [0.0; 2];
+    let (mut about_left, mut about_right) = (0.0, 0.0);
+    for j in i..geo.k {
+        let f = [
+            geo.mass[j] * (acc.centre_acc[j][0] - g_e[0]),
+            geo.mass[j] * (acc.centre_acc[j][1] - g_e[1]),
+        ];
+        force[0] += f[0];
+        force[1] += f[1];
+        let spin = geo.inertia[j] * acc.alpha[j];
+        about_left += dot(f, quarter(sub(pose.centre[j], left))) + spin;
+        about_right += dot(f, quarter(sub(pose.centre[j], right))) + spin;
+    }
+    let weight = geo.mass_above(i) * g_unit;
+    InterfaceLoad {
+        normal: dot(force, normal_dir) / weight,
+        tangential: dot(force, along) / weight,
+        about_left: about_left / weight,
+        about_right: about_right / weight,
+    }
+}
+
+/// The interface rates just after an impact, in which the contacts become
+/// `after` (the impacting interfaces' new pivots stick and do not bounce,
+/// every other contact holds): the velocities in `after`'s coordinates
+/// that keep the generalised momentum of each of them,
+/// M(after) q'⁺ = Σ_j (m_j v_jf·c_j'⁻ + I_j φ_j'⁻) (docs/model.md §18.5).
+/// `before` is the pose just before (its velocities), `at` the same
+/// positions with `after`'s pivots.
+pub fn impact_rates(geo: &StackGeometry, after: &[Contact; MAX_BLOCKS], before: &Pose, at: &Pose) -> [f64; MAX_BLOCKS] {
+    let (free, n) = open_set(geo, after);
+    let mut m = mass_matrix(geo, at, &free, n);
+    let mut b = [0.0; MAX_BLOCKS];
+    for a in 0..n {
+        let f = free[a];
+        let mut s = 0.0;
+        for j in f..geo.k {
+            let v = quarter(sub(at.centre[j], at.pivot[f]));
+            s += geo.mass[j] * dot(v, before.centre_vel[j]) + geo.inertia[j] * before.omega[j];
+        }
+        b[a] = s;
+    }
+    solve_spd(&mut m, &mut b, n);
+    let mut q_dot = [0.0; MAX_BLOCKS];
+    for a in 0..n {
+        q_dot[free[a]] = b[a];
+    }
+    q_dot
+}
+
+/// Kinetic energy of `pose`, m² per τ² times mass.
+pub fn kinetic(geo: &StackGeometry, pose: &Pose) -> f64 {
+    (0..geo.k)
+        .map(|j| 0.5 * (geo.mass[j] * dot(pose.centre_vel[j], pose.centre_vel[j]) + geo.inertia[j] * pose.omega[j] * pose.omega[j]))
+        .sum()
+}
+
+/// Potential energy of `pose` at gravity `g_unit`, relative to rest.
+pub fn potential(geo: &StackGeometry, pose: &Pose, g_unit: f64) -> f64 {
+    (0..geo.k).map(|j| geo.mass[j] * g_unit * (pose.centre[j][1] - geo.centre[j][1])).sum()
+}
