@@ -23,6 +23,9 @@ const RALSTON_STEPS_PER_S: f64 = 1e7;
 /// succeeds.
 pub fn run(cli: &Cli) -> Result<(), BatchError> {
     let cfg: Scenario = cli.scene.load().map_err(|e| BatchError::Input(e.into()))?;
+    if cfg.stack.is_some() {
+        return super::stack_batch::run(cli, &cfg);
+    }
     let model = cfg.model().map_err(|e| BatchError::Input(e.into()))?;
     for warning in cfg.warnings() {
         eprintln!("{warning}");

@@ -29,6 +29,7 @@ pub mod pulse_map;
 pub mod reproduce;
 pub mod sliding_spectrum;
 pub mod spectrum;
+pub mod stack_batch;
 pub mod suite;
 pub mod sweep;
 pub mod write;

@@ -17,6 +17,7 @@ pub mod record;
 mod resolved;
 pub mod shipped;
 pub mod sliding_files;
+pub mod stack_files;
 pub mod staging;
 pub mod sweep_files;
 

@@ -53,7 +53,13 @@ pub(crate) fn both_ways(d: Dimension, bare: f64, geo: &Geometry) -> Json {
 /// The key of the structure's section: `block`, or `frame` (whose
 /// columns the sizes are).
 pub(crate) fn structure_key(cfg: &Scenario) -> &'static str {
-    if cfg.frame.is_some() { "frame" } else { "block" }
+    if cfg.frame.is_some() {
+        "frame"
+    } else if cfg.stack.is_some() {
+        "stack"
+    } else {
+        "block"
+    }
 }
 
 /// Every resolved input both ways, normalised (as the scenario stores it)
@@ -100,6 +106,29 @@ pub fn resolved_json(cfg: &Scenario) -> Json {
         if let Some(section) = sections.get_mut(k.section()).and_then(Json::as_object_mut) {
             section.insert(name.to_string(), value);
         }
+    }
+    // A stack: each block's size, slenderness and own frequency, bottom to
+    // top (the bottom one's p is the run's time unit).
+    if let (Some(blocks), Some(obj)) = (&cfg.stack, sections.as_object_mut()) {
+        let list: Vec<Json> = blocks
+            .iter()
+            .map(|b| {
+                let g = crate::model::Geometry::new(b.width, b.height);
+                json!({
+                    "width_m": b.width,
+                    "height_m": b.height,
+                    "offset_m": b.offset,
+                    "half_diagonal_m": g.r,
+                    "alpha_rad": g.psi,
+                    "alpha_deg": g.psi.to_degrees(),
+                    "p_rad_s": g.p,
+                    "uplift_acceleration_g": g.tan_psi,
+                    "static": if b.mu_s.is_finite() { json!(b.mu_s) } else { json!("inf") },
+                    "glued": b.glued,
+                })
+            })
+            .collect();
+        obj.insert("stack".to_string(), Json::Array(list));
     }
     sections
 }

@@ -212,6 +212,7 @@ impl Physical {
                 format!("frame impact r = {r:.3} (docs/model.md §16.3)")
             }
             ("housner", Some(r)) => format!("Housner impact r = {r:.3}"),
+            ("stack", _) => "impacts with each new pivot stuck (docs/model.md §18.5)".to_string(),
             (law, Some(r)) => format!("{law} impact r = {r:.3}"),
             (law, None) => format!("{law} impact"),
         };
@@ -277,7 +278,10 @@ impl Physical {
                 self.t_overturn_s.unwrap_or(self.t_end_s)
             ),
             EndState::Flight => format!(
-                "left the ground (flight) at t = {:.2} s{input}: {motion}; the model stops there",
+                "{}left the ground (flight) at t = {:.2} s{input}: {motion}; the model stops there",
+                self.subject
+                    .filter(|s| s.ends_with("block"))
+                    .map_or(String::new(), |s| format!("{s} ")),
                 self.t_end_s
             ),
             EndState::Rest => format!(

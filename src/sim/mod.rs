@@ -16,6 +16,9 @@ pub mod protocol;
 mod run;
 pub mod runner;
 pub mod scenario;
+pub mod stack_answer;
+mod stack_rules;
+pub mod stack_run;
 mod validate;
 
 pub use answer::Physical;

@@ -27,6 +27,7 @@ use crate::model::excitation::{
     Excitation, FloorExcitation, FloorMode, Harmonic, Pulse, PulsePair, PulseShape, RecordExcitation,
 };
 use crate::model::oscillator::Oscillator;
+use crate::model::stack::StackBlock;
 use crate::model::units::AccelUnit;
 use crate::model::{FlightPolicy, Frame, Geometry, ImpactLaw, Model};
 
@@ -504,6 +505,11 @@ pub struct Scenario {
     /// A rocking frame (config `[frame]`) whose columns are `block`'s
     /// width and height; `None`: the single block.
     pub frame: Option<Frame>,
+    /// A stack of blocks (config `[[stack]]` with two or more tables),
+    /// bottom to top; `block` is then its bottom block, whose p and ψ are
+    /// the run's τ and amplitude units. `None`: the single block (a
+    /// one-table stack is read as that block).
+    pub stack: Option<Vec<StackBlock>>,
 }
 
 impl Default for Scenario {
@@ -567,6 +573,7 @@ impl Default for Scenario {
             },
             floor: None,
             frame: None,
+            stack: None,
         }
     }
 }
@@ -737,8 +744,16 @@ impl Scenario {
         })
     }
 
-    /// The model.
+    /// The model. A stack has none of the block's kind: it is run by
+    /// [`stack_run::simulate_stack`](super::stack_run::simulate_stack)
+    /// alone, so every study built on the block's model refuses it.
     pub fn model(&self) -> Result<Model, ScenarioError> {
+        if self.stack.is_some() {
+            return Err(ScenarioError::new(
+                "stack",
+                "a [[stack]] is simulated one run at a time so far: sweeps, maps, spectra, fragility, Lyapunov exponents, the app and Python take a [block] or a [frame]",
+            ));
+        }
         Ok(Model {
             geo: self.geometry(),
             mu_s: self.block.mu_s,
@@ -750,6 +765,13 @@ impl Scenario {
             zeno_eps: self.run.zeno_eps,
             frame: self.frame,
         })
+    }
+
+    /// The stack's shape, for a scenario with a `[[stack]]`.
+    pub fn stack_geometry(&self) -> Option<crate::model::stack::StackGeometry> {
+        self.stack
+            .as_ref()
+            .and_then(|b| crate::model::stack::StackGeometry::new(b).ok())
     }
 
     /// The end of the record in τ (the later of its two components' last

@@ -31,7 +31,7 @@ fn within_spec(spec: &KeySpec, value: f64) -> Result<(), ScenarioError> {
 }
 
 /// `Ok` if `ok`, else "`key`: `value` is out of range: must be `allowed`".
-fn check(key: &str, ok: bool, allowed: &str, value: f64) -> Result<(), ScenarioError> {
+pub(super) fn check(key: &str, ok: bool, allowed: &str, value: f64) -> Result<(), ScenarioError> {
     if ok {
         Ok(())
     } else {
@@ -46,6 +46,7 @@ fn check(key: &str, ok: bool, allowed: &str, value: f64) -> Result<(), ScenarioE
 impl Scenario {
     /// Checks every rule; the first broken one is the error.
     pub fn validate(&self) -> Result<(), ScenarioError> {
+        self.validate_stack()?;
         if self.frame.is_some() {
             self.validate_frame()?;
         } else {

@@ -12,8 +12,15 @@ use crate::sim::scenario::Record;
 
 /// Keys the echo leaves out: a record's PGA and `run.t_end` are other
 /// ways of writing `scale_*` and `run.tau_end`, which it writes; the floor's
-/// keys are written as they were given ([`floor_json`]).
-const NOT_ECHOED: [&str; 7] = [
+/// keys are written as they were given ([`floor_json`]), a stack's as its
+/// tables ([`stack_json`]).
+const NOT_ECHOED: [&str; 13] = [
+    "stack.width",
+    "stack.height",
+    "stack.offset",
+    "stack.static",
+    "stack.kinetic",
+    "stack.glued",
     "excitation.pga_h",
     "excitation.pga_v",
     "run.t_end",
@@ -40,6 +47,9 @@ pub fn to_json(s: &Scenario) -> Json {
     if let Some(floor) = &s.floor {
         sections.insert("floor".to_string(), floor_json(floor));
     }
+    if let Some(blocks) = &s.stack {
+        sections.insert("stack".to_string(), stack_json(blocks));
+    }
     Json::Object(sections)
 }
 
@@ -48,7 +58,7 @@ pub fn to_json(s: &Scenario) -> Json {
 /// its columns do not slide), a block as `[block]` and `[friction]`.
 fn describes(section: &str, s: &Scenario) -> bool {
     match section {
-        "block" | "friction" => s.frame.is_none(),
+        "block" | "friction" => s.frame.is_none() && s.stack.is_none(),
         "frame" => s.frame.is_some(),
         _ => true,
     }
@@ -122,6 +132,27 @@ fn other(k: &KeySpec, s: &Scenario, tail_s: Option<f64>) -> Option<Json> {
         // fails until it is written or listed in NOT_ECHOED.
         _ => return None,
     })
+}
+
+/// `[[stack]]` as the config writes it back: one table per block, infinite
+/// friction as `"inf"`, an absent kinetic coefficient as `null`.
+fn stack_json(blocks: &[crate::model::stack::StackBlock]) -> Json {
+    let coefficient = |x: f64| if x.is_finite() { json!(x) } else { json!("inf") };
+    Json::Array(
+        blocks
+            .iter()
+            .map(|b| {
+                json!({
+                    "width": b.width,
+                    "height": b.height,
+                    "offset": b.offset,
+                    "static": coefficient(b.mu_s),
+                    "kinetic": b.mu_k.map(coefficient),
+                    "glued": b.glued,
+                })
+            })
+            .collect(),
+    )
 }
 
 /// `[floor]` as the config writes it back: one mode's keys, or the

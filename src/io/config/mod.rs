@@ -22,6 +22,7 @@ mod floor;
 mod quantity;
 mod raw;
 mod set;
+mod stack;
 
 pub use echo::to_json;
 pub use error::ConfigError;
@@ -433,12 +434,6 @@ fn frame_alone(table: &Table) -> Result<(), ConfigError> {
 /// Deserialises `table` into the config's shape; a value of the wrong type
 /// is an error naming its key.
 fn raw(table: &Table) -> Result<RawConfig, ConfigError> {
-    if table.contains_key("stack") {
-        return Err(ConfigError::key(
-            "stack",
-            "stacks of blocks are not simulated yet: this version runs a single [block] or a rocking [frame]",
-        ));
-    }
     reject_unknown(table)?;
     serde_path_to_error::deserialize(toml::Value::Table(table.clone())).map_err(|e| {
         let key = e.path().to_string();
@@ -496,8 +491,12 @@ fn resolve(table: &Table, source: &Source, records: [RecordFrom<'_>; 2]) -> Resu
             q.resolve(key, Dimension::Length, &Geometry::new(1.0, 1.0))
         })
     };
-    let (block, frame) = match &raw.frame {
-        None => (
+    let (block, frame, stack) = match (&raw.frame, &raw.stack) {
+        (_, Some(tables)) => {
+            let (block, stack) = stack::resolve(table, tables)?;
+            (block, None, stack)
+        }
+        (None, None) => (
             Block {
                 width: metres("block.width", raw.block.width, d.block.width)?,
                 height: metres("block.height", raw.block.height, d.block.height)?,
@@ -505,8 +504,9 @@ fn resolve(table: &Table, source: &Source, records: [RecordFrom<'_>; 2]) -> Resu
                 mu_k: coef(raw.friction.mu_k),
             },
             None,
+            None,
         ),
-        Some(f) => {
+        (Some(f), None) => {
             frame_alone(table)?;
             let required = |key: &str, what: &str| ConfigError::key(key, format!("is required with [frame] ({what})"));
             let size = |key: &str, q: Option<Quantity>, what: &str| -> Result<f64, ConfigError> {
@@ -530,13 +530,14 @@ fn resolve(table: &Table, source: &Source, records: [RecordFrom<'_>; 2]) -> Resu
                 columns: f.columns.map_or(2, |Count(n)| u32::try_from(n).unwrap_or(u32::MAX)),
                 beam_mass_ratio: beam.0,
             };
-            (block, Some(frame))
+            (block, Some(frame), None)
         }
     };
     // The block is checked before any conversion uses its geometry.
     Scenario {
         block: block.clone(),
         frame,
+        stack: stack.clone(),
         ..Scenario::default()
     }
     .validate()?;
@@ -660,6 +661,7 @@ fn resolve(table: &Table, source: &Source, records: [RecordFrom<'_>; 2]) -> Resu
         analyses,
         floor,
         frame,
+        stack,
     };
     scenario.validate()?;
     Ok(scenario)

@@ -39,6 +39,22 @@ pub(crate) struct RawConfig {
     pub floor: Option<RawFloor>,
     /// `[frame]`: a rocking frame instead of the single block.
     pub frame: Option<RawFrame>,
+    /// `[[stack]]`: stacked blocks instead of the single block.
+    pub stack: Option<Vec<RawStackBlock>>,
+}
+
+/// One `[[stack]]` table: a block of a stack, bottom to top.
+#[derive(Debug, Default, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub(crate) struct RawStackBlock {
+    pub width: Option<Quantity>,
+    pub height: Option<Quantity>,
+    pub offset: Option<Quantity>,
+    #[serde(rename = "static")]
+    pub mu_s: Option<Coefficient>,
+    #[serde(rename = "kinetic")]
+    pub mu_k: Option<Coefficient>,
+    pub glued: Option<bool>,
 }
 
 /// `[frame]`: the columns' size, their number and the cap beam's mass.

@@ -183,7 +183,14 @@ pub fn accelerations(geo: &StackGeometry, contacts: &[Contact; MAX_BLOCKS], pose
 
 /// The load on interface `i` at `pose` with accelerations `acc`, per
 /// weight of the blocks above at gravity `g_unit` (g/p², m per τ²).
-pub fn interface_load(geo: &StackGeometry, pose: &Pose, acc: &StackAccel, g_e: V2, g_unit: f64, i: usize) -> InterfaceLoad {
+pub fn interface_load(
+    geo: &StackGeometry,
+    pose: &Pose,
+    acc: &StackAccel,
+    g_e: V2,
+    g_unit: f64,
+    i: usize,
+) -> InterfaceLoad {
     let (normal_dir, along, left, right) = if i == 0 {
         ([0.0, 1.0], [1.0, 0.0], geo.corners[0][0], geo.corners[0][1])
     } else {
@@ -247,11 +254,16 @@ pub fn impact_rates(geo: &StackGeometry, after: &[Contact; MAX_BLOCKS], before: 
 /// Kinetic energy of `pose`, m² per τ² times mass.
 pub fn kinetic(geo: &StackGeometry, pose: &Pose) -> f64 {
     (0..geo.k)
-        .map(|j| 0.5 * (geo.mass[j] * dot(pose.centre_vel[j], pose.centre_vel[j]) + geo.inertia[j] * pose.omega[j] * pose.omega[j]))
+        .map(|j| {
+            0.5 * (geo.mass[j] * dot(pose.centre_vel[j], pose.centre_vel[j])
+                + geo.inertia[j] * pose.omega[j] * pose.omega[j])
+        })
         .sum()
 }
 
 /// Potential energy of `pose` at gravity `g_unit`, relative to rest.
 pub fn potential(geo: &StackGeometry, pose: &Pose, g_unit: f64) -> f64 {
-    (0..geo.k).map(|j| geo.mass[j] * g_unit * (pose.centre[j][1] - geo.centre[j][1])).sum()
+    (0..geo.k)
+        .map(|j| geo.mass[j] * g_unit * (pose.centre[j][1] - geo.centre[j][1]))
+        .sum()
 }

@@ -10,7 +10,9 @@ pub enum StackShapeError {
     #[error("a stack has 2 to {MAX_BLOCKS} blocks (one block is a [block]); got {0}")]
     Count(usize),
     /// A block's face does not overlap the one below.
-    #[error("block {index} (from the bottom, 1-based) does not rest on the block below: its offset puts its face beside the lower block's top")]
+    #[error(
+        "block {index} (from the bottom, 1-based) does not rest on the block below: its offset puts its face beside the lower block's top"
+    )]
     NoOverlap {
         /// 1-based index of the block.
         index: usize,

@@ -31,7 +31,7 @@ mod tests;
 pub use dynamics::{InterfaceLoad, StackAccel};
 pub use geometry::{StackGeometry, StackShapeError};
 pub use pose::Pose;
-pub use system::{StackEnd, StackEvent, StackEventKind, StackMode, StackSystem, StackTally};
+pub use system::{StackEnd, StackError, StackEvent, StackEventKind, StackMode, StackSystem, StackTally};
 
 /// Most blocks in a stack: the driver's guard budget (one guard per
 /// interface, one per block's rotation extremum and one per interface's
@@ -60,6 +60,10 @@ pub struct StackBlock {
     /// Sliding inside a stack is not followed: a demand reaching it stops
     /// the run with its time and value.
     pub mu_s: f64,
+    /// Kinetic friction coefficient at its lower face, as given (`None`:
+    /// the static one). Kept for the config's echo: a run stops before any
+    /// slip inside a stack, so it never acts.
+    pub mu_k: Option<f64>,
     /// Whether its lower face is glued (never opens: an anchored object).
     pub glued: bool,
 }

@@ -87,7 +87,11 @@ impl Pose {
             pose.centre[j] = pose.place(j, geo.centre[j]);
         }
         for j in 0..k {
-            pose.pivot_vel[j] = if j == 0 { [0.0; 2] } else { pose.velocity(j - 1, pose.pivot[j]) };
+            pose.pivot_vel[j] = if j == 0 {
+                [0.0; 2]
+            } else {
+                pose.velocity(j - 1, pose.pivot[j])
+            };
             pose.centre_vel[j] = pose.velocity(j, pose.centre[j]);
         }
         pose

@@ -56,7 +56,11 @@ impl StackMode {
         match self.end {
             Some(StackEnd::Overturned(_)) => "tumbled".to_string(),
             Some(StackEnd::Flight(_)) => "flight".to_string(),
-            None => self.contacts[..k].iter().map(|c| c.name()).collect::<Vec<_>>().join("/"),
+            None => self.contacts[..k]
+                .iter()
+                .map(|c| c.name())
+                .collect::<Vec<_>>()
+                .join("/"),
         }
     }
 }
@@ -274,7 +278,10 @@ impl StackSystem {
             };
             if open {
                 consider(Ending::Flight, load.normal);
-                consider(Ending::Overturn, self.overturn_margin(&s.pose, mode.contacts[i], i) / self.geo.r1);
+                consider(
+                    Ending::Overturn,
+                    self.overturn_margin(&s.pose, mode.contacts[i], i) / self.geo.r1,
+                );
             }
             if finite_mu {
                 consider(Ending::Slip, self.slip_margin(&load, i));
@@ -356,7 +363,11 @@ impl StackSystem {
         let s = self.snapshot(&mode.contacts, t, y);
         let load = self.load(&s, i);
         let mut contacts = mode.contacts;
-        contacts[i] = if load.right_margin() <= load.left_margin() { Contact::Right } else { Contact::Left };
+        contacts[i] = if load.right_margin() <= load.left_margin() {
+            Contact::Right
+        } else {
+            Contact::Left
+        };
         let mut y = *y;
         let contacts = self.settle(contacts, t, &mut y);
         let after = Self::running(contacts);
@@ -379,7 +390,11 @@ impl StackSystem {
             if hits && !self.geo.glued[j] {
                 impacting[j] = true;
                 y[j] = 0.0;
-                contacts[j] = if c == Contact::Right { Contact::Left } else { Contact::Right };
+                contacts[j] = if c == Contact::Right {
+                    Contact::Left
+                } else {
+                    Contact::Right
+                };
             }
         }
         let mut rates = [0.0; MAX_BLOCKS];
@@ -410,7 +425,11 @@ impl StackSystem {
         self.tally.impacts += 1;
         self.tally.impact_loss += loss / self.energy_unit();
         let contacts = self.settle(contacts, t, &mut y);
-        let kind = if contacts[i] == Contact::Closed { StackEventKind::Close } else { StackEventKind::Impact };
+        let kind = if contacts[i] == Contact::Closed {
+            StackEventKind::Close
+        } else {
+            StackEventKind::Impact
+        };
         let after = Self::running(contacts);
         self.record_jump(mode, after, kind, i, q_dot_before, y[MAX_BLOCKS + i], t, y)
     }
@@ -524,7 +543,13 @@ impl HybridSystem<NS> for StackSystem {
         self.note_extremes(&pose, y);
     }
 
-    fn jump(&mut self, mode: StackMode, index: usize, t: f64, y: &[f64; NS]) -> Result<Jump<StackMode, StackEvent, NS>, StackError> {
+    fn jump(
+        &mut self,
+        mode: StackMode,
+        index: usize,
+        t: f64,
+        y: &[f64; NS],
+    ) -> Result<Jump<StackMode, StackEvent, NS>, StackError> {
         let k = self.geo.k;
         if index < k {
             return Ok(if mode.contacts[index] == Contact::Closed {
@@ -569,6 +594,10 @@ impl HybridSystem<NS> for StackSystem {
     }
 
     fn step_cap(&self, mode: StackMode) -> f64 {
-        if mode.at_rest(self.geo.k) { self.excitation.time_scale() } else { f64::INFINITY }
+        if mode.at_rest(self.geo.k) {
+            self.excitation.time_scale()
+        } else {
+            f64::INFINITY
+        }
     }
 }

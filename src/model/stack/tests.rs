@@ -38,6 +38,7 @@ fn block(width: f64, height: f64, offset: f64) -> StackBlock {
         height,
         offset,
         mu_s: f64::INFINITY,
+        mu_k: None,
         glued: false,
     }
 }
@@ -84,8 +85,16 @@ fn world(geo: &StackGeometry, contacts: &[Contact], q: &[f64], qd: &[f64]) -> Wo
         phi += q[j];
         w += qd[j];
         let corner = geo.corners[j][usize::from(contacts[j] == Contact::Right)];
-        let p = if j == 0 { corner } else { place(&placements[j - 1], corner) };
-        let l = if j == 0 { geo.corners[0][0] } else { place(&placements[j - 1], geo.corners[j][0]) };
+        let p = if j == 0 {
+            corner
+        } else {
+            place(&placements[j - 1], corner)
+        };
+        let l = if j == 0 {
+            geo.corners[0][0]
+        } else {
+            place(&placements[j - 1], geo.corners[j][0])
+        };
         placements.push((phi, corner, p));
         centre.push(place(&placements[j], geo.centre[j]));
         pivot.push(p);
@@ -122,7 +131,13 @@ fn newton_euler(geo: &StackGeometry, contacts: &[Contact], q: &[f64], qd: &[f64]
     let mut b = vec![];
     let row = || vec![0.0; n];
     // Where interface i's force acts: the pivot, or the left corner.
-    let at = |i: usize| if contacts[i] == Contact::Closed { w.left[i] } else { w.pivot[i] };
+    let at = |i: usize| {
+        if contacts[i] == Contact::Closed {
+            w.left[i]
+        } else {
+            w.pivot[i]
+        }
+    };
     for j in 0..k {
         // Newton: m a_j − F_j + F_{j+1} = m g_e.
         for d in 0..2 {
@@ -230,9 +245,22 @@ fn cases(k: usize) -> Vec<(Vec<Contact>, Vec<f64>, Vec<f64>)> {
     for code in 0..3usize.pow(k as u32) {
         let cs: Vec<Contact> = (0..k).map(|i| choices[(code / 3usize.pow(i as u32)) % 3]).collect();
         for (amp, rate) in [(0.0, 0.0), (0.03, 0.4), (0.11, -0.7)] {
-            let q: Vec<f64> = cs.iter().enumerate().map(|(i, c)| c.sign() * amp * (1.0 + 0.3 * i as f64)).collect();
-            let qd: Vec<f64> =
-                cs.iter().enumerate().map(|(i, c)| if *c == Contact::Closed { 0.0 } else { rate * (1.0 - 0.4 * i as f64) }).collect();
+            let q: Vec<f64> = cs
+                .iter()
+                .enumerate()
+                .map(|(i, c)| c.sign() * amp * (1.0 + 0.3 * i as f64))
+                .collect();
+            let qd: Vec<f64> = cs
+                .iter()
+                .enumerate()
+                .map(|(i, c)| {
+                    if *c == Contact::Closed {
+                        0.0
+                    } else {
+                        rate * (1.0 - 0.4 * i as f64)
+                    }
+                })
+                .collect();
             out.push((cs.clone(), q, qd));
         }
     }
@@ -246,7 +274,11 @@ fn every_contact_combination_accelerates_as_a_generic_newton_euler_solve_says() 
     for blocks in shapes() {
         let geo = StackGeometry::new(&blocks).unwrap();
         let g_unit = 4.0 * geo.r1 / 3.0;
-        for g_e in [[0.0, -g_unit], [0.37 * g_unit, -1.2 * g_unit], [-0.8 * g_unit, -0.6 * g_unit]] {
+        for g_e in [
+            [0.0, -g_unit],
+            [0.37 * g_unit, -1.2 * g_unit],
+            [-0.8 * g_unit, -0.6 * g_unit],
+        ] {
             for (cs, q, qd) in cases(geo.k) {
                 let contacts = contacts_of(&cs);
                 let y = state(&q, &qd);
@@ -265,8 +297,16 @@ fn every_contact_combination_accelerates_as_a_generic_newton_euler_solve_says() 
                 for i in 0..geo.k {
                     let load = interface_load(&geo, &pose, &acc, g_e, g_unit, i);
                     let weight = geo.mass_above(i) * g_unit;
-                    let n = if i == 0 { [0.0, 1.0] } else { rot(pose.phi[i - 1], [0.0, 1.0]) };
-                    let t = if i == 0 { [1.0, 0.0] } else { rot(pose.phi[i - 1], [1.0, 0.0]) };
+                    let n = if i == 0 {
+                        [0.0, 1.0]
+                    } else {
+                        rot(pose.phi[i - 1], [0.0, 1.0])
+                    };
+                    let t = if i == 0 {
+                        [1.0, 0.0]
+                    } else {
+                        rot(pose.phi[i - 1], [1.0, 0.0])
+                    };
                     let f = generic.force[i];
                     worst = worst.max((load.normal - (f[0] * n[0] + f[1] * n[1]) / weight).abs());
                     worst = worst.max((load.tangential - (f[0] * t[0] + f[1] * t[1]) / weight).abs());
@@ -325,7 +365,13 @@ fn impulse(geo: &StackGeometry, before: &[Contact], after: &[Contact], q: &[f64]
         }
     }
     let n = col;
-    let at = |i: usize| if after[i] == Contact::Closed { w1.left[i] } else { w1.pivot[i] };
+    let at = |i: usize| {
+        if after[i] == Contact::Closed {
+            w1.left[i]
+        } else {
+            w1.pivot[i]
+        }
+    };
     let (mut a, mut b) = (vec![], vec![]);
     for j in 0..k {
         let v0 = vel(w0.centre[j], j);
@@ -386,7 +432,9 @@ fn impulse(geo: &StackGeometry, before: &[Contact], after: &[Contact], q: &[f64]
         }
     }
     let x = solve(a, b);
-    (0..k).map(|j| x[3 * j + 2] - if j > 0 { x[3 * (j - 1) + 2] } else { 0.0 }).collect()
+    (0..k)
+        .map(|j| x[3 * j + 2] - if j > 0 { x[3 * (j - 1) + 2] } else { 0.0 })
+        .collect()
 }
 
 #[test]
@@ -405,7 +453,11 @@ fn every_impact_matches_a_generic_impulse_solve() {
                 let (mut q, mut qd) = (q.clone(), qd.clone());
                 q[i] = 0.0;
                 qd[i] = -cs[i].sign() * qd[i].abs().max(0.3);
-                let flipped = if cs[i] == Contact::Right { Contact::Left } else { Contact::Right };
+                let flipped = if cs[i] == Contact::Right {
+                    Contact::Left
+                } else {
+                    Contact::Right
+                };
                 for new in [flipped, Contact::Closed] {
                     let mut after = cs.clone();
                     after[i] = new;
@@ -437,7 +489,12 @@ fn a_glued_stack_of_equal_widths_impacts_with_housners_coefficient() {
     let before = contacts_of(&[Contact::Right, Contact::Closed]);
     let after = contacts_of(&[Contact::Left, Contact::Closed]);
     let y = state(&[0.0, 0.0], &[-0.6, 0.0]);
-    let rates = impact_rates(&geo, &after, &Pose::new(&geo, &before, &y), &Pose::new(&geo, &after, &y));
+    let rates = impact_rates(
+        &geo,
+        &after,
+        &Pose::new(&geo, &before, &y),
+        &Pose::new(&geo, &after, &y),
+    );
     let alpha = (b / (h1 + h2)).atan();
     let r = 1.0 - 1.5 * alpha.sin().powi(2);
     assert!((rates[0] / -0.6 - r).abs() < 1e-14, "{} vs {r}", rates[0] / -0.6);

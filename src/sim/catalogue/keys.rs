@@ -137,6 +137,68 @@ pub const CATALOGUE: &[KeySpec] = &[
         slider: log(0.05, 10.0, 0.1),
         ..B
     },
+    // [[stack]]: one table per block, bottom to top. Not in the app's
+    // panel: a stack runs as one headless run so far.
+    KeySpec {
+        key: "stack.width",
+        value: Value::Quantity(super::Dimension::Length),
+        symbol: "B",
+        unit: "m",
+        meaning: "width of one block of a stack",
+        written: "m, or \"60 cm\", \"600 mm\"",
+        doc: "Width B > 0 of this block of a [[stack]] (one table per block, bottom to top). Required.",
+        range: SIZE,
+        ..B
+    },
+    KeySpec {
+        key: "stack.height",
+        value: Value::Quantity(super::Dimension::Length),
+        symbol: "H",
+        unit: "m",
+        meaning: "height of one block of a stack",
+        written: "m, or \"60 cm\", \"600 mm\"",
+        doc: "Height H > 0 of this block of a [[stack]]. Required.",
+        range: SIZE,
+        ..B
+    },
+    KeySpec {
+        key: "stack.offset",
+        value: Value::Quantity(super::Dimension::Length),
+        symbol: "e",
+        unit: "m",
+        meaning: "horizontal offset of a stacked block's centre from the centre of the block below",
+        written: "m (+ to the right), or \"5 cm\"",
+        doc: "This block's centre relative to the centre of the block below, m (+ right); its face must overlap the one below. Default 0; must be 0 for the bottom block.",
+        ..B
+    },
+    KeySpec {
+        key: "stack.static",
+        infinite: true,
+        symbol: "μ_s",
+        meaning: "static friction coefficient at a stacked block's lower face",
+        written: "dimensionless, or \"inf\" (no slip)",
+        doc: "Static friction at this block's lower face, >= 0 or inf. Default inf. Inside a stack sliding is not simulated: a run whose friction demand reaches it stops with a one-line error (docs/model.md §18.7).",
+        range: COEFFICIENT,
+        ..B
+    },
+    KeySpec {
+        key: "stack.kinetic",
+        infinite: true,
+        symbol: "μ_k",
+        meaning: "kinetic friction coefficient at a stacked block's lower face",
+        written: "dimensionless, or \"inf\"",
+        doc: "Kinetic friction at this block's lower face, <= static. Used by a one-entry stack (the single block slides); a taller stack stops before any slip.",
+        range: COEFFICIENT,
+        ..B
+    },
+    KeySpec {
+        key: "stack.glued",
+        value: Value::Flag,
+        meaning: "whether a stacked block's lower face is glued",
+        written: "true or false",
+        doc: "Whether this block's lower face is glued (never opens: an anchored object). Default false.",
+        ..B
+    },
     // [frame]
     KeySpec {
         key: "frame.width",

@@ -1,0 +1,103 @@
+//! A stack's answer in physical units (`summary.json`'s `physical`): the
+//! single block's fields for the stack as a whole, and each block's own
+//! in `bodies`, bottom to top.
+
+use super::answer::{Body, ModeSeconds, Physical, RecordPeaks};
+use super::end_state::EndState;
+use super::scenario::{ExcitationKind, Scenario};
+use super::stack_run::StackRun;
+use crate::model::excitation::Excitation;
+use crate::model::stack::StackEnd;
+
+/// What the outputs call block `j` of a stack of `k`: `bottom block`,
+/// `middle block` (of three), `block 2` …, `top block`.
+pub fn body_name(j: usize, k: usize) -> &'static str {
+    const MIDDLE: [&str; 3] = ["block 2", "block 3", "block 4"];
+    match (j, k) {
+        (0, _) => "bottom block",
+        (j, k) if j + 1 == k => "top block",
+        (1, 3) => "middle block",
+        (j, _) => MIDDLE[(j - 1).min(2)],
+    }
+}
+
+impl Physical {
+    /// The answer of a stack's run `run` of scenario `s`.
+    pub fn of_stack(s: &Scenario, run: &StackRun) -> Self {
+        let geo = s.geometry();
+        let sec = |tau: f64| tau / geo.p;
+        let k = run.geo.k;
+        let end_state = EndState::of(run.outcome);
+        let over = match run.end {
+            Some((StackEnd::Overturned(i), tau)) => Some((i, tau)),
+            _ => None,
+        };
+        let bodies: Vec<Body> = (0..k)
+            .map(|j| Body {
+                name: body_name(j, k).to_string(),
+                max_rotation_deg: run.tally.max_phi[j].to_degrees(),
+                // Everything above an interface that overturns goes over.
+                overturned: over.is_some_and(|(i, _)| j >= i),
+                // Sliding is not followed inside a stack: a run stops
+                // before any face slips (docs/model.md §18.7).
+                max_sliding_m: 0.0,
+                // The lifted corner of its lower face rises span·sin q.
+                max_uplift_m: run.geo.span(j) * run.tally.max_q[j].min(std::f64::consts::FRAC_PI_2).sin(),
+            })
+            .collect();
+        // The stack's headline rotation: the block that turned most,
+        // relative to its own slenderness.
+        let (turned, phi) = (0..k)
+            .map(|j| (j, run.tally.max_phi[j]))
+            .fold((0, 0.0), |a, b| if b.1 > a.1 { b } else { a });
+        let alpha = (run.geo.size[turned][0] / run.geo.size[turned][1]).atan();
+        let peaks = |r: &Option<super::scenario::Record>, scale: f64| {
+            r.as_ref()
+                .filter(|_| s.excitation.kind == ExcitationKind::Record)
+                .map(|r| RecordPeaks {
+                    file: r.path.display().to_string(),
+                    unit: r.unit.name(),
+                    scale,
+                    peaks: r.series.peaks(scale),
+                    duration_s: r.series.duration_s(),
+                })
+        };
+        let base_mu = run.geo.mu_s[0];
+        Physical {
+            overturned: end_state == EndState::Overturned,
+            t_overturn_s: over.map(|(_, tau)| sec(tau)),
+            max_rotation_rad: phi,
+            max_rotation_deg: phi.to_degrees(),
+            max_rotation_over_alpha: phi / alpha,
+            max_sliding_m: 0.0,
+            residual_sliding_m: 0.0,
+            max_uplift_m: bodies.iter().map(|b| b.max_uplift_m).fold(0.0, f64::max),
+            impacts: run.tally.impacts,
+            mode_time_s: ModeSeconds {
+                rest: sec(run.rest_tau),
+                slide: 0.0,
+                rock: sec(run.tau_end - run.rest_tau),
+                slide_rock: 0.0,
+            },
+            t_end_s: sec(run.tau_end),
+            t_rest_s: run.tau_rest.map(sec),
+            end_state,
+            record_complete: s.record_complete(),
+            record_h: peaks(&s.excitation.record_h, s.excitation.scale_h),
+            record_v: peaks(&s.excitation.record_v, s.excitation.scale_v),
+            floor: match s.excitation() {
+                Ok(Excitation::Floor(f)) => Some(f.peaks(s.tau_end())),
+                _ => None,
+            },
+            impact_law: "stack",
+            impact_r: None,
+            friction_static: base_mu.is_finite().then_some(base_mu),
+            friction_kinetic: base_mu.is_finite().then(|| s.block.kinetic()),
+            bodies: Some(bodies),
+            subject: Some(match run.end {
+                Some((StackEnd::Overturned(i) | StackEnd::Flight(i), _)) => body_name(i, k),
+                None => "stack",
+            }),
+        }
+    }
+}

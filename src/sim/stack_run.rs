@@ -1,0 +1,197 @@
+//! One run of a stack of blocks (config `[[stack]]`) from rest to
+//! `tau_end`, a terminal event, or rest after a record's end.
+//!
+//! The single block's run (`sim::run`) is generic over models with the
+//! block's state; a stack's state holds one angle per interface, so it has
+//! this run of its own, with the same options, the same rest rule after a
+//! record and the same energy audit.
+
+use std::time::Instant;
+
+use super::run::{EnergyAudit, Outcome, RunOptions};
+use crate::integrate::hybrid::{Driver, Observer, Outputs};
+use crate::integrate::{Dop853, Dopri5, StepStats, Stepper};
+use crate::model::excitation::Excitation;
+use crate::model::stack::{NS, StackEnd, StackEvent, StackGeometry, StackMode, StackSystem, StackTally, WORK_S};
+
+pub use crate::model::stack::StackError;
+
+/// A state kept for the outputs.
+#[derive(Clone, Copy, Debug)]
+pub struct StackSample {
+    /// τ.
+    pub tau: f64,
+    /// The mode.
+    pub mode: StackMode,
+    /// The state.
+    pub y: [f64; NS],
+}
+
+/// Everything a stack's run produces.
+#[derive(Clone, Debug)]
+pub struct StackRun {
+    /// Its shape.
+    pub geo: StackGeometry,
+    /// How it ended.
+    pub outcome: Outcome,
+    /// The terminal event (which block overturned or flew) and its τ.
+    pub end: Option<(StackEnd, f64)>,
+    /// τ at which it ended.
+    pub tau_end: f64,
+    /// τ at which it last came to rest (every interface closed), if it
+    /// ended at rest; 0 if it never moved.
+    pub tau_rest: Option<f64>,
+    /// τ spent with every interface closed, and with any open.
+    pub rest_tau: f64,
+    /// Events in time order.
+    pub events: Vec<StackEvent>,
+    /// The regular history (every `output_dt`).
+    pub history: Vec<StackSample>,
+    /// The final state.
+    pub last: StackSample,
+    /// Impacts and extremes.
+    pub tally: StackTally,
+    /// The energy audit, per M G R₁.
+    pub energy: EnergyAudit,
+    /// Stepper counters.
+    pub stats: StepStats,
+    /// Solver wall time, s.
+    pub wall_s: f64,
+}
+
+/// Keeps what a stack's run produces.
+struct Keep {
+    k: usize,
+    events: Vec<StackEvent>,
+    history: Vec<StackSample>,
+    keep_history: bool,
+    rest_since: Option<f64>,
+    rest_tau: f64,
+}
+
+impl Observer<StackMode, StackEvent, NS> for Keep {
+    fn sample(&mut self, t: f64, mode: StackMode, y: &[f64; NS]) {
+        if self.keep_history {
+            self.history.push(StackSample { tau: t, mode, y: *y });
+        }
+    }
+
+    fn section(&mut self, _k: u64, _t: f64, _mode: StackMode, _y: &[f64; NS]) {}
+
+    fn event(&mut self, t: f64, _before: StackMode, _y: &[f64; NS], record: StackEvent) {
+        let (was, is) = (record.before.at_rest(self.k), record.after.at_rest(self.k));
+        if was && !is {
+            self.rest_tau += t - self.rest_since.unwrap_or(t);
+            self.rest_since = None;
+        } else if !was && is {
+            self.rest_since = Some(t);
+        }
+        self.events.push(record);
+    }
+}
+
+/// Runs the stack `geo` under `excitation` (in the bottom block's τ)
+/// from rest with `opts`. `run.method` "taylor" and "dop853" take
+/// DOP853's steps, "dopri5" its own; the fixed-step "ralston" is the
+/// single block's (refused for a stack before this is called).
+pub fn simulate_stack(
+    geo: StackGeometry,
+    excitation: Excitation,
+    zeno_eps: f64,
+    opts: &RunOptions,
+) -> Result<StackRun, StackError> {
+    let system = StackSystem::new(geo, excitation, zeno_eps);
+    match opts.method {
+        super::Method::Dopri5 => run_with(Dopri5::new(opts.tol), system, opts),
+        _ => run_with(Dop853::new(opts.tol), system, opts),
+    }
+}
+
+fn run_with<S: Stepper<NS>>(stepper: S, system: StackSystem, opts: &RunOptions) -> Result<StackRun, StackError> {
+    let start = Instant::now();
+    let k = system.geo.k;
+    let geo = system.geo;
+    let mut y0 = [0.0; NS];
+    let contacts = system.settle(StackMode::REST.contacts, 0.0, &mut y0);
+    let mode0 = StackMode { contacts, end: None };
+    let e0 = system.energy(&mode0, &y0);
+    let outputs = Outputs {
+        sample_dt: opts.output_dt,
+        section_period: None,
+    };
+    let mut driver = Driver::new(stepper, system, mode0, 0.0, y0, opts.limits, outputs);
+    let mut keep = Keep {
+        k,
+        events: Vec::new(),
+        history: Vec::new(),
+        keep_history: opts.output_dt.is_some(),
+        rest_since: mode0.at_rest(k).then_some(0.0),
+        rest_tau: 0.0,
+    };
+    match opts.rest_after {
+        None => {
+            driver.advance(opts.tau_end, &mut keep)?;
+        }
+        Some(rest_after) => {
+            driver.advance(rest_after.min(opts.tau_end), &mut keep)?;
+            // After the record the ground is still: stop at the first leg
+            // that ends with every interface closed.
+            while driver.t() < opts.tau_end && !driver.mode().at_rest(k) && driver.mode().end.is_none() {
+                driver.advance((driver.t() + 1.0).min(opts.tau_end), &mut keep)?;
+            }
+        }
+    }
+    let wall_s = start.elapsed().as_secs_f64();
+    let mode = driver.mode();
+    let y = *driver.y();
+    let t = driver.t();
+    let system = driver.system();
+    let mut tally = system.tally;
+    let pose = system.pose(&mode, &y);
+    for j in 0..k {
+        tally.max_phi[j] = tally.max_phi[j].max(pose.phi[j].abs());
+        tally.max_q[j] = tally.max_q[j].max(y[j].abs());
+    }
+    let e_final = system.energy(&mode, &y);
+    let (work, impact) = (y[WORK_S], tally.impact_loss);
+    let residual = (e_final - e0) - (work - impact);
+    let scale = e0.abs().max(e_final.abs()).max(work.abs()).max(impact.abs());
+    let energy = EnergyAudit {
+        initial: e0,
+        r#final: e_final,
+        work_base: work,
+        loss_friction: 0.0,
+        loss_impact: impact,
+        residual,
+        relative_residual: if scale > 0.0 { residual.abs() / scale } else { 0.0 },
+    };
+    let end = mode.end.map(|e| (e, keep.events.last().map_or(t, |ev| ev.tau)));
+    let outcome = match mode.end {
+        Some(StackEnd::Overturned(_)) => Outcome::Tumbled,
+        Some(StackEnd::Flight(_)) => Outcome::Flight,
+        None if mode.at_rest(k) => Outcome::Rest,
+        None => Outcome::Running,
+    };
+    let mut rest_tau = keep.rest_tau;
+    if let Some(since) = keep.rest_since {
+        rest_tau += t - since;
+    }
+    let tau_rest = (outcome == Outcome::Rest).then(|| keep.rest_since.unwrap_or(0.0));
+    let mut stats = driver.stepper().stats();
+    stats.accepted = stats.accepted.max(driver.steps());
+    Ok(StackRun {
+        geo,
+        outcome,
+        end,
+        tau_end: t,
+        tau_rest,
+        rest_tau,
+        events: keep.events,
+        history: keep.history,
+        last: StackSample { tau: t, mode, y },
+        tally,
+        energy,
+        stats,
+        wall_s,
+    })
+}

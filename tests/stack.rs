@@ -1,0 +1,365 @@
+//! Stacks of blocks (`[[stack]]`, docs/model.md §18) in the commands a
+//! user runs: a glued stack against the single block it is, a one-table
+//! stack against `[block]`, the quasi-static uplift of each interface
+//! against lever arms computed here, the energy audit and mirror symmetry,
+//! and the inputs a stack refuses.
+
+use rocking::io::config::{self, Source};
+use rocking::model::stack::{MAX_BLOCKS, StackEnd, StackEventKind};
+use rocking::sim::stack_run::{StackRun, simulate_stack};
+use rocking::sim::{Outcome, RunResult, Scenario, simulate};
+
+fn scene(text: &str) -> Scenario {
+    let table = config::parse_toml(text, "test.toml").expect("toml");
+    config::from_table(&table, &Source::default()).expect("scenario")
+}
+
+fn refusal(text: &str) -> String {
+    let table = config::parse_toml(text, "test.toml").expect("toml");
+    match config::from_table(&table, &Source::default()) {
+        Ok(_) => panic!("accepted:\n{text}"),
+        Err(e) => e.to_string(),
+    }
+}
+
+fn run_block(s: &Scenario) -> RunResult {
+    simulate(s.model().expect("model"), &s.initial, &s.run_options()).expect("run")
+}
+
+fn run_stack(s: &Scenario) -> StackRun {
+    simulate_stack(
+        s.stack_geometry().expect("stack"),
+        s.excitation().expect("excitation"),
+        s.run.zeno_eps,
+        &s.run_options(),
+    )
+    .expect("run")
+}
+
+/// A stack of blocks of one width B glued on each other, the bottom face
+/// free, and the single block B × ΣH under the same ground motion: θ on
+/// the same grid of physical time, and the impact times.
+fn glued_against_block(excitation: &str, width: f64, heights: &[f64], t_end: &str) -> (f64, f64, usize) {
+    let run_keys = format!(
+        "[run]\nmethod = \"dop853\"\nrtol = 1e-13\natol = 1e-15\noutput_dt = \"0.01 s\"\nt_end = \"{t_end}\"\n"
+    );
+    let mut text = String::new();
+    for (i, h) in heights.iter().enumerate() {
+        text += &format!("[[stack]]\nwidth = {width:?}\nheight = {h:?}\nglued = {}\n", i > 0);
+    }
+    let stack = scene(&format!("{text}{excitation}\n{run_keys}"));
+    let total: f64 = heights.iter().sum();
+    let block = scene(&format!(
+        "[block]\nwidth = {width:?}\nheight = {total:?}\n{excitation}\n{run_keys}"
+    ));
+    let (s, b) = (run_stack(&stack), run_block(&block));
+    let (ps, pb) = (stack.geometry().p, block.geometry().p);
+    let psi = block.geometry().psi;
+    let n = s.history.len().min(b.history.len());
+    assert!(n > 100, "{n} rows");
+    let mut worst = 0.0f64;
+    for (rs, rb) in s.history.iter().zip(&b.history).take(n) {
+        let (ts, tb) = (rs.tau / ps, rb.tau / pb);
+        assert!((ts - tb).abs() < 1e-12, "grids differ: {ts} s vs {tb} s");
+        worst = worst.max((rs.y[0] - psi * rb.theta).abs());
+    }
+    let si: Vec<f64> = s
+        .events
+        .iter()
+        .filter(|e| e.kind == StackEventKind::Impact)
+        .map(|e| e.tau / ps)
+        .collect();
+    let bi: Vec<f64> = b
+        .events
+        .iter()
+        .filter(|e| e.kind.name() == "impact")
+        .map(|e| e.tau / pb)
+        .collect();
+    assert_eq!(si.len(), bi.len(), "impacts");
+    let worst_impact = si.iter().zip(&bi).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
+    eprintln!(
+        "θ differs by at most {worst:e} rad, impact times by {worst_impact:e} s ({} impacts)",
+        si.len()
+    );
+    (worst, worst_impact, si.len())
+}
+
+#[test]
+fn a_glued_stack_of_one_width_rocks_as_the_single_block_of_their_height_under_harmonic_motion() {
+    let excitation =
+        "[excitation]\nkind = \"harmonic\"\na_h = \"0.3 g\"\nomega_h = \"1.5 Hz\"\na_v = \"0.1 g\"\nomega_v = \"3 Hz\"";
+    let (worst, worst_impact, impacts) = glued_against_block(excitation, 0.5, &[1.0, 0.8, 0.7], "30 s");
+    assert!(impacts >= 3, "{impacts} impacts");
+    assert!(worst < 1e-12, "θ differs by {worst:e} rad");
+    assert!(worst_impact < 1e-12, "impact times differ by {worst_impact:e} s");
+}
+
+#[test]
+fn a_glued_stack_of_one_width_rocks_as_the_single_block_of_their_height_under_el_centro() {
+    let excitation =
+        "[excitation]\nkind = \"record\"\nfile_h = \"shipped:elcentro-1940-ns.dat\"\nunit_h = \"g\"\nscale_h = 2.0";
+    let (worst, worst_impact, impacts) = glued_against_block(excitation, 0.4, &[1.2, 0.8], "15 s");
+    assert!(impacts >= 3, "{impacts} impacts");
+    assert!(worst < 1e-12, "θ differs by {worst:e} rad");
+    assert!(worst_impact < 1e-12, "impact times differ by {worst_impact:e} s");
+}
+
+/// The horizontal base acceleration, per g + a_v, at which interface `i`
+/// of a stack at rest opens on its left corner (the base pushing right):
+/// the blocks above it tip when the moment of their weights about that
+/// corner, Σ m_j g (x_j − x_L), is overcome by that of their inertia,
+/// Σ m_j a (y_j − y_L). Written from the blocks' sizes alone.
+fn left_uplift_ratio(blocks: &[(f64, f64, f64)], i: usize) -> f64 {
+    // Centres at rest and the left end of each interface's overlap.
+    let (mut x, mut y, mut centres) = (0.0, 0.0, vec![]);
+    let mut left = vec![];
+    for (j, &(w, h, offset)) in blocks.iter().enumerate() {
+        let below: Option<(f64, f64)> = if j == 0 {
+            None
+        } else {
+            Some((centres[j - 1], blocks[j - 1].0))
+        };
+        x += if j == 0 { 0.0 } else { offset };
+        left.push(match below {
+            None => x - w / 2.0,
+            Some((xb, wb)) => (x - w / 2.0).max(xb - wb / 2.0),
+        });
+        centres.push(x);
+        let _ = y;
+        y += h;
+    }
+    let mut base = 0.0;
+    let mut heights = vec![];
+    for &(_, h, _) in blocks {
+        heights.push(base + h / 2.0);
+        base += h;
+    }
+    let face = |i: usize| -> f64 { blocks[..i].iter().map(|b| b.1).sum() };
+    let (mut num, mut den) = (0.0, 0.0);
+    for j in i..blocks.len() {
+        let m = blocks[j].0 * blocks[j].1;
+        num += m * (centres[j] - left[i]);
+        den += m * (heights[j] - face(i));
+    }
+    num / den
+}
+
+fn stack_text(blocks: &[(f64, f64, f64)]) -> String {
+    blocks
+        .iter()
+        .map(|(w, h, e)| format!("[[stack]]\nwidth = {w:?}\nheight = {h:?}\noffset = {e:?}\n"))
+        .collect()
+}
+
+#[test]
+fn each_interface_lifts_where_its_lever_arms_say_and_the_weakest_lifts_first_with_and_without_vertical_motion() {
+    let stacks: [&[(f64, f64, f64)]; 4] = [
+        // A squat pedestal under a slender statue: the statue lifts.
+        &[(1.0, 0.8, 0.0), (0.3, 1.2, 0.0)],
+        // A slender column under a squat cap: the whole stack lifts.
+        &[(0.3, 2.0, 0.0), (0.6, 0.3, 0.0)],
+        // A three-stone tombstone, the top stone set off to the left.
+        &[(0.9, 0.35, 0.0), (0.6, 0.3, 0.05), (0.3, 0.9, -0.08)],
+        // Three stones, the middle one the weakest (set off to the right).
+        &[(1.0, 0.5, 0.0), (0.5, 0.6, 0.2), (0.45, 0.3, 0.0)],
+    ];
+    let mut first_seen = std::collections::BTreeSet::new();
+    for blocks in stacks {
+        let ratios: Vec<f64> = (0..blocks.len()).map(|i| left_uplift_ratio(blocks, i)).collect();
+        let weakest = (0..blocks.len())
+            .min_by(|&a, &b| ratios[a].total_cmp(&ratios[b]))
+            .unwrap();
+        for a_v in [0.0, 0.2] {
+            // A slowly rising a_h (a quarter period of 10 s), a_v held by a
+            // cosine of negligible frequency: at rest the stack moves with
+            // the base, so the face opens exactly when a_h = (g + a_v)·ratio.
+            let s = scene(&format!(
+                "{}[excitation]\nkind = \"harmonic\"\na_h = \"{:?} g\"\nomega_h = \"0.1 Hz\"\na_v = \"{a_v:?} g\"\nomega_v = \"1e-5 Hz\"\nphase_v = \"90 deg\"\n[run]\nt_end = \"2.6 s\"\nrtol = 1e-12\n",
+                stack_text(blocks),
+                2.0 * ratios[weakest] * (1.0 + a_v)
+            ));
+            let run = run_stack(&s);
+            let first = run.events.first().expect("an uplift");
+            assert_eq!(first.kind, StackEventKind::Uplift);
+            assert_eq!(first.body, weakest, "{blocks:?}: ratios {ratios:?}");
+            first_seen.insert(weakest);
+            // a_h(t)/(g + a_v) at the event.
+            let t = first.tau / s.geometry().p;
+            let a = 2.0 * ratios[weakest] * (1.0 + a_v) * (std::f64::consts::TAU * 0.1 * t).sin();
+            let v = a_v * (std::f64::consts::TAU * 1e-5 * t + std::f64::consts::FRAC_PI_2).sin();
+            let at = a / (1.0 + v);
+            assert!(
+                (at - ratios[weakest]).abs() < 1e-9 * ratios[weakest],
+                "{blocks:?}, a_v {a_v}: lifted at {at} (g + a_v), lever arms say {}",
+                ratios[weakest]
+            );
+            // It opened on the left corner (q < 0: the top moves left).
+            assert_eq!(first.after.contacts[weakest].name(), "rock-left");
+        }
+    }
+    assert_eq!(
+        first_seen.len(),
+        3,
+        "the cases lift the base, the top and a middle face first: {first_seen:?}"
+    );
+}
+
+/// Whether `b` is `a` mirrored bit for bit (zeros of either sign alike).
+fn mirrored(a: f64, b: f64) -> bool {
+    a.to_bits() == (-b).to_bits() || (a == 0.0 && b == 0.0)
+}
+
+#[test]
+fn a_stacks_energy_audit_closes_to_round_off_and_its_mirror_image_is_exact() {
+    let text = |sign: f64| {
+        format!(
+            "{}[excitation]\nkind = \"record\"\nfile_h = \"shipped:kobe-1995.dat\"\nunit_h = \"m/s2\"\nscale_h = {:?}\n[run]\noutput_dt = \"0.01 s\"\nt_end = \"12 s\"\n",
+            stack_text(&[(0.9, 0.35, 0.0), (0.6, 0.3, sign * 0.05), (0.3, 0.9, sign * -0.08)]),
+            sign * 0.6
+        )
+    };
+    let (a, b) = (run_stack(&scene(&text(1.0))), run_stack(&scene(&text(-1.0))));
+    assert!(a.tally.impacts >= 10, "{} impacts", a.tally.impacts);
+    assert!(
+        a.energy.relative_residual < 1e-10,
+        "energy residual {:e}",
+        a.energy.relative_residual
+    );
+    assert_eq!(a.events.len(), b.events.len());
+    for (ea, eb) in a.events.iter().zip(&b.events) {
+        assert_eq!(ea.tau.to_bits(), eb.tau.to_bits());
+        assert_eq!(ea.body, eb.body);
+        assert!(
+            mirrored(ea.q_dot_after, eb.q_dot_after),
+            "{} vs {}",
+            ea.q_dot_after,
+            eb.q_dot_after
+        );
+    }
+    assert_eq!(a.history.len(), b.history.len());
+    for (ra, rb) in a.history.iter().zip(&b.history) {
+        for j in 0..2 * MAX_BLOCKS {
+            assert!(
+                mirrored(ra.y[j], rb.y[j]),
+                "τ {} component {j}: {} vs {}",
+                ra.tau,
+                ra.y[j],
+                rb.y[j]
+            );
+        }
+    }
+}
+
+#[test]
+fn a_one_table_stack_is_the_single_block_bit_for_bit() {
+    let stack = scene(
+        "[[stack]]\nwidth = 0.4\nheight = 1.8\nstatic = 0.6\n[excitation]\nkind = \"record\"\nfile_h = \"shipped:elcentro-1940-ns.dat\"\nunit_h = \"g\"\n",
+    );
+    let block = scene(
+        "[block]\nwidth = 0.4\nheight = 1.8\n[friction]\nstatic = 0.6\n[excitation]\nkind = \"record\"\nfile_h = \"shipped:elcentro-1940-ns.dat\"\nunit_h = \"g\"\n",
+    );
+    assert!(stack.stack.is_none());
+    assert_eq!(stack, block);
+    let (a, b) = (run_block(&stack), run_block(&block));
+    assert_eq!(a.events.len(), b.events.len());
+    assert_eq!(a.tau_end.to_bits(), b.tau_end.to_bits());
+    assert_eq!(a.max_abs_theta.to_bits(), b.max_abs_theta.to_bits());
+}
+
+#[test]
+fn the_first_body_to_overturn_is_named() {
+    // A slender statue on a squat pedestal under twice Kobe: the statue
+    // goes over, the pedestal does not.
+    let s = scene(&format!(
+        "{}[excitation]\nkind = \"record\"\nfile_h = \"shipped:kobe-1995.dat\"\nunit_h = \"m/s2\"\nscale_h = 2.0\n",
+        stack_text(&[(1.2, 0.8, 0.0), (0.25, 1.5, 0.0)])
+    ));
+    let run = run_stack(&s);
+    assert_eq!(run.outcome, Outcome::Tumbled);
+    assert!(matches!(run.end, Some((StackEnd::Overturned(1), _))), "{:?}", run.end);
+    let answer = rocking::sim::Physical::of_stack(&s, &run);
+    assert!(
+        answer.line().starts_with("top block overturned at t = "),
+        "{}",
+        answer.line()
+    );
+    let bodies = answer.bodies.expect("bodies");
+    assert!(!bodies[0].overturned && bodies[1].overturned);
+}
+
+#[test]
+fn a_stack_refuses_what_it_cannot_run_with_one_line_naming_the_key() {
+    let two = "[[stack]]\nwidth = 1.0\nheight = 1.0\n[[stack]]\nwidth = 0.5\nheight = 1.0\n";
+    for (extra, key) in [
+        ("[block]\nwidth = 1.0\n", "block"),
+        ("[friction]\nstatic = 0.5\n", "friction"),
+        ("[frame]\nwidth = 1.0\nheight = 5.0\nbeam_mass_ratio = 1.0\n", "frame"),
+        ("[impact]\nlaw = \"ratio\"\nr = 0.9\n", "impact.law"),
+        ("[initial]\ntheta = 0.1\n", "initial"),
+        ("[run]\nmethod = \"ralston\"\n", "run.method"),
+        ("[run]\ntumble_theta = 0.5\n", "run.tumble_theta"),
+        ("[analysis]\nspectrum = true\n", "analysis.spectrum"),
+    ] {
+        let e = refusal(&format!("{two}{extra}"));
+        assert!(e.starts_with(key), "{extra}: {e}");
+        assert!(!e.contains('\n'), "{e}");
+    }
+    for (text, key) in [
+        (
+            "[[stack]]\nwidth = 1.0\nheight = 1.0\n[[stack]]\nwidth = 0.5\nheight = 1.0\noffset = 0.9\n",
+            "stack[1].offset",
+        ),
+        (
+            "[[stack]]\nwidth = 1.0\nheight = 1.0\noffset = 0.1\n[[stack]]\nwidth = 0.5\nheight = 1.0\n",
+            "stack[0].offset",
+        ),
+        (
+            "[[stack]]\nwidth = 1.0\n[[stack]]\nwidth = 0.5\nheight = 1.0\n",
+            "stack[0].height",
+        ),
+        (
+            "[[stack]]\nwidth = 1.0\nheight = 1.0\nstatic = 0.3\nkinetic = 0.5\n",
+            "stack[0].kinetic",
+        ),
+        ("[[stack]]\nwidth = 1.0\nheight = 1.0\nglued = true\n", "stack[0].glued"),
+        ("[stack]\nwidth = 1.0\nheight = 1.0\n", "stack"),
+        ("[[stack]]\nwidth = 1.0\nheight = 1.0\ncolour = 3\n", "stack"),
+    ] {
+        let e = refusal(text);
+        assert!(e.starts_with(key), "{text}: {e}");
+    }
+    let six: String = (0..=MAX_BLOCKS)
+        .map(|_| "[[stack]]\nwidth = 1.0\nheight = 0.5\n")
+        .collect();
+    assert!(refusal(&six).starts_with("stack"));
+    // The studies built on the block's model say why.
+    let s = scene(two);
+    assert!(
+        s.model()
+            .unwrap_err()
+            .to_string()
+            .starts_with("stack: a [[stack]] is simulated one run at a time")
+    );
+}
+
+#[test]
+fn a_face_whose_friction_cannot_hold_stops_the_run_with_the_demand_and_its_time() {
+    // A squat top block (B/H = 2) on friction 0.3: pushed hard, it would
+    // slide long before it tips.
+    let s = scene(&format!(
+        "[[stack]]\nwidth = 0.5\nheight = 2.0\n[[stack]]\nwidth = 0.6\nheight = 0.3\nstatic = 0.3\n[excitation]\nkind = \"harmonic\"\na_h = \"0.5 g\"\nomega_h = \"1 Hz\"\n[run]\nt_end = \"5 s\"\n"
+    ));
+    let e = simulate_stack(
+        s.stack_geometry().unwrap(),
+        s.excitation().unwrap(),
+        s.run.zeno_eps,
+        &s.run_options(),
+    )
+    .expect_err("slips");
+    let text = e.to_string();
+    assert!(
+        text.starts_with("stack block 2's lower face would slip at τ = "),
+        "{text}"
+    );
+    assert!(text.contains("static = 0.3"), "{text}");
+}
