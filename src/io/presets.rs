@@ -38,6 +38,15 @@ pub const PRESETS: &[(&str, &str)] = &[
         include_str!("../../assets/presets/elcentro-statue.toml"),
     ),
     ("rocking-frame", include_str!("../../assets/presets/rocking-frame.toml")),
+    ("tombstone", include_str!("../../assets/presets/tombstone.toml")),
+    (
+        "statue-on-pedestal",
+        include_str!("../../assets/presets/statue-on-pedestal.toml"),
+    ),
+    (
+        "stack-patterns",
+        include_str!("../../assets/presets/stack-patterns.toml"),
+    ),
 ];
 
 /// The TOML text of preset `name`.

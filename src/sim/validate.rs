@@ -279,7 +279,7 @@ impl Scenario {
             return Err(ScenarioError::new(
                 "run.output_dt",
                 format!(
-                    "{} gives more than 5e7 history rows over run.tau_end = {}; use a larger step or 0",
+                    "{} gives more than 5e7 history rows over the run (run.tau_end or run.t_end: τ = {}); use a larger step or 0",
                     r.output_dt, tau_end
                 ),
             ));

@@ -609,7 +609,17 @@ fn resolve(table: &Table, source: &Source, records: [RecordFrom<'_>; 2]) -> Resu
             ));
         }
         (Some(t), None) => Some(t.resolve("run.tau_end", Dimension::Tau, &geo)?),
-        (None, Some(t)) => Some(t.resolve("run.t_end", Dimension::Seconds, &geo)? * geo.p),
+        (None, Some(t)) => {
+            let tau = t.resolve("run.t_end", Dimension::Seconds, &geo)? * geo.p;
+            // Out of τ's range, the key the user wrote is named, not τ.
+            if !(tau > 0.0 && tau <= 1e9) {
+                return Err(ConfigError::key(
+                    "run.t_end",
+                    format!("is τ = p t = {tau:?}, out of range: τ must be in (0, 1e9]"),
+                ));
+            }
+            Some(tau)
+        }
         (None, None) => None,
     };
     let tail_s = r

@@ -948,7 +948,9 @@ mod tests {
             for method in [Method::Taylor, Method::Dop853, Method::Dopri5, Method::Ralston] {
                 let mut sc = base.clone();
                 sc.run.method = Some(method);
-                if sc.validate().is_err() {
+                // A stack has no live run yet (the app takes a block or a
+                // frame), so nothing to compare.
+                if sc.validate().is_err() || sc.stack.is_some() {
                     continue;
                 }
                 let what = format!("{name} with {method:?}");
