@@ -108,17 +108,34 @@ fn open_set(geo: &StackGeometry, contacts: &[Contact; MAX_BLOCKS]) -> ([usize; M
     (free, n)
 }
 
-/// The mass matrix of the open coordinates `free[..n]` at `pose`.
-fn mass_matrix(geo: &StackGeometry, pose: &Pose, free: &[usize], n: usize) -> [[f64; MAX_BLOCKS]; MAX_BLOCKS] {
+/// The partial velocities v_jf = J(c_j − P_f) of the open coordinates
+/// `free[..n]` (zero below the interface), indexed `[a][j]`.
+fn partials(geo: &StackGeometry, pose: &Pose, free: &[usize], n: usize) -> [[V2; MAX_BLOCKS]; MAX_BLOCKS] {
+    let mut v = [[[0.0; 2]; MAX_BLOCKS]; MAX_BLOCKS];
+    for (a, va) in v.iter_mut().enumerate().take(n) {
+        let p = pose.pivot[free[a]];
+        for j in free[a]..geo.k {
+            va[j] = quarter(sub(pose.centre[j], p));
+        }
+    }
+    v
+}
+
+/// The mass matrix of the open coordinates `free[..n]`, from their
+/// partial velocities `v`.
+fn mass_matrix(
+    geo: &StackGeometry,
+    v: &[[V2; MAX_BLOCKS]; MAX_BLOCKS],
+    free: &[usize],
+    n: usize,
+) -> [[f64; MAX_BLOCKS]; MAX_BLOCKS] {
     let mut m = [[0.0; MAX_BLOCKS]; MAX_BLOCKS];
     for a in 0..n {
         for b in 0..=a {
             let lo = free[a].max(free[b]);
             let mut s = 0.0;
             for j in lo..geo.k {
-                let va = quarter(sub(pose.centre[j], pose.pivot[free[a]]));
-                let vb = quarter(sub(pose.centre[j], pose.pivot[free[b]]));
-                s += geo.mass[j] * dot(va, vb) + geo.inertia[j];
+                s += geo.mass[j] * dot(v[a][j], v[b][j]) + geo.inertia[j];
             }
             m[a][b] = s;
             m[b][a] = s;
@@ -144,35 +161,39 @@ pub fn accelerations(geo: &StackGeometry, contacts: &[Contact; MAX_BLOCKS], pose
         }
     }
     let (free, n) = open_set(geo, contacts);
-    let mut m = mass_matrix(geo, pose, &free, n);
+    let mut q_ddot = [0.0; MAX_BLOCKS];
+    let mut centre_acc = kappa;
+    let mut alpha = [0.0; MAX_BLOCKS];
+    if n == 0 {
+        // Every face shut: the stack moves with the base.
+        return StackAccel {
+            q_ddot,
+            centre_acc,
+            alpha,
+        };
+    }
+    let v = partials(geo, pose, &free, n);
+    let mut m = mass_matrix(geo, &v, &free, n);
     let mut b = [0.0; MAX_BLOCKS];
     for a in 0..n {
-        let f = free[a];
         let mut s = 0.0;
-        for j in f..k {
-            let v = quarter(sub(pose.centre[j], pose.pivot[f]));
-            s -= geo.mass[j] * dot(v, sub(kappa[j], g_e));
+        for j in free[a]..k {
+            s -= geo.mass[j] * dot(v[a][j], sub(kappa[j], g_e));
         }
         b[a] = s;
     }
     solve_spd(&mut m, &mut b, n);
-    let mut q_ddot = [0.0; MAX_BLOCKS];
     for a in 0..n {
         q_ddot[free[a]] = b[a];
+        for j in free[a]..k {
+            centre_acc[j][0] += b[a] * v[a][j][0];
+            centre_acc[j][1] += b[a] * v[a][j][1];
+        }
     }
-    let mut centre_acc = kappa;
-    let mut alpha = [0.0; MAX_BLOCKS];
     let mut turn = 0.0;
     for j in 0..k {
         turn += q_ddot[j];
         alpha[j] = turn;
-        for (i, &qdd) in q_ddot.iter().enumerate().take(j + 1) {
-            if qdd != 0.0 {
-                let v = quarter(sub(pose.centre[j], pose.pivot[i]));
-                centre_acc[j][0] += qdd * v[0];
-                centre_acc[j][1] += qdd * v[1];
-            }
-        }
     }
     StackAccel {
         q_ddot,
@@ -232,14 +253,13 @@ pub fn interface_load(
 /// positions with `after`'s pivots.
 pub fn impact_rates(geo: &StackGeometry, after: &[Contact; MAX_BLOCKS], before: &Pose, at: &Pose) -> [f64; MAX_BLOCKS] {
     let (free, n) = open_set(geo, after);
-    let mut m = mass_matrix(geo, at, &free, n);
+    let v = partials(geo, at, &free, n);
+    let mut m = mass_matrix(geo, &v, &free, n);
     let mut b = [0.0; MAX_BLOCKS];
     for a in 0..n {
-        let f = free[a];
         let mut s = 0.0;
-        for j in f..geo.k {
-            let v = quarter(sub(at.centre[j], at.pivot[f]));
-            s += geo.mass[j] * dot(v, before.centre_vel[j]) + geo.inertia[j] * before.omega[j];
+        for j in free[a]..geo.k {
+            s += geo.mass[j] * dot(v[a][j], before.centre_vel[j]) + geo.inertia[j] * before.omega[j];
         }
         b[a] = s;
     }

@@ -166,6 +166,8 @@ pub struct StackSystem {
     g_unit: f64,
     /// The forcing at the last evaluation.
     last_forcing: Cell<(f64, Forcing)>,
+    /// The pose at rest (every q and q' zero; the pivots do not matter).
+    rest_pose: Pose,
 }
 
 /// Everything the guards of one state read.
@@ -179,6 +181,7 @@ impl StackSystem {
     /// A stack of shape `geo` under `excitation`.
     pub fn new(geo: StackGeometry, excitation: Excitation, zeno_eps: f64) -> Self {
         StackSystem {
+            rest_pose: Pose::new(&geo, &[Contact::Closed; MAX_BLOCKS], &[0.0; NS]),
             g_unit: 4.0 * geo.r1 / 3.0,
             geo,
             excitation,
@@ -210,7 +213,16 @@ impl StackSystem {
     }
 
     fn snapshot(&self, contacts: &[Contact; MAX_BLOCKS], t: f64, y: &[f64; NS]) -> Snapshot {
-        let pose = Pose::new(&self.geo, contacts, y);
+        // At rest (most of a record) the pose is the one at rest. Not for
+        // an open face at q = 0: its pivot decides its partial velocities.
+        let k = self.geo.k;
+        let still = contacts[..k].iter().all(|&c| c == Contact::Closed)
+            && y[..k].iter().chain(&y[MAX_BLOCKS..MAX_BLOCKS + k]).all(|&x| x == 0.0);
+        let pose = if still {
+            self.rest_pose
+        } else {
+            Pose::new(&self.geo, contacts, y)
+        };
         let g_e = self.gravity(t);
         let acc = dynamics::accelerations(&self.geo, contacts, &pose, g_e);
         Snapshot { pose, acc, g_e }
@@ -304,6 +316,29 @@ impl StackSystem {
     /// The pose of `(mode, y)`.
     pub fn pose(&self, mode: &StackMode, y: &[f64; NS]) -> Pose {
         Pose::new(&self.geo, &mode.contacts, y)
+    }
+
+    /// Observer `index` (> K): φ_j φ_j' for block j, q_i q_i' for
+    /// interface i; 1 where the block or interface cannot turn in `mode`
+    /// (every interface at or below it shut), so a stack at rest has no
+    /// guard sitting at 0 for the driver to sample.
+    fn observer_guard(&self, mode: &StackMode, index: usize, y: &[f64; NS]) -> f64 {
+        let k = self.geo.k;
+        let open = |i: usize| is_open(&self.geo, &mode.contacts, i);
+        if index <= 2 * k {
+            let j = index - k - 1;
+            if !(0..=j).any(open) {
+                return 1.0;
+            }
+            let (phi, omega) = (0..=j).fold((0.0, 0.0), |(p, w), i| (p + y[i], w + y[MAX_BLOCKS + i]));
+            phi * omega
+        } else {
+            let i = index - 2 * k - 1;
+            if !open(i) {
+                return 1.0;
+            }
+            y[i] * y[MAX_BLOCKS + i]
+        }
     }
 
     fn note_extremes(&mut self, pose: &Pose, y: &[f64; NS]) {
@@ -527,11 +562,37 @@ impl HybridSystem<NS> for StackSystem {
         }
         let (_, ending, margin) = self.end_margin(&mode, &s);
         g[k] = if ending == Ending::None { 1.0 } else { margin };
-        for j in 0..k {
-            g[k + 1 + j] = s.pose.phi[j] * s.pose.omega[j];
-            g[2 * k + 1 + j] = y[j] * y[MAX_BLOCKS + j];
+        for index in k + 1..3 * k + 1 {
+            g[index] = self.observer_guard(&mode, index, y);
         }
         3 * k + 1
+    }
+
+    fn guard(&self, mode: StackMode, index: usize, t: f64, y: &[f64; NS]) -> f64 {
+        let k = self.geo.k;
+        if self.guard_is_cheap(mode, index) {
+            if index < k {
+                return if self.geo.glued[index] {
+                    1.0
+                } else {
+                    mode.contacts[index].sign() * y[index]
+                };
+            }
+            return self.observer_guard(&mode, index, y);
+        }
+        let mut g = [0.0; MAX_GUARDS];
+        self.guards(mode, t, y, &mut g);
+        g[index]
+    }
+
+    /// The impact guards and the observers read the state alone.
+    fn guard_is_cheap(&self, mode: StackMode, index: usize) -> bool {
+        let k = self.geo.k;
+        if index < k {
+            self.geo.glued[index] || mode.contacts[index] != Contact::Closed
+        } else {
+            index > k
+        }
     }
 
     fn is_observer(&self, _mode: StackMode, index: usize) -> bool {
