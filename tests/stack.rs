@@ -363,3 +363,59 @@ fn a_face_whose_friction_cannot_hold_stops_the_run_with_the_demand_and_its_time(
     );
     assert!(text.contains("static = 0.3"), "{text}");
 }
+
+fn preset(name: &str) -> Scenario {
+    config::load(Some(name), None, &[]).expect("preset")
+}
+
+#[test]
+fn the_stack_presets_give_the_answers_their_headers_state() {
+    // tombstone: the top stone overturns at 5.30 s, the lower stones stay shut.
+    let s = preset("tombstone");
+    let run = run_stack(&s);
+    let answer = rocking::sim::Physical::of_stack(&s, &run);
+    assert!(
+        answer.line().starts_with("top block overturned at t = 5.30 s"),
+        "{}",
+        answer.line()
+    );
+    let bodies = answer.bodies.as_ref().expect("bodies");
+    assert_eq!(
+        bodies.iter().map(|b| b.overturned).collect::<Vec<_>>(),
+        [false, false, true]
+    );
+    assert_eq!((bodies[0].max_rotation_deg, bodies[1].max_rotation_deg), (0.0, 0.0));
+    // statue-on-pedestal: rocks on the pedestal, 4.86°, at rest from 18.67 s.
+    let s = preset("statue-on-pedestal");
+    let run = run_stack(&s);
+    let answer = rocking::sim::Physical::of_stack(&s, &run);
+    assert_eq!(run.outcome, Outcome::Rest);
+    assert!(
+        answer
+            .line()
+            .starts_with("survived: peak rotation 4.86° (0.39 α), uplift 34 mm"),
+        "{}",
+        answer.line()
+    );
+    assert!(answer.line().contains("at rest from t = 18.67 s"), "{}", answer.line());
+    // stack-patterns: the whole stack, and both faces turning the same and
+    // opposite ways, each entered many times, and still rocking at 20 s.
+    let s = preset("stack-patterns");
+    let run = run_stack(&s);
+    assert_eq!(run.outcome, Outcome::Running);
+    let count = |name: &str| run.events.iter().filter(|e| e.after.name(2) == name).count();
+    for pattern in [
+        "rock-left/closed",
+        "rock-left/rock-left",
+        "rock-left/rock-right",
+        "rock-right/rock-left",
+        "rock-right/rock-right",
+    ] {
+        assert!(count(pattern) >= 1, "{pattern}: {}", count(pattern));
+    }
+    assert!(count("rock-right/rock-left") + count("rock-left/rock-right") >= 50);
+    let degrees: Vec<f64> = (0..2)
+        .map(|j| (run.tally.max_phi[j].to_degrees() * 10.0).round() / 10.0)
+        .collect();
+    assert_eq!(degrees, [2.6, 8.7]);
+}
