@@ -20,6 +20,7 @@ fn sections_keep_the_config_files_order() {
         sections(),
         [
             "block",
+            "stack",
             "frame",
             "friction",
             "impact",
