@@ -247,53 +247,9 @@ pub(super) mod tests {
         worst
     }
 
-    fn tol(rtol: f64, atol: f64) -> Tolerances {
-        Tolerances {
-            rtol,
-            atol,
-            ..Tolerances::default()
-        }
-    }
+    use super::super::stepper_checks as checks;
 
-    #[test]
-    fn decay_cosine_and_oscillator_match_closed_forms() {
-        let tl = tol(1e-8, 1e-10);
-        let mut s = Dopri5::new(tl);
-        s.restart(&decay, 0.0, &[1.0]);
-        s.step(&decay, 2.0).unwrap();
-        while s.t() < 2.0 {
-            s.step(&decay, 2.0).unwrap();
-        }
-        let e = norm_err(s.y(), &[(-2.0f64).exp()], &tl);
-        assert!(e < 10.0, "decay: {e}");
-
-        let mut s = Dopri5::new(tl);
-        run(&mut s, &cosine, [0.0], 10.0, |t| [t.sin()]);
-        let e = norm_err(s.y(), &[10.0f64.sin()], &tl);
-        assert!(e < 10.0, "cosine: {e}");
-
-        let mut s = Dopri5::new(tl);
-        run(&mut s, &osc, [0.0, 1.0], 10.0, osc_exact);
-        let e = norm_err(s.y(), &osc_exact(10.0), &tl);
-        assert!(e < 100.0, "oscillator: {e}");
-    }
-
-    #[test]
-    fn tight_tolerance_reaches_1e8_relative_over_20() {
-        let mut s = Dopri5::new(tol(1e-10, 1e-10));
-        let worst = run(&mut s, &osc, [0.0, 1.0], 20.0, osc_exact);
-        assert!(worst < 1e-8, "worst relative error {worst:e}");
-    }
-
-    #[test]
-    fn error_decreases_with_rtol() {
-        let mut loose = Dopri5::new(tol(1e-6, 1e-6));
-        let e6 = run(&mut loose, &osc, [0.0, 1.0], 20.0, osc_exact);
-        let mut tight = Dopri5::new(tol(1e-10, 1e-10));
-        let e10 = run(&mut tight, &osc, [0.0, 1.0], 20.0, osc_exact);
-        eprintln!("dopri5 oscillator 0..20: rtol 1e-6 -> {e6:e}, 1e-10 -> {e10:e}");
-        assert!(e6 / e10 > 1e3, "{e6:e} / {e10:e}");
-    }
+    checks::adaptive_stepper_tests!(Dopri5, "dopri5");
 
     /// One step of size `h` from the exact state at `t0` (forced by `h_max`
     /// and `t_stop`, tolerances loose enough to accept it): returns the local
@@ -320,24 +276,25 @@ pub(super) mod tests {
     }
 
     /// Observed orders `log2(e(h) / e(h/2))` of the local end error and the
-    /// midpoint dense error.
-    pub(crate) fn observed_orders<S: Stepper<2>>(mk: impl Fn(f64) -> S, h: f64) -> (f64, f64) {
-        let (e1, m1) = one_step_errors(&mut mk(h), 0.3, h);
-        let (e2, m2) = one_step_errors(&mut mk(h / 2.0), 0.3, h / 2.0);
-        ((e1 / e2).log2(), (m1 / m2).log2())
-    }
-
-    #[test]
-    fn local_and_dense_orders() {
-        let mk = |h| {
-            Dopri5::new(Tolerances {
+    /// midpoint dense error of the stepper `mk` builds, each step forced to
+    /// its size by `h_max` under tolerances loose enough to accept it.
+    pub(crate) fn observed_orders<S: Stepper<2>>(mk: impl Fn(Tolerances) -> S, h: f64) -> (f64, f64) {
+        let forced = |h| {
+            mk(Tolerances {
                 rtol: 1.0,
                 atol: 1.0,
                 h_max: h,
                 h_fixed: 0.0,
             })
         };
-        let (p_end, p_mid) = observed_orders(mk, 0.2);
+        let (e1, m1) = one_step_errors(&mut forced(h), 0.3, h);
+        let (e2, m2) = one_step_errors(&mut forced(h / 2.0), 0.3, h / 2.0);
+        ((e1 / e2).log2(), (m1 / m2).log2())
+    }
+
+    #[test]
+    fn local_and_dense_orders() {
+        let (p_end, p_mid) = observed_orders(Dopri5::new, 0.2);
         eprintln!("dopri5 local order {p_end:.2}, dense order {p_mid:.2}");
         // Local error O(h^6) for a 5th-order method, O(h^5) for the
         // 4th-order interpolant.
@@ -347,155 +304,10 @@ pub(super) mod tests {
 
     #[test]
     fn dense_matches_step_ends_and_closed_form() {
-        let mut s = Dopri5::new(tol(1e-6, 1e-6));
-        s.restart(&osc, 0.0, &[0.0, 1.0]);
-        for _ in 0..5 {
-            s.step(&osc, 20.0).unwrap();
-        }
-        // The polynomial itself at θ = 0 and θ = 1 (dense() short-cuts there).
-        let mut p = [0.0; 2];
-        s.interpolate(0.0, &mut p);
-        assert_rel_close(&p, &s.y_old, 1e-14);
-        s.interpolate(1.0, &mut p);
-        assert_rel_close(&p, &s.y, 1e-14);
-        let mut out = [0.0; 2];
-        s.dense(&osc, s.t(), &mut out);
-        assert_eq!(&out, s.y());
-        s.dense(&osc, s.t_prev(), &mut out);
-        assert_eq!(out, s.y_old);
-        // Interior points: as accurate as the step ends (loose tolerance).
-        let (a, b) = (s.t_prev(), s.t());
-        for i in 1..10 {
-            let t = a + (b - a) * f64::from(i) / 10.0;
-            s.dense(&osc, t, &mut out);
-            let e = norm_err(&out, &osc_exact(t), &tol(1e-6, 1e-6));
-            assert!(e < 10.0, "t = {t}: {e}");
-        }
-    }
-
-    #[test]
-    fn lands_exactly_on_t_stop() {
-        let mut s = Dopri5::new(tol(1e-8, 1e-8));
-        s.restart(&osc, 0.0, &[0.0, 1.0]);
-        let stops = [0.1, 0.1 + 1e-13, 1.0 / 3.0, 2.7, 2.7 + f64::EPSILON * 4.0];
-        for &ts in &stops {
-            while s.t() < ts {
-                s.step(&osc, ts).unwrap();
-            }
-            assert_eq!(s.t(), ts);
-        }
-        // A stop at or before t is a caller bug.
-        assert!(matches!(s.step(&osc, s.t()), Err(StepError::StepSizeUnderflow { .. })));
-    }
-
-    #[test]
-    fn restart_keeps_step_size_and_discards_fsal() {
-        let mut s = Dopri5::new(tol(1e-8, 1e-8));
-        s.restart(&osc, 0.0, &[0.0, 1.0]);
-        // f(t0) + hinit's Euler probe.
-        assert_eq!(s.stats().rhs_evals, 2);
-        s.step(&osc, 1.0).unwrap();
-        let h = s.step_size();
-        // The step just taken was not shortened (t = 1 is far), so it is
-        // the step the estimate may not exceed after a reset.
-        let h_last = s.t() - s.t_prev();
-        assert!(h > h_last, "the proposal grew on the smooth oscillator");
-        let before = s.stats().rhs_evals;
-        // A different right-hand side after the "reset map": y' = (1, 2).
-        let g = |_t: f64, _y: &[f64; 2], d: &mut [f64; 2]| *d = [1.0, 2.0];
-        s.restart(&g, s.t(), &[5.0, 5.0]);
-        assert_eq!(s.stats().rhs_evals, before + 1, "no second hinit");
-        assert_eq!(
-            s.step_size(),
-            h.min(h_last),
-            "estimate kept, no larger than the last step"
-        );
-        let t0 = s.t();
-        s.step(&g, t0 + 0.5).unwrap();
-        let dt = s.t() - t0;
-        // Exact for a constant field only if k[0] was re-evaluated with g.
-        assert!((s.y()[0] - (5.0 + dt)).abs() < 1e-13);
-        assert!((s.y()[1] - (5.0 + 2.0 * dt)).abs() < 1e-13);
-    }
-
-    #[test]
-    fn nan_rhs_is_reported() {
-        let bad = |t: f64, y: &[f64; 1], d: &mut [f64; 1]| {
-            d[0] = if t > 0.5 { f64::NAN } else { -y[0] };
-        };
-        let mut s = Dopri5::new(Tolerances::default());
-        s.restart(&bad, 0.0, &[1.0]);
-        let r = loop {
-            match s.step(&bad, 10.0) {
-                Ok(()) => assert!(s.t() <= 0.5 + 1.0),
-                Err(e) => break e,
-            }
-        };
-        assert!(matches!(r, StepError::NonFinite { .. }), "{r:?}");
-        // A failed step leaves a valid, degenerate dense interval at t.
-        assert_eq!(s.t_prev(), s.t());
-        let mut out = [0.0];
-        s.dense(&bad, s.t() - 0.01, &mut out);
-        assert_eq!(&out, s.y());
-
-        let nan = |_t: f64, _y: &[f64; 1], d: &mut [f64; 1]| d[0] = f64::NAN;
-        let mut s = Dopri5::new(Tolerances::default());
-        s.restart(&nan, 0.0, &[1.0]);
-        assert!(matches!(s.step(&nan, 1.0), Err(StepError::NonFinite { .. })));
-    }
-
-    #[test]
-    fn mirrored_state_gives_identical_steps() {
-        let f = |t: f64, y: &[f64; 2], d: &mut [f64; 2]| {
-            d[0] = y[1];
-            d[1] = -y[0].sin() - 0.1 * y[1] + 0.5 * t.cos();
-        };
-        let fm = |t: f64, y: &[f64; 2], d: &mut [f64; 2]| {
-            d[0] = y[1];
-            d[1] = -y[0].sin() - 0.1 * y[1] - 0.5 * t.cos();
-        };
-        let mut a = Dopri5::new(Tolerances::default());
-        let mut b = Dopri5::new(Tolerances::default());
-        a.restart(&f, 0.0, &[0.3, 0.0]);
-        b.restart(&fm, 0.0, &[-0.3, -0.0]);
-        for _ in 0..50 {
-            a.step(&f, 30.0).unwrap();
-            b.step(&fm, 30.0).unwrap();
-            assert_eq!(a.t(), b.t());
-            assert_eq!(a.y()[0], -b.y()[0]);
-            assert_eq!(a.y()[1], -b.y()[1]);
-        }
-    }
-
-    #[test]
-    fn clamped_step_keeps_estimate() {
-        let mut s = Dopri5::new(tol(1e-8, 1e-8));
-        s.restart(&osc, 0.0, &[0.0, 1.0]);
-        for _ in 0..5 {
-            s.step(&osc, 100.0).unwrap();
-        }
-        let h = s.step_size();
-        let t = s.t();
-        s.step(&osc, t + h * 1e-3).unwrap();
-        assert_eq!(s.step_size(), h);
-    }
-
-    #[test]
-    fn blow_up_is_an_error_not_a_hang() {
-        // y' = y^2, y(0) = 1: y = 1 / (1 - t), singular at t = 1.
-        let f = |_t: f64, y: &[f64; 1], d: &mut [f64; 1]| d[0] = y[0] * y[0];
-        let mut s = Dopri5::new(Tolerances::default());
-        s.restart(&f, 0.0, &[1.0]);
-        let r = loop {
-            if let Err(e) = s.step(&f, 2.0) {
-                break e;
-            }
-        };
-        eprintln!("dopri5 blow-up: {r:?} after {:?}", s.stats());
-        assert!(s.t() < 1.1, "{}", s.t());
-        assert!(
-            matches!(r, StepError::StepSizeUnderflow { .. } | StepError::NonFinite { .. }),
-            "{r:?}"
-        );
+        let mut s = checks::oscillator_after_five_steps(Dopri5::new);
+        checks::interpolant_meets_the_ends(&s.y_old, &s.y, |theta, p| s.interpolate(theta, p));
+        let y_old = s.y_old;
+        checks::dense_returns_the_step_ends(&mut s, &y_old);
+        checks::dense_is_accurate_inside(&mut s);
     }
 }
