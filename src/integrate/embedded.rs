@@ -309,10 +309,6 @@ impl<P: Pair<N, S>, const N: usize, const S: usize> Stepper<N> for EmbeddedRk<P,
         true
     }
 
-    fn hermite(&self, t: f64, out: &mut [f64; N]) -> bool {
-        self.hermite_leading(t, out, N)
-    }
-
     fn hermite_spread(&self, out: &mut [f64; N]) -> bool {
         if !self.has_step {
             return false;
