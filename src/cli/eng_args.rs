@@ -100,6 +100,16 @@ fn is_vertical_key(name: &str) -> bool {
     name.ends_with("_v") && crate::sim::catalogue::spec(&format!("excitation.{name}")).is_some()
 }
 
+/// The flags that set the motion of a record (`record`) or else a pulse,
+/// for refusing a `--set` of a motion key ([`Owns::motion`]).
+fn motion_flags(record: bool) -> &'static str {
+    if record {
+        "--record, --unit, --dt, --scale/--pga"
+    } else {
+        "--pulse, --pulse-accel, --pulse-period, --cycles, --scale/--pga"
+    }
+}
+
 impl Owns {
     /// What `command` sets itself when its motion is a record (`record`)
     /// or else a pulse: the blocks' sizes by the flags `sizes`, the motion
@@ -113,7 +123,7 @@ impl Owns {
         Owns {
             command,
             sizes,
-            motion: super::eng_motion::motion_flags(record),
+            motion: motion_flags(record),
             record,
             vertical,
         }

@@ -183,16 +183,6 @@ pub(crate) fn motion(args: &MotionArgs<'_>, with_vertical_key: bool) -> Result<M
     })
 }
 
-/// The flags that set the motion, for refusing a `--set` of a motion key
-/// ([`Owns::motion`](super::eng_args::Owns)).
-pub(crate) fn motion_flags(record: bool) -> &'static str {
-    if record {
-        "--record, --unit, --dt, --scale/--pga"
-    } else {
-        "--pulse, --pulse-accel, --pulse-period, --cycles, --scale/--pga"
-    }
-}
-
 impl<'a> MotionArgs<'a> {
     /// The motion flags of a command's `--record` and its reading
     /// (`source`), `--pulse`, the pulse's numbers and the vertical
