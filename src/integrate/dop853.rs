@@ -198,8 +198,8 @@ impl<const N: usize> Dop853<N> {
 #[cfg(test)]
 mod tests {
     use super::super::dopri5::Dopri5;
-    use super::super::dopri5::tests::{observed_orders, osc, osc_exact, run};
     use super::super::stepper::Stepper;
+    use super::super::stepper_checks::{observed_orders, osc, osc_exact, run};
     use super::*;
 
     use super::super::stepper_checks::{self as checks, tol};

@@ -187,110 +187,11 @@ impl<const N: usize> Dopri5<N> {
 }
 
 #[cfg(test)]
-pub(super) mod tests {
-    //! Test problems shared with the other methods' tests.
-
-    use super::super::stepper::{Stepper, Tolerances};
+mod tests {
+    use super::super::stepper_checks::{self as checks, observed_orders};
     use super::*;
 
-    /// `y' = -y`, `y(0) = 1`.
-    pub(crate) fn decay(_t: f64, y: &[f64; 1], d: &mut [f64; 1]) {
-        d[0] = -y[0];
-    }
-    /// `y' = cos t`, `y(0) = 0`: `y = sin t`.
-    pub(crate) fn cosine(t: f64, _y: &[f64; 1], d: &mut [f64; 1]) {
-        d[0] = t.cos();
-    }
-    /// `y1' = y2, y2' = -y1`, `y(0) = (0, 1)`: `y = (sin t, cos t)`.
-    pub(crate) fn osc(_t: f64, y: &[f64; 2], d: &mut [f64; 2]) {
-        d[0] = y[1];
-        d[1] = -y[0];
-    }
-    pub(crate) fn osc_exact(t: f64) -> [f64; 2] {
-        [t.sin(), t.cos()]
-    }
-
-    /// Asserts `|a - b| <= rel * max(|b|, 1)` componentwise.
-    pub(crate) fn assert_rel_close<const N: usize>(a: &[f64; N], b: &[f64; N], rel: f64) {
-        for (x, y) in a.iter().zip(b) {
-            assert!((x - y).abs() <= rel * y.abs().max(1.0), "{a:?} vs {b:?}");
-        }
-    }
-
-    /// Largest error over components, normalised by `atol + rtol |y|`.
-    pub(crate) fn norm_err<const N: usize>(y: &[f64; N], exact: &[f64; N], tol: &Tolerances) -> f64 {
-        y.iter()
-            .zip(exact)
-            .map(|(a, b)| (a - b).abs() / (tol.atol + tol.rtol * b.abs()))
-            .fold(0.0, f64::max)
-    }
-
-    /// Largest relative (to max(|exact|, 1)) error at the step ends over
-    /// `[0, t_end]`, stepping with `t_stop = t_end`.
-    pub(crate) fn run<const N: usize, S: Stepper<N>, F: Rhs<N>>(
-        s: &mut S,
-        f: &F,
-        y0: [f64; N],
-        t_end: f64,
-        exact: impl Fn(f64) -> [f64; N],
-    ) -> f64 {
-        s.restart(f, 0.0, &y0);
-        let mut worst: f64 = 0.0;
-        while s.t() < t_end {
-            s.step(f, t_end).unwrap();
-            let ex = exact(s.t());
-            for (a, b) in s.y().iter().zip(&ex) {
-                worst = worst.max((a - b).abs() / b.abs().max(1.0));
-            }
-        }
-        assert_eq!(s.t(), t_end, "must land exactly on t_end");
-        worst
-    }
-
-    use super::super::stepper_checks as checks;
-
     checks::adaptive_stepper_tests!(Dopri5, "dopri5");
-
-    /// One step of size `h` from the exact state at `t0` (forced by `h_max`
-    /// and `t_stop`, tolerances loose enough to accept it): returns the local
-    /// error at the end and the dense error at the midpoint.
-    pub(crate) fn one_step_errors<S: Stepper<2>>(s: &mut S, t0: f64, h: f64) -> (f64, f64) {
-        // Warm up so that the step-size estimate reaches h_max = h; restart
-        // keeps it.
-        s.restart(&osc, -100.0, &osc_exact(-100.0));
-        for _ in 0..20 {
-            s.step(&osc, 0.0).unwrap();
-        }
-        assert!(s.step_size() >= h);
-        s.restart(&osc, t0, &osc_exact(t0));
-        s.step(&osc, t0 + h).unwrap();
-        assert_eq!(s.t(), t0 + h);
-        let end = osc_exact(t0 + h);
-        let e_end = (s.y()[0] - end[0]).hypot(s.y()[1] - end[1]);
-        let tm = t0 + 0.5 * h;
-        let mut ym = [0.0; 2];
-        s.dense(&osc, tm, &mut ym);
-        let mid = osc_exact(tm);
-        let e_mid = (ym[0] - mid[0]).hypot(ym[1] - mid[1]);
-        (e_end, e_mid)
-    }
-
-    /// Observed orders `log2(e(h) / e(h/2))` of the local end error and the
-    /// midpoint dense error of the stepper `mk` builds, each step forced to
-    /// its size by `h_max` under tolerances loose enough to accept it.
-    pub(crate) fn observed_orders<S: Stepper<2>>(mk: impl Fn(Tolerances) -> S, h: f64) -> (f64, f64) {
-        let forced = |h| {
-            mk(Tolerances {
-                rtol: 1.0,
-                atol: 1.0,
-                h_max: h,
-                h_fixed: 0.0,
-            })
-        };
-        let (e1, m1) = one_step_errors(&mut forced(h), 0.3, h);
-        let (e2, m2) = one_step_errors(&mut forced(h / 2.0), 0.3, h / 2.0);
-        ((e1 / e2).log2(), (m1 / m2).log2())
-    }
 
     #[test]
     fn local_and_dense_orders() {

@@ -226,8 +226,8 @@ impl<const N: usize> Stepper<N> for Ralston<N> {
 
 #[cfg(test)]
 mod tests {
-    use super::super::dopri5::tests::{cosine, decay, osc, osc_exact, run};
     use super::super::stepper_checks as checks;
+    use super::super::stepper_checks::{cosine, decay, osc, osc_exact, run};
     use super::*;
 
     fn fixed(h: f64) -> Tolerances {
