@@ -3,7 +3,7 @@
 //! skip, or at the current time.
 
 use super::{Driver, Field, HybridSystem, Observer};
-use crate::integrate::stepper::{Rhs, Stepper};
+use crate::integrate::stepper::Stepper;
 
 impl<S, Sys, const N: usize> Driver<S, Sys, N>
 where
@@ -20,14 +20,23 @@ where
             return;
         };
         let mode = self.mode;
-        let f = Field {
-            sys: &self.system,
-            mode,
-        };
-        let due = |ts: f64| ts <= t_to;
-        dense_outputs(&mut self.stepper, &f, dt, &mut self.next_sample, due, |_, ts, y| {
-            obs.sample(ts, mode, y)
-        });
+        let sys = &self.system;
+        let f = Field { sys, mode };
+        let t_end = self.stepper.t();
+        let mut y = [0.0; N];
+        loop {
+            let ts = self.next_sample as f64 * dt;
+            if ts > t_to {
+                break;
+            }
+            if ts == t_end {
+                y = *self.stepper.y();
+            } else {
+                self.stepper.dense(&f, ts, &mut y);
+            }
+            obs.sample(ts, mode, &y);
+            self.next_sample += 1;
+        }
     }
 
     /// Section points in the last step up to `t_to` (included if
@@ -44,14 +53,23 @@ where
             return;
         };
         let mode = self.mode;
-        let f = Field {
-            sys: &self.system,
-            mode,
-        };
-        let due = |ts: f64| ts < t_to || (ts == t_to && inclusive);
-        dense_outputs(&mut self.stepper, &f, p, &mut self.next_section, due, |k, ts, y| {
-            obs.section(k, ts, mode, y)
-        });
+        let sys = &self.system;
+        let f = Field { sys, mode };
+        let t_end = self.stepper.t();
+        let mut y = [0.0; N];
+        loop {
+            let ts = self.next_section as f64 * p;
+            if ts > t_to || (ts == t_to && !inclusive) {
+                break;
+            }
+            if ts == t_end {
+                y = *self.stepper.y();
+            } else {
+                self.stepper.dense(&f, ts, &mut y);
+            }
+            obs.section(self.next_section, ts, mode, &y);
+            self.next_section += 1;
+        }
     }
 
     /// Outputs due exactly at the current time (the start of a run).
@@ -109,34 +127,5 @@ where
                 self.next_section += 1;
             }
         }
-    }
-}
-
-/// Hands `emit` each output time `k·dt` that is `due`, `k` counting on
-/// from `*next`, in the step the stepper just took, with the state there:
-/// the step's end state bit for bit at its end, its dense output inside.
-#[inline(always)]
-fn dense_outputs<S: Stepper<N>, F: Rhs<N>, const N: usize>(
-    stepper: &mut S,
-    f: &F,
-    dt: f64,
-    next: &mut u64,
-    due: impl Fn(f64) -> bool,
-    mut emit: impl FnMut(u64, f64, &[f64; N]),
-) {
-    let t_end = stepper.t();
-    let mut y = [0.0; N];
-    loop {
-        let ts = *next as f64 * dt;
-        if !due(ts) {
-            break;
-        }
-        if ts == t_end {
-            y = *stepper.y();
-        } else {
-            stepper.dense(f, ts, &mut y);
-        }
-        emit(*next, ts, &y);
-        *next += 1;
     }
 }
