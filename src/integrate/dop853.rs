@@ -101,7 +101,7 @@ impl<const N: usize> Dop853<N> {
     /// One attempt of size `h` ending at `t_new`: fills `k[1..12]` and
     /// `y_new`, returns Hairer's combined error norm.
     fn attempt<F: Rhs<N>>(&mut self, f: &F, h: f64, t_new: f64, y_new: &mut [f64; N]) -> Result<f64, StepError> {
-        let t = self.ends.t;
+        let t = self.t;
         let mut ys = [0.0; N];
         // No finiteness test per stage: every stage has a non-zero weight in
         // a later stage, the solution or the error estimate (a tableau test
@@ -111,11 +111,11 @@ impl<const N: usize> Dop853<N> {
         // Stage states need only the components `f` reads.
         let read = N - F::QUADRATURES.min(N);
         for i in 1..N_STAGES {
-            combine_leading(&self.ends.y, h, &A[i][..i], &self.k[..i], &mut ys, read);
+            combine_leading(&self.y, h, &A[i][..i], &self.k[..i], &mut ys, read);
             let ti = if C[i] == 1.0 { t_new } else { t + C[i] * h };
             self.eval(f, ti, &ys, i);
         }
-        combine(&self.ends.y, h, &B, &self.k[..N_STAGES], y_new);
+        combine(&self.y, h, &B, &self.k[..N_STAGES], y_new);
         if !all_finite(y_new) {
             return Err(StepError::NonFinite { t });
         }
@@ -134,7 +134,7 @@ impl<const N: usize> Dop853<N> {
         let (mut e5sq, mut e3sq) = (0.0, 0.0);
         for n in 0..N {
             // One division per component instead of two.
-            let inv = 1.0 / err_scale(&self.tol, self.ends.y[n], y_new[n]);
+            let inv = 1.0 / err_scale(&self.tol, self.y[n], y_new[n]);
             e5sq += (e5[n] * inv).powi(2);
             e3sq += (e3[n] * inv).powi(2);
         }
@@ -154,16 +154,16 @@ impl<const N: usize> Dop853<N> {
     /// Computes the three extra stages and the dense coefficients, once per
     /// step (scipy `_dense_output_impl`, Hairer's block after label 40).
     fn prepare_dense<F: Rhs<N>>(&mut self, f: &F) {
-        let h = self.ends.h_used;
+        let h = self.h_used;
         let mut ys = [0.0; N];
         let read = N - F::QUADRATURES.min(N);
         for s in FSAL + 1..N_STAGES_EXTENDED {
-            combine_leading(&self.ends.y_old, h, &A[s][..s], &self.k[..s], &mut ys, read);
-            self.eval(f, self.ends.t_old + C[s] * h, &ys, s);
+            combine_leading(&self.y_old, h, &A[s][..s], &self.k[..s], &mut ys, read);
+            self.eval(f, self.t_old + C[s] * h, &ys, s);
         }
         let (f_old, f_new) = (self.k[0], self.k[FSAL]);
         for n in 0..N {
-            let dy = self.ends.y[n] - self.ends.y_old[n];
+            let dy = self.y[n] - self.y_old[n];
             self.dense.cont[0][n] = dy;
             self.dense.cont[1][n] = h * f_old[n] - dy;
             self.dense.cont[2][n] = 2.0 * dy - h * (f_new[n] + f_old[n]);
@@ -190,7 +190,7 @@ impl<const N: usize> Dop853<N> {
                 acc += c[n];
                 acc *= if i % 2 == 0 { theta } else { th1 };
             }
-            out[n] = self.ends.y_old[n] + acc;
+            out[n] = self.y_old[n] + acc;
         }
     }
 }
@@ -221,14 +221,14 @@ mod tests {
         let mut s = checks::oscillator_after_five_steps(Dop853::new);
         let before = s.stats().rhs_evals;
         // End points: exact, and no extra stages needed.
-        let y_old = s.ends.y_old;
+        let y_old = s.y_old;
         checks::dense_returns_the_step_ends(&mut s, &y_old);
         assert_eq!(s.stats().rhs_evals, before);
         // Interior points: the extra stages cost 3 evaluations, once.
         checks::dense_is_accurate_inside(&mut s);
         assert_eq!(s.stats().rhs_evals, before + 3);
         // The polynomial itself at θ = 0 and θ = 1 (from those stages).
-        checks::interpolant_meets_the_ends(&s.ends.y_old, &s.ends.y, |theta, p| s.interpolate(theta, p, 2));
+        checks::interpolant_meets_the_ends(&s.y_old, &s.y, |theta, p| s.interpolate(theta, p, 2));
         // A new step invalidates the extra stages.
         s.step(&osc, 20.0).unwrap();
         let before = s.stats().rhs_evals;

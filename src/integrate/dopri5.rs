@@ -116,10 +116,10 @@ impl<const N: usize> Pair<N, STAGES> for Dopri5Pair {
         t_new: f64,
         y_new: &mut [f64; N],
     ) -> Result<f64, StepError> {
-        let t = rk.ends.t;
+        let t = rk.t;
         let mut ys = [0.0; N];
         for i in 1..STAGES {
-            combine(&rk.ends.y, h, &A[i][..i], &rk.k[..i], &mut ys);
+            combine(&rk.y, h, &A[i][..i], &rk.k[..i], &mut ys);
             if !all_finite(&ys) {
                 return Err(StepError::NonFinite { t });
             }
@@ -140,7 +140,7 @@ impl<const N: usize> Pair<N, STAGES> for Dopri5Pair {
                     e += ej * kj[n];
                 }
             }
-            let sk = err_scale(&rk.tol, rk.ends.y[n], y_new[n]);
+            let sk = err_scale(&rk.tol, rk.y[n], y_new[n]);
             sum += (h * e / sk).powi(2);
         }
         Ok((sum / N.max(1) as f64).sqrt())
@@ -167,11 +167,11 @@ impl<const N: usize> Dopri5<N> {
     /// The continuous extension for the leading `count` components (the
     /// rest of `out` is left as it was).
     fn interpolate_leading(&self, theta: f64, out: &mut [f64; N], count: usize) {
-        let h = self.ends.h_used;
+        let h = self.h_used;
         let th1 = 1.0 - theta;
         let (k0, k6) = (&self.k[0], &self.k[STAGES - 1]);
         for n in 0..count.min(N) {
-            let ydiff = self.ends.y[n] - self.ends.y_old[n];
+            let ydiff = self.y[n] - self.y_old[n];
             let bspl = h * k0[n] - ydiff;
             let r4 = ydiff - h * k6[n] - bspl;
             let mut d = 0.0;
@@ -181,7 +181,7 @@ impl<const N: usize> Dopri5<N> {
                 }
             }
             let r5 = h * d;
-            out[n] = self.ends.y_old[n] + theta * (ydiff + th1 * (bspl + theta * (r4 + th1 * r5)));
+            out[n] = self.y_old[n] + theta * (ydiff + th1 * (bspl + theta * (r4 + th1 * r5)));
         }
     }
 }
@@ -206,8 +206,8 @@ mod tests {
     #[test]
     fn dense_matches_step_ends_and_closed_form() {
         let mut s = checks::oscillator_after_five_steps(Dopri5::new);
-        checks::interpolant_meets_the_ends(&s.ends.y_old, &s.ends.y, |theta, p| s.interpolate(theta, p));
-        let y_old = s.ends.y_old;
+        checks::interpolant_meets_the_ends(&s.y_old, &s.y, |theta, p| s.interpolate(theta, p));
+        let y_old = s.y_old;
         checks::dense_returns_the_step_ends(&mut s, &y_old);
         checks::dense_is_accurate_inside(&mut s);
     }

@@ -15,7 +15,7 @@ use std::fmt::Debug;
 
 use super::controller::{Controller, H_FALLBACK, MAX_REJECTIONS, h_min, hinit, next_step_size};
 use super::stages::{all_finite, hermite_leading, hermite_spread};
-use super::stepper::{Rhs, StepEnds, StepError, StepStats, Stepper, Tolerances};
+use super::stepper::{Rhs, StepError, StepStats, Stepper, Tolerances};
 
 /// An embedded explicit Runge–Kutta pair with first-same-as-last: what
 /// [`EmbeddedRk`] needs to know of one method. `N` is the state size, `S`
@@ -52,7 +52,7 @@ pub trait Pair<const N: usize, const S: usize>: Sized {
     #[inline]
     fn invalidate(_dense: &mut Self::Dense) {}
 
-    /// One attempt of size `h` from `(rk.ends.t, rk.ends.y)` ending at `t_new`: fills
+    /// One attempt of size `h` from `(rk.t, rk.y)` ending at `t_new`: fills
     /// the stages, writes the solution into `y_new` and returns the error
     /// norm (at most 1 passes).
     fn attempt<F: Rhs<N>>(
@@ -76,8 +76,10 @@ pub trait Pair<const N: usize, const S: usize>: Sized {
 pub struct EmbeddedRk<P: Pair<N, S>, const N: usize, const S: usize> {
     pub(super) tol: Tolerances,
     pub(super) ctrl: Controller,
-    /// The last step's two ends.
-    pub(super) ends: StepEnds<N>,
+    pub(super) t: f64,
+    pub(super) t_old: f64,
+    pub(super) y: [f64; N],
+    pub(super) y_old: [f64; N],
     /// Stages of the last accepted step: `k[0] = f(t_old, y_old)` and
     /// `k[P::FSAL] = f(t, y)` once a step has been taken.
     pub(super) k: [[f64; N]; S],
@@ -86,8 +88,12 @@ pub struct EmbeddedRk<P: Pair<N, S>, const N: usize, const S: usize> {
     /// `k[P::FSAL]` holds `f(t, y)` and must become `k[0]` before the next
     /// step. Deferred so that dense output still sees the old `k[0]`.
     pub(super) fsal_pending: bool,
+    /// A step has been taken since the last restart (dense output is valid).
+    pub(super) has_step: bool,
     /// `restart` has been called at least once.
     pub(super) started: bool,
+    /// Size of the last accepted step (the one dense output covers).
+    pub(super) h_used: f64,
     /// Proposed size of the next step; 0 until the first `hinit`.
     pub(super) h_next: f64,
     /// The last accepted step size not shortened to land on a stop (or a
@@ -105,11 +111,16 @@ impl<P: Pair<N, S>, const N: usize, const S: usize> EmbeddedRk<P, N, S> {
         Self {
             tol,
             ctrl: Controller::new(safety, fac_min, fac_max, beta, expo),
-            ends: StepEnds::new(),
+            t: 0.0,
+            t_old: 0.0,
+            y: [0.0; N],
+            y_old: [0.0; N],
             k: [[0.0; N]; S],
             dense: P::new_dense(),
             fsal_pending: false,
+            has_step: false,
             started: false,
+            h_used: 0.0,
             h_next: 0.0,
             h_trusted: 0.0,
             stats: StepStats::default(),
@@ -135,16 +146,16 @@ impl<P: Pair<N, S>, const N: usize, const S: usize> Stepper<N> for EmbeddedRk<P,
     /// last step-size estimate: they follow impacts, where the time scale
     /// has not changed.
     fn restart<F: Rhs<N>>(&mut self, f: &F, t: f64, y: &[f64; N]) {
-        self.ends.t = t;
-        self.ends.t_old = t;
-        self.ends.y = *y;
-        self.ends.y_old = *y;
+        self.t = t;
+        self.t_old = t;
+        self.y = *y;
+        self.y_old = *y;
         self.eval(f, t, y, 0);
         self.fsal_pending = false;
         P::invalidate(&mut self.dense);
-        self.ends.has_step = false;
+        self.has_step = false;
         self.started = true;
-        self.ends.h_used = 0.0;
+        self.h_used = 0.0;
         // A reset (an impact, a stick–slip switch) starts a new solution.
         // The proposal carried over may have grown on a step whose error
         // estimate saw the smooth continuation of the old mode across the
@@ -156,7 +167,7 @@ impl<P: Pair<N, S>, const N: usize, const S: usize> Stepper<N> for EmbeddedRk<P,
         }
         self.ctrl.reset();
         if self.h_next <= 0.0 {
-            let (y0, f0) = (self.ends.y, self.k[0]);
+            let (y0, f0) = (self.y, self.k[0]);
             if let Some(h) = hinit(f, t, &y0, &f0, P::ORDER, &self.tol, &mut self.stats.rhs_evals) {
                 self.h_next = h;
             }
@@ -164,15 +175,15 @@ impl<P: Pair<N, S>, const N: usize, const S: usize> Stepper<N> for EmbeddedRk<P,
     }
 
     fn step<F: Rhs<N>>(&mut self, f: &F, t_stop: f64) -> Result<(), StepError> {
-        if t_stop.is_nan() || t_stop <= self.ends.t {
+        if t_stop.is_nan() || t_stop <= self.t {
             return Err(StepError::StepSizeUnderflow {
-                t: self.ends.t,
-                h: t_stop - self.ends.t,
+                t: self.t,
+                h: t_stop - self.t,
             });
         }
         if !self.started {
-            let y = self.ends.y;
-            self.restart(f, self.ends.t, &y);
+            let y = self.y;
+            self.restart(f, self.t, &y);
         }
         if self.fsal_pending {
             self.k[0] = self.k[P::FSAL];
@@ -181,12 +192,12 @@ impl<P: Pair<N, S>, const N: usize, const S: usize> Stepper<N> for EmbeddedRk<P,
         // The stages of the last step are being overwritten: until this step
         // is accepted, dense output only knows the current point (this
         // matters if the step fails).
-        self.ends.has_step = false;
-        self.ends.t_old = self.ends.t;
-        self.ends.y_old = self.ends.y;
+        self.has_step = false;
+        self.t_old = self.t;
+        self.y_old = self.y;
         P::invalidate(&mut self.dense);
-        if !all_finite(&self.k[0]) || !all_finite(&self.ends.y) {
-            return Err(StepError::NonFinite { t: self.ends.t });
+        if !all_finite(&self.k[0]) || !all_finite(&self.y) {
+            return Err(StepError::NonFinite { t: self.t });
         }
         let mut h = if self.h_next > 0.0 { self.h_next } else { H_FALLBACK };
         let mut after_reject = false;
@@ -195,15 +206,12 @@ impl<P: Pair<N, S>, const N: usize, const S: usize> Stepper<N> for EmbeddedRk<P,
         loop {
             let h_proposed = h;
             let h_cap = h.min(self.tol.h_max);
-            let dist = t_stop - self.ends.t;
+            let dist = t_stop - self.t;
             let (h_try, mut clamped) = if h_cap >= dist { (dist, true) } else { (h_cap, false) };
-            if !clamped && (h_try.is_nan() || h_try < h_min(self.ends.t)) {
-                return Err(StepError::StepSizeUnderflow {
-                    t: self.ends.t,
-                    h: h_try,
-                });
+            if !clamped && (h_try.is_nan() || h_try < h_min(self.t)) {
+                return Err(StepError::StepSizeUnderflow { t: self.t, h: h_try });
             }
-            let mut t_new = if clamped { t_stop } else { self.ends.t + h_try };
+            let mut t_new = if clamped { t_stop } else { self.t + h_try };
             if t_new >= t_stop {
                 // Rounding of `t + h` reached t_stop: land on it exactly.
                 t_new = t_stop;
@@ -217,7 +225,7 @@ impl<P: Pair<N, S>, const N: usize, const S: usize> Stepper<N> for EmbeddedRk<P,
             let err = match P::attempt(self, f, h_try, t_new, &mut y_new) {
                 Ok(err) => err,
                 Err(e @ StepError::NonFinite { .. }) if P::RETRY_NON_FINITE => {
-                    if rejections + 1 >= MAX_REJECTIONS || h_try * self.ctrl.fac_min() < h_min(self.ends.t) {
+                    if rejections + 1 >= MAX_REJECTIONS || h_try * self.ctrl.fac_min() < h_min(self.t) {
                         return Err(e);
                     }
                     f64::NAN
@@ -231,34 +239,39 @@ impl<P: Pair<N, S>, const N: usize, const S: usize> Stepper<N> for EmbeddedRk<P,
                     // (Hairer evaluates it after the error test too).
                     self.eval(f, t_new, &y_new, P::FSAL);
                     if !all_finite(&self.k[P::FSAL]) {
-                        return Err(StepError::NonFinite { t: self.ends.t });
+                        return Err(StepError::NonFinite { t: self.t });
                     }
                 }
                 self.h_next = next_step_size(&d, h_try, clamped, h_proposed, self.tol.h_max);
-                self.ends.t = t_new;
-                self.ends.y = y_new;
-                self.ends.h_used = h_try;
+                self.t = t_new;
+                self.y = y_new;
+                self.h_used = h_try;
                 self.h_trusted = if clamped { self.h_trusted.max(h_try) } else { h_try };
                 self.fsal_pending = true;
-                self.ends.has_step = true;
+                self.has_step = true;
                 self.stats.accepted += 1;
                 return Ok(());
             }
             self.stats.rejected += 1;
             rejections += 1;
             if rejections >= MAX_REJECTIONS {
-                return Err(StepError::StepSizeUnderflow {
-                    t: self.ends.t,
-                    h: d.h_new,
-                });
+                return Err(StepError::StepSizeUnderflow { t: self.t, h: d.h_new });
             }
             after_reject = true;
             h = d.h_new;
         }
     }
 
-    fn ends(&self) -> &StepEnds<N> {
-        &self.ends
+    fn t(&self) -> f64 {
+        self.t
+    }
+
+    fn y(&self) -> &[f64; N] {
+        &self.y
+    }
+
+    fn t_prev(&self) -> f64 {
+        self.t_old
     }
 
     /// The pair's dense output. Returns the stored end states bit for bit at
@@ -266,45 +279,42 @@ impl<P: Pair<N, S>, const N: usize, const S: usize> Stepper<N> for EmbeddedRk<P,
     /// step has been taken since the last restart. Outside
     /// `[t_prev(), t()]` the polynomial extrapolates.
     fn dense<F: Rhs<N>>(&mut self, f: &F, t: f64, out: &mut [f64; N]) {
-        match self.ends.stored_at(t) {
-            Some(y) => *out = *y,
-            None => P::dense_inside(self, f, (t - self.ends.t_old) / self.ends.h_used, out, N),
+        if !self.has_step || t == self.t {
+            *out = self.y;
+        } else if t == self.t_old {
+            *out = self.y_old;
+        } else {
+            P::dense_inside(self, f, (t - self.t_old) / self.h_used, out, N);
         }
     }
 
     fn dense_leading<F: Rhs<N>>(&mut self, f: &F, t: f64, out: &mut [f64; N], count: usize) {
-        match self.ends.stored_at(t) {
-            Some(y) => out[..count].copy_from_slice(&y[..count]),
-            None => P::dense_inside(self, f, (t - self.ends.t_old) / self.ends.h_used, out, count),
+        if !self.has_step || t == self.t {
+            out[..count].copy_from_slice(&self.y[..count]);
+        } else if t == self.t_old {
+            out[..count].copy_from_slice(&self.y_old[..count]);
+        } else {
+            P::dense_inside(self, f, (t - self.t_old) / self.h_used, out, count);
         }
     }
 
     fn hermite_leading(&self, t: f64, out: &mut [f64; N], count: usize) -> bool {
-        if !self.ends.has_step {
+        if !self.has_step {
             return false;
         }
         // k[0] is f(t_old, y_old) until the next step moves the FSAL stage.
         let (f0, f1) = (&self.k[0], &self.k[P::FSAL]);
-        let theta = (t - self.ends.t_old) / self.ends.h_used;
-        hermite_leading(
-            &self.ends.y_old,
-            &self.ends.y,
-            f0,
-            f1,
-            self.ends.h_used,
-            theta,
-            out,
-            count,
-        );
+        let theta = (t - self.t_old) / self.h_used;
+        hermite_leading(&self.y_old, &self.y, f0, f1, self.h_used, theta, out, count);
         true
     }
 
     fn hermite_spread(&self, out: &mut [f64; N]) -> bool {
-        if !self.ends.has_step {
+        if !self.has_step {
             return false;
         }
         let (f0, f1) = (&self.k[0], &self.k[P::FSAL]);
-        hermite_spread(&self.ends.y_old, &self.ends.y, f0, f1, self.ends.h_used, out);
+        hermite_spread(&self.y_old, &self.y, f0, f1, self.h_used, out);
         true
     }
 

@@ -17,7 +17,7 @@
 
 use super::controller::h_min;
 use super::stages::{all_finite, combine};
-use super::stepper::{Rhs, StepEnds, StepError, StepStats, Stepper, Tolerances};
+use super::stepper::{Rhs, StepError, StepStats, Stepper, Tolerances};
 
 /// Ralston's node and weights.
 const A21: f64 = 2.0 / 3.0;
@@ -35,12 +35,18 @@ pub struct Ralston<const N: usize> {
     tol: Tolerances,
     /// Current step (`h_fixed`, or less after `undo_and_shrink`).
     h: f64,
-    /// The last step's two ends.
-    ends: StepEnds<N>,
+    t: f64,
+    t_old: f64,
+    y: [f64; N],
+    y_old: [f64; N],
     /// `f(t, y)`.
     f: [f64; N],
     /// `f(t_old, y_old)`.
     f_old: [f64; N],
+    /// Size of the last step (the one dense output covers).
+    h_used: f64,
+    /// A step has been taken since the last restart or undo.
+    has_step: bool,
     /// `restart` has been called at least once.
     started: bool,
     stats: StepStats,
@@ -54,9 +60,14 @@ impl<const N: usize> Ralston<N> {
         Self {
             tol,
             h: tol.h_fixed,
-            ends: StepEnds::new(),
+            t: 0.0,
+            t_old: 0.0,
+            y: [0.0; N],
+            y_old: [0.0; N],
             f: [0.0; N],
             f_old: [0.0; N],
+            h_used: 0.0,
+            has_step: false,
             started: false,
             stats: StepStats::default(),
         }
@@ -72,13 +83,13 @@ impl<const N: usize> Ralston<N> {
     /// the first three terms of DOP853's dense output:
     /// `y_old + θ(Δ + (1-θ)(h f_old - Δ + θ(2Δ - h(f_old + f))))`.
     fn interpolate(&self, theta: f64, out: &mut [f64; N]) {
-        let h = self.ends.h_used;
+        let h = self.h_used;
         let th1 = 1.0 - theta;
         for (n, o) in out.iter_mut().enumerate() {
-            let dy = self.ends.y[n] - self.ends.y_old[n];
+            let dy = self.y[n] - self.y_old[n];
             let c1 = h * self.f_old[n] - dy;
             let c2 = 2.0 * dy - h * (self.f_old[n] + self.f[n]);
-            *o = self.ends.y_old[n] + theta * (dy + th1 * (c1 + theta * c2));
+            *o = self.y_old[n] + theta * (dy + th1 * (c1 + theta * c2));
         }
     }
 }
@@ -91,28 +102,28 @@ impl<const N: usize> Stepper<N> for Ralston<N> {
     /// Starts at `(t, y)` and evaluates `f(t, y)`. Keeps the current step
     /// size; see [`Ralston::reset_step`].
     fn restart<F: Rhs<N>>(&mut self, f: &F, t: f64, y: &[f64; N]) {
-        self.ends.t = t;
-        self.ends.t_old = t;
-        self.ends.y = *y;
-        self.ends.y_old = *y;
+        self.t = t;
+        self.t_old = t;
+        self.y = *y;
+        self.y_old = *y;
         f.eval(t, y, &mut self.f);
         self.stats.rhs_evals += 1;
         self.f_old = self.f;
-        self.ends.h_used = 0.0;
-        self.ends.has_step = false;
+        self.h_used = 0.0;
+        self.has_step = false;
         self.started = true;
     }
 
     fn step<F: Rhs<N>>(&mut self, f: &F, t_stop: f64) -> Result<(), StepError> {
-        let t = self.ends.t;
+        let t = self.t;
         if t_stop.is_nan() || t_stop <= t {
             return Err(StepError::StepSizeUnderflow { t, h: t_stop - t });
         }
         if !self.started {
-            let y = self.ends.y;
+            let y = self.y;
             self.restart(f, t, &y);
         }
-        if !all_finite(&self.f) || !all_finite(&self.ends.y) {
+        if !all_finite(&self.f) || !all_finite(&self.y) {
             return Err(StepError::NonFinite { t });
         }
         let h_cap = self.h.min(self.tol.h_max);
@@ -124,40 +135,51 @@ impl<const N: usize> Stepper<N> for Ralston<N> {
         let t_new = if clamped { t_stop } else { (t + h).min(t_stop) };
 
         let mut ys = [0.0; N];
-        combine(&self.ends.y, h, &[A21], core::slice::from_ref(&self.f), &mut ys);
+        combine(&self.y, h, &[A21], core::slice::from_ref(&self.f), &mut ys);
         let mut k2 = [0.0; N];
         f.eval(t + A21 * h, &ys, &mut k2);
         let mut y_new = [0.0; N];
-        combine(&self.ends.y, h, &[B1, B2], &[self.f, k2], &mut y_new);
+        combine(&self.y, h, &[B1, B2], &[self.f, k2], &mut y_new);
         let mut f_new = [0.0; N];
         f.eval(t_new, &y_new, &mut f_new);
         self.stats.rhs_evals += 2;
         if !all_finite(&k2) || !all_finite(&y_new) || !all_finite(&f_new) {
             return Err(StepError::NonFinite { t });
         }
-        self.ends.t_old = t;
-        self.ends.y_old = self.ends.y;
+        self.t_old = t;
+        self.y_old = self.y;
         self.f_old = self.f;
-        self.ends.t = t_new;
-        self.ends.y = y_new;
+        self.t = t_new;
+        self.y = y_new;
         self.f = f_new;
-        self.ends.h_used = h;
-        self.ends.has_step = true;
+        self.h_used = h;
+        self.has_step = true;
         self.stats.accepted += 1;
         Ok(())
     }
 
-    fn ends(&self) -> &StepEnds<N> {
-        &self.ends
+    fn t(&self) -> f64 {
+        self.t
+    }
+
+    fn y(&self) -> &[f64; N] {
+        &self.y
+    }
+
+    fn t_prev(&self) -> f64 {
+        self.t_old
     }
 
     /// Cubic Hermite dense output from `y` and `f` at both ends (3rd-order
     /// interpolation, more than the method's 2nd order needs). Returns the end
     /// states bit for bit at `t_prev()` and `t()`. Never evaluates `f`.
     fn dense<F: Rhs<N>>(&mut self, _f: &F, t: f64, out: &mut [f64; N]) {
-        match self.ends.stored_at(t) {
-            Some(y) => *out = *y,
-            None => self.interpolate((t - self.ends.t_old) / self.ends.h_used, out),
+        if !self.has_step || t == self.t {
+            *out = self.y;
+        } else if t == self.t_old {
+            *out = self.y_old;
+        } else {
+            self.interpolate((t - self.t_old) / self.h_used, out);
         }
     }
 
@@ -178,12 +200,12 @@ impl<const N: usize> Stepper<N> for Ralston<N> {
         if !(factor.is_finite() && factor > 0.0) {
             return false;
         }
-        if self.ends.has_step {
-            self.ends.t = self.ends.t_old;
-            self.ends.y = self.ends.y_old;
+        if self.has_step {
+            self.t = self.t_old;
+            self.y = self.y_old;
             self.f = self.f_old;
-            self.ends.h_used = 0.0;
-            self.ends.has_step = false;
+            self.h_used = 0.0;
+            self.has_step = false;
             self.stats.accepted = self.stats.accepted.saturating_sub(1);
             self.stats.rejected += 1;
         }
@@ -264,8 +286,8 @@ mod tests {
         s.restart(&osc, 0.0, &[0.0, 1.0]);
         s.step(&osc, 1.0).unwrap();
         s.step(&osc, 1.0).unwrap();
-        checks::interpolant_meets_the_ends(&s.ends.y_old, &s.ends.y, |theta, p| s.interpolate(theta, p));
-        let y_old = s.ends.y_old;
+        checks::interpolant_meets_the_ends(&s.y_old, &s.y, |theta, p| s.interpolate(theta, p));
+        let y_old = s.y_old;
         checks::dense_returns_the_step_ends(&mut s, &y_old);
 
         // Local errors over one step from the exact state: end O(h^3),

@@ -107,59 +107,6 @@ pub enum StepError {
     },
 }
 
-/// The two ends of a stepper's last accepted step: what its dense output
-/// spans and returns bit for bit, kept in one place by every method.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct StepEnds<const N: usize> {
-    /// Time at the end (the current time).
-    pub t: f64,
-    /// State at the end.
-    pub y: [f64; N],
-    /// Time at the start.
-    pub t_old: f64,
-    /// State at the start.
-    pub y_old: [f64; N],
-    /// Size of the step (the one dense output covers).
-    pub h_used: f64,
-    /// A step has been taken since the last restart (dense output is valid).
-    pub has_step: bool,
-}
-
-impl<const N: usize> StepEnds<N> {
-    /// No step yet, at `t = 0`, `y = 0`.
-    pub const fn new() -> Self {
-        StepEnds {
-            t: 0.0,
-            y: [0.0; N],
-            t_old: 0.0,
-            y_old: [0.0; N],
-            h_used: 0.0,
-            has_step: false,
-        }
-    }
-
-    /// The stored state at `t` when `t` is an end of the last step (the
-    /// current state when no step has been taken since a restart): dense
-    /// output returns it bit for bit, evaluating nothing. `None` elsewhere,
-    /// where the method interpolates.
-    #[inline(always)]
-    pub fn stored_at(&self, t: f64) -> Option<&[f64; N]> {
-        if !self.has_step || t == self.t {
-            Some(&self.y)
-        } else if t == self.t_old {
-            Some(&self.y_old)
-        } else {
-            None
-        }
-    }
-}
-
-impl<const N: usize> Default for StepEnds<N> {
-    fn default() -> Self {
-        Self::new()
-    }
-}
-
 /// A one-step method with dense output over its last step.
 ///
 /// Usage: [`restart`](Stepper::restart) at `(t0, y0)`, then call
@@ -179,21 +126,12 @@ pub trait Stepper<const N: usize> {
     /// exactly on `t_stop` (bit for bit) when the step would pass it.
     fn step<F: Rhs<N>>(&mut self, f: &F, t_stop: f64) -> Result<(), StepError>;
 
-    /// The two ends of the last step, which every stepper keeps alike.
-    fn ends(&self) -> &StepEnds<N>;
-
     /// Time at the end of the last step (the current time).
-    fn t(&self) -> f64 {
-        self.ends().t
-    }
+    fn t(&self) -> f64;
     /// State at the end of the last step.
-    fn y(&self) -> &[f64; N] {
-        &self.ends().y
-    }
+    fn y(&self) -> &[f64; N];
     /// Time at the start of the last step.
-    fn t_prev(&self) -> f64 {
-        self.ends().t_old
-    }
+    fn t_prev(&self) -> f64;
 
     /// High-order dense output at `t` in `[t_prev(), t()]`. May evaluate
     /// `f` (DOP853 needs three extra stages, computed once per step).

@@ -20,7 +20,7 @@
 //! excitations) the step is DOP853's.
 
 use super::dop853::Dop853;
-use super::stepper::{Rhs, StepEnds, StepError, StepStats, Stepper, Tolerances};
+use super::stepper::{Rhs, StepError, StepStats, Stepper, Tolerances};
 
 /// Highest order the stepper uses (the order for rtol 1e-14 is 28).
 pub(crate) const MAX_ORDER: usize = 28;
@@ -54,16 +54,21 @@ pub struct Taylor<const N: usize> {
     order: usize,
     /// Jorba and Zou's safety factor `exp(−0.7/(p−1))`.
     safety: f64,
-    /// The last step's two ends.
-    ends: StepEnds<N>,
+    t: f64,
+    t_old: f64,
+    y: [f64; N],
+    y_old: [f64; N],
     /// Taylor coefficients of the last step at `t_old`: `y(t_old + s) =
     /// Σ_k coef[k] s^k`, rows 0..=order.
     coef: [[f64; N]; MAX_ORDER + 1],
+    /// The last step was a Taylor step (else DOP853's, in `fallback`).
+    has_step: bool,
     /// The last step was DOP853's: dense output and Hermite data are its.
     on_fallback: bool,
     /// `fallback` has been restarted at the current state.
     fallback_synced: bool,
     fallback: Dop853<N>,
+    h_used: f64,
     stats: StepStats,
 }
 
@@ -80,11 +85,16 @@ impl<const N: usize> Taylor<N> {
             tol,
             order,
             safety: (-0.7 / (order - 1) as f64).exp(),
-            ends: StepEnds::new(),
+            t: 0.0,
+            t_old: 0.0,
+            y: [0.0; N],
+            y_old: [0.0; N],
             coef: [[0.0; N]; MAX_ORDER + 1],
+            has_step: false,
             on_fallback: false,
             fallback_synced: false,
             fallback: Dop853::new(tol),
+            h_used: 0.0,
             stats: StepStats::default(),
         }
     }
@@ -104,7 +114,7 @@ impl<const N: usize> Taylor<N> {
         for k in [p - 1, p] {
             let mut r: f64 = 0.0;
             for n in 0..N {
-                let sk = self.tol.atol + self.tol.rtol * self.ends.y[n].abs().max(self.ends.y_old[n].abs());
+                let sk = self.tol.atol + self.tol.rtol * self.y[n].abs().max(self.y_old[n].abs());
                 r = r.max(self.coef[k][n].abs() / sk);
             }
             if r > 0.0 {
@@ -185,7 +195,7 @@ impl<const N: usize> Taylor<N> {
     /// Both ends and their derivatives, for the Hermite screening.
     fn ends(&self) -> ([f64; N], [f64; N]) {
         let mut f1 = [0.0; N];
-        self.eval_derivative(self.ends.h_used, &mut f1);
+        self.eval_derivative(self.h_used, &mut f1);
         (self.coef[1], f1)
     }
 }
@@ -198,75 +208,83 @@ impl<const N: usize> Stepper<N> for Taylor<N> {
     /// Starts at `(t, y)`. Evaluates nothing: the coefficients belong to the
     /// step, and DOP853 is restarted only if a step needs it.
     fn restart<F: Rhs<N>>(&mut self, _f: &F, t: f64, y: &[f64; N]) {
-        self.ends.t = t;
-        self.ends.t_old = t;
-        self.ends.y = *y;
-        self.ends.y_old = *y;
-        self.ends.has_step = false;
+        self.t = t;
+        self.t_old = t;
+        self.y = *y;
+        self.y_old = *y;
+        self.has_step = false;
         self.on_fallback = false;
         self.fallback_synced = false;
-        self.ends.h_used = 0.0;
+        self.h_used = 0.0;
     }
 
     fn step<F: Rhs<N>>(&mut self, f: &F, t_stop: f64) -> Result<(), StepError> {
-        if t_stop.is_nan() || t_stop <= self.ends.t {
+        if t_stop.is_nan() || t_stop <= self.t {
             return Err(StepError::StepSizeUnderflow {
-                t: self.ends.t,
-                h: t_stop - self.ends.t,
+                t: self.t,
+                h: t_stop - self.t,
             });
         }
-        self.ends.has_step = false;
+        self.has_step = false;
         let order = self.order;
-        if f.taylor(self.ends.t, &self.ends.y, order, &mut self.coef[..=order]) {
+        if f.taylor(self.t, &self.y, order, &mut self.coef[..=order]) {
             self.stats.rhs_evals += 1;
             self.on_fallback = false;
             self.fallback_synced = false;
             if !self.coef[..=order].iter().all(|row| row.iter().all(|v| v.is_finite())) {
-                return Err(StepError::NonFinite { t: self.ends.t });
+                return Err(StepError::NonFinite { t: self.t });
             }
             let h_allowed = self.step_from_coefficients().min(self.tol.h_max);
-            let dist = t_stop - self.ends.t;
+            let dist = t_stop - self.t;
             let (h, t_new) = if h_allowed >= dist {
                 (dist, t_stop)
             } else {
-                (h_allowed, self.ends.t + h_allowed)
+                (h_allowed, self.t + h_allowed)
             };
-            if h.is_nan() || h <= 0.0 || t_new <= self.ends.t {
-                return Err(StepError::StepSizeUnderflow { t: self.ends.t, h });
+            if h.is_nan() || h <= 0.0 || t_new <= self.t {
+                return Err(StepError::StepSizeUnderflow { t: self.t, h });
             }
             let mut y_new = [0.0; N];
             self.eval_poly(h, &mut y_new, N);
             if !y_new.iter().all(|v| v.is_finite()) {
-                return Err(StepError::NonFinite { t: self.ends.t });
+                return Err(StepError::NonFinite { t: self.t });
             }
-            self.ends.t_old = self.ends.t;
-            self.ends.y_old = self.ends.y;
-            self.ends.t = t_new;
-            self.ends.y = y_new;
-            self.ends.h_used = h;
-            self.ends.has_step = true;
+            self.t_old = self.t;
+            self.y_old = self.y;
+            self.t = t_new;
+            self.y = y_new;
+            self.h_used = h;
+            self.has_step = true;
             self.stats.accepted += 1;
             return Ok(());
         }
         // No series for this right-hand side: DOP853 takes the step.
         if !self.fallback_synced {
-            let y = self.ends.y;
-            self.fallback.restart(f, self.ends.t, &y);
+            let y = self.y;
+            self.fallback.restart(f, self.t, &y);
             self.fallback_synced = true;
         }
         self.on_fallback = true;
         self.fallback.step(f, t_stop)?;
-        self.ends.t_old = self.fallback.t_prev();
-        self.ends.y_old = self.ends.y;
-        self.ends.t = self.fallback.t();
-        self.ends.y = *self.fallback.y();
-        self.ends.h_used = self.ends.t - self.ends.t_old;
-        self.ends.has_step = true;
+        self.t_old = self.fallback.t_prev();
+        self.y_old = self.y;
+        self.t = self.fallback.t();
+        self.y = *self.fallback.y();
+        self.h_used = self.t - self.t_old;
+        self.has_step = true;
         Ok(())
     }
 
-    fn ends(&self) -> &StepEnds<N> {
-        &self.ends
+    fn t(&self) -> f64 {
+        self.t
+    }
+
+    fn y(&self) -> &[f64; N] {
+        &self.y
+    }
+
+    fn t_prev(&self) -> f64 {
+        self.t_old
     }
 
     /// The step's polynomial (or DOP853's dense output). The end states are
@@ -276,28 +294,30 @@ impl<const N: usize> Stepper<N> for Taylor<N> {
     }
 
     fn dense_leading<F: Rhs<N>>(&mut self, f: &F, t: f64, out: &mut [f64; N], count: usize) {
-        if let Some(y) = self.ends.stored_at(t) {
-            out[..count].copy_from_slice(&y[..count]);
+        if !self.has_step || t == self.t {
+            out[..count].copy_from_slice(&self.y[..count]);
+        } else if t == self.t_old {
+            out[..count].copy_from_slice(&self.y_old[..count]);
         } else if self.on_fallback {
             self.fallback.dense_leading(f, t, out, count);
         } else {
-            self.eval_poly(t - self.ends.t_old, out, count);
+            self.eval_poly(t - self.t_old, out, count);
         }
     }
 
     /// The screening interpolant: the polynomial itself, more accurate than
     /// the cubic the driver assumes (so its margin is conservative).
     fn hermite_leading(&self, t: f64, out: &mut [f64; N], count: usize) -> bool {
-        if !self.ends.has_step {
+        if !self.has_step {
             return false;
         }
         if self.on_fallback {
             return self.fallback.hermite_leading(t, out, count);
         }
-        if t == self.ends.t {
-            out[..count].copy_from_slice(&self.ends.y[..count]);
+        if t == self.t {
+            out[..count].copy_from_slice(&self.y[..count]);
         } else {
-            self.eval_poly(t - self.ends.t_old, out, count);
+            self.eval_poly(t - self.t_old, out, count);
         }
         true
     }
@@ -306,16 +326,16 @@ impl<const N: usize> Stepper<N> for Taylor<N> {
     /// for the Runge–Kutta methods: an overestimate of the polynomial's
     /// error, which keeps the screening as conservative as theirs.
     fn hermite_spread(&self, out: &mut [f64; N]) -> bool {
-        if !self.ends.has_step {
+        if !self.has_step {
             return false;
         }
         if self.on_fallback {
             return self.fallback.hermite_spread(out);
         }
         let (f0, f1) = self.ends();
-        let h = self.ends.h_used;
+        let h = self.h_used;
         for n in 0..N {
-            out[n] = (2.0 * (self.ends.y[n] - self.ends.y_old[n]) - h * (f0[n] + f1[n])) / 8.0;
+            out[n] = (2.0 * (self.y[n] - self.y_old[n]) - h * (f0[n] + f1[n])) / 8.0;
         }
         true
     }
@@ -327,7 +347,7 @@ impl<const N: usize> Stepper<N> for Taylor<N> {
     }
 
     fn step_size(&self) -> f64 {
-        self.ends.h_used
+        self.h_used
     }
 }
 
