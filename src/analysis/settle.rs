@@ -44,7 +44,7 @@ use std::collections::VecDeque;
 
 use super::classify::{ClassifyOptions, Response, classify_points, classify_run};
 use super::section::{after_transient, block_coordinates, points_in_window};
-use super::steady::{LyapunovFn, SteadyError, Window};
+use super::steady::{LyapunovFn, SteadyError, Window, exponent_of, section_run};
 use crate::model::Mode;
 use crate::model::system::EventRecord;
 use crate::sim::{HistoryRow, Scenario, SectionRow, Sink, simulate_into};
@@ -233,15 +233,7 @@ pub fn cell_response(
     lyapunov: Option<&LyapunovFn<'_>>,
     early: bool,
 ) -> Result<CellResponse, SteadyError> {
-    let mut cfg = scenario.clone();
-    cfg.run.tau_end = window.tau_end;
-    let model = cfg.model()?;
-    let Some(period) = model.excitation.forcing_period() else {
-        return Err(SteadyError::NotHarmonic);
-    };
-    let mut run = cfg.run_options();
-    run.output_dt = None;
-    run.section = true;
+    let (cfg, model, period, run) = section_run(scenario, window)?;
     let mut watch = Settle::new(period, window.transient, *opts);
     let mut res = if early && forcing_is_periodic(&cfg) {
         simulate_into(model, &cfg.initial, &run, &mut watch)?
@@ -303,18 +295,9 @@ pub fn cell_response(
             (response, cycle, None)
         }
     };
-    let mut exponent = None;
-    if let (Some(hook), Response::Periodic { .. } | Response::Quasiperiodic | Response::Chaotic) = (lyapunov, response)
-    {
-        exponent = hook(&cfg);
-        if let Some(l) = exponent {
-            if !l.is_finite() {
-                return Err(super::classify::ClassifyError::NonFiniteExponent.into());
-            }
-            if stopped_at.is_none() {
-                response = classify_run(&res, period, window.transient, exponent, opts)?;
-            }
-        }
+    let exponent = exponent_of(lyapunov, response, &cfg)?;
+    if exponent.is_some() && stopped_at.is_none() {
+        response = classify_run(&res, period, window.transient, exponent, opts)?;
     }
     Ok(CellResponse {
         response,

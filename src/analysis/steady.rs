@@ -19,9 +19,9 @@
 use super::classify::{ClassifyError, ClassifyOptions, Response, classify_run};
 use super::field::{FieldNames, OwnNames, StudyField};
 use super::section::{after_transient, points_in_window};
-use crate::model::Mode;
+use crate::model::{Mode, Model};
 use crate::sim::scenario::ExcitationKind;
-use crate::sim::{InitialState, Scenario, ScenarioError, SectionRow, SimError, simulate};
+use crate::sim::{InitialState, RunOptions, Scenario, ScenarioError, SectionRow, SimError, simulate};
 
 /// The largest Lyapunov exponent of a configuration, per unit τ, if the
 /// caller can compute it (the hook the Lyapunov module is wired into).
@@ -214,13 +214,14 @@ pub(crate) fn seed_of(row: &SectionRow) -> Option<InitialState> {
     })
 }
 
-/// Runs `scenario` over `window` and classifies its steady response.
-pub fn steady_response(
+/// `scenario` set up to be run over `window` and classified (harmonic
+/// excitation only): the scenario with its end at the window's, its model,
+/// the forcing period 2π/Ω_h (the section's spacing, τ) and run options
+/// that keep the section points and no time history.
+pub(crate) fn section_run(
     scenario: &Scenario,
     window: &Window,
-    opts: &ClassifyOptions,
-    lyapunov: Option<&LyapunovFn<'_>>,
-) -> Result<Steady, SteadyError> {
+) -> Result<(Scenario, Model, f64, RunOptions), SteadyError> {
     let mut cfg = scenario.clone();
     cfg.run.tau_end = window.tau_end;
     let model = cfg.model()?;
@@ -230,18 +231,41 @@ pub fn steady_response(
     let mut run = cfg.run_options();
     run.output_dt = None;
     run.section = true;
+    Ok((cfg, model, period, run))
+}
+
+/// The largest Lyapunov exponent of `cfg` from the hook, asked only for a
+/// response that moves on an attractor (periodic, quasiperiodic, chaotic:
+/// rest and the terminal ends have nothing to measure). A non-finite
+/// exponent is an error, never written.
+pub(crate) fn exponent_of(
+    lyapunov: Option<&LyapunovFn<'_>>,
+    response: Response,
+    cfg: &Scenario,
+) -> Result<Option<f64>, SteadyError> {
+    let (Some(hook), Response::Periodic { .. } | Response::Quasiperiodic | Response::Chaotic) = (lyapunov, response)
+    else {
+        return Ok(None);
+    };
+    match hook(cfg) {
+        Some(l) if !l.is_finite() => Err(ClassifyError::NonFiniteExponent.into()),
+        exponent => Ok(exponent),
+    }
+}
+
+/// Runs `scenario` over `window` and classifies its steady response.
+pub fn steady_response(
+    scenario: &Scenario,
+    window: &Window,
+    opts: &ClassifyOptions,
+    lyapunov: Option<&LyapunovFn<'_>>,
+) -> Result<Steady, SteadyError> {
+    let (cfg, model, period, run) = section_run(scenario, window)?;
     let res = simulate(model, &cfg.initial, &run)?;
     let mut response = classify_run(&res, period, window.transient, None, opts)?;
-    let mut exponent = None;
-    if let (Some(hook), Response::Periodic { .. } | Response::Quasiperiodic | Response::Chaotic) = (lyapunov, response)
-    {
-        exponent = hook(&cfg);
-        if let Some(l) = exponent {
-            if !l.is_finite() {
-                return Err(ClassifyError::NonFiniteExponent.into());
-            }
-            response = classify_run(&res, period, window.transient, exponent, opts)?;
-        }
+    let exponent = exponent_of(lyapunov, response, &cfg)?;
+    if exponent.is_some() {
+        response = classify_run(&res, period, window.transient, exponent, opts)?;
     }
     let terminal = response.is_terminal();
     let points = if terminal {

@@ -100,7 +100,35 @@ fn is_vertical_key(name: &str) -> bool {
     name.ends_with("_v") && crate::sim::catalogue::spec(&format!("excitation.{name}")).is_some()
 }
 
+/// The flags that set the motion of a record (`record`) or else a pulse,
+/// for refusing a `--set` of a motion key ([`Owns::motion`]).
+fn motion_flags(record: bool) -> &'static str {
+    if record {
+        "--record, --unit, --dt, --scale/--pga"
+    } else {
+        "--pulse, --pulse-accel, --pulse-period, --cycles, --scale/--pga"
+    }
+}
+
 impl Owns {
+    /// What `command` sets itself when its motion is a record (`record`)
+    /// or else a pulse: the blocks' sizes by the flags `sizes`, the motion
+    /// by that kind's flags, the vertical motion from `vertical`.
+    pub(crate) fn with_motion(
+        command: &'static str,
+        sizes: &'static str,
+        record: bool,
+        vertical: &'static str,
+    ) -> Owns {
+        Owns {
+            command,
+            sizes,
+            motion: motion_flags(record),
+            record,
+            vertical,
+        }
+    }
+
     /// Why `--set key` is refused, if it is: the engineering runs replace
     /// the block, the motion, the initial state, the run's end, its output
     /// and analyses (see `response::scenario_for`); a vertical motion

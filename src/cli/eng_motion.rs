@@ -183,20 +183,35 @@ pub(crate) fn motion(args: &MotionArgs<'_>, with_vertical_key: bool) -> Result<M
     })
 }
 
-/// The flags that set the motion, for refusing a `--set` of a motion key
-/// ([`Owns::motion`](super::eng_args::Owns)).
-pub(crate) fn motion_flags(record: bool) -> &'static str {
-    if record {
-        "--record, --unit, --dt, --scale/--pga"
-    } else {
-        "--pulse, --pulse-accel, --pulse-period, --cycles, --scale/--pga"
+impl<'a> MotionArgs<'a> {
+    /// The motion flags of a command's `--record` and its reading
+    /// (`source`), `--pulse`, the pulse's numbers and the vertical
+    /// component as applied.
+    pub(crate) fn new(
+        source: &'a RecordArgs,
+        pulse: Option<PulseArg>,
+        numbers: &'a PulseScaleArgs,
+        vertical: Option<(&'a PathBuf, Option<&'a str>)>,
+    ) -> Self {
+        MotionArgs {
+            record: source.record.as_deref(),
+            reading: &source.reading,
+            vertical,
+            pulse,
+            numbers,
+        }
+    }
+
+    /// Refuses the flags of a record with a pulse and those of a pulse
+    /// with a record (each would be ignored without a word), and cycles of
+    /// a pulse that has none.
+    pub(crate) fn refuse_mixed(&self) -> Result<(), BatchError> {
+        refuse_mixed_motion(self.record.is_some(), self.pulse, self.reading, self.numbers)
     }
 }
 
-/// Refuses the flags of a record with a pulse and those of a pulse with a
-/// record (each would be ignored without a word), and cycles of a pulse
-/// that has none.
-pub(crate) fn refuse_mixed_motion(
+/// [`MotionArgs::refuse_mixed`] of the flags given apart.
+fn refuse_mixed_motion(
     record: bool,
     pulse: Option<PulseArg>,
     reading: &RecordUnitArgs,

@@ -850,13 +850,7 @@ fn layout_of(common: &Json, path: &Path) -> anyhow::Result<Layout> {
 /// 0 … N−1 of one study, each once, with exactly their runs, and writes
 /// the files one run writes.
 pub fn merge(args: &MergeArgs) -> Result<(), BatchError> {
-    super::merge::refuse_out_in_shards(args)?;
-    let shards: Vec<ShardDir> = args
-        .shards
-        .iter()
-        .map(|d| read_shard(d))
-        .collect::<anyhow::Result<_>>()
-        .map_err(input)?;
+    let shards = super::merge::read_shards(args, read_shard)?;
     let by_index = super::merge::in_index_order(
         &shards,
         |s| (&s.dir, s.shard, &s.common),

@@ -227,9 +227,23 @@ pub(super) fn contains(out: &Path, shard: &Path) -> bool {
     resolved(shard).starts_with(resolved(out))
 }
 
+/// The shards `args` names, each read by `read`, once an `--out` among
+/// them is refused.
+pub(super) fn read_shards<T>(
+    args: &MergeArgs,
+    read: impl Fn(&Path) -> anyhow::Result<T>,
+) -> Result<Vec<T>, BatchError> {
+    refuse_out_in_shards(args)?;
+    args.shards
+        .iter()
+        .map(|d| read(d))
+        .collect::<anyhow::Result<_>>()
+        .map_err(BatchError::Input)
+}
+
 /// Refuses an `--out` that is or contains a shard being merged (writing it
 /// would replace what is read).
-pub(super) fn refuse_out_in_shards(args: &MergeArgs) -> Result<(), BatchError> {
+fn refuse_out_in_shards(args: &MergeArgs) -> Result<(), BatchError> {
     match args.shards.iter().find(|s| contains(&args.out, s)) {
         Some(shard) => Err(BatchError::Input(anyhow!(
             "--out {}: is or contains the shard {} being merged; write the merge elsewhere",
@@ -293,13 +307,7 @@ pub(super) fn in_index_order<T>(
 /// Runs `rocking merge`.
 pub fn run(args: &MergeArgs) -> Result<(), BatchError> {
     let input = BatchError::Input;
-    refuse_out_in_shards(args)?;
-    let shards: Vec<ShardDir> = args
-        .shards
-        .iter()
-        .map(|d| read_shard(d))
-        .collect::<anyhow::Result<_>>()
-        .map_err(input)?;
+    let shards = read_shards(args, read_shard)?;
     let by_index = in_index_order(
         &shards,
         |s| (&s.dir, s.shard, &s.common),

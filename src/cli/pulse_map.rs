@@ -44,12 +44,7 @@ pub struct PulseMapArgs {
     #[arg(long, value_name = "N")]
     pub cycles: Option<u32>,
     /// Slenderness ratios B/H, comma-separated or FROM:TO:N.
-    #[arg(
-        long = "b-over-h",
-        value_name = "LIST",
-        default_value = "0.2",
-        allow_hyphen_values = true
-    )]
+    #[arg(long, value_name = "LIST", default_value = "0.2", allow_hyphen_values = true)]
     pub b_over_h: String,
     /// Pulse frequencies ω_p/p, comma-separated or FROM:TO:N (increasing).
     #[arg(long, value_name = "LIST", default_value = "1:10:19", allow_hyphen_values = true)]

@@ -23,7 +23,7 @@ use serde_json::{Value as Json, json};
 use super::args::SceneArgs;
 use super::eng_args::{BaseArgs, Owns, RunArgs, block, input, positive_list, show};
 use super::eng_motion::PulseArg;
-use super::eng_motion::{Motion, MotionArgs, PulseScaleArgs, RecordArgs, motion_flags, refuse_mixed_motion};
+use super::eng_motion::{Motion, MotionArgs, PulseScaleArgs, RecordArgs};
 use super::error::BatchError;
 use super::flags::Flags;
 use super::pulse_map::MAX_OMEGA_RATIO;
@@ -78,24 +78,17 @@ pub struct SlidingSpectrumArgs {
 
 /// What the command sets itself, for refusing `--set` keys it would ignore.
 fn owns(args: &SlidingSpectrumArgs) -> Owns {
-    let record = args.pulse.is_none();
-    Owns {
-        command: "sliding-spectrum",
-        sizes: "--block",
-        motion: motion_flags(record),
-        record,
-        vertical: "nowhere: a sliding spectrum is of horizontal motion (use --batch with excitation.file_v for one run)",
-    }
+    Owns::with_motion(
+        "sliding-spectrum",
+        "--block",
+        args.pulse.is_none(),
+        "nowhere: a sliding spectrum is of horizontal motion (use --batch with excitation.file_v for one run)",
+    )
 }
 
 /// Refuses flags that the other flags make meaningless.
 fn refuse_ignored_flags(args: &SlidingSpectrumArgs) -> Result<(), BatchError> {
-    refuse_mixed_motion(
-        args.source.record.is_some(),
-        args.pulse,
-        &args.source.reading,
-        &args.motion,
-    )?;
+    MotionArgs::new(&args.source, args.pulse, &args.motion, None).refuse_mixed()?;
     for set in &args.scene.sets {
         let key = set.split_once('=').map_or(set.as_str(), |(k, _)| k).trim();
         if key.split_once('.').is_some_and(|(section, _)| section == "friction") {
@@ -109,14 +102,7 @@ fn refuse_ignored_flags(args: &SlidingSpectrumArgs) -> Result<(), BatchError> {
 
 /// The motion of the flags, read and checked (horizontal only).
 fn motion(args: &SlidingSpectrumArgs) -> Result<Motion, BatchError> {
-    let flags = MotionArgs {
-        record: args.source.record.as_deref(),
-        reading: &args.source.reading,
-        vertical: None,
-        pulse: args.pulse,
-        numbers: &args.motion,
-    };
-    super::eng_motion::motion(&flags, false)
+    super::eng_motion::motion(&MotionArgs::new(&args.source, args.pulse, &args.motion, None), false)
 }
 
 /// Runs `rocking sliding-spectrum`.

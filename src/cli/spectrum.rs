@@ -21,9 +21,7 @@ use anyhow::{Context as _, anyhow};
 use serde_json::{Value as Json, json};
 
 use super::eng_args::{BaseArgs, Owns, RunArgs, VerticalArg, flag_error, input, positive_list, show};
-use super::eng_motion::{
-    Motion, MotionArgs, PulseArg, PulseScaleArgs, RecordArgs, flagged, motion_flags, refuse_mixed_motion,
-};
+use super::eng_motion::{Motion, MotionArgs, PulseArg, PulseScaleArgs, RecordArgs, flagged};
 use super::error::BatchError;
 use super::pulse_map::MAX_OMEGA_RATIO;
 use super::sweep::{progress_bar, progress_fn, thread_pool};
@@ -85,12 +83,7 @@ pub struct SpectrumArgs {
     #[arg(long, value_name = "N", default_value_t = 50)]
     pub count: usize,
     /// Slenderness ratios B/H, comma-separated or FROM:TO:N.
-    #[arg(
-        long = "b-over-h",
-        value_name = "LIST",
-        default_value = "0.25",
-        allow_hyphen_values = true
-    )]
+    #[arg(long, value_name = "LIST", default_value = "0.25", allow_hyphen_values = true)]
     pub b_over_h: String,
     /// Also search each block's smallest overturning scale of the motion
     /// (step up by --search-step to --search-max, refine each change by
@@ -136,14 +129,12 @@ const FLAGS: &[(&str, &str)] = &[
 
 /// What `spectrum` sets itself, for refusing `--set` keys it would ignore.
 fn owns(args: &SpectrumArgs) -> Owns {
-    let record = args.pulse.is_none();
-    Owns {
-        command: "spectrum",
-        sizes: "--from/--to/--count, --size, --b-over-h",
-        motion: motion_flags(record),
-        record,
-        vertical: "--record-v",
-    }
+    Owns::with_motion(
+        "spectrum",
+        "--from/--to/--count, --size, --b-over-h",
+        args.pulse.is_none(),
+        "--record-v",
+    )
 }
 
 /// Refuses flags that the other flags make meaningless (each would be
@@ -154,12 +145,7 @@ fn refuse_ignored_flags(args: &SpectrumArgs) -> Result<(), BatchError> {
             "--vertical record: give the vertical component with --record-v FILE (or --vertical none)"
         )));
     }
-    refuse_mixed_motion(
-        args.source.record.is_some(),
-        args.pulse,
-        &args.source.reading,
-        &args.motion,
-    )?;
+    MotionArgs::new(&args.source, args.pulse, &args.motion, None).refuse_mixed()?;
     if !args.overturn_scale {
         for (flag, given) in [
             ("--search-step", args.search_step.is_some()),
@@ -184,13 +170,7 @@ fn motion(args: &SpectrumArgs) -> Result<Motion, BatchError> {
         .as_ref()
         .filter(|_| use_vertical)
         .map(|path| (path, args.unit_v.as_deref()));
-    let flags = MotionArgs {
-        record: args.source.record.as_deref(),
-        reading: &args.source.reading,
-        vertical,
-        pulse: args.pulse,
-        numbers: &args.motion,
-    };
+    let flags = MotionArgs::new(&args.source, args.pulse, &args.motion, vertical);
     super::eng_motion::motion(&flags, true)
 }
 

@@ -198,67 +198,17 @@ impl<const N: usize> Dop853<N> {
 #[cfg(test)]
 mod tests {
     use super::super::dopri5::Dopri5;
-    use super::super::dopri5::tests::{
-        assert_rel_close, cosine, decay, norm_err, observed_orders, osc, osc_exact, run,
-    };
-    use super::super::stepper::{Stepper, Tolerances};
+    use super::super::stepper::Stepper;
+    use super::super::stepper_checks::{observed_orders, osc, osc_exact, run};
     use super::*;
 
-    fn tol(rtol: f64, atol: f64) -> Tolerances {
-        Tolerances {
-            rtol,
-            atol,
-            ..Tolerances::default()
-        }
-    }
+    use super::super::stepper_checks::{self as checks, tol};
 
-    #[test]
-    fn decay_cosine_and_oscillator_match_closed_forms() {
-        let tl = tol(1e-8, 1e-10);
-        let mut s = Dop853::new(tl);
-        run(&mut s, &decay, [1.0], 2.0, |t| [(-t).exp()]);
-        let e = norm_err(s.y(), &[(-2.0f64).exp()], &tl);
-        assert!(e < 10.0, "decay: {e}");
-
-        let mut s = Dop853::new(tl);
-        run(&mut s, &cosine, [0.0], 10.0, |t| [t.sin()]);
-        let e = norm_err(s.y(), &[10.0f64.sin()], &tl);
-        assert!(e < 10.0, "cosine: {e}");
-
-        let mut s = Dop853::new(tl);
-        run(&mut s, &osc, [0.0, 1.0], 10.0, osc_exact);
-        let e = norm_err(s.y(), &osc_exact(10.0), &tl);
-        assert!(e < 100.0, "oscillator: {e}");
-    }
-
-    #[test]
-    fn tight_tolerance_reaches_1e8_relative_over_20() {
-        let mut s = Dop853::new(tol(1e-10, 1e-10));
-        let worst = run(&mut s, &osc, [0.0, 1.0], 20.0, osc_exact);
-        assert!(worst < 1e-8, "worst relative error {worst:e}");
-    }
-
-    #[test]
-    fn error_decreases_with_rtol() {
-        let mut loose = Dop853::new(tol(1e-6, 1e-6));
-        let e6 = run(&mut loose, &osc, [0.0, 1.0], 20.0, osc_exact);
-        let mut tight = Dop853::new(tol(1e-10, 1e-10));
-        let e10 = run(&mut tight, &osc, [0.0, 1.0], 20.0, osc_exact);
-        eprintln!("dop853 oscillator 0..20: rtol 1e-6 -> {e6:e}, 1e-10 -> {e10:e}");
-        assert!(e6 / e10 > 1e3, "{e6:e} / {e10:e}");
-    }
+    checks::adaptive_stepper_tests!(Dop853, "dop853");
 
     #[test]
     fn local_and_dense_orders() {
-        let mk = |h| {
-            Dop853::new(Tolerances {
-                rtol: 1.0,
-                atol: 1.0,
-                h_max: h,
-                h_fixed: 0.0,
-            })
-        };
-        let (p_end, p_mid) = observed_orders(mk, 0.8);
+        let (p_end, p_mid) = observed_orders(Dop853::new, 0.8);
         eprintln!("dop853 local order {p_end:.2}, dense order {p_mid:.2}");
         // Local error O(h^9) for the 8th-order solution, O(h^8) for the
         // 7th-order interpolant.
@@ -268,56 +218,23 @@ mod tests {
 
     #[test]
     fn dense_matches_step_ends_and_closed_form() {
-        let mut s = Dop853::new(tol(1e-6, 1e-6));
-        s.restart(&osc, 0.0, &[0.0, 1.0]);
-        for _ in 0..5 {
-            s.step(&osc, 20.0).unwrap();
-        }
+        let mut s = checks::oscillator_after_five_steps(Dop853::new);
         let before = s.stats().rhs_evals;
-        let mut out = [0.0; 2];
         // End points: exact, and no extra stages needed.
-        s.dense(&osc, s.t(), &mut out);
-        assert_eq!(&out, s.y());
-        s.dense(&osc, s.t_prev(), &mut out);
-        assert_eq!(out, s.y_old);
+        let y_old = s.y_old;
+        checks::dense_returns_the_step_ends(&mut s, &y_old);
         assert_eq!(s.stats().rhs_evals, before);
         // Interior points: the extra stages cost 3 evaluations, once.
-        let (a, b) = (s.t_prev(), s.t());
-        for i in 1..10 {
-            let t = a + (b - a) * f64::from(i) / 10.0;
-            s.dense(&osc, t, &mut out);
-            let e = norm_err(&out, &osc_exact(t), &tol(1e-6, 1e-6));
-            assert!(e < 10.0, "t = {t}: {e}");
-        }
+        checks::dense_is_accurate_inside(&mut s);
         assert_eq!(s.stats().rhs_evals, before + 3);
-        // The polynomial itself at θ = 0 and θ = 1.
-        let mut p = [0.0; 2];
-        s.interpolate(0.0, &mut p, 2);
-        assert_rel_close(&p, &s.y_old, 1e-14);
-        s.interpolate(1.0, &mut p, 2);
-        assert_rel_close(&p, &s.y, 1e-14);
+        // The polynomial itself at θ = 0 and θ = 1 (from those stages).
+        checks::interpolant_meets_the_ends(&s.y_old, &s.y, |theta, p| s.interpolate(theta, p, 2));
         // A new step invalidates the extra stages.
         s.step(&osc, 20.0).unwrap();
         let before = s.stats().rhs_evals;
+        let mut out = [0.0; 2];
         s.dense(&osc, 0.5 * (s.t_prev() + s.t()), &mut out);
         assert_eq!(s.stats().rhs_evals, before + 3);
-    }
-
-    #[test]
-    fn lands_exactly_on_t_stop() {
-        let mut s = Dop853::new(tol(1e-8, 1e-8));
-        s.restart(&osc, 0.0, &[0.0, 1.0]);
-        let stops = [0.1, 0.1 + 1e-13, 1.0 / 3.0, 2.7, 2.7 + f64::EPSILON * 4.0];
-        for &ts in &stops {
-            while s.t() < ts {
-                s.step(&osc, ts).unwrap();
-            }
-            assert_eq!(s.t(), ts);
-        }
-        assert!(matches!(
-            s.step(&osc, s.t() - 1.0),
-            Err(StepError::StepSizeUnderflow { .. })
-        ));
     }
 
     #[test]
@@ -344,53 +261,6 @@ mod tests {
     }
 
     #[test]
-    fn restart_keeps_step_size_and_discards_fsal() {
-        let mut s = Dop853::new(tol(1e-8, 1e-8));
-        s.restart(&osc, 0.0, &[0.0, 1.0]);
-        assert_eq!(s.stats().rhs_evals, 2);
-        s.step(&osc, 1.0).unwrap();
-        let h = s.step_size();
-        // The step just taken was not shortened (t = 1 is far), so it is
-        // the step the estimate may not exceed after a reset.
-        let h_last = s.t() - s.t_prev();
-        assert!(h > h_last, "the proposal grew on the smooth oscillator");
-        let before = s.stats().rhs_evals;
-        let g = |_t: f64, _y: &[f64; 2], d: &mut [f64; 2]| *d = [1.0, 2.0];
-        s.restart(&g, s.t(), &[5.0, 5.0]);
-        assert_eq!(s.stats().rhs_evals, before + 1, "no second hinit");
-        assert_eq!(
-            s.step_size(),
-            h.min(h_last),
-            "estimate kept, no larger than the last step"
-        );
-        let t0 = s.t();
-        s.step(&g, t0 + 0.5).unwrap();
-        let dt = s.t() - t0;
-        assert!((s.y()[0] - (5.0 + dt)).abs() < 1e-13);
-        assert!((s.y()[1] - (5.0 + 2.0 * dt)).abs() < 1e-13);
-    }
-
-    #[test]
-    fn nan_rhs_is_reported() {
-        let bad = |t: f64, y: &[f64; 1], d: &mut [f64; 1]| {
-            d[0] = if t > 0.5 { f64::NAN } else { -y[0] };
-        };
-        let mut s = Dop853::new(Tolerances::default());
-        s.restart(&bad, 0.0, &[1.0]);
-        let r = loop {
-            if let Err(e) = s.step(&bad, 10.0) {
-                break e;
-            }
-        };
-        assert!(matches!(r, StepError::NonFinite { .. }), "{r:?}");
-        // A failed step leaves a valid, degenerate dense interval at t.
-        assert_eq!(s.t_prev(), s.t());
-        let mut out = [0.0];
-        s.dense(&bad, s.t() - 0.01, &mut out);
-        assert_eq!(&out, s.y());
-    }
-
-    #[test]
     fn fewer_evaluations_than_dopri5_at_tight_tolerance() {
         let tl = tol(1e-10, 1e-10);
         let mut a = Dop853::new(tl);
@@ -400,64 +270,5 @@ mod tests {
         let (na, nb) = (a.stats().rhs_evals, b.stats().rhs_evals);
         eprintln!("rhs evaluations over 0..20 at 1e-10: dop853 {na}, dopri5 {nb}");
         assert!(na < nb, "dop853 {na} vs dopri5 {nb}");
-    }
-
-    #[test]
-    fn mirrored_state_gives_identical_steps_and_dense() {
-        let f = |t: f64, y: &[f64; 2], d: &mut [f64; 2]| {
-            d[0] = y[1];
-            d[1] = -y[0].sin() - 0.1 * y[1] + 0.5 * t.cos();
-        };
-        let fm = |t: f64, y: &[f64; 2], d: &mut [f64; 2]| {
-            d[0] = y[1];
-            d[1] = -y[0].sin() - 0.1 * y[1] - 0.5 * t.cos();
-        };
-        let mut a = Dop853::new(Tolerances::default());
-        let mut b = Dop853::new(Tolerances::default());
-        a.restart(&f, 0.0, &[0.3, 0.0]);
-        b.restart(&fm, 0.0, &[-0.3, -0.0]);
-        let (mut ya, mut yb) = ([0.0; 2], [0.0; 2]);
-        for _ in 0..50 {
-            a.step(&f, 30.0).unwrap();
-            b.step(&fm, 30.0).unwrap();
-            assert_eq!(a.t(), b.t());
-            assert_eq!(a.y()[0], -b.y()[0]);
-            let tm = 0.3 * a.t_prev() + 0.7 * a.t();
-            a.dense(&f, tm, &mut ya);
-            b.dense(&fm, tm, &mut yb);
-            assert_eq!(ya[0], -yb[0]);
-            assert_eq!(ya[1], -yb[1]);
-        }
-    }
-
-    #[test]
-    fn clamped_step_keeps_estimate() {
-        let mut s = Dop853::new(tol(1e-8, 1e-8));
-        s.restart(&osc, 0.0, &[0.0, 1.0]);
-        for _ in 0..5 {
-            s.step(&osc, 100.0).unwrap();
-        }
-        let h = s.step_size();
-        let t = s.t();
-        s.step(&osc, t + h * 1e-3).unwrap();
-        assert_eq!(s.step_size(), h);
-    }
-
-    #[test]
-    fn blow_up_is_an_error_not_a_hang() {
-        // y' = y^2, y(0) = 1: y = 1 / (1 - t), singular at t = 1.
-        let f = |_t: f64, y: &[f64; 1], d: &mut [f64; 1]| d[0] = y[0] * y[0];
-        let mut s = Dop853::new(Tolerances::default());
-        s.restart(&f, 0.0, &[1.0]);
-        let r = loop {
-            if let Err(e) = s.step(&f, 2.0) {
-                break e;
-            }
-        };
-        assert!(s.t() < 1.1, "{}", s.t());
-        assert!(
-            matches!(r, StepError::StepSizeUnderflow { .. } | StepError::NonFinite { .. }),
-            "{r:?}"
-        );
     }
 }

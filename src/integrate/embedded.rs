@@ -14,7 +14,7 @@
 use std::fmt::Debug;
 
 use super::controller::{Controller, H_FALLBACK, MAX_REJECTIONS, h_min, hinit, next_step_size};
-use super::stages::{all_finite, hermite, hermite_leading, hermite_spread};
+use super::stages::{all_finite, hermite_leading, hermite_spread};
 use super::stepper::{Rhs, StepError, StepStats, Stepper, Tolerances};
 
 /// An embedded explicit Runge–Kutta pair with first-same-as-last: what
@@ -306,23 +306,6 @@ impl<P: Pair<N, S>, const N: usize, const S: usize> Stepper<N> for EmbeddedRk<P,
         let (f0, f1) = (&self.k[0], &self.k[P::FSAL]);
         let theta = (t - self.t_old) / self.h_used;
         hermite_leading(&self.y_old, &self.y, f0, f1, self.h_used, theta, out, count);
-        true
-    }
-
-    fn hermite(&self, t: f64, out: &mut [f64; N]) -> bool {
-        if !self.has_step {
-            return false;
-        }
-        let (f0, f1) = (&self.k[0], &self.k[P::FSAL]);
-        hermite(
-            &self.y_old,
-            &self.y,
-            f0,
-            f1,
-            self.h_used,
-            (t - self.t_old) / self.h_used,
-            out,
-        );
         true
     }
 

@@ -19,6 +19,8 @@ pub mod ralston;
 pub mod root;
 mod stages;
 pub mod stepper;
+#[cfg(test)]
+mod stepper_checks;
 pub mod taylor;
 
 pub use dop853::Dop853;

@@ -226,7 +226,8 @@ impl<const N: usize> Stepper<N> for Ralston<N> {
 
 #[cfg(test)]
 mod tests {
-    use super::super::dopri5::tests::{assert_rel_close, cosine, decay, osc, osc_exact, run};
+    use super::super::stepper_checks as checks;
+    use super::super::stepper_checks::{cosine, decay, osc, osc_exact, run};
     use super::*;
 
     fn fixed(h: f64) -> Tolerances {
@@ -285,16 +286,9 @@ mod tests {
         s.restart(&osc, 0.0, &[0.0, 1.0]);
         s.step(&osc, 1.0).unwrap();
         s.step(&osc, 1.0).unwrap();
-        let mut p = [0.0; 2];
-        s.interpolate(0.0, &mut p);
-        assert_rel_close(&p, &s.y_old, 1e-14);
-        s.interpolate(1.0, &mut p);
-        assert_rel_close(&p, &s.y, 1e-14);
-        let mut out = [0.0; 2];
-        s.dense(&osc, s.t(), &mut out);
-        assert_eq!(&out, s.y());
-        s.dense(&osc, s.t_prev(), &mut out);
-        assert_eq!(out, s.y_old);
+        checks::interpolant_meets_the_ends(&s.y_old, &s.y, |theta, p| s.interpolate(theta, p));
+        let y_old = s.y_old;
+        checks::dense_returns_the_step_ends(&mut s, &y_old);
 
         // Local errors over one step from the exact state: end O(h^3),
         // midpoint O(h^3) too (Hermite's own error is O(h^4)).

@@ -56,25 +56,11 @@ pub(super) fn combine_leading<const N: usize>(
 
 /// The cubic Hermite interpolant through `(t0, y0, f0)` and `(t0 + h, y1,
 /// f1)` at `theta = (t - t0)/h`, in the Hermite basis:
-/// `(1-θ)²(1+2θ) y0 + θ(1-θ)² h f0 + θ²(3-2θ) y1 + θ²(θ-1) h f1`.
-/// The four weights are computed once and the components are a vectorisable
-/// linear combination in a fixed order, so negating the state negates the
-/// result bit for bit.
-#[inline]
-pub(super) fn hermite<const N: usize>(
-    y0: &[f64; N],
-    y1: &[f64; N],
-    f0: &[f64; N],
-    f1: &[f64; N],
-    h: f64,
-    theta: f64,
-    out: &mut [f64; N],
-) {
-    hermite_leading(y0, y1, f0, f1, h, theta, out, N);
-}
-
-/// [`hermite`] for the leading `count` components (the rest of `out` is
-/// left as it was).
+/// `(1-θ)²(1+2θ) y0 + θ(1-θ)² h f0 + θ²(3-2θ) y1 + θ²(θ-1) h f1`,
+/// for the leading `count` components (the rest of `out` is left as it
+/// was; `N` for all). The four weights are computed once and the
+/// components are a vectorisable linear combination in a fixed order, so
+/// negating the state negates the result bit for bit.
 #[inline]
 #[allow(clippy::too_many_arguments)]
 pub(super) fn hermite_leading<const N: usize>(
@@ -136,10 +122,10 @@ mod tests {
         for k in 0..=20 {
             let theta = f64::from(k) / 20.0;
             let mut out = [0.0];
-            hermite(&y0, &y1, &f0, &f1, h, theta, &mut out);
+            hermite_leading(&y0, &y1, &f0, &f1, h, theta, &mut out, 1);
             assert!((out[0] - p(t0 + theta * h)).abs() < 1e-14, "θ = {theta}");
             let mut neg = [0.0];
-            hermite(&[-y0[0]], &[-y1[0]], &[-f0[0]], &[-f1[0]], h, theta, &mut neg);
+            hermite_leading(&[-y0[0]], &[-y1[0]], &[-f0[0]], &[-f1[0]], h, theta, &mut neg, 1);
             assert_eq!(neg[0].to_bits(), (-out[0]).to_bits());
         }
     }

@@ -147,10 +147,11 @@ pub trait Stepper<const N: usize> {
     }
 
     /// [`hermite`](Stepper::hermite) for the leading `count` components
-    /// only, as [`dense_leading`](Stepper::dense_leading).
-    fn hermite_leading(&self, t: f64, out: &mut [f64; N], count: usize) -> bool {
-        let _ = count;
-        self.hermite(t, out)
+    /// only, as [`dense_leading`](Stepper::dense_leading): what a stepper
+    /// with such data implements (the driver screens the guards' leading
+    /// components). By default it has none.
+    fn hermite_leading(&self, _t: f64, _out: &mut [f64; N], _count: usize) -> bool {
+        false
     }
 
     /// The cubic Hermite interpolant of the last step at `t`, built from the
@@ -158,9 +159,10 @@ pub trait Stepper<const N: usize> {
     /// extra stages): the driver screens guards with it before it pays for
     /// the high-order dense output. Accurate to O(h⁴), not to the
     /// tolerance. Returns `false` if the stepper has no such data (then the
-    /// driver uses [`dense`](Stepper::dense)).
-    fn hermite(&self, _t: f64, _out: &mut [f64; N]) -> bool {
-        false
+    /// driver uses [`dense`](Stepper::dense)). All components of
+    /// [`hermite_leading`](Stepper::hermite_leading).
+    fn hermite(&self, t: f64, out: &mut [f64; N]) -> bool {
+        self.hermite_leading(t, out, N)
     }
 
     /// A conservative estimate of the error of [`hermite`](Stepper::hermite)

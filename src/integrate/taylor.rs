@@ -322,10 +322,6 @@ impl<const N: usize> Stepper<N> for Taylor<N> {
         true
     }
 
-    fn hermite(&self, t: f64, out: &mut [f64; N]) -> bool {
-        self.hermite_leading(t, out, N)
-    }
-
     /// The cubic's third-order term from the polynomial's end slopes, as
     /// for the Runge–Kutta methods: an overestimate of the polynomial's
     /// error, which keeps the screening as conservative as theirs.

@@ -58,6 +58,29 @@ pub trait Row {
     const HEADER: &'static [&'static str];
 }
 
+/// Declares a row struct and its [`Row`] impl at once: the header is the
+/// field names in order, written once here instead of again in a `HEADER`
+/// list that could drift from them (serde writes the same names, which
+/// each file's `header_of` test checks).
+macro_rules! csv_row {
+    (
+        $(#[$meta:meta])*
+        $vis:vis struct $name:ident {
+            $($(#[$field_meta:meta])* $field_vis:vis $field:ident : $ty:ty),* $(,)?
+        }
+    ) => {
+        $(#[$meta])*
+        $vis struct $name {
+            $($(#[$field_meta])* $field_vis $field: $ty),*
+        }
+
+        impl $crate::io::csv::Row for $name {
+            const HEADER: &'static [&'static str] = &[$(stringify!($field)),*];
+        }
+    };
+}
+pub(crate) use csv_row;
+
 /// The header line `Row::HEADER` joined with commas (no newline).
 pub fn header<R: Row>() -> String {
     R::HEADER.join(",")

@@ -8,294 +8,212 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::csv::{Num, Row};
+use super::csv::{Num, csv_row};
 
-/// A row of `spectrum.csv`: one block of a rocking spectrum.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub(crate) struct SpectrumRow {
-    /// Slenderness ratio B/H.
-    pub b_over_h: Num,
-    /// Slenderness angle α = atan(B/H), rad.
-    pub alpha_rad: Num,
-    /// Width B, m.
-    pub width_m: Num,
-    /// Height H, m.
-    pub height_m: Num,
-    /// Half-diagonal R, m.
-    pub r_m: Num,
-    /// Frequency parameter p = √(3g/(4R)), 1/s.
-    pub p_per_s: Num,
-    /// Scale factor of the motion in this run.
-    pub scale: Num,
-    /// Peak ground acceleration of the scaled motion, g.
-    pub pga_g: Num,
-    /// How the run ended: rest, moving, overturned, flight.
-    pub end: String,
-    /// Peak |θ|/α (≥ the overturning angle, 1 by default, when overturned).
-    pub peak_theta_over_alpha: Num,
-    /// Time of overturning, s; empty unless overturned.
-    pub t_overturn_s: Option<Num>,
-    /// Time the block left the ground, s; empty unless flight.
-    pub t_flight_s: Option<Num>,
-    /// Smallest scale factor found to overturn the block (or make it fly,
-    /// see `overturn_end`); empty if none up to the largest scale tried or
-    /// if no search was asked for.
-    pub overturn_scale: Option<Num>,
-    /// PGA at that scale, g.
-    pub overturn_pga_g: Option<Num>,
-    /// What happened at that scale: overturned or flight.
-    pub overturn_end: Option<String>,
-    /// Safe windows found above it (listed in `safe_windows.csv`).
-    pub safe_windows: Option<u32>,
+csv_row! {
+    /// A row of `spectrum.csv`: one block of a rocking spectrum.
+    #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+    pub(crate) struct SpectrumRow {
+        /// Slenderness ratio B/H.
+        pub b_over_h: Num,
+        /// Slenderness angle α = atan(B/H), rad.
+        pub alpha_rad: Num,
+        /// Width B, m.
+        pub width_m: Num,
+        /// Height H, m.
+        pub height_m: Num,
+        /// Half-diagonal R, m.
+        pub r_m: Num,
+        /// Frequency parameter p = √(3g/(4R)), 1/s.
+        pub p_per_s: Num,
+        /// Scale factor of the motion in this run.
+        pub scale: Num,
+        /// Peak ground acceleration of the scaled motion, g.
+        pub pga_g: Num,
+        /// How the run ended: rest, moving, overturned, flight.
+        pub end: String,
+        /// Peak |θ|/α (≥ the overturning angle, 1 by default, when overturned).
+        pub peak_theta_over_alpha: Num,
+        /// Time of overturning, s; empty unless overturned.
+        pub t_overturn_s: Option<Num>,
+        /// Time the block left the ground, s; empty unless flight.
+        pub t_flight_s: Option<Num>,
+        /// Smallest scale factor found to overturn the block (or make it fly,
+        /// see `overturn_end`); empty if none up to the largest scale tried or
+        /// if no search was asked for.
+        pub overturn_scale: Option<Num>,
+        /// PGA at that scale, g.
+        pub overturn_pga_g: Option<Num>,
+        /// What happened at that scale: overturned or flight.
+        pub overturn_end: Option<String>,
+        /// Safe windows found above it (listed in `safe_windows.csv`).
+        pub safe_windows: Option<u32>,
+    }
 }
 
-impl Row for SpectrumRow {
-    const HEADER: &'static [&'static str] = &[
-        "b_over_h",
-        "alpha_rad",
-        "width_m",
-        "height_m",
-        "r_m",
-        "p_per_s",
-        "scale",
-        "pga_g",
-        "end",
-        "peak_theta_over_alpha",
-        "t_overturn_s",
-        "t_flight_s",
-        "overturn_scale",
-        "overturn_pga_g",
-        "overturn_end",
-        "safe_windows",
-    ];
+csv_row! {
+    /// A row of a spectrum's `safe_windows.csv`: amplitudes above a block's
+    /// first overturning scale at which it survives again.
+    #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+    pub(crate) struct SpectrumWindowRow {
+        /// B/H of the block.
+        pub b_over_h: Num,
+        /// R of the block, m.
+        pub r_m: Num,
+        /// Lowest safe scale of the window.
+        pub from_scale: Num,
+        /// First failing scale above it; empty: safe up to the largest scale
+        /// tried.
+        pub to_scale: Option<Num>,
+        /// `from_scale` as a PGA, g.
+        pub from_pga_g: Num,
+        /// `to_scale` as a PGA, g.
+        pub to_pga_g: Option<Num>,
+    }
 }
 
-/// A row of a spectrum's `safe_windows.csv`: amplitudes above a block's
-/// first overturning scale at which it survives again.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub(crate) struct SpectrumWindowRow {
-    /// B/H of the block.
-    pub b_over_h: Num,
-    /// R of the block, m.
-    pub r_m: Num,
-    /// Lowest safe scale of the window.
-    pub from_scale: Num,
-    /// First failing scale above it; empty: safe up to the largest scale
-    /// tried.
-    pub to_scale: Option<Num>,
-    /// `from_scale` as a PGA, g.
-    pub from_pga_g: Num,
-    /// `to_scale` as a PGA, g.
-    pub to_pga_g: Option<Num>,
+csv_row! {
+    /// A row of `pulse_map.csv`: one (pulse, B/H, ω_p/p).
+    #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+    pub(crate) struct PulseMapRow {
+        /// Pulse: one-sine, one-cosine, type-c1, ….
+        pub pulse: String,
+        /// B/H.
+        pub b_over_h: Num,
+        /// α, rad.
+        pub alpha_rad: Num,
+        /// ω_p/p.
+        pub omega_ratio: Num,
+        /// Smallest overturning amplitude a_p/(g tan α); empty if none up to
+        /// the largest tried.
+        pub min_overturn_amplitude: Option<Num>,
+        /// The same as a_p/g.
+        pub min_overturn_ap_g: Option<Num>,
+        /// What happened there: overturned or flight.
+        pub overturn_end: Option<String>,
+        /// Safe windows above it (in `safe_windows.csv`).
+        pub safe_windows: u32,
+    }
 }
 
-impl Row for SpectrumWindowRow {
-    const HEADER: &'static [&'static str] = &["b_over_h", "r_m", "from_scale", "to_scale", "from_pga_g", "to_pga_g"];
+csv_row! {
+    /// A row of a pulse map's `safe_windows.csv`.
+    #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+    pub(crate) struct PulseWindowRow {
+        /// Pulse.
+        pub pulse: String,
+        /// B/H.
+        pub b_over_h: Num,
+        /// ω_p/p.
+        pub omega_ratio: Num,
+        /// Lowest safe a_p/(g tan α) of the window.
+        pub from_amplitude: Num,
+        /// First failing a_p/(g tan α) above it; empty: safe up to the largest
+        /// tried.
+        pub to_amplitude: Option<Num>,
+    }
 }
 
-/// A row of `pulse_map.csv`: one (pulse, B/H, ω_p/p).
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub(crate) struct PulseMapRow {
-    /// Pulse: one-sine, one-cosine, type-c1, ….
-    pub pulse: String,
-    /// B/H.
-    pub b_over_h: Num,
-    /// α, rad.
-    pub alpha_rad: Num,
-    /// ω_p/p.
-    pub omega_ratio: Num,
-    /// Smallest overturning amplitude a_p/(g tan α); empty if none up to
-    /// the largest tried.
-    pub min_overturn_amplitude: Option<Num>,
-    /// The same as a_p/g.
-    pub min_overturn_ap_g: Option<Num>,
-    /// What happened there: overturned or flight.
-    pub overturn_end: Option<String>,
-    /// Safe windows above it (in `safe_windows.csv`).
-    pub safe_windows: u32,
+csv_row! {
+    /// A row of `runs.csv`: one run of a fragility study.
+    #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+    pub(crate) struct FragilityRunRow {
+        /// Run number (block outer, level, record inner), from 0.
+        pub run: u64,
+        /// Block number, from 0.
+        pub block: u64,
+        /// Width B, m.
+        pub width_m: Num,
+        /// Height H, m.
+        pub height_m: Num,
+        /// Record name (file stem).
+        pub record: String,
+        /// Intensity measure: pga_g or pgv_m_s.
+        pub im: String,
+        /// Intensity level, in the unit `im` names.
+        pub level: Num,
+        /// Scale factor of the record.
+        pub scale: Num,
+        /// rest, moving, overturned or flight.
+        pub end: String,
+        /// Peak |θ|/α.
+        pub peak_theta_over_alpha: Num,
+        /// Time of overturning, s.
+        pub t_overturn_s: Option<Num>,
+        /// Time of flight, s.
+        pub t_flight_s: Option<Num>,
+        /// Peak horizontal acceleration of the motion as run (scaled), g.
+        pub pga_h_g: Num,
+        /// Peak vertical acceleration as run (scaled by the same factor), g;
+        /// empty when the run had no vertical component.
+        pub pga_v_g: Option<Num>,
+    }
 }
 
-impl Row for PulseMapRow {
-    const HEADER: &'static [&'static str] = &[
-        "pulse",
-        "b_over_h",
-        "alpha_rad",
-        "omega_ratio",
-        "min_overturn_amplitude",
-        "min_overturn_ap_g",
-        "overturn_end",
-        "safe_windows",
-    ];
+csv_row! {
+    /// A row of `incremental.csv`: one record's run at one level, for one
+    /// block (block outer, record, level inner: each record's incremental
+    /// curve in order).
+    #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+    pub(crate) struct IncrementalRow {
+        /// Block number, from 0.
+        pub block: u64,
+        /// Width B, m.
+        pub width_m: Num,
+        /// Height H, m.
+        pub height_m: Num,
+        /// Record name (file stem).
+        pub record: String,
+        /// Intensity measure (the column name of `runs.csv`'s `im`).
+        pub im: String,
+        /// Intensity level.
+        pub level: Num,
+        /// Peak |θ|/α.
+        pub peak_theta_over_alpha: Num,
+        /// rest, moving, overturned or flight.
+        pub end: String,
+    }
 }
 
-/// A row of a pulse map's `safe_windows.csv`.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub(crate) struct PulseWindowRow {
-    /// Pulse.
-    pub pulse: String,
-    /// B/H.
-    pub b_over_h: Num,
-    /// ω_p/p.
-    pub omega_ratio: Num,
-    /// Lowest safe a_p/(g tan α) of the window.
-    pub from_amplitude: Num,
-    /// First failing a_p/(g tan α) above it; empty: safe up to the largest
-    /// tried.
-    pub to_amplitude: Option<Num>,
-}
-
-impl Row for PulseWindowRow {
-    const HEADER: &'static [&'static str] = &["pulse", "b_over_h", "omega_ratio", "from_amplitude", "to_amplitude"];
-}
-
-/// A row of `runs.csv`: one run of a fragility study.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub(crate) struct FragilityRunRow {
-    /// Run number (block outer, level, record inner), from 0.
-    pub run: u64,
-    /// Block number, from 0.
-    pub block: u64,
-    /// Width B, m.
-    pub width_m: Num,
-    /// Height H, m.
-    pub height_m: Num,
-    /// Record name (file stem).
-    pub record: String,
-    /// Intensity measure: pga_g or pgv_m_s.
-    pub im: String,
-    /// Intensity level, in the unit `im` names.
-    pub level: Num,
-    /// Scale factor of the record.
-    pub scale: Num,
-    /// rest, moving, overturned or flight.
-    pub end: String,
-    /// Peak |θ|/α.
-    pub peak_theta_over_alpha: Num,
-    /// Time of overturning, s.
-    pub t_overturn_s: Option<Num>,
-    /// Time of flight, s.
-    pub t_flight_s: Option<Num>,
-    /// Peak horizontal acceleration of the motion as run (scaled), g.
-    pub pga_h_g: Num,
-    /// Peak vertical acceleration as run (scaled by the same factor), g;
-    /// empty when the run had no vertical component.
-    pub pga_v_g: Option<Num>,
-}
-
-impl Row for FragilityRunRow {
-    const HEADER: &'static [&'static str] = &[
-        "run",
-        "block",
-        "width_m",
-        "height_m",
-        "record",
-        "im",
-        "level",
-        "scale",
-        "end",
-        "peak_theta_over_alpha",
-        "t_overturn_s",
-        "t_flight_s",
-        "pga_h_g",
-        "pga_v_g",
-    ];
-}
-
-/// A row of `incremental.csv`: one record's run at one level, for one
-/// block (block outer, record, level inner: each record's incremental
-/// curve in order).
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub(crate) struct IncrementalRow {
-    /// Block number, from 0.
-    pub block: u64,
-    /// Width B, m.
-    pub width_m: Num,
-    /// Height H, m.
-    pub height_m: Num,
-    /// Record name (file stem).
-    pub record: String,
-    /// Intensity measure (the column name of `runs.csv`'s `im`).
-    pub im: String,
-    /// Intensity level.
-    pub level: Num,
-    /// Peak |θ|/α.
-    pub peak_theta_over_alpha: Num,
-    /// rest, moving, overturned or flight.
-    pub end: String,
-}
-
-impl Row for IncrementalRow {
-    const HEADER: &'static [&'static str] = &[
-        "block",
-        "width_m",
-        "height_m",
-        "record",
-        "im",
-        "level",
-        "peak_theta_over_alpha",
-        "end",
-    ];
-}
-
-/// A row of `fractions.csv`: one block at one level.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub(crate) struct FractionRow {
-    /// Block number.
-    pub block: u64,
-    /// Width B, m.
-    pub width_m: Num,
-    /// Height H, m.
-    pub height_m: Num,
-    /// Intensity measure: pga_g or pgv_m_s.
-    pub im: String,
-    /// Intensity level.
-    pub level: Num,
-    /// Runs (one per record).
-    pub runs: u64,
-    /// Runs that overturned.
-    pub overturned: u64,
-    /// Runs that ended in flight (left out of the fractions).
-    pub flight: u64,
-    /// Runs that overturned or reached the θ/α threshold.
-    pub exceeded: u64,
-    /// overturned / (runs − flight); empty if every run flew.
-    pub fraction_overturned: Option<Num>,
-    /// exceeded / (runs − flight).
-    pub fraction_exceeded: Option<Num>,
-    /// The fitted overturning probability at this level; empty without a fit.
-    pub fit_overturned: Option<Num>,
-    /// Lower end of its 95 % band.
-    pub fit_overturned_lo: Option<Num>,
-    /// Upper end.
-    pub fit_overturned_hi: Option<Num>,
-    /// The fitted exceedance probability.
-    pub fit_exceeded: Option<Num>,
-    /// Lower end of its 95 % band.
-    pub fit_exceeded_lo: Option<Num>,
-    /// Upper end.
-    pub fit_exceeded_hi: Option<Num>,
-}
-
-impl Row for FractionRow {
-    const HEADER: &'static [&'static str] = &[
-        "block",
-        "width_m",
-        "height_m",
-        "im",
-        "level",
-        "runs",
-        "overturned",
-        "flight",
-        "exceeded",
-        "fraction_overturned",
-        "fraction_exceeded",
-        "fit_overturned",
-        "fit_overturned_lo",
-        "fit_overturned_hi",
-        "fit_exceeded",
-        "fit_exceeded_lo",
-        "fit_exceeded_hi",
-    ];
+csv_row! {
+    /// A row of `fractions.csv`: one block at one level.
+    #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+    pub(crate) struct FractionRow {
+        /// Block number.
+        pub block: u64,
+        /// Width B, m.
+        pub width_m: Num,
+        /// Height H, m.
+        pub height_m: Num,
+        /// Intensity measure: pga_g or pgv_m_s.
+        pub im: String,
+        /// Intensity level.
+        pub level: Num,
+        /// Runs (one per record).
+        pub runs: u64,
+        /// Runs that overturned.
+        pub overturned: u64,
+        /// Runs that ended in flight (left out of the fractions).
+        pub flight: u64,
+        /// Runs that overturned or reached the θ/α threshold.
+        pub exceeded: u64,
+        /// overturned / (runs − flight); empty if every run flew.
+        pub fraction_overturned: Option<Num>,
+        /// exceeded / (runs − flight).
+        pub fraction_exceeded: Option<Num>,
+        /// The fitted overturning probability at this level; empty without a fit.
+        pub fit_overturned: Option<Num>,
+        /// Lower end of its 95 % band.
+        pub fit_overturned_lo: Option<Num>,
+        /// Upper end.
+        pub fit_overturned_hi: Option<Num>,
+        /// The fitted exceedance probability.
+        pub fit_exceeded: Option<Num>,
+        /// Lower end of its 95 % band.
+        pub fit_exceeded_lo: Option<Num>,
+        /// Upper end.
+        pub fit_exceeded_hi: Option<Num>,
+    }
 }
 
 #[cfg(test)]

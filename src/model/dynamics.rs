@@ -350,6 +350,10 @@ pub fn restoring<S: Scalar>(geo: &Geometry, pivot: Sign, fo: Forcing<S>) -> S {
     fo.b() * geo.sin_psi + fo.a * pivot.value() * geo.cos_psi
 }
 
+/// The scene the tests of the equations and their derived forms share.
+#[cfg(test)]
+pub(crate) mod test_scene;
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -137,17 +137,21 @@ pub fn impulse_law(geo: &Geometry, pre: &PreImpact, e: f64, mu_s: f64, mu_k: f64
     let dvy = -(1.0 + e) * vcy;
     let (px, py) = stick_impulse(geo, sp, -vcx, dvy);
     let lifts_off = e > 0.0;
-    if within_cone(px, mu_s, py) {
+    // The block after impulse (π_x, π_y), the new pivot slipping by `slip`.
+    let post = |px: f64, py: f64, slip: Option<Sign>| {
         let (w, x_dot, y_dot) = apply(geo, pre, px, py);
-        return PostImpact {
+        PostImpact {
             w,
             x_dot,
             y_dot,
-            slip: None,
+            slip,
             lifts_off,
             impulse: (px, py),
             flat: false,
-        };
+        }
+    };
+    if within_cone(px, mu_s, py) {
+        return post(px, py, None);
     }
     // Slip: π_x = −σ μ_k π_y, with σ the sign of the corner's slip after
     // the impact. Friction opposes the slip the stick impulse prevented, so
@@ -166,30 +170,12 @@ pub fn impulse_law(geo: &Geometry, pre: &PreImpact, e: f64, mu_s: f64, mu_k: f64
         let px = -sg * mu_k * py;
         let vcx_after = vcx + (1.0 + 3.0 * c * c) * px + 3.0 * sp * s * c * py;
         if sg * vcx_after >= 0.0 {
-            let (w, x_dot, y_dot) = apply(geo, pre, px, py);
-            return PostImpact {
-                w,
-                x_dot,
-                y_dot,
-                slip: if vcx_after == 0.0 { None } else { Some(sigma) },
-                lifts_off,
-                impulse: (px, py),
-                flat: false,
-            };
+            return post(px, py, if vcx_after == 0.0 { None } else { Some(sigma) });
         }
     }
     // No consistent slip direction (impossible for μ_k <= μ_s and a
     // physical geometry, kept as a safe fallback): the corner sticks.
-    let (w, x_dot, y_dot) = apply(geo, pre, px, py);
-    PostImpact {
-        w,
-        x_dot,
-        y_dot,
-        slip: None,
-        lifts_off,
-        impulse: (px, py),
-        flat: false,
-    }
+    post(px, py, None)
 }
 
 /// The corner-momentum law: a perfectly plastic, sticking impact at the

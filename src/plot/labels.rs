@@ -3,6 +3,7 @@
 
 use plotters::style::RGBColor;
 
+use super::hues;
 use crate::analysis::classify::Response;
 use crate::sim::scenario::{ExcitationKind, LawKind};
 use crate::sim::{Param, Scenario};
@@ -142,16 +143,16 @@ pub(crate) fn friction_text(cfg: &Scenario) -> String {
 /// too).
 pub(crate) fn response_colour(r: Response) -> RGBColor {
     match r {
-        Response::Periodic { period: 1 } => RGBColor(31, 119, 180),
-        Response::Periodic { period: 2 } => RGBColor(44, 160, 44),
-        Response::Periodic { period: 3 } => RGBColor(148, 103, 189),
-        Response::Periodic { period: 4 } => RGBColor(255, 127, 14),
-        Response::Periodic { .. } => RGBColor(23, 190, 207),
-        Response::Quasiperiodic => RGBColor(188, 189, 34),
-        Response::Chaotic => RGBColor(214, 39, 40),
+        Response::Periodic { period: 1 } => hues::BLUE,
+        Response::Periodic { period: 2 } => hues::GREEN,
+        Response::Periodic { period: 3 } => hues::PURPLE,
+        Response::Periodic { period: 4 } => hues::ORANGE,
+        Response::Periodic { .. } => hues::CYAN,
+        Response::Quasiperiodic => hues::OLIVE,
+        Response::Chaotic => hues::RED,
         Response::Tumbled => RGBColor(45, 45, 45),
         Response::Rest => RGBColor(200, 200, 200),
-        Response::Flight => RGBColor(227, 119, 194),
+        Response::Flight => hues::PINK,
     }
 }
 

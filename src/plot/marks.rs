@@ -8,6 +8,7 @@ use plotters::prelude::*;
 use plotters_backend::{BackendCoord, DrawingErrorKind};
 
 use super::PlotError;
+use super::hues;
 
 /// Grey of the marks no series owns (an overturning line, the legend's
 /// generic overturned cross): dark enough to read, not black like the
@@ -17,14 +18,14 @@ pub(crate) const MARK: RGBColor = RGBColor(90, 90, 90);
 /// Colours of successive series (blocks, slendernesses, pulses): the
 /// matplotlib "tab10" hues, distinct in print and on screen.
 pub const PALETTE: [RGBColor; 8] = [
-    RGBColor(31, 119, 180),
-    RGBColor(255, 127, 14),
-    RGBColor(44, 160, 44),
-    RGBColor(148, 103, 189),
-    RGBColor(140, 86, 75),
-    RGBColor(227, 119, 194),
-    RGBColor(127, 127, 127),
-    RGBColor(23, 190, 207),
+    hues::BLUE,
+    hues::ORANGE,
+    hues::GREEN,
+    hues::PURPLE,
+    hues::BROWN,
+    hues::PINK,
+    hues::GREY,
+    hues::CYAN,
 ];
 
 /// Colour of series `i`.

@@ -14,6 +14,7 @@
 
 pub mod bifurcation;
 pub mod fragility;
+mod hues;
 pub mod incremental;
 pub mod labels;
 pub mod marks;

@@ -4,6 +4,7 @@
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
+use super::hues;
 use super::labels::{legend_entries, legend_key, response_colour, response_label};
 use super::style::Frame;
 use super::{FONT, Figure, PlotError, titled};
@@ -58,16 +59,16 @@ pub struct Basins<'a> {
 /// that avoids the grey of rest, the near-black of tumbling and the red
 /// of chaos.
 const ATTRACTOR_COLOURS: [RGBColor; 10] = [
-    RGBColor(31, 119, 180),
-    RGBColor(44, 160, 44),
-    RGBColor(255, 127, 14),
-    RGBColor(148, 103, 189),
-    RGBColor(23, 190, 207),
-    RGBColor(140, 86, 75),
-    RGBColor(188, 189, 34),
-    RGBColor(227, 119, 194),
-    RGBColor(174, 199, 232),
-    RGBColor(152, 223, 138),
+    hues::BLUE,
+    hues::GREEN,
+    hues::ORANGE,
+    hues::PURPLE,
+    hues::CYAN,
+    hues::BROWN,
+    hues::OLIVE,
+    hues::PINK,
+    hues::LIGHT_BLUE,
+    hues::LIGHT_GREEN,
 ];
 
 /// The colour of attractor `id` (from 1): the figure's, and the app's

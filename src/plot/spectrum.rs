@@ -4,6 +4,7 @@
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
+use super::hues;
 use super::style::Frame;
 use super::{FONT, Figure, PlotError, titled};
 use crate::analysis::spectrum::Peak;
@@ -74,7 +75,7 @@ impl Figure for SpectrumFigure<'_> {
         chart
             .draw_series(LineSeries::new(
                 shown().map(|(h, p)| (*h, p.max(floor))),
-                RGBColor(31, 119, 180).stroke_width(1),
+                hues::BLUE.stroke_width(1),
             ))
             .map_err(e)?;
         let red = RGBColor(200, 40, 40);

@@ -3,6 +3,7 @@
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
+use super::hues;
 use super::style::Frame;
 use super::{FONT, Figure, PlotError, padded_range, titled};
 
@@ -71,7 +72,7 @@ impl Figure for TimeHistoryFigure<'_> {
         }
         let line = envelope(self.tau, self.theta, t0, t1, 2 * self.size().0 as usize);
         chart
-            .draw_series(LineSeries::new(line, RGBColor(31, 119, 180).stroke_width(1)))
+            .draw_series(LineSeries::new(line, hues::BLUE.stroke_width(1)))
             .map_err(e)?;
         Ok(())
     }

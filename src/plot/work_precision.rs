@@ -5,6 +5,7 @@
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
+use super::hues;
 use super::marks::{Marker, shape};
 use super::style::Frame;
 use super::style::Legend;
@@ -45,10 +46,10 @@ pub(crate) struct WorkPrecisionFigure<'a> {
 }
 
 const METHODS: [(&str, RGBColor); 4] = [
-    ("dop853", RGBColor(31, 119, 180)),
-    ("dopri5", RGBColor(44, 160, 44)),
-    ("ralston", RGBColor(214, 39, 40)),
-    ("taylor", RGBColor(148, 103, 189)),
+    ("dop853", hues::BLUE),
+    ("dopri5", hues::GREEN),
+    ("ralston", hues::RED),
+    ("taylor", hues::PURPLE),
 ];
 
 fn log_range(v: impl Iterator<Item = f64>) -> (f64, f64) {

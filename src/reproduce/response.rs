@@ -27,7 +27,8 @@ use crate::analysis::section::{after_transient, block_coordinates};
 use crate::analysis::spectrum::{PAPER_DT, Peak, SpectrumOptions, SpectrumWindow, theta_spectrum};
 use crate::analysis::steady::{Window, steady_response};
 use crate::io::config::load;
-use crate::sim::{Outcome, Param, Scenario, simulate};
+use crate::model::Model;
+use crate::sim::{Outcome, Param, Scenario, SectionRow, simulate};
 
 /// Sampling step of the paper's run, τ (the paper's integration step).
 pub(crate) const HISTORY_DT: f64 = PAPER_DT;
@@ -197,12 +198,7 @@ pub(crate) fn run_response(
         error: e,
     };
     let base = load(Some(figure.preset), None, &[]).map_err(|e| fail("configuration", e.to_string()))?;
-    let mut config = base.clone();
-    config.run.tau_end = settings.history_end;
-    let model = config.model().map_err(|e| fail("configuration", e.to_string()))?;
-    let Some(period) = model.excitation.forcing_period() else {
-        return Err(fail("configuration", "the excitation is not harmonic".to_string()));
-    };
+    let (config, model, period) = paper_setup(&base, settings, &fail)?;
     let init = config.initial;
 
     // 1. The paper's run.
@@ -290,15 +286,7 @@ pub(crate) fn run_response(
         })
         .collect::<Result<Vec<_>, _>>()?;
 
-    let response = match long.outcome {
-        Outcome::Tumbled => Response::Tumbled,
-        Outcome::Flight => Response::Flight,
-        Outcome::Rest | Outcome::Running => {
-            let lambda = lyap.as_ref().ok().and_then(Lyapunov::largest_per_tau);
-            classify_points(&block_coordinates(after_transient(steady, end_from)), lambda, classify)
-                .map_err(|e| fail("classification", e.to_string()))?
-        }
-    };
+    let response = end_response(long.outcome, after_transient(steady, end_from), &lyap, classify, &fail)?;
     let cycles = (paper.tau_end / period).max(1.0);
     Ok(ResponseExample {
         figure: figure.number,
@@ -328,13 +316,52 @@ pub(crate) fn run_response(
     })
 }
 
+/// The configuration of the paper's run from `base` (its end at the
+/// settings' `history_end`), its model and its forcing period; `fail`
+/// words an error.
+fn paper_setup(
+    base: &Scenario,
+    settings: &ResponseSettings,
+    fail: &impl Fn(&str, String) -> ReproduceError,
+) -> Result<(Scenario, Model, f64), ReproduceError> {
+    let mut config = base.clone();
+    config.run.tau_end = settings.history_end;
+    let model = config.model().map_err(|e| fail("configuration", e.to_string()))?;
+    let Some(period) = model.excitation.forcing_period() else {
+        return Err(fail("configuration", "the excitation is not harmonic".to_string()));
+    };
+    Ok((config, model, period))
+}
+
+/// The class of the end of a long run that ended by `outcome`: tumbled
+/// or flight as it ended, else the class of its section points `rows`
+/// (between chaotic and quasiperiodic, the largest exponent of `lyap`
+/// decides when there is one).
+fn end_response(
+    outcome: Outcome,
+    rows: &[SectionRow],
+    lyap: &Result<Lyapunov, String>,
+    classify: &ClassifyOptions,
+    fail: &impl Fn(&str, String) -> ReproduceError,
+) -> Result<Response, ReproduceError> {
+    Ok(match outcome {
+        Outcome::Tumbled => Response::Tumbled,
+        Outcome::Flight => Response::Flight,
+        Outcome::Rest | Outcome::Running => {
+            let lambda = lyap.as_ref().ok().and_then(Lyapunov::largest_per_tau);
+            classify_points(&block_coordinates(rows), lambda, classify)
+                .map_err(|e| fail("classification", e.to_string()))?
+        }
+    })
+}
+
 /// The Lyapunov exponents of `model` from `init` over the settings'
 /// window by `method`; if that run tumbles, also those of the rocking
 /// before the tumble (from a quarter of its length, or the usual
 /// transient if earlier, to five periods before it, if that leaves at
 /// least 20 periods), with that window `(from, to, tumble τ)`.
 pub fn exponents(
-    model: &crate::model::Model,
+    model: &Model,
     init: &crate::sim::InitialState,
     settings: &ResponseSettings,
     method: Method,
@@ -459,12 +486,7 @@ pub(crate) fn run_response_variant(
     let geo = plain.geometry();
     let sets = variant.sets(&geo);
     let base = load(Some(figure.preset), None, &sets).map_err(|e| fail("configuration", e.to_string()))?;
-    let mut config = base;
-    config.run.tau_end = settings.history_end;
-    let model = config.model().map_err(|e| fail("configuration", e.to_string()))?;
-    let Some(period) = model.excitation.forcing_period() else {
-        return Err(fail("configuration", "the excitation is not harmonic".to_string()));
-    };
+    let (config, model, period) = paper_setup(&base, settings, &fail)?;
     let init = config.initial;
     let mut opts = config.run_options();
     opts.output_dt = None;
@@ -475,19 +497,13 @@ pub(crate) fn run_response_variant(
     let long = simulate(model.clone(), &init, &long_opts).map_err(|e| fail("the long run", e.to_string()))?;
     let (lyap, transient_lyapunov) = exponents(&model, &init, settings, Method::Tangent, period);
     let end_from = (long.tau_end - settings.end_window).max(settings.transient);
-    let response = match long.outcome {
-        Outcome::Tumbled => Response::Tumbled,
-        Outcome::Flight => Response::Flight,
-        Outcome::Rest | Outcome::Running => {
-            let lambda = lyap.as_ref().ok().and_then(Lyapunov::largest_per_tau);
-            classify_points(
-                &block_coordinates(after_transient(&long.section, end_from)),
-                lambda,
-                classify,
-            )
-            .map_err(|e| fail("classification", e.to_string()))?
-        }
-    };
+    let response = end_response(
+        long.outcome,
+        after_transient(&long.section, end_from),
+        &lyap,
+        classify,
+        &fail,
+    )?;
     Ok(ResponseVariant {
         figure: figure.number,
         variant,

@@ -15,22 +15,20 @@ pub struct Work {
 
 impl Work {
     pub fn new(y: &[f64; N]) -> Self {
-        let z = [0.0; MAX_ORDER + 1];
-        let mut s = Self {
-            th: z,
-            v: z,
-            x: z,
-            u: z,
-            w: z,
-            d: z,
+        // Each series starts at the state's component; the rest is computed.
+        let series = |c: f64| {
+            let mut s = [0.0; MAX_ORDER + 1];
+            s[0] = c;
+            s
         };
-        s.th[0] = y[THETA];
-        s.v[0] = y[THETA_DOT];
-        s.x[0] = y[X];
-        s.u[0] = y[X_DOT];
-        s.w[0] = y[WORK];
-        s.d[0] = y[FRICTION_LOSS];
-        s
+        Self {
+            th: series(y[THETA]),
+            v: series(y[THETA_DOT]),
+            x: series(y[X]),
+            u: series(y[X_DOT]),
+            w: series(y[WORK]),
+            d: series(y[FRICTION_LOSS]),
+        }
     }
 
     pub fn row(&self, k: usize) -> [f64; N] {

@@ -1,40 +1,16 @@
 //! The fused expansions against the plain recurrences of `reference`.
 
 use super::*;
-use crate::model::Harmonic;
+use crate::model::dynamics::test_scene::{model as scene, two_sines};
 use crate::model::mode::Sign;
-
-/// The harmonic forcing of the default scene (`shared`: one sine for both
-/// directions) or with separate frequencies and phases.
-fn forcing(geo: &Geometry, shared: bool) -> Excitation {
-    Excitation::Harmonic(Harmonic {
-        a_h: 2.0,
-        a_v: if shared { 2.5 } else { 0.7 },
-        omega_h: 8.0,
-        omega_v: if shared { 8.0 } else { 5.5 },
-        phase_h: 0.3,
-        phase_v: if shared { 0.3 } else { -1.2 },
-        psi: geo.psi,
-    })
-}
 
 /// The largest difference between the fused and the reference
 /// coefficients of every component and order, relative to the largest
 /// term `|c_k| h^k` of that component's polynomial over a step `h`.
 fn worst_difference(mode: Mode, exc: Excitation, y: [f64; N], order: usize, h: f64) -> f64 {
-    let geo = Geometry::new(1.0, 4.0);
-    let (mu_k, t) = (0.35, 2.7);
-    let model = Model {
-        geo,
-        mu_s: 0.4,
-        mu_k,
-        law: crate::model::ImpactLaw::Ratio { r: 0.82 },
-        excitation: exc,
-        tumble_theta: 1.0,
-        flight: crate::model::FlightPolicy::Stop,
-        zeno_eps: 1e-5,
-        frame: None,
-    };
+    let (geo, t) = (Geometry::new(1.0, 4.0), 2.7);
+    let model = scene(geo, exc);
+    let mu_k = model.mu_k;
     let mut fused = vec![[0.0; N]; order + 1];
     assert!(taylor(&model, mode, t, &y, order, &mut fused));
     let mut f = ForcingSeries::none();
@@ -98,7 +74,7 @@ fn fused_expansions_match_the_plain_recurrences() {
         for y in states {
             for shared in [true, false] {
                 for order in [8, 20, 28] {
-                    let d = worst_difference(mode, forcing(&geo, shared), y, order, 0.3);
+                    let d = worst_difference(mode, two_sines(&geo, shared), y, order, 0.3);
                     assert!(d < 1e-13, "{mode:?} at {y:?}, shared {shared}, order {order}: {d:e}");
                 }
             }

@@ -5,29 +5,17 @@
 
 use super::*;
 use crate::integrate::hybrid::{HybridSystem, MAX_GUARDS};
-use crate::model::excitation::Harmonic;
+use crate::model::dynamics::test_scene::{harmonic, model as scene};
 use crate::model::{BlockSystem, FlightPolicy};
 
 fn model(mu_s: f64, mu_k: f64, law: ImpactLaw) -> Model {
     let geo = Geometry::new(1.0, 4.0);
     Model {
-        geo,
         mu_s,
         mu_k,
         law,
-        excitation: Excitation::Harmonic(Harmonic {
-            a_h: 2.0,
-            a_v: 2.5,
-            omega_h: 8.0,
-            omega_v: 8.0,
-            phase_h: 0.3,
-            phase_v: 1.1,
-            psi: geo.psi,
-        }),
-        tumble_theta: 1.0,
         flight: FlightPolicy::Ignore,
-        zeno_eps: 1e-5,
-        frame: None,
+        ..scene(geo, harmonic(&geo, 2.5, 8.0, 1.1))
     }
 }
 

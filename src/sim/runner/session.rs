@@ -126,30 +126,24 @@ type AnyDriver = Box<dyn LiveDriver>;
 trait LiveSystem: RockerCore {
     /// A copy.
     fn boxed_clone(&self) -> Box<dyn LiveSystem>;
-    /// A driver of `scenario`'s method for this system from `(t0, mode, y0)`.
-    fn into_driver(
-        self: Box<Self>,
-        scenario: &Scenario,
-        mode: Mode,
-        t0: f64,
-        y0: [f64; N],
-        outputs: Outputs,
-    ) -> AnyDriver;
+    /// A driver of `scenario`'s method for this system from `from`.
+    fn into_driver(self: Box<Self>, scenario: &Scenario, from: DriverStart, outputs: Outputs) -> AnyDriver;
+}
+
+/// Where a driver starts: the mode, τ and the state there.
+#[derive(Clone, Copy, Debug)]
+struct DriverStart {
+    mode: Mode,
+    t0: f64,
+    y0: [f64; N],
 }
 
 impl<R: Rocker> LiveSystem for R {
     fn boxed_clone(&self) -> Box<dyn LiveSystem> {
         Box::new(self.clone())
     }
-    fn into_driver(
-        self: Box<Self>,
-        scenario: &Scenario,
-        mode: Mode,
-        t0: f64,
-        y0: [f64; N],
-        outputs: Outputs,
-    ) -> AnyDriver {
-        live_driver(scenario, *self, mode, t0, y0, outputs)
+    fn into_driver(self: Box<Self>, scenario: &Scenario, from: DriverStart, outputs: Outputs) -> AnyDriver {
+        live_driver(scenario, *self, from, outputs)
     }
 }
 
@@ -166,20 +160,11 @@ fn live_system(model: Model) -> Box<dyn LiveSystem> {
 }
 
 /// A live driver of `scenario`'s method.
-fn live_driver<R: Rocker>(
-    scenario: &Scenario,
-    system: R,
-    mode: Mode,
-    t0: f64,
-    y0: [f64; N],
-    outputs: Outputs,
-) -> AnyDriver {
+fn live_driver<R: Rocker>(scenario: &Scenario, system: R, from: DriverStart, outputs: Outputs) -> AnyDriver {
     /// The driver, waiting for its stepper.
     struct Make<R> {
         system: R,
-        mode: Mode,
-        t0: f64,
-        y0: [f64; N],
+        from: DriverStart,
         limits: Limits,
         outputs: Outputs,
     }
@@ -189,9 +174,9 @@ fn live_driver<R: Rocker>(
             Box::new(Driver::new(
                 stepper,
                 self.system,
-                self.mode,
-                self.t0,
-                self.y0,
+                self.from.mode,
+                self.from.t0,
+                self.from.y0,
                 self.limits,
                 self.outputs,
             ))
@@ -200,9 +185,7 @@ fn live_driver<R: Rocker>(
     let opts = scenario.run_options();
     let make = Make {
         system,
-        mode,
-        t0,
-        y0,
+        from,
         limits: opts.limits,
         outputs,
     };
@@ -529,7 +512,12 @@ impl Session {
         let geometry = system.params().geo;
         let mut peaks = Peaks::default();
         peaks.see(&geometry, &y0);
-        let driver = system.into_driver(scenario, mode0, tau0, y0, outputs);
+        let from = DriverStart {
+            mode: mode0,
+            t0: tau0,
+            y0,
+        };
+        let driver = system.into_driver(scenario, from, outputs);
         let still_base = scenario.excitation.kind == crate::sim::scenario::ExcitationKind::None;
         Ok(Self {
             run,
@@ -799,7 +787,7 @@ impl Session {
                 sample_dt: Some(LIVE_SAMPLE_DT),
                 section_period: None,
             };
-            let mut driver = system.into_driver(&self.info.scenario, m, tau, y0, outputs);
+            let mut driver = system.into_driver(&self.info.scenario, DriverStart { mode: m, t0: tau, y0 }, outputs);
             let mut states = VecDeque::new();
             // Bring the ghost level with the main trajectory's computed τ.
             let done = self.driver.t() > tau
@@ -838,7 +826,7 @@ impl Session {
             section_period: None,
         };
         let system = live_system(self.probe.params().clone());
-        let mut driver = system.into_driver(&self.info.scenario, mode, tau, y, outputs);
+        let mut driver = system.into_driver(&self.info.scenario, DriverStart { mode, t0: tau, y0: y }, outputs);
         let mut moved = FirstMove(None);
         let mut t = tau;
         while t < self.batch_end {

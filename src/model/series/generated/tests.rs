@@ -2,42 +2,23 @@
 //! on random states of every mode, pivot and slip sign.
 
 use super::*;
-use crate::model::excitation::{Excitation, Harmonic};
+use crate::model::dynamics::test_scene::{model as scene, moving_modes, two_sines};
+use crate::model::excitation::Excitation;
 use crate::model::geometry::Geometry;
 use crate::model::mode::Sign;
 
 fn model(shared: bool, mu_k: f64) -> Model {
     let geo = Geometry::new(1.0, 4.0);
     Model {
-        geo,
         mu_s: mu_k + 0.05,
         mu_k,
-        law: crate::model::ImpactLaw::Ratio { r: 0.82 },
-        excitation: Excitation::Harmonic(Harmonic {
-            a_h: 2.0,
-            a_v: if shared { 2.5 } else { 0.7 },
-            omega_h: 8.0,
-            omega_v: if shared { 8.0 } else { 5.5 },
-            phase_h: 0.3,
-            phase_v: if shared { 0.3 } else { -1.2 },
-            psi: geo.psi,
-        }),
-        tumble_theta: 1.0,
-        flight: crate::model::FlightPolicy::Stop,
-        zeno_eps: 1e-5,
-        frame: None,
+        ..scene(geo, two_sines(&geo, shared))
     }
 }
 
 fn modes() -> Vec<Mode> {
     let mut modes = vec![Mode::Rest];
-    for s in [Sign::Pos, Sign::Neg] {
-        modes.push(Mode::Slide { slip: s });
-        modes.push(Mode::Rock { pivot: s });
-        for slip in [Sign::Pos, Sign::Neg] {
-            modes.push(Mode::SlideRock { pivot: s, slip });
-        }
-    }
+    modes.extend(moving_modes());
     modes
 }
 

@@ -2,45 +2,26 @@
 //! `variational`, on random states of every mode, pivot and slip sign.
 
 use super::*;
-use crate::model::excitation::{Excitation, Harmonic};
+use crate::model::dynamics::test_scene::{harmonic, model as scene, moving_modes};
 use crate::model::geometry::Geometry;
 use crate::model::impact::ImpactLaw;
-use crate::model::mode::Sign;
 use crate::model::params::FlightPolicy;
 use crate::model::variational as hand;
 
 fn model(bh: f64, mu_s: f64, mu_k: f64) -> Model {
     let geo = Geometry::new(bh, 1.0);
     Model {
-        geo,
         mu_s,
         mu_k,
         law: ImpactLaw::Ratio { r: 0.9 },
-        excitation: Excitation::Harmonic(Harmonic {
-            a_h: 2.0,
-            a_v: 2.5,
-            omega_h: 8.0,
-            omega_v: 5.0,
-            phase_h: 0.3,
-            phase_v: 1.1,
-            psi: geo.psi,
-        }),
-        tumble_theta: 1.0,
         flight: FlightPolicy::Ignore,
-        zeno_eps: 1e-5,
-        frame: None,
+        ..scene(geo, harmonic(&geo, 2.5, 5.0, 1.1))
     }
 }
 
 fn modes() -> Vec<Mode> {
     let mut modes = vec![Mode::Rest, Mode::Tumbled, Mode::Flight];
-    for s in [Sign::Pos, Sign::Neg] {
-        modes.push(Mode::Slide { slip: s });
-        modes.push(Mode::Rock { pivot: s });
-        for slip in [Sign::Pos, Sign::Neg] {
-            modes.push(Mode::SlideRock { pivot: s, slip });
-        }
-    }
+    modes.extend(moving_modes());
     modes
 }
 
