@@ -215,8 +215,8 @@ fn a_frame_config_is_refused_where_it_would_be_misread() {
             "analysis.lyapunov: is not available for a [frame]",
         ),
         (
-            "[[stack]]\nwidth = 1.0\nheight = 2.0".to_string(),
-            "stack: stacks of blocks are not simulated yet",
+            format!("{frame}[[stack]]\nwidth = 1.0\nheight = 2.0"),
+            "frame: a config has one of [block], [[stack]] and [frame]",
         ),
     ];
     for (text, start) in cases {

@@ -160,8 +160,8 @@ fn every_preset_names_its_records_as_shipped() {
         }
     }
     assert_eq!(
-        records, 4,
-        "kobe-rack, kobe-rack-5th-floor, elcentro-statue and rocking-frame"
+        records, 6,
+        "kobe-rack, kobe-rack-5th-floor, elcentro-statue, rocking-frame, tombstone and statue-on-pedestal"
     );
 }
 
