@@ -66,7 +66,7 @@ impl Scene {
 /// The section of an undotted keyword: the one section that has the key
 /// (`_norm` spellings stripped). `width` and `height` are the block's, as
 /// they always were; a rocking frame's columns are `frame={"width": …}` or
-/// `"frame.width"`.
+/// `"frame.width"`, and a stack's blocks are not simulated from Python.
 fn section_of(typed: &str) -> PyResult<&'static str> {
     let (name, _) = strip_norm(None, typed);
     let mut sections: Vec<&'static str> = KNOWN_KEYS
@@ -76,6 +76,11 @@ fn section_of(typed: &str) -> PyResult<&'static str> {
         .collect();
     if sections.contains(&"block") {
         sections.retain(|s| *s != "frame");
+    }
+    // A stack's keys are in its tables: an undotted key shared with
+    // another section is that section's.
+    if sections.len() > 1 {
+        sections.retain(|s| *s != "stack");
     }
     match sections.as_slice() {
         [one] => Ok(one),
