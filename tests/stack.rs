@@ -346,9 +346,9 @@ fn a_stack_refuses_what_it_cannot_run_with_one_line_naming_the_key() {
 fn a_face_whose_friction_cannot_hold_stops_the_run_with_the_demand_and_its_time() {
     // A squat top block (B/H = 2) on friction 0.3: pushed hard, it would
     // slide long before it tips.
-    let s = scene(&format!(
-        "[[stack]]\nwidth = 0.5\nheight = 2.0\n[[stack]]\nwidth = 0.6\nheight = 0.3\nstatic = 0.3\n[excitation]\nkind = \"harmonic\"\na_h = \"0.5 g\"\nomega_h = \"1 Hz\"\n[run]\nt_end = \"5 s\"\n"
-    ));
+    let s = scene(
+        "[[stack]]\nwidth = 0.5\nheight = 2.0\n[[stack]]\nwidth = 0.6\nheight = 0.3\nstatic = 0.3\n[excitation]\nkind = \"harmonic\"\na_h = \"0.5 g\"\nomega_h = \"1 Hz\"\n[run]\nt_end = \"5 s\"\n",
+    );
     let e = simulate_stack(
         s.stack_geometry().unwrap(),
         s.excitation().unwrap(),

@@ -148,9 +148,9 @@ fn run_with<S: Stepper<NS>>(stepper: S, system: StackSystem, opts: &RunOptions) 
     let system = driver.system();
     let mut tally = system.tally;
     let pose = system.pose(&mode, &y);
-    for j in 0..k {
+    for (j, q) in y.iter().enumerate().take(k) {
         tally.max_phi[j] = tally.max_phi[j].max(pose.phi[j].abs());
-        tally.max_q[j] = tally.max_q[j].max(y[j].abs());
+        tally.max_q[j] = tally.max_q[j].max(q.abs());
     }
     let e_final = system.energy(&mode, &y);
     let (work, impact) = (y[WORK_S], tally.impact_loss);

@@ -11,6 +11,9 @@
 //! pivots and closed faces do no work in these coordinates, so they do
 //! not appear.
 
+// Linear algebra over interfaces and blocks: indices name them.
+#![allow(clippy::needless_range_loop)]
+
 use super::pose::{Pose, V2, dot, quarter, sub};
 use super::{Contact, MAX_BLOCKS, StackGeometry};
 

@@ -10,6 +10,9 @@
 //! | K + 1 + j (observer) | φ_j φ_j' | block j's \|φ_j\| grows |
 //! | 2K + 1 + i (observer) | q_i q_i' | interface i's opening grows |
 
+// Interfaces and blocks are numbered: indices name them.
+#![allow(clippy::needless_range_loop)]
+
 use std::cell::Cell;
 
 use super::dynamics::{self, InterfaceLoad, StackAccel, is_open};
@@ -136,13 +139,15 @@ pub enum StackError {
     Driver(#[from] DriverError),
     /// Interface `iface` needs more friction than its `static`.
     #[error(
-        "stack block {block}'s lower face would slip at τ = {tau:.4}: the motion needs a friction coefficient of {demand:.3} there, above its static = {mu}; sliding inside a stack is not simulated (docs/model.md §18.7): raise it or set it to inf"
+        "stack block {block}'s lower face would slip at t = {t_s:.4} s (τ = {tau:.4}): the friction it needs, |T|/N, reaches its static = {mu} there; sliding inside a stack is not simulated (docs/model.md §18.7): raise static or set it to inf"
     )]
     Slip {
         /// 1-based index of the block above the interface.
         block: usize,
         /// τ of the slip.
         tau: f64,
+        /// Its time, s.
+        t_s: f64,
         /// |T|/N there.
         demand: f64,
         /// The interface's static coefficient.
@@ -452,9 +457,7 @@ impl StackSystem {
                 break;
             }
         }
-        for j in 0..k {
-            y[MAX_BLOCKS + j] = rates[j];
-        }
+        y[MAX_BLOCKS..MAX_BLOCKS + k].copy_from_slice(&rates[..k]);
         let after_pose = Pose::new(&self.geo, &contacts, &y);
         let loss = dynamics::kinetic(&self.geo, &before) - dynamics::kinetic(&self.geo, &after_pose);
         self.tally.impacts += 1;
@@ -624,9 +627,12 @@ impl HybridSystem<NS> for StackSystem {
         let (end, kind) = match ending {
             Ending::Slip => {
                 let load = self.load(&s, i);
+                // τ = p t with p² = g/G (G = g/p², the gravity unit).
+                let p = (crate::model::geometry::G / self.g_unit).sqrt();
                 return Err(StackError::Slip {
                     block: i + 1,
                     tau: t,
+                    t_s: t / p,
                     demand: load.tangential.abs() / load.normal,
                     mu: self.geo.mu_s[i],
                 });

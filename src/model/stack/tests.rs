@@ -5,6 +5,9 @@
 //! contact written on the accelerations (or the velocities just after an
 //! impact) of the two points that meet.
 
+// The generic solves index unknowns, blocks and interfaces.
+#![allow(clippy::needless_range_loop)]
+
 use super::dynamics::{self, accelerations, impact_rates, interface_load};
 use super::pose::{Pose, V2};
 use super::{Contact, MAX_BLOCKS, NS, StackBlock, StackGeometry};
