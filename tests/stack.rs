@@ -358,7 +358,7 @@ fn a_face_whose_friction_cannot_hold_stops_the_run_with_the_demand_and_its_time(
     .expect_err("slips");
     let text = e.to_string();
     assert!(
-        text.starts_with("stack block 2's lower face would slip at τ = "),
+        text.starts_with("stack block 2's lower face would slip at t = "),
         "{text}"
     );
     assert!(text.contains("static = 0.3"), "{text}");
