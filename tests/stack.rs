@@ -419,3 +419,29 @@ fn the_stack_presets_give_the_answers_their_headers_state() {
         .collect();
     assert_eq!(degrees, [2.6, 8.7]);
 }
+
+#[test]
+fn a_stacks_summary_json_repeats_its_run_as_a_config() {
+    let s = scene(&format!(
+        "{}[excitation]\nkind = \"harmonic\"\na_h = \"0.3 g\"\nomega_h = \"2 Hz\"\n[run]\nt_end = \"3 s\"\n",
+        stack_text(&[(0.6, 1.8, 0.0), (0.4, 1.2, 0.05)])
+    ));
+    let first = run_stack(&s);
+    let summary = rocking::io::stack_files::stack_summary(&s, &first);
+    let dir = std::env::temp_dir().join(format!("rocking-stack-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("summary.json");
+    std::fs::write(&path, serde_json::to_string(&summary).unwrap()).unwrap();
+    let again = config::load(None, Some(&path), &[]).expect("summary.json as a config");
+    std::fs::remove_dir_all(&dir).ok();
+    // The same stack and motion (the echo writes resolved values: the
+    // method a run took, Ω_v where it followed Ω_h), so the same run.
+    assert_eq!(again.stack, s.stack);
+    let second = run_stack(&again);
+    assert!(first.events.len() > 5);
+    assert_eq!(first.events, second.events);
+    assert_eq!(first.history.len(), second.history.len());
+    for (a, b) in first.history.iter().zip(&second.history) {
+        assert_eq!((a.tau, a.y), (b.tau, b.y));
+    }
+}

@@ -59,6 +59,8 @@ pub fn to_json(s: &Scenario) -> Json {
 fn describes(section: &str, s: &Scenario) -> bool {
     match section {
         "block" | "friction" => s.frame.is_none() && s.stack.is_none(),
+        // A stack's impacts are its own law (docs/model.md §18.5).
+        "impact" => s.stack.is_none(),
         "frame" => s.frame.is_some(),
         _ => true,
     }

@@ -150,7 +150,16 @@ fn json_to_table(v: &Json) -> Result<Table, String> {
             },
             // `null` means "absent / default".
             Json::Null => continue,
-            Json::Array(_) => return Err(format!("{k}: arrays are not config values")),
+            // A list of tables (`[[stack]]`, `[[floor.mode]]`).
+            Json::Array(items) => toml::Value::Array(
+                items
+                    .iter()
+                    .map(|item| match item {
+                        Json::Object(_) => json_to_table(item).map(toml::Value::Table),
+                        _ => Err(format!("{k}: a list here must hold tables")),
+                    })
+                    .collect::<Result<_, _>>()?,
+            ),
         };
         t.insert(k.clone(), tv);
     }
