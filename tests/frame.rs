@@ -3,21 +3,9 @@
 //! 2013), its uplift threshold, its energy audit and mirror symmetry, its
 //! outputs, and the inputs it refuses.
 
-use rocking::io::config::{self, Source};
+mod common;
+use common::{refusal, scene};
 use rocking::sim::{Outcome, RunResult, Scenario, simulate};
-
-fn scene(text: &str) -> Scenario {
-    let table = config::parse_toml(text, "test.toml").expect("toml");
-    config::from_table(&table, &Source::default()).expect("scenario")
-}
-
-fn refusal(text: &str) -> String {
-    let table = config::parse_toml(text, "test.toml").expect("toml");
-    match config::from_table(&table, &Source::default()) {
-        Ok(_) => panic!("accepted:\n{text}"),
-        Err(e) => e.to_string(),
-    }
-}
 
 fn run(s: &Scenario) -> RunResult {
     simulate(s.model().expect("model"), &s.initial, &s.run_options()).expect("run")

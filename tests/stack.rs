@@ -4,23 +4,12 @@
 //! against lever arms computed here, the energy audit and mirror symmetry,
 //! and the inputs a stack refuses.
 
-use rocking::io::config::{self, Source};
+mod common;
+use common::{refusal, scene};
+use rocking::io::config;
 use rocking::model::stack::{MAX_BLOCKS, StackEnd, StackEventKind};
 use rocking::sim::stack_run::{StackRun, simulate_stack};
 use rocking::sim::{Outcome, RunResult, Scenario, simulate};
-
-fn scene(text: &str) -> Scenario {
-    let table = config::parse_toml(text, "test.toml").expect("toml");
-    config::from_table(&table, &Source::default()).expect("scenario")
-}
-
-fn refusal(text: &str) -> String {
-    let table = config::parse_toml(text, "test.toml").expect("toml");
-    match config::from_table(&table, &Source::default()) {
-        Ok(_) => panic!("accepted:\n{text}"),
-        Err(e) => e.to_string(),
-    }
-}
 
 fn run_block(s: &Scenario) -> RunResult {
     simulate(s.model().expect("model"), &s.initial, &s.run_options()).expect("run")

@@ -42,6 +42,22 @@ pub struct RecordPeaks {
     pub duration_s: f64,
 }
 
+impl RecordPeaks {
+    /// The peaks of record `r` of scenario `s` at `scale`; `None` unless `s`
+    /// runs a record.
+    pub(crate) fn of(s: &Scenario, r: &Option<super::scenario::Record>, scale: f64) -> Option<Self> {
+        r.as_ref()
+            .filter(|_| s.excitation.kind == ExcitationKind::Record)
+            .map(|r| RecordPeaks {
+                file: r.path.display().to_string(),
+                unit: r.unit.name(),
+                scale,
+                peaks: r.series.peaks(scale),
+                duration_s: r.series.duration_s(),
+            })
+    }
+}
+
 /// The run in physical units (`summary.json`'s `physical`).
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Physical {
@@ -158,17 +174,6 @@ impl Physical {
         let end_state = res.end_state();
         let theta = geo.psi * res.max_abs_theta;
         let [rest, slide, rock, slide_rock] = res.mode_time.map(sec);
-        let peaks = |r: &Option<super::scenario::Record>, scale: f64| {
-            r.as_ref()
-                .filter(|_| s.excitation.kind == ExcitationKind::Record)
-                .map(|r| RecordPeaks {
-                    file: r.path.display().to_string(),
-                    unit: r.unit.name(),
-                    scale,
-                    peaks: r.series.peaks(scale),
-                    duration_s: r.series.duration_s(),
-                })
-        };
         Physical {
             overturned: end_state == EndState::Overturned,
             t_overturn_s: res.tumble_tau.map(sec),
@@ -189,8 +194,8 @@ impl Physical {
             t_rest_s: (end_state == EndState::Rest).then(|| res.tallies.last_rest_tau.map_or(0.0, sec)),
             end_state,
             record_complete: s.record_complete(),
-            record_h: peaks(&s.excitation.record_h, s.excitation.scale_h),
-            record_v: peaks(&s.excitation.record_v, s.excitation.scale_v),
+            record_h: RecordPeaks::of(s, &s.excitation.record_h, s.excitation.scale_h),
+            record_v: RecordPeaks::of(s, &s.excitation.record_v, s.excitation.scale_v),
             floor: match s.excitation() {
                 Ok(Excitation::Floor(f)) => Some(f.peaks(s.tau_end())),
                 _ => None,

@@ -4,7 +4,7 @@
 
 use super::answer::{Body, ModeSeconds, Physical, RecordPeaks};
 use super::end_state::EndState;
-use super::scenario::{ExcitationKind, Scenario};
+use super::scenario::Scenario;
 use super::stack_run::StackRun;
 use crate::model::excitation::Excitation;
 use crate::model::stack::StackEnd;
@@ -51,17 +51,6 @@ impl Physical {
             .map(|j| (j, run.tally.max_phi[j]))
             .fold((0, 0.0), |a, b| if b.1 > a.1 { b } else { a });
         let alpha = (run.geo.size[turned][0] / run.geo.size[turned][1]).atan();
-        let peaks = |r: &Option<super::scenario::Record>, scale: f64| {
-            r.as_ref()
-                .filter(|_| s.excitation.kind == ExcitationKind::Record)
-                .map(|r| RecordPeaks {
-                    file: r.path.display().to_string(),
-                    unit: r.unit.name(),
-                    scale,
-                    peaks: r.series.peaks(scale),
-                    duration_s: r.series.duration_s(),
-                })
-        };
         let base_mu = run.geo.mu_s[0];
         Physical {
             overturned: end_state == EndState::Overturned,
@@ -83,8 +72,8 @@ impl Physical {
             t_rest_s: run.tau_rest.map(sec),
             end_state,
             record_complete: s.record_complete(),
-            record_h: peaks(&s.excitation.record_h, s.excitation.scale_h),
-            record_v: peaks(&s.excitation.record_v, s.excitation.scale_v),
+            record_h: RecordPeaks::of(s, &s.excitation.record_h, s.excitation.scale_h),
+            record_v: RecordPeaks::of(s, &s.excitation.record_v, s.excitation.scale_v),
             floor: match s.excitation() {
                 Ok(Excitation::Floor(f)) => Some(f.peaks(s.tau_end())),
                 _ => None,

@@ -80,3 +80,18 @@ pub fn assert_pivot_side(res: &RunResult) {
         }
     }
 }
+
+/// The scenario of config text `text` (a test's own config).
+pub fn scene(text: &str) -> rocking::sim::Scenario {
+    let table = rocking::io::config::parse_toml(text, "test.toml").expect("toml");
+    rocking::io::config::from_table(&table, &rocking::io::config::Source::default()).expect("scenario")
+}
+
+/// The one-line error config text `text` is refused with.
+pub fn refusal(text: &str) -> String {
+    let table = rocking::io::config::parse_toml(text, "test.toml").expect("toml");
+    match rocking::io::config::from_table(&table, &rocking::io::config::Source::default()) {
+        Ok(_) => panic!("accepted:\n{text}"),
+        Err(e) => e.to_string(),
+    }
+}
