@@ -485,3 +485,29 @@ proptest::proptest! {
         }
     }
 }
+
+#[test]
+fn set_changes_one_block_of_a_stack_by_its_index() {
+    let s = config::load(Some("tombstone"), None, &["stack[2].height=0.6".to_string()]).expect("set");
+    let blocks = s.stack.as_ref().expect("stack");
+    assert_eq!((blocks[2].width, blocks[2].height), (0.27, 0.6));
+    assert_eq!(blocks[1].height, 0.25);
+    // A shorter top stone (α = 24.2°) survives what the preset's does not.
+    assert_eq!(run_stack(&s).outcome, Outcome::Rest);
+    for (set, says) in [
+        (
+            "stack[3].height=1",
+            "stack[3]: no such table: the [[stack]] list has 3, numbered from 0",
+        ),
+        ("stack[1].colour=1", "stack[1].colour: unknown field `colour`"),
+    ] {
+        let e = config::load(Some("tombstone"), None, &[set.to_string()])
+            .expect_err(set)
+            .to_string();
+        assert!(e.starts_with(says), "{set}: {e}");
+    }
+    let e = config::load(Some("default"), None, &["stack[0].height=1".to_string()])
+        .expect_err("no stack")
+        .to_string();
+    assert!(e.starts_with("stack[0]: there is no [[stack]] list"), "{e}");
+}

@@ -130,6 +130,24 @@ fn set_dotted_key(
         };
         value = Value::String(text.to_string());
     }
+    // One table of a list, as errors name it: `stack[2].height`.
+    if let Some((list, index)) = indexed(section) {
+        let Some(Value::Array(tables)) = table.get_mut(list) else {
+            return Err(ConfigError::key(
+                section,
+                format!("there is no [[{list}]] list to set a table of (the scene has none)"),
+            ));
+        };
+        let count = tables.len();
+        let Some(Value::Table(t)) = tables.get_mut(index) else {
+            return Err(ConfigError::key(
+                section,
+                format!("no such table: the [[{list}]] list has {count}, numbered from 0"),
+            ));
+        };
+        t.insert(name.to_string(), value);
+        return Ok((section.to_string(), name.to_string()));
+    }
     let sec = table
         .entry(section.to_string())
         .or_insert_with(|| Value::Table(Table::new()));
@@ -144,6 +162,13 @@ fn set_dotted_key(
     }
     sec.insert(name.to_string(), value);
     Ok((section.to_string(), name.to_string()))
+}
+
+/// `("stack", 2)` for `stack[2]`; `None` for a plain section name.
+fn indexed(section: &str) -> Option<(&str, usize)> {
+    let (list, rest) = section.split_once('[')?;
+    let index = rest.strip_suffix(']')?.parse().ok()?;
+    Some((list, index))
 }
 
 /// The keys that `section.name` replaces when set: the pairs a config
