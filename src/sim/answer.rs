@@ -58,6 +58,15 @@ impl RecordPeaks {
     }
 }
 
+/// The peaks of the floor `s` stands on over the run's planned length;
+/// `None` without `[floor]`.
+pub(crate) fn floor_peaks(s: &Scenario) -> Option<FloorPeaks> {
+    match s.excitation() {
+        Ok(Excitation::Floor(f)) => Some(f.peaks(s.tau_end())),
+        _ => None,
+    }
+}
+
 /// The run in physical units (`summary.json`'s `physical`).
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Physical {
@@ -196,10 +205,7 @@ impl Physical {
             record_complete: s.record_complete(),
             record_h: RecordPeaks::of(s, &s.excitation.record_h, s.excitation.scale_h),
             record_v: RecordPeaks::of(s, &s.excitation.record_v, s.excitation.scale_v),
-            floor: match s.excitation() {
-                Ok(Excitation::Floor(f)) => Some(f.peaks(s.tau_end())),
-                _ => None,
-            },
+            floor: floor_peaks(s),
             impact_law: s.impact.law.name(),
             impact_r: (s.impact.law != LawKind::Impulse).then(|| s.impact_r()),
             friction_static: s.block.mu_s.is_finite().then_some(s.block.mu_s),

@@ -2,11 +2,10 @@
 //! single block's fields for the stack as a whole, and each block's own
 //! in `bodies`, bottom to top.
 
-use super::answer::{Body, ModeSeconds, Physical, RecordPeaks};
+use super::answer::{Body, ModeSeconds, Physical, RecordPeaks, floor_peaks};
 use super::end_state::EndState;
 use super::scenario::Scenario;
 use super::stack_run::StackRun;
-use crate::model::excitation::Excitation;
 use crate::model::stack::StackEnd;
 
 /// What the outputs call block `j` of a stack of `k`: `bottom block`,
@@ -74,10 +73,7 @@ impl Physical {
             record_complete: s.record_complete(),
             record_h: RecordPeaks::of(s, &s.excitation.record_h, s.excitation.scale_h),
             record_v: RecordPeaks::of(s, &s.excitation.record_v, s.excitation.scale_v),
-            floor: match s.excitation() {
-                Ok(Excitation::Floor(f)) => Some(f.peaks(s.tau_end())),
-                _ => None,
-            },
+            floor: floor_peaks(s),
             impact_law: "stack",
             impact_r: None,
             friction_static: base_mu.is_finite().then_some(base_mu),
