@@ -114,8 +114,15 @@ pub fn history_csv(run: &StackRun, p: f64) -> String {
 /// Writes a stack's three files into `staging`.
 pub fn write_stack(staging: &mut Staging, cfg: &Scenario, run: &StackRun, summary: &str) -> Result<(), OutputError> {
     let p = cfg.geometry().p;
+    let (events, history) = (events_csv(run, p), history_csv(run, p));
+    // Never a NaN in an output: refused, as the block's files refuse it.
+    for (name, text) in [("events.csv", &events), ("history.csv", &history)] {
+        if text.contains("NaN") || text.contains("inf") {
+            return Err(OutputError::NonFinite(name.to_string()));
+        }
+    }
     staging.text("summary.json", summary)?;
-    staging.text("events.csv", &events_csv(run, p))?;
-    staging.text("history.csv", &history_csv(run, p))?;
+    staging.text("events.csv", &events)?;
+    staging.text("history.csv", &history)?;
     Ok(())
 }
