@@ -212,6 +212,15 @@ impl BaseArgs {
     }
 }
 
+/// Refuses a `[[stack]]` base scene for `command`, which runs single
+/// blocks only, with `why` and what to use instead.
+pub(crate) fn refuse_stack(base: &Scenario, command: &str, why: &str) -> Result<(), BatchError> {
+    match base.stack {
+        Some(_) => Err(input(anyhow!("stack: {command} {why}"))),
+        None => Ok(()),
+    }
+}
+
 /// How text records are read: their unit and, for one-column files, the
 /// time step.
 #[derive(Debug, Clone, Default, clap::Args)]

@@ -37,6 +37,7 @@ use crate::analysis::engineering::fragility::{
 };
 use crate::analysis::engineering::lognormal::{FitError, LognormalFit};
 use crate::analysis::engineering::request;
+use crate::analysis::engineering::stack_response::stack_size;
 use crate::analysis::engineering::{BlockSize, Drive, EndState};
 use crate::analysis::orbit_diagram::Shard;
 use crate::io::config::to_json;
@@ -101,8 +102,11 @@ pub struct FragilityArgs {
     /// evenly spaced levels.
     #[arg(long, value_name = "LIST", allow_hyphen_values = true)]
     pub levels: String,
-    /// A block WIDTHxHEIGHT in metres, e.g. 0.6x2.0; repeatable.
-    #[arg(long = "block", value_name = "BxH", required = true)]
+    /// A block WIDTHxHEIGHT in metres, e.g. 0.6x2.0; repeatable. With a
+    /// [[stack]] scene, the stack's bounding block (bottom width x total
+    /// height, of the stack's own B/H), the whole stack scaled to it; the
+    /// stack as given when left out.
+    #[arg(long = "block", value_name = "BxH")]
     pub blocks: Vec<String>,
     /// Peak rotation θ/α whose exceedance is counted and fitted too.
     #[arg(
@@ -238,7 +242,7 @@ pub fn run(args: &FragilityArgs) -> Result<(), BatchError> {
     };
     let sa_period = request::sa_period(im, args.sa_period).map_err(flagged)?;
     let levels = positive_list("--levels", &args.levels)?;
-    let blocks: Vec<BlockSize> = args
+    let mut blocks: Vec<BlockSize> = args
         .blocks
         .iter()
         .map(|b| {
@@ -248,6 +252,27 @@ pub fn run(args: &FragilityArgs) -> Result<(), BatchError> {
             })
         })
         .collect::<Result<_, _>>()?;
+    match &base.stack {
+        // A stack's own size unless sizes are given.
+        Some(stack) if blocks.is_empty() => blocks.push(stack_size(stack)),
+        Some(_) => {}
+        None if blocks.is_empty() => {
+            return Err(input(anyhow!(
+                "--block: give at least one block WIDTHxHEIGHT in metres (e.g. --block 0.6x2.0), or a [[stack]] scene"
+            )));
+        }
+        None => {}
+    }
+    if base.stack.is_some() && im.per_block() {
+        let name = if im == Intensity::PgaTanAlpha {
+            "pga-tan-alpha"
+        } else {
+            "pgv-p-tan-alpha"
+        };
+        return Err(input(anyhow!(
+            "--im {name}: a [[stack]] has no one slenderness α (each face lifts at its own acceleration); use pga, pgv or sa"
+        )));
+    }
     // The same block twice would count its runs twice in every fraction.
     for (j, b) in blocks.iter().enumerate() {
         if let Some(i) = blocks[..j].iter().position(|a| a == b) {

@@ -135,6 +135,11 @@ fn pulses(args: &PulseMapArgs) -> Result<Vec<PulseKind>, BatchError> {
 /// Runs `rocking pulse-map`.
 pub fn run(args: &PulseMapArgs) -> Result<(), BatchError> {
     let base = args.base.load(&OWNS)?;
+    super::eng_args::refuse_stack(
+        &base,
+        "pulse-map",
+        "maps blocks of each --b-over-h at R = 1 m, and a [[stack]] keeps its own shape: use `rocking spectrum --pulse SHAPE` on it",
+    )?;
     let pulses = pulses(args)?;
     let ratios = positive_list("--b-over-h", &args.b_over_h)?;
     increasing("--b-over-h", &ratios)?;

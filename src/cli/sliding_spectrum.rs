@@ -113,6 +113,11 @@ pub fn run(args: &SlidingSpectrumArgs) -> Result<(), BatchError> {
         scene: args.scene.clone(),
     }
     .load(&owns(args))?;
+    super::eng_args::refuse_stack(
+        &base,
+        "sliding-spectrum",
+        "slides single blocks, and sliding inside a [[stack]] is not simulated (docs/model.md §18.7): use a [block] scene",
+    )?;
     let motion = motion(args)?;
     let mu = positive_list("--mu", &args.mu)?;
     let size = match &args.block {

@@ -29,6 +29,7 @@ use crate::analysis::engineering::overturn_scale::Failing as _;
 use crate::analysis::engineering::request::{OverturnRequest, SpectrumRequest};
 use crate::analysis::engineering::response::end_time_as;
 use crate::analysis::engineering::rocking_spectrum::{SizeAxis, SpectrumPoint, SpectrumSpec, rocking_spectrum};
+use crate::analysis::engineering::stack_response::stack_size;
 use crate::analysis::engineering::{Drive, EndState};
 use crate::io::config::to_json;
 use crate::io::csv::{self, Num};
@@ -36,6 +37,8 @@ use crate::io::engineering_files::{SpectrumRow, SpectrumWindowRow};
 use crate::io::output;
 use crate::plot::labels::{friction_text, num};
 use crate::plot::rocking_spectrum::{OverturnScaleFigure, OverturnSeries, SpectrumFigure, SpectrumSeries};
+use crate::sim::Scenario;
+use crate::sim::stack_answer::body_name;
 
 /// The size axis on the command line.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
@@ -82,9 +85,10 @@ pub struct SpectrumArgs {
     /// Number of log-spaced sizes.
     #[arg(long, value_name = "N", default_value_t = 50)]
     pub count: usize,
-    /// Slenderness ratios B/H, comma-separated or FROM:TO:N.
-    #[arg(long, value_name = "LIST", default_value = "0.25", allow_hyphen_values = true)]
-    pub b_over_h: String,
+    /// Slenderness ratios B/H, comma-separated or FROM:TO:N (default
+    /// 0.25; a [[stack]] keeps its own: its bottom width over its height).
+    #[arg(long, value_name = "LIST", allow_hyphen_values = true)]
+    pub b_over_h: Option<String>,
     /// Also search each block's smallest overturning scale of the motion
     /// (step up by --search-step to --search-max, refine each change by
     /// bisection) and the safe windows above it.
@@ -117,6 +121,11 @@ const SEARCH_STEP: f64 = 0.1;
 const SEARCH_MAX: f64 = 5.0;
 /// Default relative width of a refined boundary.
 const REL_TOL: f64 = 1e-3;
+
+/// The slenderness ratio of a block spectrum without `--b-over-h`: a
+/// slender cabinet or statue (B/H = 1/4, α ≈ 14°), which rocks under
+/// ground motion of 0.25 g and more.
+const B_OVER_H: &str = "0.25";
 
 /// The config keys a spectrum's run takes from its flags, for errors.
 const FLAGS: &[(&str, &str)] = &[
@@ -196,7 +205,21 @@ pub fn run(args: &SpectrumArgs) -> Result<(), BatchError> {
     };
     // The sizes before the ratios' list, as the flags are documented.
     request.size_range().map_err(flagged)?;
-    request.b_over_h = positive_list("--b-over-h", &args.b_over_h)?;
+    request.b_over_h = match (&base.stack, &args.b_over_h) {
+        // A stack is scaled as a whole: its one B/H is its own shape's.
+        (Some(blocks), None) => {
+            let size = stack_size(blocks);
+            vec![size.width_m / size.height_m]
+        }
+        (Some(blocks), Some(text)) => {
+            return Err(input(anyhow!(
+                "--b-over-h {text}: a [[stack]] is scaled as a whole and keeps its own shape (B/H = {:.4} of its {} blocks: bottom width over total height); remove --b-over-h",
+                stack_size(blocks).width_m / stack_size(blocks).height_m,
+                blocks.len()
+            )));
+        }
+        (None, text) => positive_list("--b-over-h", text.as_deref().unwrap_or(B_OVER_H))?,
+    };
     let blocks = request.checked().map_err(flagged)?;
     let spec = SpectrumSpec {
         base: &base,
@@ -265,7 +288,7 @@ pub fn run(args: &SpectrumArgs) -> Result<(), BatchError> {
             })
         })
         .collect();
-    let summary = summary(&spec, &points);
+    let summary = summary(&spec, &points, &base);
     let meta = json!({
         "command": "rocking spectrum",
         "version": env!("CARGO_PKG_VERSION"),
@@ -292,6 +315,14 @@ pub fn run(args: &SpectrumArgs) -> Result<(), BatchError> {
         "config": to_json(&base),
         "units": "lengths m, times s, accelerations g, p 1/s; peak_theta_over_alpha = max|θ|/α; scale: factor on the motion as read",
     });
+    let mut meta = meta;
+    if let Some(blocks) = &base.stack {
+        meta["stack"] = json!({
+            "blocks": blocks.len(),
+            "sizes": "each size is the stack's bounding block (its bottom block's width and its total height); every block's width, height and offset are scaled by one factor, so its shape stays the config's",
+            "peak_theta_over_alpha": "of the block that turned most, over its own slenderness (summary.json's max_rotation_over_alpha)",
+        });
+    }
     let vertical_text = motion
         .pga_v_g
         .map_or_else(String::new, |v| format!(" + vertical PGA {:.3} g", v * motion.scale));
@@ -307,7 +338,7 @@ pub fn run(args: &SpectrumArgs) -> Result<(), BatchError> {
         .b_over_h
         .iter()
         .map(|&ratio| SpectrumSeries {
-            label: format!("B/H = {}", num(ratio)),
+            label: series_name(&base, ratio),
             points: points
                 .iter()
                 .filter(|p| p.b_over_h == ratio)
@@ -336,7 +367,7 @@ pub fn run(args: &SpectrumArgs) -> Result<(), BatchError> {
             .b_over_h
             .iter()
             .map(|&ratio| OverturnSeries {
-                label: format!("B/H = {}", num(ratio)),
+                label: series_name(&base, ratio),
                 points: points
                     .iter()
                     .filter(|p| p.b_over_h == ratio)
@@ -394,6 +425,41 @@ pub fn run(args: &SpectrumArgs) -> Result<(), BatchError> {
     Ok(())
 }
 
+/// A series' name in the figures and the summary: its B/H, or for a
+/// stack its number of blocks too.
+fn series_name(base: &Scenario, ratio: f64) -> String {
+    match &base.stack {
+        // Its B/H follows from its blocks (0.5555…): three digits read.
+        Some(blocks) => format!("{}-block stack, B/H = {ratio:.3}", blocks.len()),
+        None => format!("B/H = {}", num(ratio)),
+    }
+}
+
+/// For a stack, which block went over how often (` (top block 12,
+/// bottom block 3)`: the block whose lower face overturned, with all it
+/// carries); empty for a block.
+fn bodies_text(base: &Scenario, of: &[&SpectrumPoint]) -> String {
+    let Some(blocks) = &base.stack else {
+        return String::new();
+    };
+    let k = blocks.len();
+    let counts: Vec<String> = (0..k)
+        .rev()
+        .filter_map(|j| {
+            let n = of
+                .iter()
+                .filter(|p| p.response.end == EndState::Overturned && p.response.body == Some(j))
+                .count();
+            (n > 0).then(|| format!("{} {n}", body_name(j, k)))
+        })
+        .collect();
+    if counts.is_empty() {
+        String::new()
+    } else {
+        format!(" ({})", counts.join(", "))
+    }
+}
+
 /// The CSV row of one block.
 fn row(p: &SpectrumPoint, scale: f64, pga_of: &impl Fn(f64) -> f64) -> SpectrumRow {
     let r = &p.response;
@@ -420,7 +486,7 @@ fn row(p: &SpectrumPoint, scale: f64, pga_of: &impl Fn(f64) -> f64) -> SpectrumR
 
 /// Per B/H: how many blocks overturned or flew, the largest that
 /// overturned and the smallest that survived.
-fn summary(spec: &SpectrumSpec<'_>, points: &[SpectrumPoint]) -> Json {
+fn summary(spec: &SpectrumSpec<'_>, points: &[SpectrumPoint], base: &Scenario) -> Json {
     let per: Vec<Json> = spec
         .b_over_h
         .iter()
@@ -444,9 +510,10 @@ fn summary(spec: &SpectrumSpec<'_>, points: &[SpectrumPoint]) -> Json {
                 .map(|p| p.response.peak_theta_over_alpha)
                 .fold(0.0, f64::max);
             let text = format!(
-                "B/H = {}: {over} of {} overturned{}{}{}",
-                num(ratio),
+                "{}: {over} of {} overturned{}{}{}{}",
+                series_name(base, ratio),
                 of.len(),
+                bodies_text(base, &of),
                 if flight > 0 {
                     format!(", {flight} in flight")
                 } else {

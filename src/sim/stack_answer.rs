@@ -44,19 +44,14 @@ impl Physical {
                 max_uplift_m: run.geo.span(j) * run.tally.max_q[j].min(std::f64::consts::FRAC_PI_2).sin(),
             })
             .collect();
-        // The stack's headline rotation: the block that turned most,
-        // relative to its own slenderness.
-        let (turned, phi) = (0..k)
-            .map(|j| (j, run.tally.max_phi[j]))
-            .fold((0, 0.0), |a, b| if b.1 > a.1 { b } else { a });
-        let alpha = (run.geo.size[turned][0] / run.geo.size[turned][1]).atan();
+        let (_, phi, phi_over_alpha) = run.most_turned();
         let base_mu = run.geo.mu_s[0];
         Physical {
             overturned: end_state == EndState::Overturned,
             t_overturn_s: over.map(|(_, tau)| sec(tau)),
             max_rotation_rad: phi,
             max_rotation_deg: phi.to_degrees(),
-            max_rotation_over_alpha: phi / alpha,
+            max_rotation_over_alpha: phi_over_alpha,
             max_sliding_m: 0.0,
             residual_sliding_m: 0.0,
             max_uplift_m: bodies.iter().map(|b| b.max_uplift_m).fold(0.0, f64::max),

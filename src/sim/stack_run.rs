@@ -59,6 +59,22 @@ pub struct StackRun {
     pub wall_s: f64,
 }
 
+impl StackRun {
+    /// The block that turned most relative to its own slenderness: its
+    /// index (0 = bottom), its peak |φ_j| (rad) and that over α_j =
+    /// atan(B_j/H_j). The stack's headline rotation (`summary.json`'s
+    /// `max_rotation_over_alpha`, a spectrum's `peak_theta_over_alpha`):
+    /// one number that reads as the block's does, 1 being a block's own
+    /// overturning angle.
+    pub fn most_turned(&self) -> (usize, f64, f64) {
+        let (j, phi) = (0..self.geo.k)
+            .map(|j| (j, self.tally.max_phi[j]))
+            .fold((0, 0.0), |a, b| if b.1 > a.1 { b } else { a });
+        let alpha = (self.geo.size[j][0] / self.geo.size[j][1]).atan();
+        (j, phi, phi / alpha)
+    }
+}
+
 /// Keeps what a stack's run produces.
 struct Keep {
     k: usize,

@@ -24,6 +24,7 @@ pub mod request;
 pub mod response;
 pub mod rocking_spectrum;
 pub mod sliding_spectrum;
+pub mod stack_response;
 
 pub use response::{BlockResponse, BlockSize, Drive, EndState};
 

@@ -1,5 +1,6 @@
-//! One block under one ground motion: the run every engineering analysis
-//! is made of.
+//! One block (or one stack of blocks, scaled as a whole:
+//! [`stack_response`](super::stack_response)) under one ground motion:
+//! the run every engineering analysis is made of.
 //!
 //! Contract:
 //! - The block is set by its width and height in metres ([`BlockSize`]);
@@ -14,10 +15,12 @@
 //!   safe or overturned.
 //! - Every number in a [`BlockResponse`] is finite.
 
+use super::stack_response::{respond_stack, scale_stack};
 use crate::model::excitation::Excitation;
 /// How a run ended, in the engineer's words: the core's one type.
 pub use crate::sim::EndState;
 use crate::sim::scenario::{ExcitationKind, RECORD_TAIL_S, Record, ShapeKind};
+use crate::sim::stack_run::StackError;
 use crate::sim::{Scenario, ScenarioError, SimError, simulate};
 
 /// Free-vibration tail after a pulse, in τ (units of 1/p). A block released
@@ -142,6 +145,9 @@ pub struct BlockResponse {
     pub peak_theta_over_alpha: f64,
     /// Time of overturning or flight, s (from the start of the motion).
     pub t_end_event_s: Option<f64>,
+    /// For a stack, the block (0 = bottom) whose lower face overturned or
+    /// flew; `None` for a block and for a stack that stayed.
+    pub body: Option<usize>,
 }
 
 /// A run that could not be made or failed.
@@ -153,14 +159,21 @@ pub enum ResponseError {
     /// The integration failed.
     #[error("{0}")]
     Sim(#[from] SimError),
+    /// A stack's run failed or stopped at a slip it does not follow.
+    #[error("{0}")]
+    Stack(#[from] StackError),
 }
 
 /// The scenario of `size` under `drive` at `scale`, built from `base`: no
 /// history, run length = motion + tail, from rest.
 pub fn scenario_for(base: &Scenario, size: BlockSize, drive: &Drive, scale: f64) -> Result<Scenario, ScenarioError> {
     let mut s = base.clone();
-    s.block.width = size.width_m;
-    s.block.height = size.height_m;
+    if s.stack.is_some() {
+        scale_stack(&mut s, size)?;
+    } else {
+        s.block.width = size.width_m;
+        s.block.height = size.height_m;
+    }
     s.run.output_dt = 0.0;
     s.analyses.lyapunov = false;
     s.analyses.spectrum = false;
@@ -233,6 +246,9 @@ pub(crate) fn respond(
     scale: f64,
 ) -> Result<BlockResponse, ResponseError> {
     let s = scenario_for(base, size, drive, scale)?;
+    if s.stack.is_some() {
+        return respond_stack(&s);
+    }
     let p = s.geometry().p;
     let r = simulate(s.model()?, &s.initial, &s.run_options())?;
     let (end, event_tau) = (r.end_state(), r.end_event_tau());
@@ -240,6 +256,7 @@ pub(crate) fn respond(
         end,
         peak_theta_over_alpha: r.max_abs_theta,
         t_end_event_s: event_tau.map(|tau| tau / p),
+        body: None,
     })
 }
 

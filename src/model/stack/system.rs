@@ -32,6 +32,15 @@ pub enum StackEnd {
     Flight(usize),
 }
 
+impl StackEnd {
+    /// The block whose lower face it happened at (0 = bottom).
+    pub fn body(self) -> usize {
+        match self {
+            StackEnd::Overturned(i) | StackEnd::Flight(i) => i,
+        }
+    }
+}
+
 /// A stack's discrete state: each interface's contact, or how it ended.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct StackMode {
