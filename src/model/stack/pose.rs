@@ -77,7 +77,13 @@ impl Pose {
             pose.phi[j] = phi;
             pose.omega[j] = omega;
             pose.q_dot[j] = y[MAX_BLOCKS + j];
-            pose.cs[j] = [phi.cos(), phi.sin()];
+            // A closed face (q_j = 0) turns block j with the one below:
+            // the same angle, so the same cosine and sine, bit for bit.
+            pose.cs[j] = if y[j] == 0.0 {
+                if j == 0 { [1.0, 0.0] } else { pose.cs[j - 1] }
+            } else {
+                [phi.cos(), phi.sin()]
+            };
             let corner = geo.corners[j][usize::from(contacts[j] == Contact::Right)];
             // The pivot is a point of the block below (the base for j = 0).
             let p = if j == 0 { corner } else { pose.place(j - 1, corner) };
