@@ -230,7 +230,7 @@ fn the_commands_and_flags_that_cannot_take_a_stack_refuse_it_in_one_line() {
         .arg(&out)
         .output()
         .unwrap();
-    refused(&o, &["--b-over-h 0.2", "keeps its own shape", "B/H = 0.5556"], &out);
+    refused(&o, &["--b-over-h", "keeps its own shape", "B/H = 0.5556"], &out);
     let o = rocking()
         .args([
             "fragility",

@@ -21,6 +21,7 @@ mod scene;
 mod simulate;
 mod sliding;
 mod spectrum;
+mod stack;
 mod study;
 
 #[pymodule]

@@ -66,7 +66,8 @@ impl Scene {
 /// The section of an undotted keyword: the one section that has the key
 /// (`_norm` spellings stripped). `width` and `height` are the block's, as
 /// they always were; a rocking frame's columns are `frame={"width": …}` or
-/// `"frame.width"`, and a stack's blocks are not simulated from Python.
+/// `"frame.width"`, and a stack's blocks are its tables' keys
+/// (`config={"stack[2].height": "0.6 m"}`).
 fn section_of(typed: &str) -> PyResult<&'static str> {
     let (name, _) = strip_norm(None, typed);
     let mut sections: Vec<&'static str> = KNOWN_KEYS

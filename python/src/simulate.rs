@@ -233,6 +233,12 @@ pub fn _simulate<'py>(py: Python<'py>, scene: &Scene) -> PyResult<Bound<'py, PyD
     let cfg = scene.scenario();
     warn(py, cfg)?;
     let owned = cfg.clone();
+    if cfg.stack.is_some() {
+        // A stack's run offers no place to stop: after Ctrl-C it finishes
+        // on its own thread (milliseconds), its result dropped.
+        let done = interrupt::run(py, move |_| crate::stack::run_stack(&owned))?.map_err(Failure::into_py)?;
+        return crate::stack::stack_columns(py, &done, cfg.geometry().p);
+    }
     let done = interrupt::run(py, move |cancel| run_scene(&owned, cancel))?.map_err(Failure::into_py)?;
     columns(py, &done, &cfg.geometry())
 }

@@ -31,13 +31,14 @@ fn input(e: RequestError) -> PyErr {
 /// The rocking spectrum of the record at `record` (in `unit`, for text
 /// files) scaled by `scale` or to `pga` (g), over `count` log-spaced sizes
 /// `from_m … to_m` of the half-diagonal R (`size="r"`) or the height H
-/// (`"h"`), for each B/H in `b_over_h`; with `overturn_scale`, each
+/// (`"h"`), for each B/H in `b_over_h` (default 0.25; a stack scene's
+/// own, its whole stack scaled to each size); with `overturn_scale`, each
 /// block's smallest overturning scale, searched on the ladder
 /// `search_step … search_max` and refined to `rel_tol`. Checked with the
 /// core's request ([`SpectrumRequest`]), whose messages name these
 /// keywords; Ctrl-C is checked between B/H ratios.
 #[pyfunction]
-#[pyo3(signature = (scene, record, sizes, *, unit=None, record_v=None, unit_v=None, size="r", b_over_h=vec![0.25], scale=None, pga=None, overturn_scale=false, search_step=0.1, search_max=5.0, rel_tol=1e-3, threads=None, progress=None))]
+#[pyo3(signature = (scene, record, sizes, *, unit=None, record_v=None, unit_v=None, size="r", b_over_h=None, scale=None, pga=None, overturn_scale=false, search_step=0.1, search_max=5.0, rel_tol=1e-3, threads=None, progress=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn _spectrum<'py>(
     py: Python<'py>,
@@ -48,7 +49,7 @@ pub fn _spectrum<'py>(
     record_v: Option<PathBuf>,
     unit_v: Option<&str>,
     size: &str,
-    b_over_h: Vec<f64>,
+    b_over_h: Option<Vec<f64>>,
     scale: Option<f64>,
     pga: Option<f64>,
     overturn_scale: bool,
@@ -89,7 +90,7 @@ fn spectrum<'py>(
     record_v: Option<PathBuf>,
     unit_v: Option<&str>,
     size: &str,
-    b_over_h: Vec<f64>,
+    b_over_h: Option<Vec<f64>>,
     scale: Option<f64>,
     pga: Option<f64>,
     overturn_scale: bool,
@@ -167,7 +168,7 @@ fn spectrum<'py>(
         from_m,
         to_m,
         count,
-        b_over_h,
+        b_over_h: request::spectrum_ratios(base, b_over_h).map_err(input)?,
         overturn: overturn_scale.then_some(OverturnRequest {
             search_step,
             search_max,

@@ -26,10 +26,9 @@ use super::error::BatchError;
 use super::pulse_map::MAX_OMEGA_RATIO;
 use super::sweep::{progress_bar, progress_fn, thread_pool};
 use crate::analysis::engineering::overturn_scale::Failing as _;
-use crate::analysis::engineering::request::{OverturnRequest, SpectrumRequest};
+use crate::analysis::engineering::request::{self, OverturnRequest, SpectrumRequest};
 use crate::analysis::engineering::response::end_time_as;
 use crate::analysis::engineering::rocking_spectrum::{SizeAxis, SpectrumPoint, SpectrumSpec, rocking_spectrum};
-use crate::analysis::engineering::stack_response::stack_size;
 use crate::analysis::engineering::{Drive, EndState};
 use crate::io::config::to_json;
 use crate::io::csv::{self, Num};
@@ -122,11 +121,6 @@ const SEARCH_MAX: f64 = 5.0;
 /// Default relative width of a refined boundary.
 const REL_TOL: f64 = 1e-3;
 
-/// The slenderness ratio of a block spectrum without `--b-over-h`: a
-/// slender cabinet or statue (B/H = 1/4, α ≈ 14°), which rocks under
-/// ground motion of 0.25 g and more.
-const B_OVER_H: &str = "0.25";
-
 /// The config keys a spectrum's run takes from its flags, for errors.
 const FLAGS: &[(&str, &str)] = &[
     ("excitation.a_h", "--pulse-accel × --scale/--pga"),
@@ -205,21 +199,12 @@ pub fn run(args: &SpectrumArgs) -> Result<(), BatchError> {
     };
     // The sizes before the ratios' list, as the flags are documented.
     request.size_range().map_err(flagged)?;
-    request.b_over_h = match (&base.stack, &args.b_over_h) {
-        // A stack is scaled as a whole: its one B/H is its own shape's.
-        (Some(blocks), None) => {
-            let size = stack_size(blocks);
-            vec![size.width_m / size.height_m]
-        }
-        (Some(blocks), Some(text)) => {
-            return Err(input(anyhow!(
-                "--b-over-h {text}: a [[stack]] is scaled as a whole and keeps its own shape (B/H = {:.4} of its {} blocks: bottom width over total height); remove --b-over-h",
-                stack_size(blocks).width_m / stack_size(blocks).height_m,
-                blocks.len()
-            )));
-        }
-        (None, text) => positive_list("--b-over-h", text.as_deref().unwrap_or(B_OVER_H))?,
-    };
+    let given = args
+        .b_over_h
+        .as_deref()
+        .map(|text| positive_list("--b-over-h", text))
+        .transpose()?;
+    request.b_over_h = request::spectrum_ratios(&base, given).map_err(flagged)?;
     let blocks = request.checked().map_err(flagged)?;
     let spec = SpectrumSpec {
         base: &base,

@@ -81,6 +81,19 @@ pub fn events_csv(run: &StackRun, p: f64) -> String {
     out
 }
 
+/// Each body's `theta_j_rad`, `theta_dot_j_rad_s`, `x_j_m` and `y_j_m`
+/// at sample `s` of `run` (p in 1/s), bottom to top; the entries past the
+/// stack's blocks are 0. `history.csv` and Python's `StackRun.history`
+/// are made of these.
+pub fn body_states(run: &StackRun, s: &StackSample, p: f64) -> [[f64; 4]; MAX_BLOCKS] {
+    let pose = Pose::new(&run.geo, &s.mode.contacts, &s.y);
+    let mut out = [[0.0; 4]; MAX_BLOCKS];
+    for (j, o) in out.iter_mut().enumerate().take(run.geo.k) {
+        *o = [pose.phi[j], pose.omega[j] * p, pose.centre[j][0], pose.centre[j][1]];
+    }
+    out
+}
+
 /// `history.csv`: `tau,t_s,mode`, then for each body j from 0:
 /// `theta_j_rad` (its rotation, clockwise), `theta_dot_j_rad_s`, `x_j_m`
 /// and `y_j_m` (its centre relative to the base).
@@ -96,9 +109,8 @@ pub fn history_csv(run: &StackRun, p: f64) -> String {
         out.push(',');
         num(out, s.tau / p);
         let _ = write!(out, ",{}", s.mode.name(k));
-        let pose = Pose::new(&run.geo, &s.mode.contacts, &s.y);
-        for j in 0..k.min(MAX_BLOCKS) {
-            for v in [pose.phi[j], pose.omega[j] * p, pose.centre[j][0], pose.centre[j][1]] {
+        for body in &body_states(run, s, p)[..k] {
+            for &v in body {
                 out.push(',');
                 num(out, v);
             }

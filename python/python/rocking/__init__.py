@@ -33,7 +33,18 @@ import time
 from typing import Any, Callable, Union
 
 from . import _rocking
-from ._results import SLIDING, SPECTRUM, Fragility, Lyapunov, OutcomeMap, RockingSpectrum, Run, SlidingSpectrum, Sweep
+from ._results import (
+    SLIDING,
+    SPECTRUM,
+    Fragility,
+    Lyapunov,
+    OutcomeMap,
+    RockingSpectrum,
+    Run,
+    SlidingSpectrum,
+    StackRun,
+    Sweep,
+)
 from ._rocking import ConfigError, RecordError, RunError, Scene, __version__, presets
 from ._table import Table, table
 
@@ -48,6 +59,7 @@ __all__ = [
     "RunError",
     "Scene",
     "SlidingSpectrum",
+    "StackRun",
     "Sweep",
     "Table",
     "__version__",
@@ -155,14 +167,18 @@ def _scene(scene: Scene | str) -> Scene:
     return scene if isinstance(scene, Scene) else Scene(scene)
 
 
-def simulate(scene: Scene | str) -> Run:
+def simulate(scene: Scene | str) -> Run | StackRun:
     """One run of `scene` (or of the preset of that name), as `rocking --batch`
     makes it: the time history, events, Poincaré section and summary.json,
     with `analysis.lyapunov` and `analysis.spectrum` when the scene asks
-    for them. Releases the GIL while it runs; Ctrl-C stops it at once
-    (KeyboardInterrupt)."""
+    for them. A scene with a `[[stack]]` (e.g. the `tombstone` preset)
+    gives a `StackRun`: each body's columns, and no section. Releases the
+    GIL while it runs; Ctrl-C stops it at once (KeyboardInterrupt)."""
     s = _scene(scene)
-    return Run(s, _rocking._simulate(s))
+    data = _rocking._simulate(s)
+    if "blocks" in data:
+        return StackRun(s, data)
+    return Run(s, data)
 
 
 def sweep(
@@ -363,7 +379,7 @@ def spectrum(
     record_v: Any = None,
     unit_v: str | None = None,
     size: str = "r",
-    b_over_h: Any = (0.25,),
+    b_over_h: Any = None,
     scale: float | None = None,
     pga: float | None = None,
     overturn_scale: bool = False,
@@ -377,7 +393,9 @@ def spectrum(
     """The rocking spectrum of a record, as `rocking spectrum --record`:
     the peak θ/α (and end: rest, moving, overturned, flight) of blocks of
     `sizes = (from_m, to_m, count)` log-spaced half-diagonals R (`size="r"`)
-    or heights H (`"h"`) for each B/H in `b_over_h`, under the record (in
+    or heights H (`"h"`) for each B/H in `b_over_h` (default 0.25; a
+    `base` scene with a `[[stack]]` is scaled as a whole, keeping its own
+    B/H: its bottom width over its total height), under the record (in
     `unit` for text files) scaled by `scale` or to `pga` (g), with its
     vertical component `record_v` (in `unit_v`, default `unit`) scaled by
     the same factor when given; with
@@ -395,7 +413,7 @@ def spectrum(
             record_v=None if record_v is None else str(record_v),
             unit_v=unit_v,
             size=size,
-            b_over_h=[float(v) for v in b_over_h],
+            b_over_h=None if b_over_h is None else [float(v) for v in b_over_h],
             scale=scale,
             pga=pga,
             overturn_scale=overturn_scale,
@@ -406,7 +424,13 @@ def spectrum(
             progress=report,
         )
     return RockingSpectrum(table(data, SPECTRUM), float(data["pga_g_record"]))._keep(
-        base=s, record=record, sizes=tuple(sizes), size=size, b_over_h=tuple(float(v) for v in b_over_h), scale=scale, pga=pga
+        base=s,
+        record=record,
+        sizes=tuple(sizes),
+        size=size,
+        b_over_h=tuple(sorted({float(v) for v in data["b_over_h"]})),
+        scale=scale,
+        pga=pga,
     )
 
 

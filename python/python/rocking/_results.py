@@ -119,6 +119,81 @@ class Run:
         )
 
 
+STACK_EVENTS = (
+    "tau",
+    "t_s",
+    "kind",
+    "body",
+    "mode_before",
+    "mode_after",
+    "q_dot_before_rad_s",
+    "q_dot_after_rad_s",
+)
+
+
+class StackRun:
+    """One run of a stack of blocks (a scene with `[[stack]]`), as
+    `rocking --batch` writes it.
+
+    `history` has history.csv's columns: `tau`, `t_s`, `mode` (every
+    face's contact, bottom to top: `rock-left/closed`), then for each body
+    J from 0 (the bottom block) `theta_J_rad` (its rotation, clockwise),
+    `theta_dot_J_rad_s`, `x_J_m` and `y_J_m` (its centre relative to the
+    base). `events` has events.csv's, with `body` the block whose lower
+    face the event is at. `summary` is summary.json as a dict; `bodies`
+    its `physical.bodies` (bottom to top). A stack has no Poincaré section.
+    """
+
+    def __init__(self, scene: Any, data: Mapping[str, Any]) -> None:
+        self.scene = scene
+        #: Number of blocks, bottom to top.
+        self.blocks: int = int(data["blocks"])
+        #: summary.json as a dict (same keys and numbers as the CLI's file).
+        self.summary: dict[str, Any] = data["summary"]
+        order = ["tau", "t_s", "mode"] + [
+            f"{name}" for j in range(self.blocks) for name in (f"theta_{j}_rad", f"theta_dot_{j}_rad_s", f"x_{j}_m", f"y_{j}_m")
+        ]
+        #: The regular time history (history.csv's columns).
+        self.history: Table = table(data["history"], order)
+        #: Every event (events.csv's columns).
+        self.events: Table = table(data["events"], STACK_EVENTS)
+
+    @property
+    def t(self) -> np.ndarray:
+        """Time of each history row, s."""
+        return self.history["t_s"]
+
+    def theta_rad(self, body: int) -> np.ndarray:
+        """Rotation of block `body` (0 = bottom), rad, clockwise."""
+        return self.history[f"theta_{self._body(body)}_rad"]
+
+    def theta_dot_rad_s(self, body: int) -> np.ndarray:
+        """Angular velocity of block `body` (0 = bottom), rad/s."""
+        return self.history[f"theta_dot_{self._body(body)}_rad_s"]
+
+    @property
+    def bodies(self) -> list[dict[str, Any]]:
+        """Each block's answer, bottom to top: name, max_rotation_deg,
+        overturned, max_sliding_m, max_uplift_m."""
+        return list(self.summary["physical"]["bodies"])
+
+    @property
+    def outcome(self) -> str:
+        """How the run ended: running, rest, tumbled or flight."""
+        return str(self.summary["outcome"])
+
+    def _body(self, body: int) -> int:
+        if not (isinstance(body, (int, np.integer)) and 0 <= body < self.blocks):
+            raise IndexError(f"body {body!r}: a block of this stack, 0 (bottom) to {self.blocks - 1} (top)")
+        return int(body)
+
+    def __repr__(self) -> str:
+        return (
+            f"rocking.StackRun(blocks={self.blocks}, outcome={self.outcome!r}, tau_end={self.summary['tau_end']!r}, "
+            f"{len(self.history)} history rows, {len(self.events)} events)"
+        )
+
+
 def _masked(values: np.ndarray, present: np.ndarray) -> np.ma.MaskedArray:
     """`values` masked where not `present`."""
     return np.ma.MaskedArray(values, mask=~np.asarray(present, dtype=bool))

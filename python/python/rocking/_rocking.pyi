@@ -134,7 +134,7 @@ def _spectrum(
     *,
     unit: str | None = None,
     size: str = "r",
-    b_over_h: list[float] = ...,
+    b_over_h: list[float] | None = None,
     scale: float | None = None,
     pga: float | None = None,
     overturn_scale: bool = False,

@@ -16,11 +16,13 @@ use super::fragility::{Intensity, SA_DAMPING};
 use super::overturn_scale::ladder;
 use super::response::Drive;
 use super::rocking_spectrum::{MAX_BLOCKS, OverturnOptions, SizeAxis, SizeRange, SizeRangeError};
+use super::stack_response::stack_size;
 use crate::analysis::field::{FieldNames, OwnNames, RequestField, show};
 use crate::model::excitation::pulse::MAX_TYPE_C_CYCLES;
 use crate::model::excitation::record::Series;
 use crate::model::oscillator::Oscillator;
 use crate::model::units::AccelUnit;
+use crate::sim::Scenario;
 use crate::sim::scenario::ShapeKind;
 
 /// Most steps of a search's ladder: beyond this a search would take hours
@@ -75,6 +77,13 @@ pub enum RequestError {
     Ratio(f64),
     /// No slenderness ratio.
     NoRatio,
+    /// Slenderness ratios for a stack, which keeps its own.
+    StackRatio {
+        /// The stack's B/H: its bottom width over its total height.
+        own: f64,
+        /// Its number of blocks.
+        blocks: usize,
+    },
     /// Slenderness ratios that do not increase: `(before, after)`.
     RatiosNotIncreasing(f64, f64),
     /// More than [`MAX_BLOCKS`] blocks (sizes × ratios).
@@ -195,6 +204,10 @@ impl RequestError {
                 valued(RequestField::BOverH, *r)
             ),
             RequestError::NoRatio => format!("{}: give at least one ratio", name(RequestField::BOverH)),
+            RequestError::StackRatio { own, blocks } => format!(
+                "{}: a [[stack]] is scaled as a whole and keeps its own shape (B/H = {own:.4} of its {blocks} blocks: bottom width over total height); leave it out",
+                name(RequestField::BOverH)
+            ),
             RequestError::RatiosNotIncreasing(a, b) => format!(
                 "{}: values must increase ({} then {})",
                 name(RequestField::BOverH),
@@ -462,6 +475,32 @@ pub struct SpectrumRequest {
     pub b_over_h: Vec<f64>,
     /// The overturning-scale search, if asked.
     pub overturn: Option<OverturnRequest>,
+}
+
+/// The slenderness ratio of a block spectrum without ratios given: a
+/// slender cabinet or statue (B/H = 1/4, α ≈ 14°), which rocks under
+/// ground motion of 0.25 g and more.
+pub const SPECTRUM_B_OVER_H: f64 = 0.25;
+
+/// The ratios of a spectrum of `base`'s body: those `given`, or
+/// [`SPECTRUM_B_OVER_H`]; a stack is scaled as a whole, so its one ratio
+/// is its own (bottom width over total height) and ratios given for it
+/// are refused.
+pub fn spectrum_ratios(base: &Scenario, given: Option<Vec<f64>>) -> Result<Vec<f64>, RequestError> {
+    match (&base.stack, given) {
+        (None, given) => Ok(given.unwrap_or_else(|| vec![SPECTRUM_B_OVER_H])),
+        (Some(blocks), given) => {
+            let size = stack_size(blocks);
+            let own = size.width_m / size.height_m;
+            match given {
+                None => Ok(vec![own]),
+                Some(_) => Err(RequestError::StackRatio {
+                    own,
+                    blocks: blocks.len(),
+                }),
+            }
+        }
+    }
 }
 
 /// A checked spectrum request.

@@ -1,0 +1,66 @@
+"""A stack of blocks ([[stack]], docs/model.md §18) from Python: the CLI's
+run, columns and answer, and its spectrum scaled as a whole."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import rocking
+from conftest import REPO, floats, read_csv, read_json
+
+KOBE = REPO / "assets" / "records" / "kobe-1995.dat"
+
+
+def test_the_tombstone_runs_as_the_cli_runs_it(cli, tmp_path: Path) -> None:
+    cli.ok("--batch", "--preset", "tombstone", "--out", str(tmp_path / "o"), "-q")
+    summary = read_json(tmp_path / "o" / "summary.json")
+    run = rocking.simulate("tombstone")
+    assert isinstance(run, rocking.StackRun)
+    assert run.blocks == 3
+    assert run.summary["physical"] == summary["physical"]
+    assert run.outcome == "tumbled"
+    assert [b["name"] for b in run.bodies] == ["bottom block", "middle block", "top block"]
+    assert [b["overturned"] for b in run.bodies] == [False, False, True]
+    # Every column of history.csv and events.csv, the same numbers (the
+    # CSV writes each float in full, so they round-trip exactly).
+    history = read_csv(tmp_path / "o" / "history.csv")
+    assert list(run.history.dtype.names) == list(history[0].keys())
+    for name in run.history.dtype.names:
+        if name == "mode":
+            assert list(run.history["mode"]) == [r["mode"] for r in history]
+        else:
+            assert np.array_equal(run.history[name], floats(history, name)), name
+    events = read_csv(tmp_path / "o" / "events.csv")
+    assert list(run.events.dtype.names) == list(events[0].keys())
+    assert list(run.events["kind"]) == [r["kind"] for r in events] == ["uplift", "impact", "tumble"]
+    assert list(run.events["body"]) == [int(r["body"]) for r in events] == [2, 2, 2]
+    assert np.array_equal(run.events["q_dot_after_rad_s"], floats(events, "q_dot_after_rad_s"))
+    # The top stone goes over leftward: its rotation passes its own
+    # slenderness, atan(0.27/0.80), before the run ends.
+    assert -run.theta_rad(2).min() > 0.9 * np.arctan(0.27 / 0.80)
+    with pytest.raises(IndexError, match="0 \\(bottom\\) to 2 \\(top\\)"):
+        run.theta_rad(3)
+
+
+def test_a_slipping_face_is_refused_naming_its_key() -> None:
+    scene = rocking.Scene("tombstone", config={"stack[2].static": 0.05})
+    with pytest.raises(rocking.ConfigError, match="stack block 3's lower face would slip"):
+        rocking.simulate(scene)
+
+
+def test_a_stack_spectrum_keeps_its_shape_and_agrees_with_the_cli(cli, tmp_path: Path) -> None:
+    cli.ok(
+        "spectrum", "--preset", "tombstone", "--record", str(KOBE), "--unit", "m/s2",
+        "--from", "0.3", "--to", "3", "--count", "12", "--out", str(tmp_path / "s"), "-q",
+    )
+    rows = read_csv(tmp_path / "s" / "spectrum.csv")
+    sp = rocking.spectrum(KOBE, (0.3, 3, 12), unit="m/s2", base=rocking.Scene("tombstone"))
+    assert sp.b_over_h == (0.75 / 1.35,)
+    for name in ("r_m", "width_m", "height_m", "peak_theta_over_alpha"):
+        assert np.array_equal(np.asarray(sp.blocks[name]), floats(rows, name)), name
+    assert list(sp.blocks["end"]) == [r["end"] for r in rows]
+    with pytest.raises(rocking.ConfigError, match="b_over_h: a \\[\\[stack\\]\\] is scaled as a whole"):
+        rocking.spectrum(KOBE, (0.3, 3, 12), unit="m/s2", base=rocking.Scene("tombstone"), b_over_h=[0.2])
