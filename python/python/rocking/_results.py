@@ -150,9 +150,9 @@ class StackRun:
         self.blocks: int = int(data["blocks"])
         #: summary.json as a dict (same keys and numbers as the CLI's file).
         self.summary: dict[str, Any] = data["summary"]
-        order = ["tau", "t_s", "mode"] + [
-            f"{name}" for j in range(self.blocks) for name in (f"theta_{j}_rad", f"theta_dot_{j}_rad_s", f"x_{j}_m", f"y_{j}_m")
-        ]
+        order = ["tau", "t_s", "mode"]
+        for j in range(self.blocks):
+            order += [f"theta_{j}_rad", f"theta_dot_{j}_rad_s", f"x_{j}_m", f"y_{j}_m"]
         #: The regular time history (history.csv's columns).
         self.history: Table = table(data["history"], order)
         #: Every event (events.csv's columns).
