@@ -247,6 +247,7 @@ impl Observer<Mode, EventRecord, N> for MainSink<'_> {
             base_x,
             normal,
             friction,
+            stack: None,
         });
     }
 
@@ -528,6 +529,7 @@ impl Session {
                 section_phase: if exact_sections { phase } else { 0.0 },
                 tau0,
                 sample_dt: LIVE_SAMPLE_DT,
+                stack: None,
             },
             driver,
             probe,
