@@ -325,6 +325,7 @@ mod tests {
             base_x: 0.0,
             normal: 1.0,
             friction: 0.0,
+            stack: None,
         };
         let lines = Lines::playing(&sample, geo, None);
         assert_eq!(lines.headline, "t = 1.00 s");
