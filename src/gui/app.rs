@@ -403,7 +403,10 @@ impl RockingApp {
             .map_or_else(|| self.config.geometry(), |i| i.geometry);
         let scales = Scales::new(self.units(), geo);
         match (self.chosen_body(), self.stack()) {
-            (Some(j), Some(g)) => scales.with_body(crate::sim::stack_answer::body_name(j, g.k)),
+            (Some(j), Some(g)) => scales.with_body(
+                crate::sim::stack_answer::body_name(j, g.k),
+                (g.size[j][0] / g.size[j][1]).atan(),
+            ),
             _ => scales,
         }
     }
@@ -439,6 +442,21 @@ impl RockingApp {
         self.hist.show_body(j.min(k - 1), psi);
         self.poincare.reset();
         self.spectrum.reset();
+    }
+
+    /// How a stack's run ended, if it did by overturning or flight: that
+    /// end, with the block it happened at (from the run's last event).
+    pub(crate) fn stack_end(&self) -> Option<(crate::model::stack::StackEnd, &'static str)> {
+        use crate::model::stack::{StackEnd, StackEventKind};
+        let k = self.stack()?.k;
+        let e = self.hist.stack_events.last()?;
+        let end = match e.kind {
+            StackEventKind::Overturn => StackEnd::Overturned(e.body),
+            StackEventKind::Flight => StackEnd::Flight(e.body),
+            StackEventKind::Uplift | StackEventKind::Impact | StackEventKind::Close => return None,
+        };
+        self.end.as_ref()?;
+        Some((end, crate::sim::stack_answer::body_name(e.body, k)))
     }
 
     /// The stack as drawn last frame: the state, and each block's corners

@@ -55,6 +55,9 @@ pub struct Scales {
     /// The block of a stack the rotation is (its name, as the outputs
     /// spell it); `None`: the single block.
     pub body: Option<&'static str>,
+    /// The rotation the ±α lines mark, in Θ: 1 for the block (its α = ψ);
+    /// a stack's block its own α_j over the bottom block's ψ.
+    tip: f64,
 }
 
 /// The names a stack's blocks go by (`sim::stack_answer::body_name`).
@@ -85,15 +88,23 @@ fn body_label(name: &str, which: usize) -> Option<&'static str> {
 impl Scales {
     /// Conversions for a block of geometry `geo` shown in `units`.
     pub fn new(units: Units, geo: Geometry) -> Self {
-        Self { units, geo, body: None }
+        Self {
+            units,
+            geo,
+            body: None,
+            tip: 1.0,
+        }
     }
 
     /// These conversions for block `name` of a stack (`top block`): the
     /// same numbers (a stack's Θ is a block's φ over the bottom block's
     /// ψ, its τ the bottom block's), titled with the block's name.
-    pub fn with_body(self, name: &'static str) -> Self {
+    /// `alpha` is the block's own slenderness atan(B/H), rad: where its
+    /// ±α lines go.
+    pub fn with_body(self, name: &'static str, alpha: f64) -> Self {
         Self {
             body: Some(name),
+            tip: alpha / self.geo.psi,
             ..self
         }
     }
@@ -219,7 +230,7 @@ impl Scales {
 
     /// The overturning angle of a block at rest (|Θ| = 1, θ = α = ψ), shown.
     pub(crate) fn tip_angle(&self) -> f64 {
-        self.theta(1.0)
+        self.theta(self.tip)
     }
 
     /// Frequency: ω/p → f in Hz (f = ω p/2π), or ω/p.

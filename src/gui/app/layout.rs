@@ -193,9 +193,9 @@ impl RockingApp {
         let verdict = self.end.as_ref().and_then(|e| Verdict::of(e, info.geometry)).map(|v| {
             // A stack's verdict names the block that overturned or flew,
             // in the words of the batch run's answer.
-            match (stack, self.hist.stack_events.last()) {
-                (Some((g, _)), Some(e)) => v.about(body_name(e.body, g.k)),
-                _ => v,
+            match self.stack_end() {
+                Some((_, name)) => v.about(name),
+                None => v,
             }
         });
         // After a tumble: the fall onto the side, drawn (not simulated;
@@ -255,6 +255,7 @@ impl RockingApp {
             base_x: sample.base_x * info.geometry.r,
             flash,
             flash_face: self.flash_face,
+            ended: self.stack_end().map(|(e, _)| e),
         });
         let input = SceneInput {
             geometry: info.geometry,

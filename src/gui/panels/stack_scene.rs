@@ -28,6 +28,9 @@ pub struct StackSceneInput<'a> {
     pub flash: f32,
     /// The interface the flash is at (0: the base under the bottom block).
     pub flash_face: Option<usize>,
+    /// How the run ended, if it did (the last sample is drawn, from
+    /// before the end: the overturned blocks are drawn red from it).
+    pub ended: Option<StackEnd>,
 }
 
 /// One block as drawn: its centre (m), half width and height (m) and its
@@ -69,8 +72,8 @@ pub fn bodies(geo: &StackGeometry, frame: &StackFrame, base_x: f64) -> Vec<Body>
 
 /// The colour block `j` is drawn in: its lower face's contact, or red
 /// once it (or a block under it) overturned, violet once it flew.
-fn body_color(frame: &StackFrame, j: usize) -> Color32 {
-    let mode = match frame.mode.end {
+fn body_color(frame: &StackFrame, ended: Option<StackEnd>, j: usize) -> Color32 {
+    let mode = match ended.or(frame.mode.end) {
         Some(StackEnd::Overturned(i)) if j >= i => Mode::Tumbled,
         Some(StackEnd::Flight(i)) if j >= i => Mode::Flight,
         Some(StackEnd::Overturned(_) | StackEnd::Flight(_)) | None => face_mode(frame.mode.contacts[j]),
@@ -111,7 +114,7 @@ pub fn build(input: &StackSceneInput<'_>, rect: Rect, camera: &mut Camera) -> (V
     let mut shapes = Vec::with_capacity(40 + 4 * geo.k);
     stage(&mut shapes, camera.x, half_w, r, input.base_x, px);
     for (j, b) in drawn.iter().enumerate() {
-        shapes.push(Shape::rect(b.centre, b.half, b.angle, body_color(input.frame, j)));
+        shapes.push(Shape::rect(b.centre, b.half, b.angle, body_color(input.frame, input.ended, j)));
         // A thin dark outline, so blocks of one colour stay apart.
         shapes.push(Shape::outline(b.centre, b.half, b.angle, px, Color32::from_rgb(30, 30, 36)));
     }
