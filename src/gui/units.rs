@@ -61,7 +61,14 @@ pub struct Scales {
 }
 
 /// The names a stack's blocks go by (`sim::stack_answer::body_name`).
-const BODY_NAMES: [&str; 6] = ["bottom block", "block 2", "middle block", "block 3", "block 4", "top block"];
+const BODY_NAMES: [&str; 6] = [
+    "bottom block",
+    "block 2",
+    "middle block",
+    "block 3",
+    "block 4",
+    "top block",
+];
 
 /// Each body's rotation and rate titles (physical, then normalised),
 /// made once: the axis titles are borrowed for the life of the app.

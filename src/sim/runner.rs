@@ -44,8 +44,8 @@ mod worker;
 
 use std::time::{Duration, Instant};
 
-pub use outbox::{MAX_QUEUED_EXACT, MAX_QUEUED_SAMPLES};
 pub use live::Live;
+pub use outbox::{MAX_QUEUED_EXACT, MAX_QUEUED_SAMPLES};
 pub use session::{LIVE_SAMPLE_DT, MAX_CHUNK, Session, Start, normalise_phase};
 pub use stack_session::StackSession;
 

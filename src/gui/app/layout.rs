@@ -11,11 +11,12 @@ use crate::gui::panels::ground;
 use crate::gui::panels::params;
 use crate::gui::panels::plots;
 use crate::gui::panels::scene::{self, SceneInput};
+use crate::gui::panels::stack_params;
 use crate::gui::panels::stack_scene::{self, StackSceneInput};
-use crate::sim::stack_answer::body_name;
 use crate::model::kinematics;
 use crate::sim::EndState;
 use crate::sim::protocol::RunEnd;
+use crate::sim::stack_answer::body_name;
 
 /// How long an impact flash lasts, s of wall-clock time.
 const FLASH_S: f64 = 0.18;
@@ -38,9 +39,11 @@ impl RockingApp {
         self.body_selector(ui);
         let panel_w = ui.available_width();
         let out = egui::ScrollArea::both().show(ui, |ui| {
+            // A stack's blocks first: what the scene is made of.
+            let stack = stack_params::show(ui, &self.config, &mut self.edits);
             let settings = &self.settings;
             let explicit = |k: &str| settings.explicit(k);
-            params::show(ui, &self.config, &explicit, &mut self.edits)
+            params::show(ui, &self.config, &explicit, &mut self.edits).or(stack)
         });
         // The width the rows need (names, sliders, values and units side by
         // side): the next frame sizes the panel to hold it.
@@ -273,11 +276,7 @@ impl RockingApp {
         let (shapes, scale, y_mid, top) = match &stack_input {
             Some(si) => {
                 let (shapes, scale, y_mid, drawn) = stack_scene::build(si, rect, &mut self.camera);
-                let top = drawn
-                    .iter()
-                    .flat_map(|b| b.corners())
-                    .map(|c| c[1])
-                    .fold(0.0, f64::max);
+                let top = drawn.iter().flat_map(|b| b.corners()).map(|c| c[1]).fold(0.0, f64::max);
                 self.stack_drawn = Some((*si.frame, drawn.iter().map(|b| b.corners()).collect()));
                 (shapes, scale, y_mid, top)
             }

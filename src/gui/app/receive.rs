@@ -4,8 +4,8 @@
 use std::time::Duration;
 
 use super::{Link, Message, RockingApp};
-use crate::gui::panels::ground::RecordLabel;
 use crate::gui::history::section_row;
+use crate::gui::panels::ground::RecordLabel;
 use crate::model::EventKind;
 use crate::model::stack::StackEventKind;
 use crate::sim::protocol::{RunEnd, SimUpdate};

@@ -207,9 +207,6 @@ pub fn show(
                 .on_hover_text(help);
         }
     });
-    if let Some(c) = super::stack_params::show(ui, cfg, edits) {
-        commit = Some(c);
-    }
     let json = crate::io::config::to_json(cfg);
     for (group, keys) in GROUPS.iter().filter(|(g, _)| describes(g, cfg)) {
         egui::CollapsingHeader::new(*group)

@@ -51,32 +51,35 @@ pub fn show(ui: &mut egui::Ui, cfg: &Scenario, edits: &mut Edits) -> Option<Comm
     let blocks = cfg.stack.as_ref()?;
     let mut commit = None;
     egui::CollapsingHeader::new("Stack").default_open(true).show(ui, |ui| {
-        egui::Grid::new("stack").num_columns(3).spacing([6.0, 3.0]).show(ui, |ui| {
-            for (i, b) in blocks.iter().enumerate().take(MAX_BLOCKS).rev() {
-                ui.label(egui::RichText::new(body_name(i, blocks.len())).strong());
-                ui.end_row();
-                // The bottom block's offset is 0 by definition.
-                let n = if i == 0 { 2 } else { 3 };
-                for (c, value) in [b.width, b.height, b.offset].into_iter().enumerate().take(n) {
-                    let k = Key {
-                        key: KEYS[i][c],
-                        label: LABELS[i][c],
-                        unit: "m",
-                        help: HELP[c],
-                        kind: Kind::Number,
-                    };
-                    let range = if c == 2 {
-                        Some(OFFSET_SPAN)
-                    } else {
-                        slider_range(if c == 0 { "block.width" } else { "block.height" })
-                    };
-                    if let Some(got) = slider_row(ui, &k, &format!("{value}"), range, edits) {
-                        commit = Some(got);
-                    }
+        egui::Grid::new("stack")
+            .num_columns(3)
+            .spacing([6.0, 3.0])
+            .show(ui, |ui| {
+                for (i, b) in blocks.iter().enumerate().take(MAX_BLOCKS).rev() {
+                    ui.label(egui::RichText::new(body_name(i, blocks.len())).strong());
                     ui.end_row();
+                    // The bottom block's offset is 0 by definition.
+                    let n = if i == 0 { 2 } else { 3 };
+                    for (c, value) in [b.width, b.height, b.offset].into_iter().enumerate().take(n) {
+                        let k = Key {
+                            key: KEYS[i][c],
+                            label: LABELS[i][c],
+                            unit: "m",
+                            help: HELP[c],
+                            kind: Kind::Number,
+                        };
+                        let range = if c == 2 {
+                            Some(OFFSET_SPAN)
+                        } else {
+                            slider_range(if c == 0 { "block.width" } else { "block.height" })
+                        };
+                        if let Some(got) = slider_row(ui, &k, &format!("{value}"), range, edits) {
+                            commit = Some(got);
+                        }
+                        ui.end_row();
+                    }
                 }
-            }
-        });
+            });
     });
     commit
 }

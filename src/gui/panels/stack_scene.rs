@@ -114,9 +114,20 @@ pub fn build(input: &StackSceneInput<'_>, rect: Rect, camera: &mut Camera) -> (V
     let mut shapes = Vec::with_capacity(40 + 4 * geo.k);
     stage(&mut shapes, camera.x, half_w, r, input.base_x, px);
     for (j, b) in drawn.iter().enumerate() {
-        shapes.push(Shape::rect(b.centre, b.half, b.angle, body_color(input.frame, input.ended, j)));
+        shapes.push(Shape::rect(
+            b.centre,
+            b.half,
+            b.angle,
+            body_color(input.frame, input.ended, j),
+        ));
         // A thin dark outline, so blocks of one colour stay apart.
-        shapes.push(Shape::outline(b.centre, b.half, b.angle, px, Color32::from_rgb(30, 30, 36)));
+        shapes.push(Shape::outline(
+            b.centre,
+            b.half,
+            b.angle,
+            px,
+            Color32::from_rgb(30, 30, 36),
+        ));
     }
     if input.flash > 0.0
         && let Some(b) = input.flash_face.and_then(|i| drawn.get(i))

@@ -11,7 +11,12 @@ pub fn rest_corners(geo: &StackGeometry, j: usize) -> [V2; 4] {
     let [cx, cy] = geo.centre[j];
     let [w, h] = geo.size[j];
     let (hw, hh) = (0.5 * w, 0.5 * h);
-    [[cx - hw, cy - hh], [cx + hw, cy - hh], [cx + hw, cy + hh], [cx - hw, cy + hh]]
+    [
+        [cx - hw, cy - hh],
+        [cx + hw, cy - hh],
+        [cx + hw, cy + hh],
+        [cx - hw, cy + hh],
+    ]
 }
 
 /// Block `j`'s four corners in `pose`, m, in the base's frame (x to the
@@ -76,11 +81,13 @@ mod tests {
         let p1 = [0.5, 0.0];
         let p2 = [0.1 - 0.3, 2.0];
         let bottom = [[-0.5, 0.0], [0.5, 0.0], [0.5, 2.0], [-0.5, 2.0]].map(|c| turn_about(c, p1, q1));
-        let top = [[-0.2, 2.0], [0.4, 2.0], [0.4, 3.0], [-0.2, 3.0]]
-            .map(|c| turn_about(turn_about(c, p2, q2), p1, q1));
+        let top = [[-0.2, 2.0], [0.4, 2.0], [0.4, 3.0], [-0.2, 3.0]].map(|c| turn_about(turn_about(c, p2, q2), p1, q1));
         for (want, got) in [bottom, top].iter().zip(&drawn[..2]) {
             for (w, g) in want.iter().zip(got) {
-                assert!((w[0] - g[0]).abs() < 1e-14 && (w[1] - g[1]).abs() < 1e-14, "{w:?} vs {g:?}");
+                assert!(
+                    (w[0] - g[0]).abs() < 1e-14 && (w[1] - g[1]).abs() < 1e-14,
+                    "{w:?} vs {g:?}"
+                );
             }
         }
     }

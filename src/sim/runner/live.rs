@@ -139,7 +139,9 @@ impl Live {
         last_sample: Option<&Sample>,
     ) -> Result<Live, String> {
         match self {
-            Live::Block(s) if scenario.stack.is_none() => s.continued(run, scenario, phase, last_sample).map(Live::Block),
+            Live::Block(s) if scenario.stack.is_none() => {
+                s.continued(run, scenario, phase, last_sample).map(Live::Block)
+            }
             Live::Block(_) | Live::Stack(_) => Err(STACK_STARTS_AT_REST.to_string()),
         }
     }

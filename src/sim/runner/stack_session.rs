@@ -430,8 +430,8 @@ mod tests {
             let sc = preset(name);
             let opts = sc.run_options();
             let geo = sc.stack_geometry().expect("a stack");
-            let batch = simulate_stack(geo, sc.excitation().expect("excitation"), sc.run.zeno_eps, &opts)
-                .expect("batch run");
+            let batch =
+                simulate_stack(geo, sc.excitation().expect("excitation"), sc.run.zeno_eps, &opts).expect("batch run");
             let mut live = StackSession::new(RunId(1), &sc).expect("starts");
             let until = sc.record_end_tau().map_or(batch.tau_end, |e| e.min(batch.tau_end));
             live.fill_to(until);
@@ -447,8 +447,21 @@ mod tests {
             }
             if let Some((StackEnd::Overturned(i), tau)) = batch.end {
                 let last = out.stack_events.last().expect("events");
-                assert_eq!((last.kind, last.body, last.tau), (StackEventKind::Overturn, i, tau), "{name}");
-                assert!(matches!(live.end(), Some(RunEnd::Terminal { mode: Mode::Tumbled, .. })), "{name}");
+                assert_eq!(
+                    (last.kind, last.body, last.tau),
+                    (StackEventKind::Overturn, i, tau),
+                    "{name}"
+                );
+                assert!(
+                    matches!(
+                        live.end(),
+                        Some(RunEnd::Terminal {
+                            mode: Mode::Tumbled,
+                            ..
+                        })
+                    ),
+                    "{name}"
+                );
             }
         }
     }

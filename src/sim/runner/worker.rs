@@ -5,8 +5,8 @@
 use std::time::{Duration, Instant};
 
 use super::TICK;
-use super::outbox::Outbox;
 use super::live::Live;
+use super::outbox::Outbox;
 use super::session::Start;
 use crate::sim::Scenario;
 use crate::sim::job::{Link, Stopped};
