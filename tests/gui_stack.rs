@@ -265,3 +265,52 @@ fn the_plots_show_the_block_chosen_and_the_analyses_say_they_take_one_block() {
         "a note instead of a wrong picture"
     );
 }
+
+#[test]
+fn a_stack_chosen_from_the_presets_menu_plays_and_a_block_after_it() {
+    let (s, c) = scene("default", &[]);
+    let mut h = Harness::builder()
+        .with_size(egui::vec2(1280.0, 800.0))
+        .build_eframe(move |cc| RockingApp::live(cc, s, c, Speed::Max, false));
+    gui_common::open_preset(
+        &mut h,
+        "Stacks of blocks",
+        "tombstone: Does a Japanese three-stone tombstone survive the 1995 Kobe earthquake?",
+    );
+    h.get_by_label("tombstone: Does a Japanese three-stone tombstone survive the 1995 Kobe earthquake?")
+        .click();
+    let stack_drawn = |a: &RockingApp| a.stack_drawn().is_some_and(|(_, d)| d.len() == 3);
+    assert!(
+        pump(&mut h, Duration::from_secs(30), stack_drawn),
+        "the three stones drawn"
+    );
+    assert_eq!(h.state().settings_origin(), "preset tombstone");
+    h.state_mut().load_preset("default");
+    let block = |a: &RockingApp| a.stack().is_none() && a.tau() > 1.0 && a.history().samples.len() > 10;
+    assert!(
+        pump(&mut h, Duration::from_secs(30), block),
+        "the block runs after the stack"
+    );
+    assert!(h.state().history().samples.iter().all(|s| s.stack.is_none()));
+}
+
+#[test]
+fn a_stack_opened_paused_shows_its_first_frame() {
+    let (s, c) = scene("statue-on-pedestal", &[]);
+    let mut h = Harness::builder()
+        .with_size(egui::vec2(1280.0, 800.0))
+        .build_eframe(move |cc| RockingApp::live(cc, s, c, Speed::RealTime(1.0), true));
+    assert!(
+        pump(&mut h, Duration::from_secs(30), |a| a.stack_drawn().is_some()),
+        "the stack stands on the table before Play"
+    );
+    let (frame, drawn) = h.state().stack_drawn().expect("drawn");
+    assert_eq!(frame.tau, 0.0);
+    assert!(h.state().paused());
+    // At rest: the pedestal's lower corners on the table, the statue's on
+    // the pedestal's top (0.9 m up).
+    assert!(
+        drawn[0][0][1].abs() < 1e-12 && (drawn[1][0][1] - 0.9).abs() < 1e-12,
+        "{drawn:?}"
+    );
+}
