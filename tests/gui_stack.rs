@@ -314,3 +314,24 @@ fn a_stack_opened_paused_shows_its_first_frame() {
         "{drawn:?}"
     );
 }
+
+#[test]
+fn a_perturbed_restart_of_a_stack_says_it_is_for_one_block_and_the_stack_plays_on() {
+    let mut h = live("stack-patterns", Speed::RealTime(1.0));
+    assert!(
+        pump(&mut h, Duration::from_secs(30), |a| a.stack_drawn().is_some()),
+        "drawn"
+    );
+    let run = h.state().run_id();
+    h.get_by_label("Reset perturbed").click();
+    h.step();
+    let said = h.state().message().expect("a note").clone();
+    assert!(!said.error && said.text.contains("is for one block"), "{said:?}");
+    assert_eq!(h.state().run_id(), run, "the run goes on");
+    let tau = h.state().tau();
+    assert!(
+        pump(&mut h, Duration::from_secs(30), |a| a.tau() > tau + 0.5),
+        "still playing"
+    );
+    assert!(h.state().end().is_none());
+}
