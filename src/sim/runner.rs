@@ -1,4 +1,5 @@
-//! The simulation thread: owns a live run ([`Session`]), paces it in real
+//! The simulation thread: owns a live run ([`Live`]: a block's or a
+//! frame's [`Session`], or a stack's [`StackSession`]), paces it in real
 //! time (or runs flat out), and streams its output over a bounded channel.
 //!
 //! The thread is a [`crate::sim::job::Job`] named `sim`: commands in,
