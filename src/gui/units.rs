@@ -77,10 +77,12 @@ static BODY_LABELS: std::sync::LazyLock<Vec<[String; 4]>> = std::sync::LazyLock:
         .iter()
         .map(|b| {
             [
-                format!("{b}: φ [deg]"),
-                format!("{b}: φ' [deg/s]"),
-                format!("{b}: φ/ψ₁"),
-                format!("{b}: dφ/dτ / ψ₁"),
+                // The quantity first: a title cut short in a small plot
+                // keeps what the axis measures.
+                format!("φ [deg], {b}"),
+                format!("φ' [deg/s], {b}"),
+                format!("φ/ψ₁, {b}"),
+                format!("dφ/dτ / ψ₁, {b}"),
             ]
         })
         .collect()
