@@ -149,6 +149,15 @@ pub struct RockingApp {
     outcome_map: OutcomeMapView,
     camera: Camera,
     flash_at: Option<f64>,
+    /// The stack's face (interface) the latest impact was at.
+    flash_face: Option<usize>,
+    /// The stack's block the plots show (0 the bottom); `None`: the top.
+    /// Kept across runs, as the user chose it.
+    body: Option<usize>,
+    /// The stack's blocks as drawn last frame: each one's four corners,
+    /// m, in the base's rest frame (lower left, lower right, upper right,
+    /// upper left), and the state they were drawn from.
+    stack_drawn: Option<(crate::sim::protocol::StackFrame, Vec<[[f64; 2]; 4]>)>,
     message: Option<Message>,
     /// The message the status bar shows and when it first showed it
     /// (egui's clock, s), for its expiry.
@@ -274,6 +283,9 @@ impl RockingApp {
             outcome_map: OutcomeMapView::default(),
             camera: Camera::default(),
             flash_at: None,
+            flash_face: None,
+            body: None,
+            stack_drawn: None,
             message: None,
             message_since: None,
             status_rect: None,
@@ -389,7 +401,14 @@ impl RockingApp {
             .info
             .as_ref()
             .map_or_else(|| self.config.geometry(), |i| i.geometry);
-        Scales::new(self.units(), geo)
+        let scales = Scales::new(self.units(), geo);
+        match (self.chosen_body(), self.stack()) {
+            (Some(j), Some(g)) => scales.with_body(
+                crate::sim::stack_answer::body_name(j, g.k),
+                (g.size[j][0] / g.size[j][1]).atan(),
+            ),
+            _ => scales,
+        }
     }
     /// The current run's record (name and PGA after scale), for a record run.
     pub fn record_label(&self) -> Option<&RecordLabel> {
@@ -398,6 +417,52 @@ impl RockingApp {
     /// CPU time of the last frame's app code (layout and data), ms.
     pub fn frame_ms(&self) -> f32 {
         self.frame_ms
+    }
+
+    /// A stack's shape, while a stack runs.
+    pub fn stack(&self) -> Option<&crate::model::stack::StackGeometry> {
+        self.info.as_ref().and_then(|i| i.stack.as_ref())
+    }
+
+    /// The stack's block the plots show (0 the bottom), while a stack
+    /// runs: the one chosen, or the top.
+    pub fn chosen_body(&self) -> Option<usize> {
+        let k = self.stack()?.k;
+        Some(self.body.unwrap_or(k - 1).min(k - 1))
+    }
+
+    /// Shows block `j` of the stack (0 the bottom) in the phase portrait,
+    /// the time history and the Poincaré points, from the states already
+    /// kept: the run goes on.
+    pub fn choose_body(&mut self, j: usize) {
+        self.body = Some(j);
+        let Some((k, psi)) = self.info.as_ref().and_then(|i| i.stack.map(|g| (g.k, i.geometry.psi))) else {
+            return;
+        };
+        self.hist.show_body(j.min(k - 1), psi);
+        self.poincare.reset();
+        self.spectrum.reset();
+    }
+
+    /// How a stack's run ended, if it did by overturning or flight: that
+    /// end, with the block it happened at (from the run's last event).
+    pub(crate) fn stack_end(&self) -> Option<(crate::model::stack::StackEnd, &'static str)> {
+        use crate::model::stack::{StackEnd, StackEventKind};
+        let k = self.stack()?.k;
+        let e = self.hist.stack_events.last()?;
+        let end = match e.kind {
+            StackEventKind::Overturn => StackEnd::Overturned(e.body),
+            StackEventKind::Flight => StackEnd::Flight(e.body),
+            StackEventKind::Uplift | StackEventKind::Impact | StackEventKind::Close => return None,
+        };
+        self.end.as_ref()?;
+        Some((end, crate::sim::stack_answer::body_name(e.body, k)))
+    }
+
+    /// The stack as drawn last frame: the state, and each block's corners
+    /// (m, bottom to top; lower left, lower right, upper right, upper left).
+    pub fn stack_drawn(&self) -> Option<&(crate::sim::protocol::StackFrame, Vec<[[f64; 2]; 4]>)> {
+        self.stack_drawn.as_ref()
     }
 
     /// Adds section points directly (measurements of the plot with many
@@ -444,6 +509,8 @@ impl RockingApp {
         self.poincare.reset();
         self.spectrum.reset();
         self.flash_at = None;
+        self.flash_face = None;
+        self.stack_drawn = None;
         self.lecture.fall_t0 = None;
     }
 
@@ -462,8 +529,25 @@ impl RockingApp {
         }
     }
 
+    /// For a stack, says in the status bar that `what` is a block's only
+    /// and returns true (the caller then does nothing): a stack starts
+    /// from rest, as its batch run does, and has one trajectory.
+    fn stack_refuses(&mut self, what: &str) -> bool {
+        if self.config.stack.is_none() {
+            return false;
+        }
+        self.message = Some(Message {
+            text: format!("{what} is for one block: a stack starts from rest, as its batch run does"),
+            error: false,
+        });
+        true
+    }
+
     /// Restarts from the state shown with Θ + ε.
     pub fn reset_perturbed(&mut self) {
+        if self.stack_refuses("a perturbed restart") {
+            return;
+        }
         self.new_run();
         let eps = self.eps;
         if let Link::Live(h) = &mut self.link {
@@ -557,6 +641,9 @@ impl RockingApp {
     /// now on: the run goes on from the state shown, so the time history
     /// and phase portrait are kept and only the section points start over.
     pub fn set_section_phase(&mut self, phase: f64) {
+        if self.stack_refuses("a section at another phase") {
+            return;
+        }
         self.poincare.phase = phase;
         if self.end.is_some() {
             // An ended run cannot go on: the thread starts the scene over.
@@ -607,6 +694,9 @@ impl RockingApp {
         // The new ghosts start from the block's state: their old trails
         // would end in a jump to it.
         self.hist.ghost_trails.clear();
+        if self.ghost_count > 0 && self.stack_refuses("ghost copies") {
+            return;
+        }
         if let Link::Live(h) = &self.link {
             h.set_ghosts(self.ghost_count, self.ghost_eps);
         }

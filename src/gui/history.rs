@@ -17,9 +17,10 @@ use std::collections::VecDeque;
 use egui_plot::PlotPoint;
 
 use crate::gui::ghost_trails::GhostTrails;
+use crate::model::stack::{StackEvent, StackEventKind};
 use crate::model::system::EventRecord;
 use crate::sim::SectionRow;
-use crate::sim::protocol::Sample;
+use crate::sim::protocol::{Sample, StackFrame};
 
 /// A ring buffer of fixed capacity: pushing into a full ring drops the oldest.
 #[derive(Clone, Debug)]
@@ -43,6 +44,11 @@ impl<T> Ring<T> {
             self.items.pop_front();
         }
         self.items.push_back(item);
+    }
+
+    /// Items, oldest first, to change in place.
+    pub(crate) fn iter_mut(&mut self) -> impl Iterator<Item = &mut T> {
+        self.items.iter_mut()
     }
 
     /// Items, oldest first.
@@ -164,6 +170,11 @@ pub struct RunHistory {
     pub rejected: u64,
     /// The ghost copies' recent (Θ, Θ'), one bounded trail each.
     pub ghost_trails: GhostTrails,
+    /// A stack's events, oldest first (each with its interface).
+    pub stack_events: Ring<StackEvent>,
+    /// A stack's section points (k and the whole state), so that the
+    /// section can be shown again for another body.
+    pub stack_section: Ring<(u64, StackFrame)>,
 }
 
 impl Default for RunHistory {
@@ -179,6 +190,8 @@ impl Default for RunHistory {
             dropped_samples: 0,
             rejected: 0,
             ghost_trails: GhostTrails::default(),
+            stack_events: Ring::new(EVENT_CAPACITY),
+            stack_section: Ring::new(EVENT_CAPACITY),
         }
     }
 }
@@ -216,7 +229,8 @@ impl RunHistory {
             s.friction,
         ]
         .iter()
-        .all(|v| v.is_finite());
+        .all(|v| v.is_finite())
+            && s.stack.is_none_or(|f| f.is_finite());
         if finite {
             self.samples.push(s);
         } else {
@@ -243,6 +257,44 @@ impl RunHistory {
         self.events.push(e);
     }
 
+    /// Adds a stack's event unless it has a non-finite value; an impact
+    /// (on the other corner, or closing the face) counts as the block's.
+    pub(crate) fn push_stack_event(&mut self, e: StackEvent) {
+        if ![e.tau, e.q_dot_before, e.q_dot_after].iter().all(|v| v.is_finite()) {
+            self.rejected += 1;
+            return;
+        }
+        if matches!(e.kind, StackEventKind::Impact | StackEventKind::Close) {
+            self.impacts += 1;
+        }
+        self.stack_events.push(e);
+    }
+
+    /// Adds a stack's section point `p` (block `body`'s, whole state
+    /// `frame`) unless it has a non-finite value.
+    pub(crate) fn push_stack_section(&mut self, p: SectionRow, frame: StackFrame) {
+        if frame.is_finite() {
+            self.stack_section.push((p.k, frame));
+        }
+        self.push_section(p);
+    }
+
+    /// Shows block `body` of a stack (ψ the bottom block's, rad) in the
+    /// plots: every kept sample's and section point's rotation becomes
+    /// that block's, from the whole state each carries.
+    pub(crate) fn show_body(&mut self, body: usize, psi: f64) {
+        for s in self.samples.iter_mut() {
+            if let Some(f) = s.stack {
+                s.state = f.body_row(body, psi);
+            }
+        }
+        let kept: Vec<(u64, StackFrame)> = self.stack_section.iter().copied().collect();
+        self.clear_section();
+        for (k, f) in kept {
+            self.push_section(section_row(k, &f, body, psi));
+        }
+    }
+
     /// Adds a section point unless it has a non-finite value.
     pub(crate) fn push_section(&mut self, p: SectionRow) {
         if [p.tau, p.theta, p.theta_dot, p.x, p.x_dot]
@@ -254,6 +306,21 @@ impl RunHistory {
         } else {
             self.rejected += 1;
         }
+    }
+}
+
+/// Block `body`'s section point `k` of a stack in state `f` (ψ the
+/// bottom block's).
+pub(crate) fn section_row(k: u64, f: &StackFrame, body: usize, psi: f64) -> SectionRow {
+    let row = f.body_row(body, psi);
+    SectionRow {
+        k,
+        tau: row.tau,
+        theta: row.theta,
+        theta_dot: row.theta_dot,
+        x: row.x,
+        x_dot: row.x_dot,
+        mode: row.mode,
     }
 }
 

@@ -160,6 +160,9 @@ pub(crate) const FIGURES: &[(&str, &str)] = &[
 /// Presets ▸ Engineering: real records in physical units.
 pub(crate) const ENGINEERING: &[&str] = &["kobe-rack", "elcentro-statue"];
 
+/// Presets ▸ Stacks of blocks: the presets with a `[[stack]]`.
+pub(crate) const STACKS: &[&str] = &["tombstone", "statue-on-pedestal", "stack-patterns"];
+
 /// The text shown above the block for a loaded scene.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Note {
@@ -218,6 +221,10 @@ mod tests {
         for l in PHENOMENA {
             assert!(crate::io::presets::get(l.preset).is_some(), "{}", l.preset);
             assert!(!l.look.is_empty());
+        }
+        for name in STACKS {
+            let text = crate::io::presets::get(name).expect("a shipped preset");
+            assert!(text.contains("[[stack]]"), "{name} is a stack");
         }
         for (name, text) in FIGURES {
             assert!(crate::io::presets::get(name).is_some(), "{name}");

@@ -52,12 +52,70 @@ pub struct Scales {
     /// The units shown.
     pub units: Units,
     geo: Geometry,
+    /// The block of a stack the rotation is (its name, as the outputs
+    /// spell it); `None`: the single block.
+    pub body: Option<&'static str>,
+    /// The rotation the ±α lines mark, in Θ: 1 for the block (its α = ψ);
+    /// a stack's block its own α_j over the bottom block's ψ.
+    tip: f64,
+}
+
+/// The names a stack's blocks go by (`sim::stack_answer::body_name`).
+const BODY_NAMES: [&str; 6] = [
+    "bottom block",
+    "block 2",
+    "middle block",
+    "block 3",
+    "block 4",
+    "top block",
+];
+
+/// Each body's rotation and rate titles (physical, then normalised),
+/// made once: the axis titles are borrowed for the life of the app.
+static BODY_LABELS: std::sync::LazyLock<Vec<[String; 4]>> = std::sync::LazyLock::new(|| {
+    BODY_NAMES
+        .iter()
+        .map(|b| {
+            [
+                // The quantity first: a title cut short in a small plot
+                // keeps what the axis measures.
+                format!("φ [deg], {b}"),
+                format!("φ' [deg/s], {b}"),
+                format!("φ/ψ₁, {b}"),
+                format!("dφ/dτ / ψ₁, {b}"),
+            ]
+        })
+        .collect()
+});
+
+/// Title `which` (0 φ, 1 φ' physical; 2, 3 normalised) of body `name`.
+fn body_label(name: &str, which: usize) -> Option<&'static str> {
+    let i = BODY_NAMES.iter().position(|b| *b == name)?;
+    BODY_LABELS.get(i).map(|l| l[which].as_str())
 }
 
 impl Scales {
     /// Conversions for a block of geometry `geo` shown in `units`.
     pub fn new(units: Units, geo: Geometry) -> Self {
-        Self { units, geo }
+        Self {
+            units,
+            geo,
+            body: None,
+            tip: 1.0,
+        }
+    }
+
+    /// These conversions for block `name` of a stack (`top block`): the
+    /// same numbers (a stack's Θ is a block's φ over the bottom block's
+    /// ψ, its τ the bottom block's), titled with the block's name.
+    /// `alpha` is the block's own slenderness atan(B/H), rad: where its
+    /// ±α lines go.
+    pub fn with_body(self, name: &'static str, alpha: f64) -> Self {
+        Self {
+            body: Some(name),
+            tip: alpha / self.geo.psi,
+            ..self
+        }
     }
 
     /// Time: τ → t in s (t = τ/p), or τ.
@@ -112,6 +170,10 @@ impl Scales {
 
     /// Title of a rotation axis.
     pub(crate) fn theta_label(&self) -> &'static str {
+        let which = if self.units == Units::Physical { 0 } else { 2 };
+        if let Some(l) = self.body.and_then(|b| body_label(b, which)) {
+            return l;
+        }
         match self.units {
             Units::Physical => "θ [deg]",
             Units::Normalised => "Θ = θ/ψ",
@@ -130,6 +192,10 @@ impl Scales {
 
     /// Title of an angular-velocity axis.
     pub(crate) fn theta_dot_label(&self) -> &'static str {
+        let which = if self.units == Units::Physical { 1 } else { 3 };
+        if let Some(l) = self.body.and_then(|b| body_label(b, which)) {
+            return l;
+        }
         match self.units {
             Units::Physical => "θ' [deg/s]",
             Units::Normalised => "Θ' = dΘ/dτ",
@@ -173,7 +239,7 @@ impl Scales {
 
     /// The overturning angle of a block at rest (|Θ| = 1, θ = α = ψ), shown.
     pub(crate) fn tip_angle(&self) -> f64 {
-        self.theta(1.0)
+        self.theta(self.tip)
     }
 
     /// Frequency: ω/p → f in Hz (f = ω p/2π), or ω/p.

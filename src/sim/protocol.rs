@@ -21,6 +21,7 @@
 
 use super::{EndState, HistoryRow, Scenario};
 use crate::model::geometry::Geometry;
+use crate::model::stack::{Contact, MAX_BLOCKS, NS, StackEnd, StackEvent, StackGeometry, StackMode};
 use crate::model::system::EventRecord;
 use crate::model::{Mode, Sign, energy, kinematics};
 
@@ -154,6 +155,69 @@ pub struct Sample {
     pub normal: f64,
     /// Horizontal contact force on the block per unit weight, F/(mg).
     pub friction: f64,
+    /// A stack's whole state (`None` for a block or a frame): `state`
+    /// then holds one body's rotation ([`StackFrame::body_row`]).
+    pub stack: Option<StackFrame>,
+}
+
+/// A stack's state at one τ: every interface's contact and every
+/// relative rotation and rate, as the core integrates them
+/// (docs/model.md §18.2).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct StackFrame {
+    /// τ.
+    pub tau: f64,
+    /// The contacts, and how the run ended if it did.
+    pub mode: StackMode,
+    /// `[q_1 … q_K, q_1' … q_K', W]`, padded ([`crate::model::stack::NS`]).
+    pub y: [f64; NS],
+}
+
+impl StackFrame {
+    /// Block `j`'s absolute rotation φ_j (rad, clockwise) and its rate
+    /// (rad per τ): the sums of the relative rotations at and below it.
+    pub fn body(&self, j: usize) -> (f64, f64) {
+        let j = j.min(MAX_BLOCKS - 1);
+        (0..=j).fold((0.0, 0.0), |(p, w), i| (p + self.y[i], w + self.y[MAX_BLOCKS + i]))
+    }
+
+    /// Block `j` as a block's history row, so the plots built for one
+    /// block show it: Θ = φ_j/ψ and Θ' = φ_j'/ψ with ψ the bottom block's
+    /// slenderness (a stack's amplitude unit, so the units switch turns
+    /// them into the body's degrees), X = X' = 0 (a stack does not slide),
+    /// and the mode of its lower face: closed as rest (glued faces too),
+    /// open as rocking on that corner, or the run's end.
+    pub fn body_row(&self, j: usize, psi: f64) -> HistoryRow {
+        let (phi, omega) = self.body(j);
+        let mode = match self.mode.end {
+            Some(StackEnd::Overturned(_)) => Mode::Tumbled,
+            Some(StackEnd::Flight(_)) => Mode::Flight,
+            None => face_mode(self.mode.contacts[j.min(MAX_BLOCKS - 1)]),
+        };
+        HistoryRow {
+            tau: self.tau,
+            theta: phi / psi,
+            theta_dot: omega / psi,
+            x: 0.0,
+            x_dot: 0.0,
+            mode,
+        }
+    }
+
+    /// Whether every number is finite.
+    pub fn is_finite(&self) -> bool {
+        self.tau.is_finite() && self.y.iter().all(|v| v.is_finite())
+    }
+}
+
+/// The block's mode a face's contact is drawn and plotted as: closed as
+/// rest, rocking on a corner as the block's rocking on that corner.
+pub fn face_mode(c: Contact) -> Mode {
+    match c {
+        Contact::Closed => Mode::Rest,
+        Contact::Left => Mode::Rock { pivot: Sign::Neg },
+        Contact::Right => Mode::Rock { pivot: Sign::Pos },
+    }
 }
 
 impl std::ops::Deref for Sample {
@@ -202,6 +266,9 @@ pub struct RunInfo {
     pub tau0: f64,
     /// Spacing of the samples, τ.
     pub sample_dt: f64,
+    /// A stack's shape (`None` for a block or a frame): its samples carry
+    /// a [`StackFrame`] and its events come as [`Batch::stack_events`].
+    pub stack: Option<StackGeometry>,
 }
 
 /// A batch of output of one run.
@@ -214,6 +281,12 @@ pub struct Batch {
     pub events: Vec<EventRecord>,
     /// Section points in time order. Never dropped.
     pub section: Vec<SectionPoint>,
+    /// A stack's events (uplift, impact, close, flight, overturning, each
+    /// with its interface), in time order. Never dropped.
+    pub stack_events: Vec<StackEvent>,
+    /// A stack's section points, in time order (`section` holds them as
+    /// the top block's). Never dropped.
+    pub stack_section: Vec<StackFrame>,
     /// Latest state of each ghost copy (live view only: older ghost states
     /// are not kept).
     pub ghosts: Vec<GhostState>,
@@ -227,7 +300,11 @@ pub struct Batch {
 impl Batch {
     /// Whether the batch carries no data.
     pub fn is_empty(&self) -> bool {
-        self.samples.is_empty() && self.events.is_empty() && self.section.is_empty() && self.ghosts.is_empty()
+        self.samples.is_empty()
+            && self.events.is_empty()
+            && self.section.is_empty()
+            && self.ghosts.is_empty()
+            && self.stack_events.is_empty()
     }
 }
 

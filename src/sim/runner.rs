@@ -1,4 +1,5 @@
-//! The simulation thread: owns a live run ([`Session`]), paces it in real
+//! The simulation thread: owns a live run ([`Live`]: a block's or a
+//! frame's [`Session`], or a stack's [`StackSession`]), paces it in real
 //! time (or runs flat out), and streams its output over a bounded channel.
 //!
 //! The thread is a [`crate::sim::job::Job`] named `sim`: commands in,
@@ -36,14 +37,18 @@
 //! [`Speed::Max`] every chunk is released as soon as it is computed.
 //! A paused thread blocks on its command channel and uses no CPU.
 
+mod live;
 mod outbox;
 mod session;
+mod stack_session;
 mod worker;
 
 use std::time::{Duration, Instant};
 
+pub use live::Live;
 pub use outbox::{MAX_QUEUED_EXACT, MAX_QUEUED_SAMPLES};
 pub use session::{LIVE_SAMPLE_DT, MAX_CHUNK, Session, Start, normalise_phase};
+pub use stack_session::StackSession;
 
 use super::job::Job;
 pub use super::job::Waker;
@@ -210,7 +215,7 @@ impl Drop for SimHandle {
 /// returns what the thread would have streamed: `Started`, one `Batch`,
 /// and `Finished` if the run ended. For fixed streams (snapshots, tests).
 pub fn record(run: RunId, scenario: &Scenario, tau_end: f64) -> Vec<SimUpdate> {
-    let mut s = match Session::new(run, scenario, Start::Initial) {
+    let mut s = match Live::with_phase(run, scenario, Start::Initial, 0.0) {
         Ok(s) => s,
         Err(msg) => {
             return vec![SimUpdate::Finished {

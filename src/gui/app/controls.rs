@@ -166,6 +166,15 @@ impl RockingApp {
                 }
             }
         });
+        ui.menu_button("Stacks of blocks", |ui| {
+            for name in lessons::STACKS {
+                let label = format!("{name}: {}", lessons::figure_title(name));
+                if ui.button(label).clicked() {
+                    self.load_preset(name);
+                    ui.close();
+                }
+            }
+        });
         ui.separator();
         if ui
             .button("default: chaotic rocking with sliding")

@@ -326,6 +326,14 @@ impl RockingApp {
                 self.message = Some(written(r, || format!("wrote {}", path.display())));
             }
             FileAsk::ExportData => match &self.info {
+                // The block's CSV columns would hold one block of the
+                // stack and none of its events: a wrong file.
+                Some(info) if info.stack.is_some() => {
+                    self.message = Some(Message {
+                        text: "a stack's data come from rocking --batch (every block's history.csv and events.csv with its body); the app exports a block's".into(),
+                        error: false,
+                    });
+                }
                 Some(info) => {
                     let r = export::data_csv(&path, &self.hist, &info.geometry);
                     self.message = Some(written(r, || {

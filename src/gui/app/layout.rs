@@ -11,9 +11,12 @@ use crate::gui::panels::ground;
 use crate::gui::panels::params;
 use crate::gui::panels::plots;
 use crate::gui::panels::scene::{self, SceneInput};
+use crate::gui::panels::stack_params;
+use crate::gui::panels::stack_scene::{self, StackSceneInput};
 use crate::model::kinematics;
 use crate::sim::EndState;
 use crate::sim::protocol::RunEnd;
+use crate::sim::stack_answer::body_name;
 
 /// How long an impact flash lasts, s of wall-clock time.
 const FLASH_S: f64 = 0.18;
@@ -23,6 +26,9 @@ const FLASH_S: f64 = 0.18;
 /// why the model stops there).
 const FALL_NOTE: &str = "the fall after the tumble is drawn (not simulated)";
 
+/// What the block-only analyses say for a stack.
+pub(crate) const STACK_ANALYSES: &str = "This analysis takes one block or a frame: for a stack of blocks it is not computed yet (the plots show the chosen block; rocking --batch writes every block's history).";
+
 impl RockingApp {
     fn params_panel(&mut self, ui: &mut egui::Ui) {
         // Fill the width the layout gave the panel (a panel otherwise
@@ -30,11 +36,14 @@ impl RockingApp {
         ui.set_min_width(ui.available_width());
         ui.heading("Parameters");
         ui.label(egui::RichText::new(&self.settings.origin).weak());
+        self.body_selector(ui);
         let panel_w = ui.available_width();
         let out = egui::ScrollArea::both().show(ui, |ui| {
+            // A stack's blocks first: what the scene is made of.
+            let stack = stack_params::show(ui, &self.config, &mut self.edits);
             let settings = &self.settings;
             let explicit = |k: &str| settings.explicit(k);
-            params::show(ui, &self.config, &explicit, &mut self.edits)
+            params::show(ui, &self.config, &explicit, &mut self.edits).or(stack)
         });
         // The width the rows need (names, sliders, values and units side by
         // side): the next frame sizes the panel to hold it.
@@ -42,6 +51,31 @@ impl RockingApp {
         self.frame_layout.params_need = out.content_size.x + (panel_w - out.inner_rect.width()) + frame + 1.0;
         if let Some(c) = out.inner {
             self.commit(c);
+        }
+    }
+
+    /// For a stack: which block the phase portrait, the time history and
+    /// the Poincaré points show (the top one unless chosen).
+    fn body_selector(&mut self, ui: &mut egui::Ui) {
+        let (Some(k), Some(current)) = (self.stack().map(|g| g.k), self.chosen_body()) else {
+            return;
+        };
+        let mut chosen = current;
+        ui.horizontal(|ui| {
+            let label = ui.label("Plots show");
+            egui::ComboBox::from_id_salt("stack body")
+                .selected_text(body_name(current, k))
+                .show_ui(ui, |ui| {
+                    for j in (0..k).rev() {
+                        ui.selectable_value(&mut chosen, j, body_name(j, k));
+                    }
+                })
+                .response
+                .labelled_by(label.id)
+                .on_hover_text("The block whose absolute rotation φ the phase portrait, the time history and the Poincaré points show");
+        });
+        if chosen != current {
+            self.choose_body(chosen);
         }
     }
 
@@ -90,6 +124,12 @@ impl RockingApp {
                 }
             });
             ui.separator();
+        }
+        if self.config.stack.is_some() && self.lecture.tab != SideTab::Plots {
+            // These analyses run one block's model (its tangent equations,
+            // its sweeps); a stack's would be a wrong picture.
+            ui.label(STACK_ANALYSES);
+            return;
         }
         match self.lecture.tab {
             SideTab::Plots => self.plots_panel(ui),
@@ -152,15 +192,28 @@ impl RockingApp {
             self.no_run_label(ui);
             return;
         };
-        let verdict = self.end.as_ref().and_then(|e| Verdict::of(e, info.geometry));
-        // After a tumble: the fall onto the side, drawn (not simulated).
-        let tumbled = verdict.is_some_and(|v| v.end == EndState::Overturned);
+        let stack = info.stack.zip(sample.stack);
+        let verdict = self.end.as_ref().and_then(|e| Verdict::of(e, info.geometry)).map(|v| {
+            // A stack's verdict names the block that overturned or flew,
+            // in the words of the batch run's answer.
+            match self.stack_end() {
+                Some((_, name)) => v.about(name),
+                None => v,
+            }
+        });
+        // After a tumble: the fall onto the side, drawn (not simulated;
+        // a block's only).
+        let tumbled = verdict.is_some_and(|v| v.end == EndState::Overturned) && stack.is_none();
         // A record scene: the banner in its own strip above the block.
         let rect = match &self.record_label {
             Some(label) => {
-                let mut lines = match &verdict {
-                    Some(v) => banner::Lines::verdict(v, Some(label.title())),
-                    None => banner::Lines::playing(sample, info.geometry, Some(label.title())),
+                let mut lines = match (&verdict, stack) {
+                    (Some(v), _) => banner::Lines::verdict(v, Some(label.title())),
+                    (None, Some((g, _))) => {
+                        let name = body_name(self.chosen_body().unwrap_or(g.k - 1), g.k);
+                        banner::Lines::playing_body(sample, info.geometry, name, Some(label.title()))
+                    }
+                    (None, None) => banner::Lines::playing(sample, info.geometry, Some(label.title())),
                 };
                 if tumbled {
                     lines.note = Some(FALL_NOTE.to_owned());
@@ -199,6 +252,14 @@ impl RockingApp {
         if flash > 0.0 {
             ui.ctx().request_repaint_after(Duration::from_millis(16));
         }
+        let stack_input = stack.as_ref().map(|(geo, frame)| StackSceneInput {
+            geo,
+            frame,
+            base_x: sample.base_x * info.geometry.r,
+            flash,
+            flash_face: self.flash_face,
+            ended: self.stack_end().map(|(e, _)| e),
+        });
         let input = SceneInput {
             geometry: info.geometry,
             sample,
@@ -212,13 +273,24 @@ impl RockingApp {
             forces: self.forces,
             frame: info.scenario.frame,
         };
-        let (shapes, scale, y_mid) = scene::build(&input, rect, &mut self.camera);
+        let (shapes, scale, y_mid, top) = match &stack_input {
+            Some(si) => {
+                let (shapes, scale, y_mid, drawn) = stack_scene::build(si, rect, &mut self.camera);
+                let top = drawn.iter().flat_map(|b| b.corners()).map(|c| c[1]).fold(0.0, f64::max);
+                self.stack_drawn = Some((*si.frame, drawn.iter().map(|b| b.corners()).collect()));
+                (shapes, scale, y_mid, top)
+            }
+            None => {
+                let (shapes, scale, y_mid) = scene::build(&input, rect, &mut self.camera);
+                let p = crate::sim::protocol::pose(&info.geometry, sample.theta, sample.x, sample.mode, sample.base_x);
+                let reach = kinematics::half_height_turned_m(&info.geometry, p.angle);
+                (shapes, scale, y_mid, p.y + reach)
+            }
+        };
         // Where the block's top and the table's top are drawn (points), for
         // the layout tests: world height y is drawn at centre − (y − y_mid)·scale.
         let to_screen = |y: f64| rect.center().y - ((y - y_mid) * scale) as f32;
-        let p = crate::sim::protocol::pose(&info.geometry, sample.theta, sample.x, sample.mode, sample.base_x);
-        let reach = kinematics::half_height_turned_m(&info.geometry, p.angle);
-        self.frame_layout.block_top = Some(to_screen(p.y + reach));
+        self.frame_layout.block_top = Some(to_screen(top));
         self.frame_layout.table_top = Some(to_screen(0.0));
         let view = scene::view(rect, scale, &self.camera, y_mid, ui.ctx().pixels_per_point());
         scene::paint(ui, rect, shapes, view, self.gpu);

@@ -4,8 +4,10 @@
 use std::time::Duration;
 
 use super::{Link, Message, RockingApp};
+use crate::gui::history::section_row;
 use crate::gui::panels::ground::RecordLabel;
 use crate::model::EventKind;
+use crate::model::stack::StackEventKind;
 use crate::sim::protocol::{RunEnd, SimUpdate};
 
 /// Time per frame the app spends receiving updates: leaves most of a 60 Hz
@@ -27,21 +29,46 @@ impl RockingApp {
                 self.history_view.fit_run(info.scenario.record_end_tau());
                 self.phase.fit_run(info.scenario.record_end_tau());
                 self.info = Some(*info);
+                // A body chosen beyond a shorter stack's top: the top.
+                if let (Some(j), Some(k)) = (self.body, self.stack().map(|g| g.k)) {
+                    self.body = Some(j.min(k - 1));
+                }
             }
             SimUpdate::Paused { paused, tau, .. } => {
                 self.paused = paused;
                 self.tau = tau;
             }
             SimUpdate::Batch { batch, .. } => {
-                for s in batch.samples {
+                // A stack's samples carry its whole state: the plots show
+                // the chosen block's.
+                let body = self.chosen_body().zip(self.info.as_ref().map(|i| i.geometry.psi));
+                for mut s in batch.samples {
+                    if let (Some(f), Some((j, psi))) = (s.stack, body) {
+                        s.state = f.body_row(j, psi);
+                    }
                     self.hist.push_sample(s);
+                }
+                for e in batch.stack_events {
+                    if matches!(e.kind, StackEventKind::Impact | StackEventKind::Close) {
+                        self.flash_at = Some(now);
+                        self.flash_face = Some(e.body);
+                    }
+                    self.hist.push_stack_event(e);
+                }
+                let mut section = batch.section.into_iter();
+                if let Some((j, psi)) = body {
+                    for f in batch.stack_section {
+                        if let Some(p) = section.next() {
+                            self.hist.push_stack_section(section_row(p.k, &f, j, psi), f);
+                        }
+                    }
                 }
                 let mut impact = false;
                 for e in batch.events {
                     impact |= e.kind == EventKind::Impact;
                     self.hist.push_event(e);
                 }
-                for p in batch.section {
+                for p in section {
                     self.hist.push_section(p);
                 }
                 self.hist.dropped_samples += batch.dropped_samples;

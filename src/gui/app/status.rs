@@ -170,7 +170,18 @@ impl RockingApp {
             "Poincaré points: {}",
             self.hist.section.points().len() as u64 + self.hist.section.dropped
         )));
-        if let Some(end) = &self.end {
+        if let (Some(end), Some((_, name))) = (&self.end, self.stack_end()) {
+            // A stack: the block that went over, in the batch run's words.
+            let text = match end.end_state() {
+                Some((crate::sim::EndState::Flight, tau)) => format!("{name} left the ground at t = {:.2} s", tau / p),
+                Some((_, tau)) => format!("{name} overturned at t = {:.2} s", tau / p),
+                None => format!("{name} stopped"),
+            };
+            essential.push(
+                Item::colored(text, scene::mode_color(crate::model::Mode::Tumbled))
+                    .hover("the blocks above its lower face carried their centre of mass over its pivot; the model stops there"),
+            );
+        } else if let Some(end) = &self.end {
             let tumble = self.info.as_ref().map(|i| i.scenario.run.tumble_theta);
             essential.push(end_item(end, tumble, p, self.record_label.is_some()));
         }

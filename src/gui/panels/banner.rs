@@ -28,6 +28,9 @@ pub struct Verdict {
     pub t_s: f64,
     /// For a block at rest after the record: its peaks.
     pub peaks: Option<Peaks>,
+    /// The body it is about, for a stack (`top block`): the headline is
+    /// then the batch run's answer, `top block overturned at t = 5.30 s`.
+    pub subject: Option<&'static str>,
 }
 
 /// The peaks of a block that survived.
@@ -64,12 +67,28 @@ impl Verdict {
             end: state,
             t_s: si.seconds(tau),
             peaks,
+            subject: None,
         })
+    }
+
+    /// This verdict about `subject` (a stack's block that overturned or
+    /// flew); a survival is the whole stack's, and keeps its words.
+    pub fn about(self, subject: &'static str) -> Self {
+        Self {
+            subject: Some(subject),
+            ..self
+        }
     }
 
     /// The large line: `OVERTURNED at t = 4.78 s`, `SURVIVED`, …
     pub fn headline(&self) -> String {
         let t_s = self.t_s;
+        match (self.end, self.subject) {
+            // The words of `summary.json`'s answer (`Physical::line`).
+            (EndState::Overturned, Some(s)) => return format!("{s} overturned at t = {t_s:.2} s"),
+            (EndState::Flight, Some(s)) => return format!("{s} left the ground (flight) at t = {t_s:.2} s"),
+            _ => {}
+        }
         match self.end {
             EndState::Overturned => format!("OVERTURNED at t = {t_s:.2} s"),
             EndState::Flight => format!("LEFT THE GROUND at t = {t_s:.2} s"),
@@ -151,6 +170,22 @@ impl Lines {
                 one_decimal(si.theta(sample.theta)),
                 one_decimal(si.horizontal(sample.theta, sample.x))
             )),
+            subtitle,
+            note: None,
+        }
+    }
+}
+
+impl Lines {
+    /// While a record plays under a stack: the clock, and block `name`'s
+    /// rotation (the sample's Θ is that block's φ over the bottom block's
+    /// ψ, `geo` the bottom block's).
+    pub fn playing_body(sample: &Sample, geo: Geometry, name: &str, subtitle: Option<String>) -> Self {
+        let si = Scales::new(Units::Physical, geo);
+        Self {
+            headline: format!("t = {:.2} s", si.seconds(sample.tau)),
+            color: Color32::WHITE,
+            detail: Some(format!("{name}: φ = {}°", one_decimal(si.theta(sample.theta)))),
             subtitle,
             note: None,
         }
@@ -290,6 +325,7 @@ mod tests {
             base_x: 0.0,
             normal: 1.0,
             friction: 0.0,
+            stack: None,
         };
         let lines = Lines::playing(&sample, geo, None);
         assert_eq!(lines.headline, "t = 1.00 s");

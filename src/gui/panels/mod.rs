@@ -11,3 +11,5 @@ pub mod params;
 pub mod plots;
 pub mod scene;
 pub mod slider;
+pub mod stack_params;
+pub mod stack_scene;

@@ -93,7 +93,10 @@ pub fn applies(key: &str, kind: ExcitationKind) -> bool {
 /// (its columns do not slide); the block's size and friction otherwise.
 fn describes(group: &str, cfg: &Scenario) -> bool {
     match group {
-        "Block" | "Friction" => cfg.frame.is_none(),
+        // A stack has its own group (`stack_params`), and neither the
+        // block's impact laws nor a start out of rest.
+        "Block" | "Friction" => cfg.frame.is_none() && cfg.stack.is_none(),
+        "Impact" | "Initial state" => cfg.stack.is_none(),
         "Frame" => cfg.frame.is_some(),
         _ => true,
     }
@@ -295,7 +298,35 @@ pub fn show(
 /// drawn for a value that is not a finite number (`inf`, or an empty
 /// default).
 fn slider(ui: &mut egui::Ui, k: &Key, shown: &str) -> Option<Commit> {
-    let range = slider_range(k.key)?;
+    slider_with(ui, k, shown, slider_range(k.key)?)
+}
+
+/// One grid row of number key `k` (whose value reads `shown`, and is
+/// stated): its symbol, its slider on `range` if any and its field, and
+/// its unit. Returns the value committed or dragged to.
+pub(crate) fn slider_row(
+    ui: &mut egui::Ui,
+    k: &Key,
+    shown: &str,
+    range: Option<SliderRange>,
+    edits: &mut Edits,
+) -> Option<Commit> {
+    let label = ui.label(k.label).on_hover_text(format!("{}\n{}", k.key, k.help));
+    let mut commit = None;
+    ui.horizontal(|ui| {
+        if let Some(c) = range.and_then(|r| slider_with(ui, k, shown, r)) {
+            commit = Some(c);
+        }
+        if let Some(c) = text_field(ui, k, shown, true, label.id, edits, 60.0) {
+            commit = Some(c);
+        }
+    });
+    ui.label(k.unit);
+    commit
+}
+
+/// The slider of number key `k` on `range`.
+fn slider_with(ui: &mut egui::Ui, k: &Key, shown: &str, range: SliderRange) -> Option<Commit> {
     let value = shown.trim().parse::<f64>().ok().filter(|v| v.is_finite())?;
     // With the 60-point field beside it, the row fits the panel's
     // default 300 points.

@@ -767,6 +767,7 @@ mod tests {
                 base_x: 0.0,
                 normal: 0.0,
                 friction: 0.0,
+                stack: None,
             });
         }
         hist

@@ -132,7 +132,7 @@ pub struct Camera {
 
 /// The world-to-screen fit: pixels (points) per metre and the world
 /// rectangle shown, for a block of half-diagonal `r` in a `rect`.
-fn fit(rect: Rect, r: f64, half_span: f64) -> (f64, f64) {
+pub(crate) fn fit(rect: Rect, r: f64, half_span: f64) -> (f64, f64) {
     // Room for the block standing on a corner (height up to 2R), the table
     // below, and sideways sliding; a frame's columns side by side.
     let world_h = 2.5 * r;
@@ -142,6 +142,48 @@ fn fit(rect: Rect, r: f64, half_span: f64) -> (f64, f64) {
     // the bottom edge.
     let y_mid = rect.height() as f64 / scale * 0.5 - 0.15 * rect.height() as f64 / scale;
     (scale, y_mid)
+}
+
+/// The floor (fixed) and the shake table (moved by `base_x`, m) across
+/// the view centred at `camera_x` (`half_w` m each side), sized for a
+/// body of half-diagonal `r`, m; `px` is one point in metres.
+pub(crate) fn stage(shapes: &mut Vec<Shape>, camera_x: f64, half_w: f64, r: f64, base_x: f64, px: f64) {
+    // The floor (fixed) and the shake table (moves with the base).
+    let left = camera_x - half_w - r;
+    let right = camera_x + half_w + r;
+    let table_h = 0.12 * r;
+    shapes.push(Shape::rect(
+        [0.5 * (left + right), -table_h - 0.5 * r],
+        [0.5 * (right - left), 0.5 * r],
+        0.0,
+        Color32::from_rgb(38, 40, 46),
+    ));
+    shapes.push(Shape::rect(
+        [0.5 * (left + right) + base_x, -0.5 * table_h],
+        [0.5 * (right - left), 0.5 * table_h],
+        0.0,
+        Color32::from_rgb(92, 96, 108),
+    ));
+    // Ticks every R/4 on both, so the table's displacement relative to the
+    // floor is visible.
+    let tick = 0.25 * r;
+    let k0 = (left / tick).floor() as i64;
+    let k1 = (right / tick).ceil() as i64;
+    for k in k0..=k1 {
+        let x = k as f64 * tick;
+        shapes.push(Shape::rect(
+            [x + base_x, -0.5 * table_h],
+            [0.75 * px, 0.35 * table_h],
+            0.0,
+            Color32::from_rgb(150, 154, 166),
+        ));
+        shapes.push(Shape::rect(
+            [x, -table_h - 0.04 * r],
+            [0.75 * px, 0.04 * r],
+            0.0,
+            Color32::from_rgb(90, 92, 100),
+        ));
+    }
 }
 
 /// Builds the shapes of one frame, back to front, and moves the camera.
@@ -165,42 +207,7 @@ pub fn build(input: &SceneInput<'_>, rect: Rect, camera: &mut Camera) -> (Vec<Sh
     let px = 1.0 / scale; // one point, in metres
     let mut shapes = Vec::with_capacity(32 + input.ghosts.len());
 
-    // The floor (fixed) and the shake table (moves with the base).
-    let left = camera.x - half_w - geo.r;
-    let right = camera.x + half_w + geo.r;
-    let table_h = 0.12 * geo.r;
-    shapes.push(Shape::rect(
-        [0.5 * (left + right), -table_h - 0.5 * geo.r],
-        [0.5 * (right - left), 0.5 * geo.r],
-        0.0,
-        Color32::from_rgb(38, 40, 46),
-    ));
-    shapes.push(Shape::rect(
-        [0.5 * (left + right) + p.base_x, -0.5 * table_h],
-        [0.5 * (right - left), 0.5 * table_h],
-        0.0,
-        Color32::from_rgb(92, 96, 108),
-    ));
-    // Ticks every R/4 on both, so the table's displacement relative to the
-    // floor is visible.
-    let tick = 0.25 * geo.r;
-    let k0 = (left / tick).floor() as i64;
-    let k1 = (right / tick).ceil() as i64;
-    for k in k0..=k1 {
-        let x = k as f64 * tick;
-        shapes.push(Shape::rect(
-            [x + p.base_x, -0.5 * table_h],
-            [0.75 * px, 0.35 * table_h],
-            0.0,
-            Color32::from_rgb(150, 154, 166),
-        ));
-        shapes.push(Shape::rect(
-            [x, -table_h - 0.04 * geo.r],
-            [0.75 * px, 0.04 * geo.r],
-            0.0,
-            Color32::from_rgb(90, 92, 100),
-        ));
-    }
+    stage(&mut shapes, camera.x, half_w, geo.r, p.base_x, px);
 
     let half = [0.5 * geo.width, 0.5 * geo.height];
     let mode = input.terminal.unwrap_or(s.mode);

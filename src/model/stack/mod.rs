@@ -23,6 +23,7 @@
 
 mod dynamics;
 mod geometry;
+mod outline;
 mod pose;
 mod system;
 #[cfg(test)]
@@ -30,6 +31,7 @@ mod tests;
 
 pub use dynamics::{InterfaceLoad, StackAccel};
 pub use geometry::{StackGeometry, StackShapeError};
+pub use outline::{corners, outlines, rest_corners};
 pub use pose::Pose;
 pub use system::{StackEnd, StackError, StackEvent, StackEventKind, StackMode, StackSystem, StackTally};
 

@@ -65,7 +65,9 @@ impl Outbox {
             .queue
             .iter()
             .map(|u| match u {
-                SimUpdate::Batch { batch, .. } => batch.events.len() + batch.section.len(),
+                SimUpdate::Batch { batch, .. } => {
+                    batch.events.len() + batch.section.len() + batch.stack_events.len() + batch.stack_section.len()
+                }
                 SimUpdate::Started { .. } | SimUpdate::Paused { .. } | SimUpdate::Finished { .. } => 0,
             })
             .sum();
@@ -109,6 +111,8 @@ fn merge(waiting: &mut Batch, next: Batch) {
     waiting.dropped_samples += next.dropped_samples;
     waiting.events.extend(next.events);
     waiting.section.extend(next.section);
+    waiting.stack_events.extend(next.stack_events);
+    waiting.stack_section.extend(next.stack_section);
     if !next.ghosts.is_empty() {
         waiting.ghosts = next.ghosts;
     }
@@ -135,6 +139,7 @@ mod tests {
             base_x: 0.0,
             normal: 1.0,
             friction: 0.0,
+            stack: None,
         }
     }
 

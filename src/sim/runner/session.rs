@@ -247,6 +247,7 @@ impl Observer<Mode, EventRecord, N> for MainSink<'_> {
             base_x,
             normal,
             friction,
+            stack: None,
         });
     }
 
@@ -528,6 +529,7 @@ impl Session {
                 section_phase: if exact_sections { phase } else { 0.0 },
                 tau0,
                 sample_dt: LIVE_SAMPLE_DT,
+                stack: None,
             },
             driver,
             probe,
@@ -936,8 +938,8 @@ mod tests {
             for method in [Method::Taylor, Method::Dop853, Method::Dopri5, Method::Ralston] {
                 let mut sc = base.clone();
                 sc.run.method = Some(method);
-                // A stack has no live run yet (the app takes a block or a
-                // frame), so nothing to compare.
+                // A stack runs in its own session, compared with its batch
+                // run in `stack_session`'s tests.
                 if sc.validate().is_err() || sc.stack.is_some() {
                     continue;
                 }

@@ -5,8 +5,9 @@
 use std::time::{Duration, Instant};
 
 use super::TICK;
+use super::live::Live;
 use super::outbox::Outbox;
-use super::session::{Session, Start};
+use super::session::Start;
 use crate::sim::Scenario;
 use crate::sim::job::{Link, Stopped};
 use crate::sim::protocol::{Batch, MAX_GHOSTS, RunEnd, RunId, Sample, SimCommand, SimUpdate, Speed, StartFrom};
@@ -23,7 +24,7 @@ const RETRY: Duration = Duration::from_millis(4);
 pub(super) struct Worker {
     link: Link<SimUpdate, SimCommand>,
     outbox: Outbox,
-    session: Option<Session>,
+    session: Option<Live>,
     /// The last sample released: the state the user sees.
     last_sample: Option<Sample>,
     paused: bool,
@@ -67,7 +68,7 @@ impl Worker {
     pub(super) fn run(mut self, run: RunId) {
         let scenario = self.scenario.clone();
         let phase = self.section_phase;
-        self.start(run, |r| Session::with_phase(r, &scenario, Start::Initial, phase));
+        self.start(run, |r| Live::with_phase(r, &scenario, Start::Initial, phase));
         loop {
             let flow = match self.wait() {
                 Ok(Some(cmd)) => self.handle(cmd),
@@ -190,13 +191,13 @@ impl Worker {
         };
         self.start(run, |r| match continued {
             Some(s) => Ok(s),
-            None => Session::with_phase(r, &scenario, Start::Initial, phase),
+            None => Live::with_phase(r, &scenario, Start::Initial, phase),
         });
     }
 
     /// Replaces the session with `make(run)`; a failure is reported as the
     /// new run's `Finished`.
-    fn start(&mut self, run: RunId, make: impl FnOnce(RunId) -> Result<Session, String>) {
+    fn start(&mut self, run: RunId, make: impl FnOnce(RunId) -> Result<Live, String>) {
         self.outbox.purge_before(run);
         self.anchor = None;
         self.last_sample = None;
@@ -322,7 +323,7 @@ impl Worker {
 
     /// Queues `batch`, merging it into a waiting batch of the same run.
     fn queue_batch(&mut self, batch: Batch) {
-        let Some(run) = self.session.as_ref().map(Session::run) else {
+        let Some(run) = self.session.as_ref().map(Live::run) else {
             return;
         };
         if let Some(last) = batch.samples.last() {
