@@ -751,7 +751,7 @@ impl Scenario {
         if self.stack.is_some() {
             return Err(ScenarioError::new(
                 "stack",
-                "a [[stack]] is simulated one run at a time so far (alone, in spectra and in fragility studies): sweeps, maps, Lyapunov exponents, the app and Python take a [block] or a [frame]",
+                "a [[stack]] is simulated one run at a time so far (alone, live, in spectra and in fragility studies): sweeps, maps and Lyapunov exponents take a [block] or a [frame]",
             ));
         }
         Ok(Model {

@@ -137,8 +137,8 @@ pub const CATALOGUE: &[KeySpec] = &[
         slider: log(0.05, 10.0, 0.1),
         ..B
     },
-    // [[stack]]: one table per block, bottom to top. Not in the app's
-    // panel: a stack runs as one headless run so far.
+    // [[stack]]: one table per block, bottom to top. The app's panel
+    // gives each block its own sliders (its "Stack" group), by index.
     KeySpec {
         key: "stack.width",
         value: Value::Quantity(super::Dimension::Length),
