@@ -16,6 +16,7 @@
 //! - No NaN leaves this module: a quantity that does not exist (no
 //!   overturning, no fit) is `None` or an error that says why.
 
+pub mod block_size;
 pub mod fragility;
 pub mod lognormal;
 pub mod overturn_scale;

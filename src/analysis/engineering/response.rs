@@ -15,12 +15,13 @@
 //!   safe or overturned.
 //! - Every number in a [`BlockResponse`] is finite.
 
-use super::stack_response::{respond_stack, scale_stack};
+pub use super::block_size::BlockSize;
+use super::stack_response::scale_stack;
 use crate::model::excitation::Excitation;
 /// How a run ended, in the engineer's words: the core's one type.
 pub use crate::sim::EndState;
 use crate::sim::scenario::{ExcitationKind, RECORD_TAIL_S, Record, ShapeKind};
-use crate::sim::stack_run::StackError;
+use crate::sim::stack_run::{StackError, simulate_stack};
 use crate::sim::{Scenario, ScenarioError, SimError, simulate};
 
 /// Free-vibration tail after a pulse, in τ (units of 1/p). A block released
@@ -28,50 +29,6 @@ use crate::sim::{Scenario, ScenarioError, SimError, simulate};
 /// 2·ln(2/δ) in τ to fall back or over, δ its distance from |Θ| = 1; 50
 /// covers δ down to 1e-10, far below any amplitude resolution of a search.
 pub(crate) const PULSE_TAIL_TAU: f64 = 50.0;
-
-/// A rectangular block, m.
-#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
-pub struct BlockSize {
-    /// Width B, m, > 0.
-    pub width_m: f64,
-    /// Height H, m, > 0.
-    pub height_m: f64,
-}
-
-impl BlockSize {
-    /// The block of half-diagonal `r_m` (m) and slenderness ratio
-    /// `b_over_h` = B/H: B = 2R sin α, H = 2R cos α, α = atan(B/H).
-    pub(crate) fn from_half_diagonal(r_m: f64, b_over_h: f64) -> Self {
-        let alpha = b_over_h.atan();
-        Self {
-            width_m: 2.0 * r_m * alpha.sin(),
-            height_m: 2.0 * r_m * alpha.cos(),
-        }
-    }
-
-    /// The block of height `h_m` (m) and ratio `b_over_h` = B/H.
-    pub(crate) fn from_height(h_m: f64, b_over_h: f64) -> Self {
-        Self {
-            width_m: b_over_h * h_m,
-            height_m: h_m,
-        }
-    }
-
-    /// Half-diagonal R = ½√(B²+H²), m.
-    pub fn half_diagonal_m(&self) -> f64 {
-        0.5 * self.width_m.hypot(self.height_m)
-    }
-
-    /// Slenderness angle α = atan(B/H), rad.
-    pub fn alpha(&self) -> f64 {
-        self.width_m.atan2(self.height_m)
-    }
-
-    /// Frequency parameter p = √(3g/(4R)), 1/s.
-    pub fn p_per_s(&self) -> f64 {
-        crate::model::Geometry::new(self.width_m, self.height_m).p
-    }
-}
 
 /// The base motion of one run, before scaling.
 #[derive(Clone, Debug, PartialEq)]
@@ -260,6 +217,25 @@ pub(crate) fn respond(
     })
 }
 
+/// The answer of the stack of the checked scenario `s`: it ends as the
+/// first body to overturn or fly ends it; its peak rotation is that of
+/// the block that turned most over its own slenderness
+/// ([`StackRun::most_turned`](crate::sim::stack_run::StackRun::most_turned)).
+fn respond_stack(s: &Scenario) -> Result<BlockResponse, ResponseError> {
+    let geo = s
+        .stack_geometry()
+        .ok_or_else(|| ScenarioError::new("stack", "its blocks do not stand on each other"))?;
+    let run = simulate_stack(geo, s.excitation()?, s.run.zeno_eps, &s.run_options())?;
+    let p = s.geometry().p;
+    let event = run.end.map(|(end, tau)| (end.body(), tau / p));
+    Ok(BlockResponse {
+        end: EndState::of(run.outcome),
+        peak_theta_over_alpha: run.most_turned().2,
+        t_end_event_s: event.map(|(_, t)| t),
+        body: event.map(|(j, _)| j),
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -292,5 +268,64 @@ mod tests {
         assert!(strong.peak_theta_over_alpha >= 1.0);
         let t = strong.t_end_event_s.unwrap();
         assert!(t > 0.0 && t < (std::f64::consts::TAU / 3.0 + PULSE_TAIL_TAU) / size.p_per_s());
+    }
+
+    /// A stack of three `0.4 × 0.5` m blocks, the upper two glued on.
+    fn glued_column() -> Scenario {
+        let block = |glued| crate::model::stack::StackBlock {
+            width: 0.4,
+            height: 0.5,
+            offset: 0.0,
+            mu_s: f64::INFINITY,
+            mu_k: None,
+            glued,
+        };
+        let mut s = Scenario::default();
+        s.block.width = 0.4;
+        s.block.height = 0.5;
+        s.stack = Some(vec![block(false), block(true), block(true)]);
+        s
+    }
+
+    #[test]
+    fn a_glued_stack_of_one_width_answers_as_the_block_of_its_height() {
+        // Three glued 0.4 × 0.5 m blocks but the bottom face free: the
+        // 0.4 × 1.5 m block, under a one-sine pulse that rocks it and one
+        // that overturns it. The block's answer is its own code's
+        // (`respond` without a stack); τ units differ (the stack's are its
+        // bottom block's), so times agree to the integrator's tolerance.
+        let stack = glued_column();
+        let size = BlockSize {
+            width_m: 0.4,
+            height_m: 1.5,
+        };
+        for (a_p_g, want) in [(0.45, EndState::Rest), (3.0, EndState::Overturned)] {
+            let drive = Drive::PhysicalPulse {
+                shape: ShapeKind::OneSine,
+                cycles: 1,
+                a_p_g,
+                omega_p: std::f64::consts::TAU / 0.5,
+            };
+            let one = respond(&Scenario::default(), size, &drive, 1.0).unwrap();
+            let three = respond(&stack, size, &drive, 1.0).unwrap();
+            assert_eq!((one.end, three.end), (want, want), "{one:?} {three:?}");
+            // The glued blocks' own slenderness is atan(0.4/0.5), the
+            // whole block's atan(0.4/1.5): the peak rotations agree once
+            // each is brought back to radians.
+            let (alpha_one, alpha_part) = ((0.4f64 / 1.5).atan(), 0.8f64.atan());
+            let (rad_one, rad_three) = (
+                one.peak_theta_over_alpha * alpha_one,
+                three.peak_theta_over_alpha * alpha_part,
+            );
+            if want == EndState::Rest {
+                assert!(rad_one > 0.01, "it rocks: {rad_one}");
+                assert!((rad_one - rad_three).abs() < 1e-7, "{rad_one} vs {rad_three}");
+            } else {
+                let (t1, t3) = (one.t_end_event_s.unwrap(), three.t_end_event_s.unwrap());
+                assert!((t1 - t3).abs() < 1e-7, "{t1} vs {t3}");
+                assert_eq!(three.body, Some(0));
+            }
+            assert_eq!(one.body, None);
+        }
     }
 }

@@ -1,6 +1,6 @@
 //! A stack of blocks (config `[[stack]]`) in the engineering analyses:
-//! the size it is stepped by, the stack scaled to a size, and one run's
-//! answer.
+//! the size it is stepped by and the stack scaled to a size (its run's
+//! answer is `response::respond`'s).
 //!
 //! A spectrum or a fragility study scales every body of the stack by one
 //! factor, so its shape (each block's proportions, the offsets, the ratios
@@ -10,10 +10,9 @@
 //! stack's total height H. A glued stack of blocks of one width is
 //! exactly that block, so its spectrum is the block's.
 
-use super::response::{BlockResponse, BlockSize, ResponseError};
+use super::block_size::BlockSize;
 use crate::model::stack::StackBlock;
-use crate::sim::stack_run::simulate_stack;
-use crate::sim::{EndState, Scenario, ScenarioError};
+use crate::sim::{Scenario, ScenarioError};
 
 /// How far apart (relative) a size's B/H and the stack's own may be and
 /// still be the stack's: sizes are rebuilt from R and B/H through a sine
@@ -59,31 +58,9 @@ pub(crate) fn scale_stack(s: &mut Scenario, size: BlockSize) -> Result<(), Scena
     Ok(())
 }
 
-/// The answer of the stack of the checked scenario `s`: it ends as the
-/// first body to overturn or fly ends it; its peak rotation is that of
-/// the block that turned most over its own slenderness
-/// ([`StackRun::most_turned`](crate::sim::stack_run::StackRun::most_turned)).
-pub(crate) fn respond_stack(s: &Scenario) -> Result<BlockResponse, ResponseError> {
-    let geo = s
-        .stack_geometry()
-        .ok_or_else(|| ScenarioError::new("stack", "its blocks do not stand on each other"))?;
-    let run = simulate_stack(geo, s.excitation()?, s.run.zeno_eps, &s.run_options())?;
-    let p = s.geometry().p;
-    let end = EndState::of(run.outcome);
-    let event = run.end.map(|(end, tau)| (end.body(), tau / p));
-    Ok(BlockResponse {
-        end,
-        peak_theta_over_alpha: run.most_turned().2,
-        t_end_event_s: event.map(|(_, t)| t),
-        body: event.map(|(j, _)| j),
-    })
-}
-
 #[cfg(test)]
 mod tests {
-    use super::super::response::{Drive, respond};
     use super::*;
-    use crate::sim::scenario::ShapeKind;
 
     fn block(width: f64, height: f64, offset: f64, glued: bool) -> StackBlock {
         StackBlock {
@@ -134,51 +111,5 @@ mod tests {
         let e = scale_stack(&mut s, BlockSize::from_height(2.0, 0.3)).unwrap_err();
         assert_eq!(e.key, "stack");
         assert!(e.to_string().contains("B/H = 0.5000"), "{e}");
-    }
-
-    #[test]
-    fn a_glued_stack_of_one_width_answers_as_the_block_of_its_height() {
-        // Three glued 0.4 × 0.5 m blocks but the bottom face free: the
-        // 0.4 × 1.5 m block, under a one-sine pulse that rocks it and one
-        // that overturns it. The block's answer is its own code's
-        // (`respond` without a stack); τ units differ (the stack's are its
-        // bottom block's), so times agree to the integrator's tolerance.
-        let stack = stack_scene(vec![
-            block(0.4, 0.5, 0.0, false),
-            block(0.4, 0.5, 0.0, true),
-            block(0.4, 0.5, 0.0, true),
-        ]);
-        let size = BlockSize {
-            width_m: 0.4,
-            height_m: 1.5,
-        };
-        for (a_p_g, want) in [(0.45, EndState::Rest), (3.0, EndState::Overturned)] {
-            let drive = Drive::PhysicalPulse {
-                shape: ShapeKind::OneSine,
-                cycles: 1,
-                a_p_g,
-                omega_p: std::f64::consts::TAU / 0.5,
-            };
-            let one = respond(&Scenario::default(), size, &drive, 1.0).unwrap();
-            let three = respond(&stack, size, &drive, 1.0).unwrap();
-            assert_eq!((one.end, three.end), (want, want), "{one:?} {three:?}");
-            // The glued blocks' own slenderness is atan(0.4/0.5), the
-            // whole block's atan(0.4/1.5): the peak rotations agree once
-            // each is brought back to radians.
-            let (alpha_one, alpha_part) = ((0.4f64 / 1.5).atan(), 0.8f64.atan());
-            let (rad_one, rad_three) = (
-                one.peak_theta_over_alpha * alpha_one,
-                three.peak_theta_over_alpha * alpha_part,
-            );
-            if want == EndState::Rest {
-                assert!(rad_one > 0.01, "it rocks: {rad_one}");
-                assert!((rad_one - rad_three).abs() < 1e-7, "{rad_one} vs {rad_three}");
-            } else {
-                let (t1, t3) = (one.t_end_event_s.unwrap(), three.t_end_event_s.unwrap());
-                assert!((t1 - t3).abs() < 1e-7, "{t1} vs {t3}");
-                assert_eq!(three.body, Some(0));
-            }
-            assert_eq!(one.body, None);
-        }
     }
 }
