@@ -222,81 +222,38 @@ fn the_commands_and_flags_that_cannot_take_a_stack_refuse_it_in_one_line() {
     let out = d.join("out");
     let tomb = ["--preset", "tombstone"];
     let kobe = ["--record", KOBE, "--unit", "m/s2"];
-    let o = rocking()
-        .arg("spectrum")
-        .args(tomb)
-        .args(kobe)
-        .args(["--from", "0.5", "--to", "2", "--b-over-h", "0.2", "--out"])
-        .arg(&out)
-        .output()
-        .unwrap();
-    refused(&o, &["--b-over-h", "keeps its own shape", "B/H = 0.5556"], &out);
-    let o = rocking()
-        .args([
-            "fragility",
-            "--records",
-            KOBE,
-            "--unit",
-            "m/s2",
-            "--levels",
-            "0.5",
-            "--block",
-            "1x2",
-        ])
-        .args(tomb)
-        .arg("--out")
-        .arg(&out)
-        .output()
-        .unwrap();
-    refused(&o, &["--block 1x2", "B/H = 0.5556"], &out);
-    let o = rocking()
-        .args([
-            "fragility",
-            "--records",
-            KOBE,
-            "--unit",
-            "m/s2",
-            "--levels",
-            "0.5",
-            "--im",
-            "pga-tan-alpha",
-        ])
-        .args(tomb)
-        .arg("--out")
-        .arg(&out)
-        .output()
-        .unwrap();
-    refused(&o, &["--im pga-tan-alpha", "use pga, pgv or sa"], &out);
-    let o = rocking()
-        .args([
-            "fragility",
-            "--records",
-            KOBE,
-            "--unit",
-            "m/s2",
-            "--levels",
-            "0.5",
-            "--out",
-        ])
-        .arg(&out)
-        .output()
-        .unwrap();
-    refused(&o, &["--block: give at least one block"], &out);
-    let o = rocking()
-        .args(["sliding-spectrum", "--mu", "0.1,0.2"])
-        .args(kobe)
-        .args(tomb)
-        .arg("--out")
-        .arg(&out)
-        .output()
-        .unwrap();
-    refused(&o, &["stack: sliding-spectrum", "not simulated"], &out);
-    let o = rocking()
-        .arg("pulse-map")
-        .args(tomb)
-        .arg("--out")
-        .arg(&out)
-        .output()
-        .unwrap();
-    refused(&o, &["stack: pulse-map", "rocking spectrum --pulse"], &out);
+    let suite = ["fragility", "--records", KOBE, "--unit", "m/s2", "--levels", "0.5"];
+    let cases: [(Vec<&str>, &[&str]); 6] = [
+        (
+            [
+                &["spectrum", "--from", "0.5", "--to", "2", "--b-over-h", "0.2"][..],
+                &tomb,
+                &kobe,
+            ]
+            .concat(),
+            &["--b-over-h", "keeps its own shape", "B/H = 0.5556"],
+        ),
+        (
+            [&suite[..], &tomb, &["--block", "1x2"]].concat(),
+            &["--block 1x2", "B/H = 0.5556"],
+        ),
+        (
+            [&suite[..], &tomb, &["--im", "pga-tan-alpha"]].concat(),
+            &["--im pga-tan-alpha", "use pga, pgv or sa"],
+        ),
+        // A block scene without --block.
+        (suite.to_vec(), &["--block: give at least one block"]),
+        (
+            [&["sliding-spectrum", "--mu", "0.1,0.2"][..], &kobe, &tomb].concat(),
+            &["stack: sliding-spectrum", "not simulated"],
+        ),
+        (
+            [&["pulse-map"][..], &tomb].concat(),
+            &["stack: pulse-map", "rocking spectrum --pulse"],
+        ),
+    ];
+    for (args, needles) in cases {
+        let o = rocking().args(&args).arg("--out").arg(&out).output().unwrap();
+        refused(&o, needles, &out);
+    }
 }

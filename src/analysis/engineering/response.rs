@@ -273,12 +273,8 @@ mod tests {
     /// A stack of three `0.4 × 0.5` m blocks, the upper two glued on.
     fn glued_column() -> Scenario {
         let block = |glued| crate::model::stack::StackBlock {
-            width: 0.4,
-            height: 0.5,
-            offset: 0.0,
-            mu_s: f64::INFINITY,
-            mu_k: None,
             glued,
+            ..crate::model::stack::StackBlock::new(0.4, 0.5, 0.0)
         };
         let mut s = Scenario::default();
         s.block.width = 0.4;

@@ -64,12 +64,8 @@ mod tests {
 
     fn block(width: f64, height: f64, offset: f64, glued: bool) -> StackBlock {
         StackBlock {
-            width,
-            height,
-            offset,
-            mu_s: f64::INFINITY,
-            mu_k: None,
             glued,
+            ..StackBlock::new(width, height, offset)
         }
     }
 

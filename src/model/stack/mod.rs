@@ -70,6 +70,22 @@ pub struct StackBlock {
     pub glued: bool,
 }
 
+impl StackBlock {
+    /// A block of `width` × `height` m whose centre is `offset` m from the
+    /// centre of the block below, with the config's defaults: no slip
+    /// (`static = inf`) and not glued.
+    pub fn new(width: f64, height: f64, offset: f64) -> Self {
+        StackBlock {
+            width,
+            height,
+            offset,
+            mu_s: f64::INFINITY,
+            mu_k: None,
+            glued: false,
+        }
+    }
+}
+
 /// Where a contact is: which corner of an interface's overlap carries it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Contact {

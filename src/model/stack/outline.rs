@@ -43,14 +43,7 @@ mod tests {
     use crate::model::stack::StackBlock;
 
     fn block(width: f64, height: f64, offset: f64) -> StackBlock {
-        StackBlock {
-            width,
-            height,
-            offset,
-            mu_s: f64::INFINITY,
-            mu_k: None,
-            glued: false,
-        }
+        StackBlock::new(width, height, offset)
     }
 
     /// Turns `p` clockwise by `a` about `c`.

@@ -36,14 +36,7 @@ fn solve(mut a: Vec<Vec<f64>>, mut b: Vec<f64>) -> Vec<f64> {
 }
 
 fn block(width: f64, height: f64, offset: f64) -> StackBlock {
-    StackBlock {
-        width,
-        height,
-        offset,
-        mu_s: f64::INFINITY,
-        mu_k: None,
-        glued: false,
-    }
+    StackBlock::new(width, height, offset)
 }
 
 /// Clockwise cross product: the clockwise moment about the origin of a
