@@ -219,3 +219,44 @@ fn fragility_warns_for_implausible_record_peaks_and_large_scale_factors_naming_t
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn spectrum_and_sliding_spectrum_warn_for_a_record_whose_peak_suggests_a_wrong_unit() {
+    let dir = tmpdir("spectra");
+    let kobe = format!("{RECORDS}/kobe-1995.dat");
+    // Kobe is in m/s²: read as g its PGA is 6.8 g, and every block would
+    // be shaken 9.81 times too hard.
+    for (args, unit, warned) in [
+        (
+            &["spectrum", "--from", "0.5", "--to", "1", "--count", "2"][..],
+            "g",
+            true,
+        ),
+        (
+            &["spectrum", "--from", "0.5", "--to", "1", "--count", "2"][..],
+            "m/s2",
+            false,
+        ),
+        (&["sliding-spectrum", "--mu", "0.2,0.4"][..], "g", true),
+    ] {
+        let o = rocking()
+            .args(args)
+            .args(["--record", &kobe, "--unit", unit, "-q", "--out"])
+            .arg(dir.join(format!("{}-{unit}", args[0]).replace('/', "")))
+            .output()
+            .unwrap();
+        assert!(o.status.success(), "{}", stderr(&o));
+        let err = stderr(&o);
+        let warnings: Vec<&str> = err.lines().filter(|l| l.starts_with("warning:")).collect();
+        if warned {
+            assert_eq!(warnings.len(), 1, "{args:?}: {err}");
+            assert!(
+                warnings[0].contains("--record") && warnings[0].contains("kobe-1995.dat: PGA 6.803 g as read in g"),
+                "{err}"
+            );
+        } else {
+            assert!(warnings.is_empty(), "{args:?}: {err}");
+        }
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -820,6 +820,20 @@ impl Scenario {
         self.record_end_tau().map(|end| self.tau_end() >= end)
     }
 
+    /// Why a record's PGA of `pga_g` (g) suggests a wrong unit, if it does:
+    /// above [`IMPLAUSIBLE_PGA_G`] or below [`IMPLAUSIBLY_SMALL_PGA_G`].
+    pub(crate) fn pga_doubt(pga_g: f64) -> Option<String> {
+        if pga_g > IMPLAUSIBLE_PGA_G {
+            Some(format!("implausible for ground motion (above {IMPLAUSIBLE_PGA_G} g)"))
+        } else if pga_g < IMPLAUSIBLY_SMALL_PGA_G {
+            Some(format!(
+                "implausibly small for a record to run (below {IMPLAUSIBLY_SMALL_PGA_G} g)"
+            ))
+        } else {
+            None
+        }
+    }
+
     /// One line per record whose peak suggests a wrong unit (PGA above
     /// [`IMPLAUSIBLE_PGA_G`] or below [`IMPLAUSIBLY_SMALL_PGA_G`] after unit
     /// and scale), naming the file and its PGA: the run goes on, but the
@@ -837,13 +851,7 @@ impl Scenario {
         .filter_map(|(key, r, scale)| {
             let r = r.as_ref()?;
             let pga = r.series.peak_abs_g() * scale.abs();
-            let doubt = if pga > IMPLAUSIBLE_PGA_G {
-                format!("implausible for ground motion (above {IMPLAUSIBLE_PGA_G} g)")
-            } else if pga < IMPLAUSIBLY_SMALL_PGA_G {
-                format!("implausibly small for a record to run (below {IMPLAUSIBLY_SMALL_PGA_G} g)")
-            } else {
-                return None;
-            };
+            let doubt = Self::pga_doubt(pga)?;
             Some(format!(
                 "warning: {}: PGA {} g (read in {}, scaled by {}) is {doubt}; check {key}",
                 r.path.display(),
