@@ -223,7 +223,49 @@ fn the_commands_and_flags_that_cannot_take_a_stack_refuse_it_in_one_line() {
     let tomb = ["--preset", "tombstone"];
     let kobe = ["--record", KOBE, "--unit", "m/s2"];
     let suite = ["fragility", "--records", KOBE, "--unit", "m/s2", "--levels", "0.5"];
-    let cases: [(Vec<&str>, &[&str]); 6] = [
+    let stack_first = "a [[stack]] is simulated one run at a time so far";
+    let patterns = ["--preset", "stack-patterns"];
+    let cases: [(Vec<&str>, &[&str]); 8] = [
+        // Its run (55.7 τ) is shorter than a sweep's transient (600): the
+        // stack is named, not the window.
+        (
+            [
+                &[
+                    "sweep",
+                    "--param",
+                    "excitation.a_h",
+                    "--from",
+                    "0.1",
+                    "--to",
+                    "0.3",
+                    "--step",
+                    "0.1",
+                ][..],
+                &patterns,
+            ]
+            .concat(),
+            &[stack_first, "sweeps, maps"],
+        ),
+        (
+            [
+                &[
+                    "map",
+                    "--x",
+                    "excitation.a_h",
+                    "0.1",
+                    "0.3",
+                    "3",
+                    "--y",
+                    "excitation.omega_h",
+                    "1",
+                    "2",
+                    "3",
+                ][..],
+                &patterns,
+            ]
+            .concat(),
+            &[stack_first],
+        ),
         (
             [
                 &["spectrum", "--from", "0.5", "--to", "2", "--b-over-h", "0.2"][..],

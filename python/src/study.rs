@@ -98,12 +98,7 @@ impl Workers {
 /// The window of a study: `transient` and `tau_end` (default: the scene's
 /// `run.tau_end`), checked with the CLI's messages.
 pub fn window(base: &Scenario, transient: f64, tau_end: Option<f64>) -> PyResult<Window> {
-    let w = Window {
-        transient,
-        tau_end: tau_end.unwrap_or(base.run.tau_end),
-    };
-    w.validate().map_err(|e| input(e.render(&Keywords)))?;
-    Ok(w)
+    Window::of_study(base, transient, tau_end).map_err(|e| input(e.render(&Keywords)))
 }
 
 /// The hook that fills the `lyapunov` column, as `--lyapunov` does.

@@ -64,3 +64,13 @@ def test_a_stack_spectrum_keeps_its_shape_and_agrees_with_the_cli(cli, tmp_path:
     assert list(sp.blocks["end"]) == [r["end"] for r in rows]
     with pytest.raises(rocking.ConfigError, match="b_over_h: a \\[\\[stack\\]\\] is scaled as a whole"):
         rocking.spectrum(KOBE, (0.3, 3, 12), unit="m/s2", base=rocking.Scene("tombstone"), b_over_h=[0.2])
+
+
+def test_sweeps_and_maps_refuse_a_stack_for_what_it_is() -> None:
+    # Its run (55.7 τ) is shorter than the default transient (600): the
+    # stack is named, not the window.
+    scene = rocking.Scene("stack-patterns")
+    with pytest.raises(rocking.ConfigError, match="a \\[\\[stack\\]\\] is simulated one run at a time"):
+        rocking.sweep(scene, "excitation.a_h", 0.1, 0.3, 0.1)
+    with pytest.raises(rocking.ConfigError, match="sweeps, maps and Lyapunov exponents"):
+        rocking.outcome_map(scene, ("excitation.a_h", 0.1, 0.3, 3), ("excitation.omega_h", 1, 2, 3))

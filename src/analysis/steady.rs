@@ -128,6 +128,24 @@ impl WindowError {
     }
 }
 
+impl Window {
+    /// The window of a study of `base` from `transient` and `tau_end`
+    /// (default: `base`'s `run.tau_end`), checked. A stack is refused
+    /// first, for what it is: its run is often shorter than a transient,
+    /// and the window alone would blame the length.
+    pub fn of_study(base: &Scenario, transient: f64, tau_end: Option<f64>) -> Result<Window, SteadyError> {
+        if base.stack.is_some() {
+            base.model()?;
+        }
+        let window = Window {
+            transient,
+            tau_end: tau_end.unwrap_or(base.run.tau_end),
+        };
+        window.validate()?;
+        Ok(window)
+    }
+}
+
 /// The steady response of one configuration.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Steady {

@@ -60,12 +60,7 @@ impl StudyArgs {
     /// The window for `base`, whose `run.tau_end` is the default end;
     /// checked, errors naming the flags.
     pub fn window(&self, base: &Scenario) -> Result<Window, String> {
-        let window = Window {
-            transient: self.transient,
-            tau_end: self.tau_end.unwrap_or(base.run.tau_end),
-        };
-        window.validate().map_err(|e| e.render(&Flags))?;
-        Ok(window)
+        Window::of_study(base, self.transient, self.tau_end).map_err(|e| e.render(&Flags))
     }
 }
 
