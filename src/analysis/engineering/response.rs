@@ -315,10 +315,10 @@ mod tests {
             );
             if want == EndState::Rest {
                 assert!(rad_one > 0.01, "it rocks: {rad_one}");
-                assert!((rad_one - rad_three).abs() < 1e-7, "{rad_one} vs {rad_three}");
+                assert!((rad_one - rad_three).abs() < 1e-10, "{rad_one} vs {rad_three}");
             } else {
                 let (t1, t3) = (one.t_end_event_s.unwrap(), three.t_end_event_s.unwrap());
-                assert!((t1 - t3).abs() < 1e-7, "{t1} vs {t3}");
+                assert!((t1 - t3).abs() < 1e-10, "{t1} vs {t3}");
                 assert_eq!(three.body, Some(0));
             }
             assert_eq!(one.body, None);
