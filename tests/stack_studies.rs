@@ -153,8 +153,9 @@ fn a_glued_stack_of_one_width_has_the_single_blocks_spectrum() {
     }
     // Peak rotation: the stack's is over a glued block's own α =
     // atan(0.4/0.5), the block's over atan(0.4/1.5); in radians they are
-    // the one body's rotation; the two runs step in other units (p of a
-    // glued block, p of the column), so they agree to the solver's tolerance
+    // the one body's rotation; the two runs step in other units (the
+    // stack's τ is its bottom block's, the block's its own), so they agree
+    // to the solver's tolerance
     // (rtol 1e-10; 3.7e-14 rad measured over 200 sizes under Kobe).
     let (a_part, a_whole) = (0.8f64.atan(), (0.4f64 / 1.5).atan());
     let ends = column(&cs, "end");
