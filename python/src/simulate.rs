@@ -166,6 +166,17 @@ pub fn warn(py: Python<'_>, cfg: &Scenario) -> PyResult<()> {
     Ok(())
 }
 
+/// Issues a Python `UserWarning` when `record`'s PGA as read suggests a
+/// wrong unit (the CLI's `warning: --record …` line), naming it by its
+/// keyword `keyword` (`record`, `record_v`).
+pub fn warn_unit(py: Python<'_>, keyword: &str, record: &rocking::sim::scenario::Record) -> PyResult<()> {
+    if let Some(doubt) = record.unit_doubt() {
+        let text = format!("{keyword}={}: {doubt}", record.path.display());
+        py.import("warnings")?.call_method1("warn", (text,))?;
+    }
+    Ok(())
+}
+
 /// Column `name` of `rows` as a float64 array.
 fn column<'py, T>(py: Python<'py>, rows: &[T], f: impl Fn(&T) -> f64) -> Bound<'py, PyAny> {
     rows.iter().map(f).collect::<Vec<f64>>().into_pyarray(py).into_any()

@@ -101,14 +101,16 @@ fn sliding<'py>(
     let scale = Scaling { scale, pga_g: pga }
         .factor(pga_g)
         .map_err(|e| input(e.render(&Keywords)))?;
-    let drive = Drive::Record(Record {
+    let read = Record {
         path: record.clone(),
         series: loaded.series,
         unit: loaded.unit,
         dt: None,
         crc32: loaded.crc32,
         channel: None,
-    });
+    };
+    crate::simulate::warn_unit(py, "record", &read)?;
+    let drive = Drive::Record(read);
     let size = match block {
         Some((w, h)) if w > 0.0 && h > 0.0 && w.is_finite() && h.is_finite() => BlockSize {
             width_m: w,

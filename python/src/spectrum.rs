@@ -123,6 +123,7 @@ fn spectrum<'py>(
         crc32: loaded.crc32,
         channel: None,
     };
+    crate::simulate::warn_unit(py, "record", &horizontal)?;
     // The vertical (positive upward), scaled by the same factor as the
     // horizontal, as `rocking spectrum --record-v`.
     let drive = match record_v {
@@ -138,17 +139,16 @@ fn spectrum<'py>(
                 channel: None,
             };
             let v = read_record_as(&path_v, &spec).map_err(|e| record_error(&path_v, &e))?;
-            Drive::Paired {
-                horizontal,
-                vertical: Record {
-                    path: path_v,
-                    series: v.series,
-                    unit: v.unit,
-                    dt: None,
-                    crc32: v.crc32,
-                    channel: None,
-                },
-            }
+            let vertical = Record {
+                path: path_v,
+                series: v.series,
+                unit: v.unit,
+                dt: None,
+                crc32: v.crc32,
+                channel: None,
+            };
+            crate::simulate::warn_unit(py, "record_v", &vertical)?;
+            Drive::Paired { horizontal, vertical }
         }
     };
     let scale = Scaling { scale, pga_g: pga }.factor(pga_g).map_err(input)?;

@@ -53,3 +53,17 @@ def test_a_vertical_record_runs_with_the_horizontal_scaled_by_the_same_factor(tm
     without = rocking.spectrum(h, (2.0, 2.0, 1), **common)
     assert float(with_v.blocks["peak_theta_over_alpha"][0]) > 0.0
     assert float(without.blocks["peak_theta_over_alpha"][0]) == 0.0
+
+
+def test_a_record_whose_peak_suggests_a_wrong_unit_warns_as_the_cli_does() -> None:
+    kobe = REPO / "assets" / "records" / "kobe-1995.dat"
+    # Kobe is in m/s²: read as g its PGA is 6.8 g.
+    with pytest.warns(UserWarning, match="record=.*kobe-1995.dat: PGA 6.803 g as read in g is implausible"):
+        rocking.spectrum(kobe, (0.5, 1.0, 2), unit="g", progress=False)
+    with pytest.warns(UserWarning, match="PGA 6.803 g as read in g"):
+        rocking.sliding_spectrum(kobe, [0.2, 0.4], unit="g", progress=False)
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        rocking.spectrum(kobe, (0.5, 1.0, 2), unit="m/s2", progress=False)

@@ -16,8 +16,7 @@ use crate::analysis::engineering::Drive;
 use crate::analysis::engineering::request::{PulseRequest, RequestError, Scaling, unit};
 use crate::analysis::field::RequestField;
 use crate::io::record::RecordSpec;
-use crate::sim::Scenario;
-use crate::sim::scenario::{Record, ShapeKind, readable_g};
+use crate::sim::scenario::{Record, ShapeKind};
 
 /// The record of `spectrum` and `sliding-spectrum` (or `--pulse`
 /// instead) and how a text record is read.
@@ -109,17 +108,12 @@ fn component_json(path: &Path, record: &Record) -> Json {
     })
 }
 
-/// Warns on stderr when `record`'s PGA as read, `pga_g` (g), suggests a
-/// wrong unit: the command runs, but a record in m/s² read as g would
-/// shake every block ten times too hard without a word.
-fn unit_warning(flag: &str, record: &Record, pga_g: f64) {
-    if let Some(doubt) = Scenario::pga_doubt(pga_g) {
-        eprintln!(
-            "warning: {flag} {}: PGA {} g as read in {} is {doubt}; check its unit",
-            record.path.display(),
-            readable_g(pga_g),
-            record.unit
-        );
+/// Warns on stderr when `record`'s PGA as read suggests a wrong unit:
+/// the command runs, but a record in m/s² read as g would shake every
+/// block ten times too hard without a word.
+fn unit_warning(flag: &str, record: &Record) {
+    if let Some(doubt) = record.unit_doubt() {
+        eprintln!("warning: {flag} {}: {doubt}", record.path.display());
     }
 }
 
@@ -131,7 +125,7 @@ pub(crate) fn motion(args: &MotionArgs<'_>, with_vertical_key: bool) -> Result<M
             let spec = args.reading.spec()?;
             let record = read_record(path, &spec).map_err(|e| input(e.context("--record")))?;
             let pga_g = record.series.peaks(1.0).pga_g;
-            unit_warning("--record", &record, pga_g);
+            unit_warning("--record", &record);
             let mut json = component_json(path, &record);
             json["kind"] = json!("record");
             if with_vertical_key {
@@ -147,7 +141,7 @@ pub(crate) fn motion(args: &MotionArgs<'_>, with_vertical_key: bool) -> Result<M
                         ..spec
                     };
                     let vertical = read_record(path_v, &spec_v).map_err(|e| input(e.context("--record-v")))?;
-                    unit_warning("--record-v", &vertical, vertical.series.peak_abs_g());
+                    unit_warning("--record-v", &vertical);
                     json["vertical"] = component_json(path_v, &vertical);
                     Drive::Paired {
                         horizontal: record,

@@ -238,6 +238,21 @@ impl Record {
     pub fn file_name(&self) -> String {
         record_file_name(&self.path.display().to_string())
     }
+
+    /// Why the record's PGA as read (before any scale) suggests a wrong
+    /// unit, if it does: `PGA 6.803 g as read in g is implausible for
+    /// ground motion (above 5 g); check its unit`. A study scales records
+    /// on purpose, so it is their PGA as read that tells a unit mistake.
+    pub fn unit_doubt(&self) -> Option<String> {
+        let pga = self.series.peak_abs_g();
+        Scenario::pga_doubt(pga).map(|doubt| {
+            format!(
+                "PGA {} g as read in {} is {doubt}; check its unit",
+                readable_g(pga),
+                self.unit
+            )
+        })
+    }
 }
 
 /// The file name in a record's path or `shipped:NAME` reference (the text
