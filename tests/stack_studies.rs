@@ -284,7 +284,7 @@ fn the_commands_and_flags_that_cannot_take_a_stack_refuse_it_in_one_line() {
         ),
         (
             [&suite[..], &tomb, &["--im", "pga-tan-alpha"]].concat(),
-            &["--im pga-tan-alpha", "use pga, pgv or sa"],
+            &["--im: a [[stack]] has no one slenderness", "use pga, pgv or sa"],
         ),
         // A block scene without --block.
         (suite.to_vec(), &["--block: give at least one block"]),

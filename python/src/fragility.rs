@@ -132,6 +132,21 @@ fn suite(
     Ok(out)
 }
 
+/// The blocks of a fragility study of `scene` under `im`: those given
+/// (width, height in m), or, with none (`None`), a stack scene's own
+/// bounding block; refused as the CLI refuses them.
+#[pyfunction]
+#[pyo3(signature = (scene, blocks, im="pga"))]
+pub fn _fragility_blocks(scene: &Scene, blocks: Option<Vec<(f64, f64)>>, im: &str) -> PyResult<Vec<(f64, f64)>> {
+    let given = blocks
+        .unwrap_or_default()
+        .into_iter()
+        .map(|(width_m, height_m)| BlockSize { width_m, height_m })
+        .collect();
+    let blocks = request::fragility_blocks(scene.scenario(), given, intensity(im)?).map_err(refused)?;
+    Ok(blocks.iter().map(|b| (b.width_m, b.height_m)).collect())
+}
+
 /// The runs `indices` (default all) of a fragility study of `blocks`
 /// (width, height in m) under `records` ((path, unit or None)) scaled to
 /// `levels` of `im` ("pga" in g, "pgv" in m/s), on the scene's friction,
@@ -176,6 +191,12 @@ fn fragility_runs<'py>(
     let base = scene.scenario();
     let im = intensity(im)?;
     request::levels_and_blocks(&levels, blocks.len()).map_err(refused)?;
+    // A stack refuses the rocking measures (it has no one α).
+    let given = blocks
+        .iter()
+        .map(|&(width_m, height_m)| BlockSize { width_m, height_m })
+        .collect();
+    request::fragility_blocks(base, given, im).map_err(refused)?;
     // As the CLI: a value given twice would count its runs twice and
     // narrow the fits' bands without a word.
     for (j, v) in levels.iter().enumerate() {

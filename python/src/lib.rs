@@ -45,6 +45,7 @@ fn _rocking(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(study::_sweep, m)?)?;
     m.add_function(wrap_pyfunction!(map::_outcome_map, m)?)?;
     m.add_function(wrap_pyfunction!(map::_outcome_cells, m)?)?;
+    m.add_function(wrap_pyfunction!(fragility::_fragility_blocks, m)?)?;
     m.add_function(wrap_pyfunction!(fragility::_fragility_runs, m)?)?;
     m.add_function(wrap_pyfunction!(fragility::_fragility_fits, m)?)?;
     m.add_function(wrap_pyfunction!(spectrum::_spectrum, m)?)?;

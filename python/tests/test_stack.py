@@ -74,3 +74,19 @@ def test_sweeps_and_maps_refuse_a_stack_for_what_it_is() -> None:
         rocking.sweep(scene, "excitation.a_h", 0.1, 0.3, 0.1)
     with pytest.raises(rocking.ConfigError, match="sweeps, maps and Lyapunov exponents"):
         rocking.outcome_map(scene, ("excitation.a_h", 0.1, 0.3, 3), ("excitation.omega_h", 1, 2, 3))
+
+
+def test_a_stack_fragility_runs_the_stack_as_given_without_blocks(cli, tmp_path: Path) -> None:
+    cli.ok(
+        "fragility", "--preset", "tombstone", "--records", str(KOBE), "--unit", "m/s2",
+        "--levels", "0.3,0.6,0.9", "--out", str(tmp_path / "f"), "-q",
+    )
+    rows = read_csv(tmp_path / "f" / "runs.csv")
+    f = rocking.fragility([(KOBE, "m/s2")], [0.3, 0.6, 0.9], base=rocking.Scene("tombstone"), progress=False)
+    assert f.blocks == [(0.75, 1.35)]
+    assert list(f.runs["end"]) == [r["end"] for r in rows] == ["rest", "overturned", "overturned"]
+    assert np.array_equal(f.runs["peak_theta_over_alpha"], floats(rows, "peak_theta_over_alpha"))
+    with pytest.raises(rocking.ConfigError, match="im: a \\[\\[stack\\]\\] has no one slenderness"):
+        rocking.fragility([(KOBE, "m/s2")], [0.5], base=rocking.Scene("tombstone"), im="pga-tan-alpha", progress=False)
+    with pytest.raises(rocking.ConfigError, match="blocks: give at least one block"):
+        rocking.fragility([(KOBE, "m/s2")], [0.5], progress=False)

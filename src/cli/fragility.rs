@@ -37,7 +37,6 @@ use crate::analysis::engineering::fragility::{
 };
 use crate::analysis::engineering::lognormal::{FitError, LognormalFit};
 use crate::analysis::engineering::request;
-use crate::analysis::engineering::stack_response::stack_size;
 use crate::analysis::engineering::{BlockSize, Drive, EndState};
 use crate::analysis::orbit_diagram::Shard;
 use crate::io::config::to_json;
@@ -242,7 +241,7 @@ pub fn run(args: &FragilityArgs) -> Result<(), BatchError> {
     };
     let sa_period = request::sa_period(im, args.sa_period).map_err(flagged)?;
     let levels = positive_list("--levels", &args.levels)?;
-    let mut blocks: Vec<BlockSize> = args
+    let blocks: Vec<BlockSize> = args
         .blocks
         .iter()
         .map(|b| {
@@ -252,27 +251,7 @@ pub fn run(args: &FragilityArgs) -> Result<(), BatchError> {
             })
         })
         .collect::<Result<_, _>>()?;
-    match &base.stack {
-        // A stack's own size unless sizes are given.
-        Some(stack) if blocks.is_empty() => blocks.push(stack_size(stack)),
-        Some(_) => {}
-        None if blocks.is_empty() => {
-            return Err(input(anyhow!(
-                "--block: give at least one block WIDTHxHEIGHT in metres (e.g. --block 0.6x2.0), or a [[stack]] scene"
-            )));
-        }
-        None => {}
-    }
-    if base.stack.is_some() && im.per_block() {
-        let name = if im == Intensity::PgaTanAlpha {
-            "pga-tan-alpha"
-        } else {
-            "pgv-p-tan-alpha"
-        };
-        return Err(input(anyhow!(
-            "--im {name}: a [[stack]] has no one slenderness α (each face lifts at its own acceleration); use pga, pgv or sa"
-        )));
-    }
+    let blocks = request::fragility_blocks(&base, blocks, im).map_err(flagged)?;
     // The same block twice would count its runs twice in every fraction.
     for (j, b) in blocks.iter().enumerate() {
         if let Some(i) = blocks[..j].iter().position(|a| a == b) {

@@ -324,7 +324,7 @@ def _records(records: Any) -> list[tuple[str, str | None, str | None, str | None
 def fragility(
     records: Any,
     levels: Any,
-    blocks: Any,
+    blocks: Any = None,
     *,
     base: Scene | None = None,
     im: str = "pga",
@@ -348,11 +348,13 @@ def fragility(
     and None (the default) applies them when every record names one, as
     `rocking fragility --vertical`. `base` gives friction, impact law, tolerances and the
     record tail (its block and excitation are replaced); default
-    `Scene.defaults()`, the CLI's base without --preset. `progress`: see
+    `Scene.defaults()`, the CLI's base without --preset; a `base` with a
+    `[[stack]]` runs the stack as given when `blocks` is None, or scaled
+    to each block of its own B/H. `progress`: see
     the module's help. Ctrl-C stops it between chunks of runs."""
     s = base if base is not None else Scene.defaults()
     levels = [float(v) for v in levels]
-    blocks = [(float(w), float(h)) for w, h in blocks]
+    blocks = _rocking._fragility_blocks(s, None if blocks is None else [(float(w), float(h)) for w, h in blocks], im)
     given = list(records)
     with _Reporter(progress, "fragility") as report:
         data = _rocking._fragility_runs(

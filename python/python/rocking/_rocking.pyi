@@ -112,6 +112,9 @@ def _outcome_cells(
     full: bool = False,
     coarse: int = 64,
 ) -> dict[str, Any]: ...
+def _fragility_blocks(
+    scene: Scene, blocks: list[tuple[float, float]] | None, im: str = "pga"
+) -> list[tuple[float, float]]: ...
 def _fragility_runs(
     scene: Scene,
     records: list[tuple[str, str | None]],

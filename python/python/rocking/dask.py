@@ -179,7 +179,7 @@ def fragility(
     client: Any,
     records: Any,
     levels: Any,
-    blocks: Any,
+    blocks: Any = None,
     *,
     base: Scene | None = None,
     im: str = "pga",
@@ -197,7 +197,7 @@ def fragility(
     given = list(records)
     s = base if base is not None else Scene.defaults()
     levels = [float(v) for v in levels]
-    blocks = [(float(w), float(h)) for w, h in blocks]
+    blocks = _rocking._fragility_blocks(s, None if blocks is None else [(float(w), float(h)) for w, h in blocks], im)
     args = (_records(given), levels, blocks)
     count = int(_rocking._fragility_runs(s, *args, im=im, sa_period=sa_period, vertical=vertical, check_only=True)["count"])
     n = chunks if chunks is not None else 4 * _worker_threads(client)

@@ -14,7 +14,7 @@ use std::f64::consts::TAU;
 
 use super::fragility::{Intensity, SA_DAMPING};
 use super::overturn_scale::ladder;
-use super::response::Drive;
+use super::response::{BlockSize, Drive};
 use super::rocking_spectrum::{MAX_BLOCKS, OverturnOptions, SizeAxis, SizeRange, SizeRangeError};
 use super::stack_response::stack_size;
 use crate::analysis::field::{FieldNames, OwnNames, RequestField, show};
@@ -77,6 +77,11 @@ pub enum RequestError {
     Ratio(f64),
     /// No slenderness ratio.
     NoRatio,
+    /// No block for a fragility study of a block scene.
+    NoBlock,
+    /// A rocking intensity measure (PGA/(g tan α), PGV·p/(g tan α)) for a
+    /// stack, which has no one α.
+    StackIntensity,
     /// Slenderness ratios for a stack, which keeps its own.
     StackRatio {
         /// The stack's B/H: its bottom width over its total height.
@@ -204,6 +209,14 @@ impl RequestError {
                 valued(RequestField::BOverH, *r)
             ),
             RequestError::NoRatio => format!("{}: give at least one ratio", name(RequestField::BOverH)),
+            RequestError::NoBlock => format!(
+                "{}: give at least one block (its width and height in metres), or a [[stack]] scene",
+                name(RequestField::Blocks)
+            ),
+            RequestError::StackIntensity => format!(
+                "{}: a [[stack]] has no one slenderness α (each face lifts at its own acceleration); use pga, pgv or sa",
+                name(RequestField::Im)
+            ),
             RequestError::StackRatio { own, blocks } => format!(
                 "{}: a [[stack]] is scaled as a whole and keeps its own shape (B/H = {own:.4} of its {blocks} blocks: bottom width over total height); leave it out",
                 name(RequestField::BOverH)
@@ -302,6 +315,19 @@ pub fn levels_and_blocks(levels: &[f64], blocks: usize) -> Result<(), RequestErr
         return Err(RequestError::NoLevelsOrBlocks);
     }
     Ok(())
+}
+
+/// The blocks of a fragility study of `base` under `im`: those `given`;
+/// for a stack, its own bounding block when none is given. A stack has no
+/// one slenderness, so the rocking intensity measures are refused for it.
+pub fn fragility_blocks(base: &Scenario, given: Vec<BlockSize>, im: Intensity) -> Result<Vec<BlockSize>, RequestError> {
+    match &base.stack {
+        None if given.is_empty() => Err(RequestError::NoBlock),
+        None => Ok(given),
+        Some(_) if im.per_block() => Err(RequestError::StackIntensity),
+        Some(blocks) if given.is_empty() => Ok(vec![stack_size(blocks)]),
+        Some(_) => Ok(given),
+    }
 }
 
 /// The θ/α whose exceedance is counted, finite and > 0.
