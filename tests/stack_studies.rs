@@ -200,8 +200,11 @@ fn a_glued_stack_of_one_width_has_the_single_blocks_fragility() {
             .unwrap())
     };
     let (s, b) = (d.join("s"), d.join("b"));
-    // The stack at its own size (no --block), the block named.
+    // The stack at its own size (no --block), the block named; the
+    // figure names the stack.
     run(&stack_toml, &[], &s);
+    let svg = std::fs::read_to_string(s.join("fragility.svg")).unwrap();
+    assert!(svg.contains("3-block stack 0.4 × 1.5 m"), "the figure names the stack");
     run(&block_toml, &["--block", "0.4x1.5"], &b);
     let (rs, rb) = (s.join("runs.csv"), b.join("runs.csv"));
     let ends = column(&rs, "end");

@@ -142,6 +142,9 @@ struct Layout {
     sa_period: Option<f64>,
     /// Whether the records' vertical components ran.
     vertical: bool,
+    /// A stack's number of blocks (its sizes are its bounding block's);
+    /// `None` for a block.
+    stack: Option<usize>,
 }
 
 impl Layout {
@@ -157,6 +160,16 @@ impl Layout {
 }
 
 impl Layout {
+    /// What block `block` is called in the answer and the figure:
+    /// `0.6 × 2 m`, or `3-block stack 0.75 × 1.35 m`.
+    fn block_name(&self, block: &BlockSize) -> String {
+        let size = format!("{} × {} m", num(block.width_m), num(block.height_m));
+        match self.stack {
+            Some(k) => format!("{k}-block stack {size}"),
+            None => size,
+        }
+    }
+
     fn runs(&self) -> usize {
         self.blocks.len() * self.levels.len() * self.records
     }
@@ -422,6 +435,7 @@ pub fn run(args: &FragilityArgs) -> Result<(), BatchError> {
         records: records.len(),
         threshold: args.threshold,
         friction: friction_text(&base),
+        stack: base.stack.as_ref().map(Vec::len),
         overturn_at: base.run.tumble_theta,
         sa_period,
         vertical: vertical == VerticalArg::Record,
@@ -608,7 +622,7 @@ fn write_whole(
                 fit_exceeded_hi: exceed.map(|p| Num(p.hi)),
             });
         }
-        let name = format!("{} × {} m", num(block.width_m), num(block.height_m));
+        let name = layout.block_name(block);
         fits_json.push(json!({
             "block": b,
             "width_m": block.width_m,
@@ -729,7 +743,7 @@ fn incremental(
             curves.push(IncrementalCurve { label, points });
         }
         panels.push(IncrementalPanel {
-            caption: format!("{} × {} m", num(block.width_m), num(block.height_m)),
+            caption: layout.block_name(block),
             curves,
         });
     }
@@ -833,6 +847,7 @@ fn layout_of(common: &Json, path: &Path) -> anyhow::Result<Layout> {
         .ok_or_else(|| anyhow!("{}: config has no run.tumble_theta", path.display()))?;
     let sa_period = common.get("sa_period_s").and_then(Json::as_f64);
     let vertical = common.get("vertical").and_then(Json::as_str) == Some("record");
+    let stack = field("config")?.get("stack").and_then(Json::as_array).map(Vec::len);
     let layout = Layout {
         im,
         levels,
@@ -843,6 +858,7 @@ fn layout_of(common: &Json, path: &Path) -> anyhow::Result<Layout> {
         overturn_at,
         sa_period,
         vertical,
+        stack,
     };
     if field("runs")?.as_u64() != Some(layout.runs() as u64) {
         bail!("{}: runs disagrees with blocks × levels × records", path.display());
