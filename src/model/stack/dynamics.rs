@@ -66,6 +66,7 @@ pub(crate) fn is_open(geo: &StackGeometry, contacts: &[Contact; MAX_BLOCKS], i: 
 
 /// Solves the symmetric positive definite `a x = b` of size `n` in place
 /// (Cholesky; n ≤ [`MAX_BLOCKS`]).
+#[inline(always)]
 fn solve_spd(a: &mut [[f64; MAX_BLOCKS]; MAX_BLOCKS], b: &mut [f64; MAX_BLOCKS], n: usize) {
     // One or two open faces (most of a two- or three-block stack's time):
     // the closed forms, which cost a tenth of the general loop.
@@ -139,7 +140,7 @@ fn partial(pose: &Pose, f: usize, j: usize) -> V2 {
 
 /// The mass matrix of the open coordinates `free[..n]` (lower triangle
 /// and diagonal filled, mirrored).
-#[inline]
+#[inline(always)]
 fn mass_matrix(geo: &StackGeometry, pose: &Pose, free: &[usize; MAX_BLOCKS], n: usize) -> [[f64; MAX_BLOCKS]; MAX_BLOCKS] {
     let mut m = [[0.0; MAX_BLOCKS]; MAX_BLOCKS];
     for a in 0..n {
@@ -157,7 +158,7 @@ fn mass_matrix(geo: &StackGeometry, pose: &Pose, free: &[usize; MAX_BLOCKS], n: 
 }
 
 /// κ_j: each block's centre's acceleration at q'' = 0.
-#[inline]
+#[inline(always)]
 fn centripetal(geo: &StackGeometry, pose: &Pose) -> [V2; MAX_BLOCKS] {
     let mut kappa = [[0.0; 2]; MAX_BLOCKS];
     for (j, kj) in kappa.iter_mut().enumerate().take(geo.k) {
@@ -175,7 +176,7 @@ fn centripetal(geo: &StackGeometry, pose: &Pose) -> [V2; MAX_BLOCKS] {
 
 /// The open coordinates' accelerations, solved from M q'' = b, in the
 /// open set's order (`free[..n]`), with κ.
-#[inline]
+#[inline(always)]
 fn solve_open(
     geo: &StackGeometry,
     pose: &Pose,
