@@ -120,7 +120,7 @@ fn solve_spd(a: &mut [[f64; MAX_BLOCKS]; MAX_BLOCKS], b: &mut [f64; MAX_BLOCKS],
 fn open_set(geo: &StackGeometry, contacts: &[Contact; MAX_BLOCKS]) -> ([usize; MAX_BLOCKS], usize) {
     let mut free = [0; MAX_BLOCKS];
     let mut n = 0;
-    for i in 0..geo.k {
+    for i in 0..geo.blocks() {
         if is_open(geo, contacts, i) {
             free[n] = i;
             n += 1;
@@ -147,7 +147,7 @@ fn mass_matrix(geo: &StackGeometry, pose: &Pose, free: &[usize; MAX_BLOCKS], n: 
         for b in 0..=a {
             let lo = free[a].max(free[b]);
             let mut s = 0.0;
-            for j in lo..geo.k {
+            for j in lo..geo.blocks() {
                 s += geo.mass[j] * dot(partial(pose, free[a], j), partial(pose, free[b], j)) + geo.inertia[j];
             }
             m[a][b] = s;
@@ -161,7 +161,7 @@ fn mass_matrix(geo: &StackGeometry, pose: &Pose, free: &[usize; MAX_BLOCKS], n: 
 #[inline(always)]
 fn centripetal(geo: &StackGeometry, pose: &Pose) -> [V2; MAX_BLOCKS] {
     let mut kappa = [[0.0; 2]; MAX_BLOCKS];
-    for (j, kj) in kappa.iter_mut().enumerate().take(geo.k) {
+    for (j, kj) in kappa.iter_mut().enumerate().take(geo.blocks()) {
         for i in 0..=j {
             let qd = pose.q_dot[i];
             if qd != 0.0 {
@@ -189,7 +189,7 @@ fn solve_open(
     let mut b = [0.0; MAX_BLOCKS];
     for a in 0..n {
         let mut s = 0.0;
-        for j in free[a]..geo.k {
+        for j in free[a]..geo.blocks() {
             s -= geo.mass[j] * dot(partial(pose, free[a], j), sub(kappa[j], g_e));
         }
         b[a] = s;
@@ -218,7 +218,7 @@ pub fn rotation_rates(geo: &StackGeometry, contacts: &[Contact; MAX_BLOCKS], pos
 /// The accelerations of `pose` with contacts `contacts` under the
 /// effective gravity `g_e` (m per τ², base frame).
 pub fn accelerations(geo: &StackGeometry, contacts: &[Contact; MAX_BLOCKS], pose: &Pose, g_e: V2) -> StackAccel {
-    let k = geo.k;
+    let k = geo.blocks();
     let kappa = centripetal(geo, pose);
     let (free, n) = open_set(geo, contacts);
     let mut q_ddot = [0.0; MAX_BLOCKS];
@@ -275,7 +275,7 @@ pub fn interface_load(
     };
     let mut force = [0.0; 2];
     let (mut about_left, mut about_right) = (0.0, 0.0);
-    for j in i..geo.k {
+    for j in i..geo.blocks() {
         let f = [
             geo.mass[j] * (acc.centre_acc[j][0] - g_e[0]),
             geo.mass[j] * (acc.centre_acc[j][1] - g_e[1]),

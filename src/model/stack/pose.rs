@@ -78,7 +78,7 @@ impl Pose {
     /// they are (a pose of the same stack keeps them 0). The vector field
     /// refills one pose rather than building and copying a new one.
     pub fn fill(&mut self, geo: &StackGeometry, contacts: &[Contact; MAX_BLOCKS], y: &[f64; NS]) {
-        let k = geo.k;
+        let k = geo.blocks();
         self.k = k;
         let (mut phi, mut omega) = (0.0, 0.0);
         for j in 0..k {
