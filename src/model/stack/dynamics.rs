@@ -141,7 +141,12 @@ fn partial(pose: &Pose, f: usize, j: usize) -> V2 {
 /// The mass matrix of the open coordinates `free[..n]` (lower triangle
 /// and diagonal filled, mirrored).
 #[inline(always)]
-fn mass_matrix(geo: &StackGeometry, pose: &Pose, free: &[usize; MAX_BLOCKS], n: usize) -> [[f64; MAX_BLOCKS]; MAX_BLOCKS] {
+fn mass_matrix(
+    geo: &StackGeometry,
+    pose: &Pose,
+    free: &[usize; MAX_BLOCKS],
+    n: usize,
+) -> [[f64; MAX_BLOCKS]; MAX_BLOCKS] {
     let mut m = [[0.0; MAX_BLOCKS]; MAX_BLOCKS];
     for a in 0..n {
         for b in 0..=a {
@@ -201,7 +206,12 @@ fn solve_open(
 /// Each interface's q_i'' (0 when closed or glued), rad per τ²: the part
 /// of [`accelerations`] that the vector field needs, the same numbers bit
 /// for bit without the blocks' accelerations.
-pub fn rotation_rates(geo: &StackGeometry, contacts: &[Contact; MAX_BLOCKS], pose: &Pose, g_e: V2) -> [f64; MAX_BLOCKS] {
+pub fn rotation_rates(
+    geo: &StackGeometry,
+    contacts: &[Contact; MAX_BLOCKS],
+    pose: &Pose,
+    g_e: V2,
+) -> [f64; MAX_BLOCKS] {
     let mut q_ddot = [0.0; MAX_BLOCKS];
     let (free, n) = open_set(geo, contacts);
     if n == 0 {

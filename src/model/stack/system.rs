@@ -565,7 +565,7 @@ impl HybridSystem<NS> for StackSystem {
         }
         let mut slot = self.scratch.borrow_mut();
         // The rates alone: the blocks' accelerations are for the guards.
-        let pose = self.pose_in(&mode.contacts, y, &mut *slot);
+        let pose = self.pose_in(&mode.contacts, y, &mut slot);
         let q_ddot = dynamics::rotation_rates(&self.geo, &mode.contacts, pose, self.gravity(t));
         let k = self.geo.k;
         dy[..k].copy_from_slice(&y[MAX_BLOCKS..MAX_BLOCKS + k]);
@@ -588,7 +588,7 @@ impl HybridSystem<NS> for StackSystem {
         }
         let k = self.geo.k;
         let mut slot = self.scratch.borrow_mut();
-        let s = self.snapshot(&mode.contacts, t, y, &mut *slot);
+        let s = self.snapshot(&mode.contacts, t, y, &mut slot);
         for i in 0..k {
             g[i] = if self.geo.glued[i] {
                 1.0
