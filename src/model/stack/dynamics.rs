@@ -66,6 +66,7 @@ pub(crate) fn is_open(geo: &StackGeometry, contacts: &[Contact; MAX_BLOCKS], i: 
 
 /// Solves the symmetric positive definite `a x = b` of size `n` in place
 /// (Cholesky; n ≤ [`MAX_BLOCKS`]).
+#[inline(always)]
 fn solve_spd(a: &mut [[f64; MAX_BLOCKS]; MAX_BLOCKS], b: &mut [f64; MAX_BLOCKS], n: usize) {
     // One or two open faces (most of a two- or three-block stack's time):
     // the closed forms, which cost a tenth of the general loop.
@@ -115,10 +116,11 @@ fn solve_spd(a: &mut [[f64; MAX_BLOCKS]; MAX_BLOCKS], b: &mut [f64; MAX_BLOCKS],
 }
 
 /// The open interfaces of `contacts`, bottom to top, and their count.
+#[inline]
 fn open_set(geo: &StackGeometry, contacts: &[Contact; MAX_BLOCKS]) -> ([usize; MAX_BLOCKS], usize) {
     let mut free = [0; MAX_BLOCKS];
     let mut n = 0;
-    for i in 0..geo.k {
+    for i in 0..geo.blocks() {
         if is_open(geo, contacts, i) {
             free[n] = i;
             n += 1;
@@ -127,25 +129,22 @@ fn open_set(geo: &StackGeometry, contacts: &[Contact; MAX_BLOCKS]) -> ([usize; M
     (free, n)
 }
 
-/// The partial velocities v_jf = J(c_j − P_f) of the open coordinates
-/// `free[..n]` (zero below the interface), indexed `[a][j]`.
-fn partials(geo: &StackGeometry, pose: &Pose, free: &[usize], n: usize) -> [[V2; MAX_BLOCKS]; MAX_BLOCKS] {
-    let mut v = [[[0.0; 2]; MAX_BLOCKS]; MAX_BLOCKS];
-    for (a, va) in v.iter_mut().enumerate().take(n) {
-        let p = pose.pivot[free[a]];
-        for j in free[a]..geo.k {
-            va[j] = quarter(sub(pose.centre[j], p));
-        }
-    }
-    v
+/// The partial velocity v_jf = J(c_j − P_f) of block j's centre for the
+/// open coordinate of interface `f` (j ≥ f). Recomputed where it is used
+/// rather than tabulated: two subtractions cost less than filling and
+/// copying a K × K table of vectors at every evaluation.
+#[inline]
+fn partial(pose: &Pose, f: usize, j: usize) -> V2 {
+    quarter(sub(pose.centre[j], pose.pivot[f]))
 }
 
-/// The mass matrix of the open coordinates `free[..n]`, from their
-/// partial velocities `v`.
+/// The mass matrix of the open coordinates `free[..n]` (lower triangle
+/// and diagonal filled, mirrored).
+#[inline(always)]
 fn mass_matrix(
     geo: &StackGeometry,
-    v: &[[V2; MAX_BLOCKS]; MAX_BLOCKS],
-    free: &[usize],
+    pose: &Pose,
+    free: &[usize; MAX_BLOCKS],
     n: usize,
 ) -> [[f64; MAX_BLOCKS]; MAX_BLOCKS] {
     let mut m = [[0.0; MAX_BLOCKS]; MAX_BLOCKS];
@@ -153,8 +152,8 @@ fn mass_matrix(
         for b in 0..=a {
             let lo = free[a].max(free[b]);
             let mut s = 0.0;
-            for j in lo..geo.k {
-                s += geo.mass[j] * dot(v[a][j], v[b][j]) + geo.inertia[j];
+            for j in lo..geo.blocks() {
+                s += geo.mass[j] * dot(partial(pose, free[a], j), partial(pose, free[b], j)) + geo.inertia[j];
             }
             m[a][b] = s;
             m[b][a] = s;
@@ -163,13 +162,11 @@ fn mass_matrix(
     m
 }
 
-/// The accelerations of `pose` with contacts `contacts` under the
-/// effective gravity `g_e` (m per τ², base frame).
-pub fn accelerations(geo: &StackGeometry, contacts: &[Contact; MAX_BLOCKS], pose: &Pose, g_e: V2) -> StackAccel {
-    let k = geo.k;
-    // κ_j: the centre's acceleration at q'' = 0.
+/// κ_j: each block's centre's acceleration at q'' = 0.
+#[inline(always)]
+fn centripetal(geo: &StackGeometry, pose: &Pose) -> [V2; MAX_BLOCKS] {
     let mut kappa = [[0.0; 2]; MAX_BLOCKS];
-    for (j, kj) in kappa.iter_mut().enumerate().take(k) {
+    for (j, kj) in kappa.iter_mut().enumerate().take(geo.blocks()) {
         for i in 0..=j {
             let qd = pose.q_dot[i];
             if qd != 0.0 {
@@ -179,6 +176,60 @@ pub fn accelerations(geo: &StackGeometry, contacts: &[Contact; MAX_BLOCKS], pose
             }
         }
     }
+    kappa
+}
+
+/// The open coordinates' accelerations, solved from M q'' = b, in the
+/// open set's order (`free[..n]`), with κ.
+#[inline(always)]
+fn solve_open(
+    geo: &StackGeometry,
+    pose: &Pose,
+    free: &[usize; MAX_BLOCKS],
+    n: usize,
+    kappa: &[V2; MAX_BLOCKS],
+    g_e: V2,
+) -> [f64; MAX_BLOCKS] {
+    let mut m = mass_matrix(geo, pose, free, n);
+    let mut b = [0.0; MAX_BLOCKS];
+    for a in 0..n {
+        let mut s = 0.0;
+        for j in free[a]..geo.blocks() {
+            s -= geo.mass[j] * dot(partial(pose, free[a], j), sub(kappa[j], g_e));
+        }
+        b[a] = s;
+    }
+    solve_spd(&mut m, &mut b, n);
+    b
+}
+
+/// Each interface's q_i'' (0 when closed or glued), rad per τ²: the part
+/// of [`accelerations`] that the vector field needs, the same numbers bit
+/// for bit without the blocks' accelerations.
+pub fn rotation_rates(
+    geo: &StackGeometry,
+    contacts: &[Contact; MAX_BLOCKS],
+    pose: &Pose,
+    g_e: V2,
+) -> [f64; MAX_BLOCKS] {
+    let mut q_ddot = [0.0; MAX_BLOCKS];
+    let (free, n) = open_set(geo, contacts);
+    if n == 0 {
+        return q_ddot;
+    }
+    let kappa = centripetal(geo, pose);
+    let b = solve_open(geo, pose, &free, n, &kappa, g_e);
+    for a in 0..n {
+        q_ddot[free[a]] = b[a];
+    }
+    q_ddot
+}
+
+/// The accelerations of `pose` with contacts `contacts` under the
+/// effective gravity `g_e` (m per τ², base frame).
+pub fn accelerations(geo: &StackGeometry, contacts: &[Contact; MAX_BLOCKS], pose: &Pose, g_e: V2) -> StackAccel {
+    let k = geo.blocks();
+    let kappa = centripetal(geo, pose);
     let (free, n) = open_set(geo, contacts);
     let mut q_ddot = [0.0; MAX_BLOCKS];
     let mut centre_acc = kappa;
@@ -191,22 +242,13 @@ pub fn accelerations(geo: &StackGeometry, contacts: &[Contact; MAX_BLOCKS], pose
             alpha,
         };
     }
-    let v = partials(geo, pose, &free, n);
-    let mut m = mass_matrix(geo, &v, &free, n);
-    let mut b = [0.0; MAX_BLOCKS];
-    for a in 0..n {
-        let mut s = 0.0;
-        for j in free[a]..k {
-            s -= geo.mass[j] * dot(v[a][j], sub(kappa[j], g_e));
-        }
-        b[a] = s;
-    }
-    solve_spd(&mut m, &mut b, n);
+    let b = solve_open(geo, pose, &free, n, &kappa, g_e);
     for a in 0..n {
         q_ddot[free[a]] = b[a];
         for j in free[a]..k {
-            centre_acc[j][0] += b[a] * v[a][j][0];
-            centre_acc[j][1] += b[a] * v[a][j][1];
+            let v = partial(pose, free[a], j);
+            centre_acc[j][0] += b[a] * v[0];
+            centre_acc[j][1] += b[a] * v[1];
         }
     }
     let mut turn = 0.0;
@@ -243,7 +285,7 @@ pub fn interface_load(
     };
     let mut force = [0.0; 2];
     let (mut about_left, mut about_right) = (0.0, 0.0);
-    for j in i..geo.k {
+    for j in i..geo.blocks() {
         let f = [
             geo.mass[j] * (acc.centre_acc[j][0] - g_e[0]),
             geo.mass[j] * (acc.centre_acc[j][1] - g_e[1]),
@@ -272,13 +314,12 @@ pub fn interface_load(
 /// positions with `after`'s pivots.
 pub fn impact_rates(geo: &StackGeometry, after: &[Contact; MAX_BLOCKS], before: &Pose, at: &Pose) -> [f64; MAX_BLOCKS] {
     let (free, n) = open_set(geo, after);
-    let v = partials(geo, at, &free, n);
-    let mut m = mass_matrix(geo, &v, &free, n);
+    let mut m = mass_matrix(geo, at, &free, n);
     let mut b = [0.0; MAX_BLOCKS];
     for a in 0..n {
         let mut s = 0.0;
         for j in free[a]..geo.k {
-            s += geo.mass[j] * dot(v[a][j], before.centre_vel[j]) + geo.inertia[j] * before.omega[j];
+            s += geo.mass[j] * dot(partial(at, free[a], j), before.centre_vel[j]) + geo.inertia[j] * before.omega[j];
         }
         b[a] = s;
     }

@@ -92,6 +92,14 @@ impl StackGeometry {
         Ok(geo)
     }
 
+    /// K, as a bound the compiler can see (K ≤ [`MAX_BLOCKS`] by
+    /// construction): loops to it index the per-block arrays without
+    /// bounds checks, which the vector field runs at every evaluation.
+    #[inline(always)]
+    pub(crate) fn blocks(&self) -> usize {
+        self.k.min(MAX_BLOCKS)
+    }
+
     /// The mass of blocks `i..K` (what interface `i` carries).
     pub fn mass_above(&self, i: usize) -> f64 {
         self.mass[i..self.k].iter().sum()

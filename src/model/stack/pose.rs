@@ -57,9 +57,8 @@ pub struct Pose {
 impl Pose {
     /// The pose of state `y` with contacts `contacts`.
     pub fn new(geo: &StackGeometry, contacts: &[Contact; MAX_BLOCKS], y: &[f64; NS]) -> Pose {
-        let k = geo.k;
         let mut pose = Pose {
-            k,
+            k: geo.k,
             phi: [0.0; MAX_BLOCKS],
             omega: [0.0; MAX_BLOCKS],
             cs: [[1.0, 0.0]; MAX_BLOCKS],
@@ -70,37 +69,47 @@ impl Pose {
             pivot_vel: [[0.0; 2]; MAX_BLOCKS],
             q_dot: [0.0; MAX_BLOCKS],
         };
+        pose.fill(geo, contacts, y);
+        pose
+    }
+
+    /// Makes this the pose of state `y` with contacts `contacts`, in place:
+    /// the first K entries of each array are written, the rest left as
+    /// they are (a pose of the same stack keeps them 0). The vector field
+    /// refills one pose rather than building and copying a new one.
+    pub fn fill(&mut self, geo: &StackGeometry, contacts: &[Contact; MAX_BLOCKS], y: &[f64; NS]) {
+        let k = geo.blocks();
+        self.k = k;
         let (mut phi, mut omega) = (0.0, 0.0);
         for j in 0..k {
             phi += y[j];
             omega += y[MAX_BLOCKS + j];
-            pose.phi[j] = phi;
-            pose.omega[j] = omega;
-            pose.q_dot[j] = y[MAX_BLOCKS + j];
+            self.phi[j] = phi;
+            self.omega[j] = omega;
+            self.q_dot[j] = y[MAX_BLOCKS + j];
             // A closed face (q_j = 0) turns block j with the one below:
             // the same angle, so the same cosine and sine, bit for bit.
-            pose.cs[j] = if y[j] == 0.0 {
-                if j == 0 { [1.0, 0.0] } else { pose.cs[j - 1] }
+            self.cs[j] = if y[j] == 0.0 {
+                if j == 0 { [1.0, 0.0] } else { self.cs[j - 1] }
             } else {
                 [phi.cos(), phi.sin()]
             };
             let corner = geo.corners[j][usize::from(contacts[j] == Contact::Right)];
             // The pivot is a point of the block below (the base for j = 0).
-            let p = if j == 0 { corner } else { pose.place(j - 1, corner) };
-            pose.pivot[j] = p;
-            let turned = pose.turn(j, corner);
-            pose.origin[j] = sub(p, turned);
-            pose.centre[j] = pose.place(j, geo.centre[j]);
+            let p = if j == 0 { corner } else { self.place(j - 1, corner) };
+            self.pivot[j] = p;
+            let turned = self.turn(j, corner);
+            self.origin[j] = sub(p, turned);
+            self.centre[j] = self.place(j, geo.centre[j]);
         }
         for j in 0..k {
-            pose.pivot_vel[j] = if j == 0 {
+            self.pivot_vel[j] = if j == 0 {
                 [0.0; 2]
             } else {
-                pose.velocity(j - 1, pose.pivot[j])
+                self.velocity(j - 1, self.pivot[j])
             };
-            pose.centre_vel[j] = pose.velocity(j, pose.centre[j]);
+            self.centre_vel[j] = self.velocity(j, self.centre[j]);
         }
-        pose
     }
 
     /// Rot(φ_j) x.

@@ -13,7 +13,7 @@
 // Interfaces and blocks are numbered: indices name them.
 #![allow(clippy::needless_range_loop)]
 
-use std::cell::Cell;
+use std::cell::{Cell, RefCell};
 
 use super::dynamics::{self, InterfaceLoad, StackAccel, is_open};
 use super::pose::{Pose, V2};
@@ -182,11 +182,14 @@ pub struct StackSystem {
     last_forcing: Cell<(f64, Forcing)>,
     /// The pose at rest (every q and q' zero; the pivots do not matter).
     rest_pose: Pose,
+    /// The vector field's and the guards' pose, refilled in place at each
+    /// evaluation (neither calls the other while it holds it).
+    scratch: RefCell<Pose>,
 }
 
 /// Everything the guards of one state read.
-struct Snapshot {
-    pose: Pose,
+struct Snapshot<'a> {
+    pose: &'a Pose,
     acc: StackAccel,
     g_e: V2,
 }
@@ -196,6 +199,7 @@ impl StackSystem {
     pub fn new(geo: StackGeometry, excitation: Excitation, zeno_eps: f64) -> Self {
         StackSystem {
             rest_pose: Pose::new(&geo, &[Contact::Closed; MAX_BLOCKS], &[0.0; NS]),
+            scratch: RefCell::new(Pose::new(&geo, &[Contact::Closed; MAX_BLOCKS], &[0.0; NS])),
             g_unit: 4.0 * geo.r1 / 3.0,
             geo,
             excitation,
@@ -226,30 +230,50 @@ impl StackSystem {
         [-fo.a * self.g_unit, -(1.0 + fo.av) * self.g_unit]
     }
 
-    fn snapshot(&self, contacts: &[Contact; MAX_BLOCKS], t: f64, y: &[f64; NS]) -> Snapshot {
+    /// The pose of `y` with `contacts`: the one kept at rest, or `slot`
+    /// refilled (a pose of this stack). Borrowed, not returned: a pose is
+    /// 600 bytes, and building and copying one at every evaluation cost a
+    /// tenth of a stack's run.
+    #[inline]
+    fn pose_in<'a>(&'a self, contacts: &[Contact; MAX_BLOCKS], y: &[f64; NS], slot: &'a mut Pose) -> &'a Pose {
         // At rest (most of a record) the pose is the one at rest. Not for
         // an open face at q = 0: its pivot decides its partial velocities.
         let k = self.geo.k;
         let still = contacts[..k].iter().all(|&c| c == Contact::Closed)
             && y[..k].iter().chain(&y[MAX_BLOCKS..MAX_BLOCKS + k]).all(|&x| x == 0.0);
-        let pose = if still {
-            self.rest_pose
+        if still {
+            &self.rest_pose
         } else {
-            Pose::new(&self.geo, contacts, y)
-        };
+            slot.fill(&self.geo, contacts, y);
+            slot
+        }
+    }
+
+    /// The pose, accelerations and gravity at `(t, y)` with `contacts`
+    /// (the pose filled in `slot` unless it is the one at rest).
+    #[inline]
+    fn snapshot<'a>(
+        &'a self,
+        contacts: &[Contact; MAX_BLOCKS],
+        t: f64,
+        y: &[f64; NS],
+        slot: &'a mut Pose,
+    ) -> Snapshot<'a> {
+        let pose = self.pose_in(contacts, y, slot);
         let g_e = self.gravity(t);
-        let acc = dynamics::accelerations(&self.geo, contacts, &pose, g_e);
+        let acc = dynamics::accelerations(&self.geo, contacts, pose, g_e);
         Snapshot { pose, acc, g_e }
     }
 
     /// The load on interface `i` in `s`.
     fn load(&self, s: &Snapshot, i: usize) -> InterfaceLoad {
-        dynamics::interface_load(&self.geo, &s.pose, &s.acc, s.g_e, self.g_unit, i)
+        dynamics::interface_load(&self.geo, s.pose, &s.acc, s.g_e, self.g_unit, i)
     }
 
     /// The loads on every interface at `(t, y)` in `mode`.
     pub fn loads(&self, mode: &StackMode, t: f64, y: &[f64; NS]) -> [InterfaceLoad; MAX_BLOCKS] {
-        let s = self.snapshot(&mode.contacts, t, y);
+        let mut slot = self.rest_pose;
+        let s = self.snapshot(&mode.contacts, t, y, &mut slot);
         let mut out = [InterfaceLoad {
             normal: 0.0,
             tangential: 0.0,
@@ -306,7 +330,7 @@ impl StackSystem {
                 consider(Ending::Flight, load.normal);
                 consider(
                     Ending::Overturn,
-                    self.overturn_margin(&s.pose, mode.contacts[i], i) / self.geo.r1,
+                    self.overturn_margin(s.pose, mode.contacts[i], i) / self.geo.r1,
                 );
             }
             if finite_mu {
@@ -370,7 +394,8 @@ impl StackSystem {
         let tol_m = 1e-12 * self.geo.r1;
         let tol_acc = 1e-12 * self.g_unit / self.geo.r1;
         for _ in 0..(2 * k + 2) {
-            let s = self.snapshot(&contacts, t, y);
+            let mut slot = self.rest_pose;
+            let s = self.snapshot(&contacts, t, y, &mut slot);
             let mut changed = false;
             for i in 0..k {
                 if self.geo.glued[i] {
@@ -409,7 +434,8 @@ impl StackSystem {
 
     /// A face of interface `i` opened on the corner its resultant reached.
     fn uplift(&mut self, mode: StackMode, i: usize, t: f64, y: &[f64; NS]) -> Jump<StackMode, StackEvent, NS> {
-        let s = self.snapshot(&mode.contacts, t, y);
+        let mut slot = self.rest_pose;
+        let s = self.snapshot(&mode.contacts, t, y, &mut slot);
         let load = self.load(&s, i);
         let mut contacts = mode.contacts;
         contacts[i] = if load.right_margin() <= load.left_margin() {
@@ -537,17 +563,20 @@ impl HybridSystem<NS> for StackSystem {
         if mode.end.is_some() {
             return;
         }
-        let s = self.snapshot(&mode.contacts, t, y);
+        let mut slot = self.scratch.borrow_mut();
+        // The rates alone: the blocks' accelerations are for the guards.
+        let pose = self.pose_in(&mode.contacts, y, &mut slot);
+        let q_ddot = dynamics::rotation_rates(&self.geo, &mode.contacts, pose, self.gravity(t));
         let k = self.geo.k;
         dy[..k].copy_from_slice(&y[MAX_BLOCKS..MAX_BLOCKS + k]);
-        dy[MAX_BLOCKS..MAX_BLOCKS + k].copy_from_slice(&s.acc.q_ddot[..k]);
+        dy[MAX_BLOCKS..MAX_BLOCKS + k].copy_from_slice(&q_ddot[..k]);
         // The base's pseudo-forces (its acceleration, not gravity) on each
         // block's centre.
         let fo = self.forcing(t);
         let pseudo = [-fo.a * self.g_unit, -fo.av * self.g_unit];
         let mut power = 0.0;
         for j in 0..k {
-            let v = s.pose.centre_vel[j];
+            let v = pose.centre_vel[j];
             power += self.geo.mass[j] * (pseudo[0] * v[0] + pseudo[1] * v[1]);
         }
         dy[WORK_S] = power / self.energy_unit();
@@ -558,7 +587,8 @@ impl HybridSystem<NS> for StackSystem {
             return 0;
         }
         let k = self.geo.k;
-        let s = self.snapshot(&mode.contacts, t, y);
+        let mut slot = self.scratch.borrow_mut();
+        let s = self.snapshot(&mode.contacts, t, y, &mut slot);
         for i in 0..k {
             g[i] = if self.geo.glued[i] {
                 1.0
@@ -607,6 +637,25 @@ impl HybridSystem<NS> for StackSystem {
         }
     }
 
+    /// The leading components of `[q_1 … q_5, q_1' … q_5', W]` each
+    /// guard reads: an open face's impact guard its own q_i, an
+    /// observer the q and q' at and below its block or interface, the rest
+    /// every block's q and q' (not the padding beyond block K): the dense
+    /// output interpolates no more, one component instead of ten at each
+    /// of an impact's root iterations.
+    fn guard_reads(&self, mode: StackMode, index: usize) -> usize {
+        let k = self.geo.k;
+        if index < k && (self.geo.glued[index] || mode.contacts[index] != Contact::Closed) {
+            index + 1
+        } else if index > k && index <= 2 * k {
+            MAX_BLOCKS + index - k
+        } else if index > 2 * k {
+            MAX_BLOCKS + index - 2 * k
+        } else {
+            MAX_BLOCKS + k
+        }
+    }
+
     fn is_observer(&self, _mode: StackMode, index: usize) -> bool {
         index > self.geo.k
     }
@@ -631,7 +680,8 @@ impl HybridSystem<NS> for StackSystem {
                 self.impact(mode, index, t, y)
             });
         }
-        let s = self.snapshot(&mode.contacts, t, y);
+        let mut slot = self.rest_pose;
+        let s = self.snapshot(&mode.contacts, t, y, &mut slot);
         let (i, ending, _) = self.end_margin(&mode, &s);
         let (end, kind) = match ending {
             Ending::Slip => {
