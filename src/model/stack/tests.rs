@@ -105,12 +105,11 @@ fn world(geo: &StackGeometry, contacts: &[Contact], q: &[f64], qd: &[f64]) -> Wo
     }
 }
 
-/// The generic Newton–Euler solve of the stack in `contacts` at the given
-/// angles and rates, under effective gravity `g_e`.
-fn newton_euler(geo: &StackGeometry, contacts: &[Contact], q: &[f64], qd: &[f64], g_e: V2) -> Generic {
-    let k = geo.k;
-    let w = world(geo, contacts, q, qd);
-    // Unknown layout.
+/// The unknowns' layout of a generic solve of `k` blocks in `contacts`:
+/// each block's three accelerations (or impulses) first, then per
+/// interface its force's two components (`fcol[i]`) and, for a closed
+/// one, its couple (`ccol[i]`); and their count.
+fn unknowns(contacts: &[Contact], k: usize) -> (Vec<usize>, Vec<Option<usize>>, usize) {
     let mut col = 3 * k;
     let mut fcol = vec![0; k];
     let mut ccol = vec![None; k];
@@ -122,7 +121,15 @@ fn newton_euler(geo: &StackGeometry, contacts: &[Contact], q: &[f64], qd: &[f64]
             col += 1;
         }
     }
-    let n = col;
+    (fcol, ccol, col)
+}
+
+/// The generic Newton–Euler solve of the stack in `contacts` at the given
+/// angles and rates, under effective gravity `g_e`.
+fn newton_euler(geo: &StackGeometry, contacts: &[Contact], q: &[f64], qd: &[f64], g_e: V2) -> Generic {
+    let k = geo.k;
+    let w = world(geo, contacts, q, qd);
+    let (fcol, ccol, n) = unknowns(contacts, k);
     let mut a = vec![];
     let mut b = vec![];
     let row = || vec![0.0; n];
@@ -349,18 +356,7 @@ fn impulse(geo: &StackGeometry, before: &[Contact], after: &[Contact], q: &[f64]
         v
     };
     let w1 = world(geo, after, q, qd);
-    let mut col = 3 * k;
-    let mut fcol = vec![0; k];
-    let mut ccol = vec![None; k];
-    for i in 0..k {
-        fcol[i] = col;
-        col += 2;
-        if after[i] == Contact::Closed {
-            ccol[i] = Some(col);
-            col += 1;
-        }
-    }
-    let n = col;
+    let (fcol, ccol, n) = unknowns(after, k);
     let at = |i: usize| {
         if after[i] == Contact::Closed {
             w1.left[i]

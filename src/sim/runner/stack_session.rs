@@ -18,7 +18,7 @@
 
 use std::collections::VecDeque;
 
-use crate::integrate::hybrid::{Advance, Driver, Observer, Outputs};
+use crate::integrate::hybrid::{Advance, Driver, Limits, Observer, Outputs};
 use crate::integrate::{Dop853, Dopri5, Stepper};
 use crate::model::Mode;
 use crate::model::excitation::Excitation;
@@ -187,25 +187,23 @@ impl StackSession {
             sample_dt: Some(LIVE_SAMPLE_DT),
             section_period,
         };
-        let driver: Box<dyn StackDriver> = match opts.method {
-            Method::Dopri5 => Box::new(Driver::new(
-                Dopri5::new(opts.tol),
-                system,
-                mode0,
-                0.0,
-                y0,
-                opts.limits,
-                outputs,
-            )),
-            Method::Taylor | Method::Dop853 | Method::Ralston => Box::new(Driver::new(
-                Dop853::new(opts.tol),
-                system,
-                mode0,
-                0.0,
-                y0,
-                opts.limits,
-                outputs,
-            )),
+        // The batch run's steppers (`sim::stack_run`): DOPRI5's when asked,
+        // else DOP853's.
+        fn boxed<S: Stepper<NS> + Send + 'static>(
+            stepper: S,
+            system: StackSystem,
+            (mode0, y0): (StackMode, [f64; NS]),
+            limits: Limits,
+            outputs: Outputs,
+        ) -> Box<dyn StackDriver> {
+            Box::new(Driver::new(stepper, system, mode0, 0.0, y0, limits, outputs))
+        }
+        let start = (mode0, y0);
+        let driver = match opts.method {
+            Method::Dopri5 => boxed(Dopri5::new(opts.tol), system, start, opts.limits, outputs),
+            Method::Taylor | Method::Dop853 | Method::Ralston => {
+                boxed(Dop853::new(opts.tol), system, start, opts.limits, outputs)
+            }
         };
         let parts = section_period.map_or(1, |p| (p / MAX_CHUNK).ceil().max(1.0) as u64);
         let chunk = section_period.map_or(MAX_CHUNK, |p| p / parts as f64);
