@@ -52,8 +52,8 @@ fn early_stopping_never_changes_a_cells_class_across_every_class() {
     let mut seen = Vec::new();
     for (cfg, what, stops) in cases {
         let full = steady_response(&cfg, &w, &o, None).unwrap();
-        let unwatched = cell_response(&cfg, &w, &o, None, false).unwrap();
-        let fast = cell_response(&cfg, &w, &o, None, true).unwrap();
+        let unwatched = cell_response(&cfg, &w, &o, None, false, &[]).unwrap();
+        let fast = cell_response(&cfg, &w, &o, None, true, &[]).unwrap();
         assert_eq!(
             unwatched.response, full.response,
             "{what}: the unwatched run is the full run"
@@ -182,11 +182,12 @@ fn two_coexisting_attractors_get_different_labels() {
 
 #[test]
 fn the_map_is_the_same_for_any_thread_count() {
-    // A basin map with two attractors (every cell run: its basins are
-    // intertwined) and a parameter map that is refined.
+    // A basin map with two attractors and a parameter map, both refined.
     let base = preset("fig4", &["excitation.a_v=1"]);
-    let x = Axis::new("--x", "initial.theta", -0.3, 0.3, 6).unwrap();
-    let y = Axis::new("--y", "initial.theta_dot", -0.2, 0.4, 5).unwrap();
+    // 9 × 9 cells on a coarse lattice of stride 2: the second level's
+    // runs may stop on reaching the attractors the first level found.
+    let x = Axis::new("--x", "initial.theta", -0.3, 0.3, 9).unwrap();
+    let y = Axis::new("--y", "initial.theta_dot", -0.2, 0.4, 9).unwrap();
     let basin = basin_spec(&base, &x, &y);
     let fig3 = preset("fig3", &[]);
     let ah = Axis::new("--x", "excitation.a_h", 0.3, 1.1, 40).unwrap();
@@ -199,19 +200,98 @@ fn the_map_is_the_same_for_any_thread_count() {
         y: &om,
         ..basin
     };
-    let plan = MapPlan {
+    let plan = |coarse| MapPlan {
         early_stop: true,
-        coarse: Some(6),
+        coarse: Some(coarse),
     };
-    let on = |spec: &BlockMap<'_>, threads| {
+    // The parameter map's coarse lattice has stride 4, the basin's 2.
+    let on = |spec: &BlockMap<'_>, coarse, threads| {
         let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
-        pool.install(|| compute_map(spec, plan, &silent).unwrap())
+        pool.install(|| compute_map(spec, plan(coarse), &silent).unwrap())
     };
-    let (one, basin_one) = (on(&spec, 1), on(&basin, 1));
+    let (one, basin_one) = (on(&spec, 6, 1), on(&basin, 5, 1));
     assert!(one.computed < one.cells.len(), "the map was refined");
     assert!(basin_one.attractors.len() >= 2, "{:?}", basin_one.attractors);
+    assert!(basin_one.reached_known > 0, "some runs stopped on a known attractor");
     for threads in [2, 3] {
-        assert_eq!(on(&spec, threads), one, "{threads} threads");
-        assert_eq!(on(&basin, threads), basin_one, "{threads} threads");
+        assert_eq!(on(&spec, 6, threads), one, "{threads} threads");
+        assert_eq!(on(&basin, 5, threads), basin_one, "{threads} threads");
+    }
+}
+
+#[test]
+fn a_run_that_reaches_a_known_attractor_stops_with_its_full_runs_class() {
+    // fig4 at A_v = 1: a period-1 and a period-6 attractor coexist. Their
+    // cycles, as runs converged onto them to 1e-5 of their amplitude,
+    // are what a basin map knows after its first level.
+    let base = preset("fig4", &["excitation.a_v=1"]);
+    let (w, o) = (Window::default(), ClassifyOptions::default());
+    let at = |theta: f64, theta_dot: f64| {
+        Param::apply(&base, &[(Param::Theta0, theta), (Param::ThetaDot0, theta_dot)]).unwrap()
+    };
+    let axis = |n: usize, a: f64, b: f64| (0..n).map(move |i| a + (b - a) * i as f64 / (n - 1) as f64);
+    let starts: Vec<(f64, f64)> = axis(5, -0.3, 0.3)
+        .flat_map(|t| axis(4, -0.2, 0.4).map(move |d| (t, d)))
+        .collect();
+    let mut known: Vec<Vec<[f64; 3]>> = Vec::new();
+    for &(t, d) in &starts {
+        let c = cell_response(&at(t, d), &w, &o, None, true, &[]).unwrap();
+        if !c.cycle.is_empty() && !known.iter().any(|k| k.len() == c.cycle.len()) {
+            known.push(c.cycle);
+        }
+    }
+    let mut periods: Vec<usize> = known.iter().map(Vec::len).collect();
+    periods.sort();
+    assert_eq!(periods, vec![1, 6], "the two attractors");
+    // The same cells again, knowing both: each class is the full run's,
+    // and a run that stops on a known cycle has the full run's last cycle
+    // (at some phase) to the classifier's tolerance, 1e-3 of the
+    // amplitude (the known cycle was converged to 1e-5, the full run's
+    // window to better than that).
+    let (mut reached, mut saved) = (0, 0.0);
+    for &(t, d) in &starts {
+        let cfg = at(t, d);
+        let full = steady_response(&cfg, &w, &o, None).unwrap();
+        let alone = cell_response(&cfg, &w, &o, None, true, &[]).unwrap();
+        let knowing = cell_response(&cfg, &w, &o, None, true, &known).unwrap();
+        assert_eq!(knowing.response, full.response, "({t}, {d})");
+        if !knowing.reached_known {
+            assert_eq!(knowing, alone, "({t}, {d}): not reached, the same run");
+            continue;
+        }
+        reached += 1;
+        let (stop, before) = (knowing.stopped_at.unwrap(), alone.stopped_at.unwrap());
+        assert!(stop <= before, "({t}, {d}): stopped at {stop}, not before {before}");
+        saved += before - stop;
+        let k = knowing.cycle.len();
+        let last: Vec<[f64; 3]> = full.points[full.points.len() - k..]
+            .iter()
+            .map(|r| [r.theta, r.theta_dot, r.x_dot])
+            .collect();
+        let amp = (0..3)
+            .map(|d| last.iter().map(|p| p[d].abs()).fold(0.0, f64::max))
+            .collect::<Vec<_>>();
+        let agrees = (0..k).any(|s| {
+            (0..k).all(|i| (0..3).all(|d| (knowing.cycle[(i + s) % k][d] - last[i][d]).abs() <= 1e-3 * amp[d] + 1e-9))
+        });
+        assert!(agrees, "({t}, {d}): {:?} against {:?}", knowing.cycle, last);
+    }
+    assert!(reached >= starts.len() / 2, "{reached} of {} reached", starts.len());
+    assert!(saved > 10.0 * reached as f64, "saved {saved} τ over {reached} runs");
+    // A cycle nowhere near the trajectory (the period-1 point moved by a
+    // tenth of its amplitude) is never reached: the run is the one alone.
+    let far: Vec<Vec<[f64; 3]>> = vec![
+        known
+            .iter()
+            .find(|k| k.len() == 1)
+            .unwrap()
+            .iter()
+            .map(|p| p.map(|x| 1.1 * x))
+            .collect(),
+    ];
+    for &(t, d) in &starts[..6] {
+        let cfg = at(t, d);
+        let alone = cell_response(&cfg, &w, &o, None, true, &[]).unwrap();
+        assert_eq!(cell_response(&cfg, &w, &o, None, true, &far).unwrap(), alone);
     }
 }

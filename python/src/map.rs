@@ -166,9 +166,16 @@ fn check(
 
 /// Cell `index` of the map, as [`MapRun::compute`] computes it (which
 /// needs the whole run; a worker has only the map's specification).
-fn compute(checked: &Checked, spec: &BlockMap<'_>, index: usize) -> Result<CellResponse, String> {
+/// `known`: the attractors' cycles the driver's run had found when it
+/// handed out the cell's batch ([`MapRun::known`]).
+fn compute(
+    checked: &Checked,
+    spec: &BlockMap<'_>,
+    index: usize,
+    known: &[Vec<[f64; 3]>],
+) -> Result<CellResponse, String> {
     let (x, y) = checked.xy(index);
-    spec.cell(x, y, checked.plan.early_stop)
+    spec.cell(x, y, checked.plan.early_stop, known)
         .map_err(|e| checked.failure(index, &e))
 }
 
@@ -227,7 +234,7 @@ fn drive(run: &mut MapRun<'_>, checked: &Checked, cells: &Cells<'_>, progress: O
         }
         let batch = match cells {
             Cells::Local(workers) => local_batch(run, checked, workers, &todo, progress, &mut done, total)?,
-            Cells::Executor(f) => remote_batch(run.len(), f, &todo, progress, &mut done, total)?,
+            Cells::Executor(f) => remote_batch(run.len(), f, &todo, run.known(), progress, &mut done, total)?,
         };
         run.record(batch);
     }
@@ -263,14 +270,18 @@ fn local_batch(
     Ok(batch)
 }
 
-/// One batch by the executor: its chunks in the order they come back,
-/// progress and Ctrl-C checked after each; every index asked for must
-/// come back exactly once. The failure reported is the batch's first in
-/// index order, whichever chunk it was in.
+/// One batch by the executor, called with the batch's indices and the
+/// `known` attractors' cycles (lists of (Θ, Θ', X') triples), which its
+/// tasks pass on to [`_outcome_cells`]: its chunks in the order they come
+/// back, progress and Ctrl-C checked after each; every index asked for
+/// must come back exactly once. The failure reported is the batch's first
+/// in index order, whichever chunk it was in.
+#[allow(clippy::too_many_arguments)]
 fn remote_batch(
     cells: usize,
     executor: &Py<PyAny>,
     todo: &[usize],
+    known: &[Vec<[f64; 3]>],
     progress: Option<&Py<PyAny>>,
     done: &mut usize,
     total: usize,
@@ -283,7 +294,7 @@ fn remote_batch(
     let mut failed: Option<(usize, String)> = None;
     let iter = Python::attach(|py| -> PyResult<Py<PyAny>> {
         let indices = PyList::new(py, todo)?;
-        let parts = executor.call1(py, (indices,))?;
+        let parts = executor.call1(py, (indices, known.to_vec()))?;
         Ok(parts.bind(py).try_iter()?.into_any().unbind())
     })
     .map_err(Stop::Raised)?;
@@ -348,6 +359,8 @@ fn unpack(part: &Bound<'_, PyAny>) -> PyResult<Chunk> {
     let has_lyapunov = bools("has_lyapunov")?;
     let stopped_at = f64s("stopped_at")?;
     let has_stopped_at = bools("has_stopped_at")?;
+    let settled_at = f64s("settled_at")?;
+    let reached_known = bools("reached_known")?;
     let cycle_len = i64s("cycle_len")?;
     let cycle = f64s("cycle")?;
     let n = index.len();
@@ -359,6 +372,8 @@ fn unpack(part: &Bound<'_, PyAny>) -> PyResult<Chunk> {
         has_lyapunov.len(),
         stopped_at.len(),
         has_stopped_at.len(),
+        settled_at.len(),
+        reached_known.len(),
         cycle_len.len(),
     ]
     .iter()
@@ -385,6 +400,8 @@ fn unpack(part: &Bound<'_, PyAny>) -> PyResult<Chunk> {
                 lyapunov: has_lyapunov[k].then_some(lyapunov[k]),
                 cycle,
                 stopped_at: has_stopped_at[k].then_some(stopped_at[k]),
+                settled_at: settled_at[k],
+                reached_known: reached_known[k],
             },
         ));
     }
@@ -436,6 +453,15 @@ fn pack<'py>(py: Python<'py>, chunk: &Chunk) -> PyResult<Bound<'py, PyDict>> {
         cells
             .iter()
             .map(|(_, c)| c.stopped_at.is_some())
+            .collect::<Vec<_>>()
+            .into_pyarray(py),
+    )?;
+    out.set_item("settled_at", col(&|c| c.settled_at).into_pyarray(py))?;
+    out.set_item(
+        "reached_known",
+        cells
+            .iter()
+            .map(|(_, c)| c.reached_known)
             .collect::<Vec<_>>()
             .into_pyarray(py),
     )?;
@@ -503,6 +529,7 @@ fn map_columns<'py>(py: Python<'py>, checked: &Checked, map: &OutcomeMap) -> PyR
     out.set_item("attractors", attractors)?;
     out.set_item("cells_run", map.computed)?;
     out.set_item("cells_stopped_early", map.stopped_early)?;
+    out.set_item("cells_on_known_attractor", map.reached_known)?;
     Ok(out)
 }
 
@@ -563,12 +590,14 @@ pub fn _outcome_map<'py>(
 /// computes, each as the engine computes it (for `rocking.dask`'s
 /// workers), packed in arrays: `index`, `outcome`, `period` (0 where not
 /// periodic), `max_abs_theta`, `lyapunov` and `has_lyapunov`,
-/// `stopped_at` and `has_stopped_at`, `cycle_len` and `cycle` (the
+/// `stopped_at` and `has_stopped_at`, `settled_at`, `reached_known`, `cycle_len` and `cycle` (the
 /// periodic cycles' section points (Θ, Θ', X'), flattened, cell after
 /// cell), and `failed`: `(index, message)` of the first failed cell in
-/// index order (left out of the arrays), or None.
+/// index order (left out of the arrays), or None. `known`: the cycles of
+/// the attractors the driver had found, which a cell's run stops on
+/// reaching (the second argument of the driver's executor).
 #[pyfunction]
-#[pyo3(signature = (scene, x, y, indices, *, transient=600.0, tau_end=None, lyapunov=false, threads=None, full=false, coarse=COARSE_CELLS as i64))]
+#[pyo3(signature = (scene, x, y, indices, *, transient=600.0, tau_end=None, lyapunov=false, threads=None, full=false, coarse=COARSE_CELLS as i64, known=Vec::new()))]
 #[allow(clippy::too_many_arguments)]
 pub fn _outcome_cells<'py>(
     py: Python<'py>,
@@ -582,6 +611,7 @@ pub fn _outcome_cells<'py>(
     threads: Option<usize>,
     full: bool,
     coarse: i64,
+    known: Vec<Vec<[f64; 3]>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let base = scene.scenario();
     let computed = (|| {
@@ -592,7 +622,8 @@ pub fn _outcome_cells<'py>(
         }
         let workers = Workers::new(threads)?;
         let spec = checked.spec(base);
-        let chunk = py.detach(|| workers.run(|| Chunk::compute(&indices, |index| compute(&checked, &spec, index))));
+        let chunk =
+            py.detach(|| workers.run(|| Chunk::compute(&indices, |index| compute(&checked, &spec, index, &known))));
         Ok(chunk)
     })();
     let chunk = computed.map_err(|e| with_python_args(e, MAP_ARGS))?;

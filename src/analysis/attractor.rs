@@ -97,6 +97,13 @@ impl Catalogue {
         (self.cycles.len() - 1) as u32
     }
 
+    /// The cycles found so far, in discovery order (each from its point
+    /// of largest Θ): what a later cell's run may stop on reaching
+    /// ([`settle`](super::settle)).
+    pub fn cycles(&self) -> &[Vec<[f64; 3]>] {
+        &self.cycles
+    }
+
     /// Attractors found.
     pub fn len(&self) -> usize {
         self.cycles.len()

@@ -176,11 +176,12 @@ impl BlockMap<'_> {
     }
 
     /// The response of cell (x, y), its run stopped as soon as its class
-    /// is certain when `early` ([`cell_response`]). The one function every
-    /// driver of a map runs per cell, wherever the cell runs.
-    pub fn cell(&self, x: f64, y: f64, early: bool) -> Result<CellResponse, SteadyError> {
+    /// is certain when `early`, or on reaching one of the `known` cycles
+    /// ([`cell_response`]). The one function every driver of a map runs
+    /// per cell, wherever the cell runs.
+    pub fn cell(&self, x: f64, y: f64, early: bool, known: &[Vec<[f64; 3]>]) -> Result<CellResponse, SteadyError> {
         let cfg = self.scenario(x, y)?;
-        cell_response(&cfg, &self.window, &self.classify, self.lyapunov, early)
+        cell_response(&cfg, &self.window, &self.classify, self.lyapunov, early, known)
     }
 
     /// Makes and checks every cell's scenario before anything runs.
@@ -268,6 +269,9 @@ pub struct OutcomeMap {
     pub computed: usize,
     /// Computed cells whose run stopped early.
     pub stopped_early: usize,
+    /// Those of them that stopped on reaching an attractor found in
+    /// another cell (basin maps).
+    pub reached_known: usize,
 }
 
 /// A map being computed: hands out batches of cells, takes their results,
@@ -354,10 +358,24 @@ impl<'a> MapRun<'a> {
         }
     }
 
-    /// Computes cell `index` (any thread; pure).
+    /// Computes cell `index` (any thread; pure): its run stops on
+    /// reaching one of the [`known`](Self::known) attractors too.
     pub fn compute(&self, index: usize) -> Result<CellResponse, SteadyError> {
         let (x, y) = self.xy(index);
-        self.spec.cell(x, y, self.plan.early_stop)
+        self.spec.cell(x, y, self.plan.early_stop, self.known())
+    }
+
+    /// The cycles a cell's run may stop on reaching: in a basin map with
+    /// early stopping, the periodic attractors found at the levels
+    /// recorded so far (fixed while a batch runs, so a cell's result does
+    /// not depend on the order or the threads the batch runs on); none
+    /// otherwise.
+    pub fn known(&self) -> &[Vec<[f64; 3]>] {
+        if self.basin && self.plan.early_stop {
+            self.catalogue.cycles()
+        } else {
+            &[]
+        }
     }
 
     /// Records a batch's results (in any order); attractors are identified
@@ -459,12 +477,14 @@ impl<'a> MapRun<'a> {
         let (attractors, ids) = self.catalogue.numbered(&labels);
         let mut computed = 0;
         let mut stopped_early = 0;
+        let mut reached_known = 0;
         let cells = (0..self.results.len())
             .map(|index| {
                 let (x, y) = self.xy(index);
                 let result = self.results[index].as_ref();
                 computed += usize::from(result.is_some());
                 stopped_early += usize::from(result.is_some_and(|c| c.stopped_at.is_some()));
+                reached_known += usize::from(result.is_some_and(|c| c.reached_known));
                 Cell {
                     x,
                     y,
@@ -481,6 +501,7 @@ impl<'a> MapRun<'a> {
             attractors,
             computed,
             stopped_early,
+            reached_known,
         })
     }
 }

@@ -28,6 +28,22 @@
 //!   period, when two of the cycle's points agree to the classifier's
 //!   tolerance, as the full run would find).
 //!
+//! - **A known attractor reached** (basin maps): the last `k + REACH_CONFIRM`
+//!   section points follow, in order, the cycle of a periodic attractor
+//!   already found in another cell of the same map (its k points, at
+//!   some phase), each within the classifier's own tolerance of the
+//!   cycle's point: |p_d − c_d| ≤ rel_tol·a_d + abs_tol (a_d: the largest
+//!   |c_d| over the cycle). The known cycle is an attracting orbit (runs
+//!   from other initial states converged onto it to 10⁻⁵ of its
+//!   amplitude), and a trajectory that has stayed within 10⁻³ of its
+//!   amplitude for a whole cycle and `REACH_CONFIRM` more forcing periods
+//!   is in its basin: it converges onto that orbit, and the full run's
+//!   window would show the same cycle. This is how Attractors.jl's
+//!   recurrence method ends a run that enters a known attractor's
+//!   neighbourhood; here it saves the tail of the approach from 10⁻³ to
+//!   10⁻⁵ and the confirmation, about a third to a half of each periodic
+//!   cell's run (docs/analysis.md).
+//!
 //! Every other run (chaotic, quasiperiodic, slowly converging) runs its
 //! whole window, and tumbling and flight end a run by themselves.
 //!
@@ -62,6 +78,12 @@ pub(crate) const SETTLE_FRACTION: f64 = 1e-2;
 /// near-recurrence of a chaotic transient.
 pub(crate) const CONFIRM: usize = 8;
 
+/// Section points beyond one whole cycle that must follow a known
+/// attractor's cycle before a run stops on it (module docs): 4 forcing
+/// periods. A trajectory near the orbit but leaving it would move away
+/// within them; one converging onto it stays.
+pub(crate) const REACH_CONFIRM: usize = 4;
+
 /// Why a watched run stopped early.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Verdict {
@@ -78,11 +100,19 @@ pub enum Verdict {
         /// first: `k` points.
         cycle: Vec<[f64; 3]>,
     },
+    /// Reached a periodic attractor already known at `tau`.
+    Reached {
+        /// τ of the section point where it was seen.
+        tau: f64,
+        /// The known attractor's cycle, in the run's phase: `k` points,
+        /// the last one the point matched at `tau`.
+        cycle: Vec<[f64; 3]>,
+    },
 }
 
 /// The sink that watches a run (module docs).
 #[derive(Debug)]
-pub struct Settle {
+pub struct Settle<'a> {
     period: f64,
     opts: ClassifyOptions,
     /// The latest section points, newest last, at most `capacity`.
@@ -95,9 +125,11 @@ pub struct Settle {
     /// run is not stopped (after the transient only).
     kept: Vec<SectionRow>,
     transient: f64,
+    /// Cycles of the periodic attractors already known (basin maps).
+    known: &'a [Vec<[f64; 3]>],
 }
 
-impl Settle {
+impl<'a> Settle<'a> {
     /// A watcher for a run whose forcing has period `period` (τ), keeping
     /// the section points after `transient` for the full classification.
     pub fn new(period: f64, transient: f64, opts: ClassifyOptions) -> Self {
@@ -112,7 +144,14 @@ impl Settle {
             verdict: None,
             kept: Vec::new(),
             transient,
+            known: &[],
         }
+    }
+
+    /// The same watcher, also stopping a run that reaches one of the
+    /// `known` periodic attractors' cycles (module docs).
+    pub fn knowing(self, known: &'a [Vec<[f64; 3]>]) -> Self {
+        Self { known, ..self }
     }
 
     /// Why the run stopped, if it did.
@@ -129,9 +168,32 @@ impl Settle {
     /// [`SETTLE_FRACTION`] of the tolerance, if any.
     fn converged_period(&self) -> Option<usize> {
         let n = self.recent.len();
+        let newest = self.recent.back()?;
+        // A quick rejection first: the newest pair against the tolerance of
+        // the whole buffer's amplitude. That amplitude bounds the one of any
+        // range tested below, so a pair outside this looser tolerance fails
+        // the exact test too, and most periods k fail here after three
+        // comparisons instead of a pass over up to 3k + 8 points.
+        let mut bound = [0.0_f64; 3];
+        for p in &self.recent {
+            for (a, x) in bound.iter_mut().zip(p) {
+                *a = a.max(x.abs());
+            }
+        }
+        let loose: [f64; 3] =
+            std::array::from_fn(|d| SETTLE_FRACTION * (self.opts.rel_tol * bound[d] + self.opts.abs_tol));
         (1..=self.opts.k_max as usize).find(|&k| {
             let pairs = 2 * k + CONFIRM;
             if n < pairs + k {
+                return false;
+            }
+            let before = &self.recent[n - 1 - k];
+            if newest
+                .iter()
+                .zip(before)
+                .zip(&loose)
+                .any(|((x, y), t)| (y - x).abs() > *t)
+            {
                 return false;
             }
             let first = n - pairs - k;
@@ -152,7 +214,37 @@ impl Settle {
     }
 }
 
-impl Sink for Settle {
+impl Settle<'_> {
+    /// A known cycle the latest section points follow (module docs),
+    /// rotated into the run's phase (its last point the newest's match).
+    fn reached(&self) -> Option<Vec<[f64; 3]>> {
+        let n = self.recent.len();
+        let newest = self.recent.back()?;
+        self.known.iter().find_map(|cycle| {
+            let k = cycle.len();
+            let m = k + REACH_CONFIRM;
+            if k == 0 || n < m {
+                return None;
+            }
+            let mut amplitude = [0.0_f64; 3];
+            for p in cycle {
+                for (a, x) in amplitude.iter_mut().zip(p) {
+                    *a = a.max(x.abs());
+                }
+            }
+            let tol: [f64; 3] = std::array::from_fn(|d| self.opts.rel_tol * amplitude[d] + self.opts.abs_tol);
+            let near = |p: &[f64; 3], c: &[f64; 3]| p.iter().zip(c).zip(&tol).all(|((x, y), t)| (x - y).abs() <= *t);
+            // The cycle's point the newest one matches, then the earlier
+            // points against the cycle's earlier points, in order.
+            let end = (0..k).find(|&e| {
+                near(newest, &cycle[e]) && (1..m).all(|j| near(&self.recent[n - 1 - j], &cycle[(e + k * m - j) % k]))
+            })?;
+            Some((0..k).map(|i| cycle[(end + 1 + i) % k]).collect())
+        })
+    }
+}
+
+impl Sink for Settle<'_> {
     fn sample(&mut self, _row: &HistoryRow) {}
 
     fn section(&mut self, row: &SectionRow) {
@@ -174,6 +266,8 @@ impl Sink for Settle {
         if let Some(k) = self.converged_period() {
             let cycle = self.recent.range(self.recent.len() - k..).copied().collect();
             self.verdict = Some(Verdict::Periodic { tau: row.tau, cycle });
+        } else if let Some(cycle) = self.reached() {
+            self.verdict = Some(Verdict::Reached { tau: row.tau, cycle });
         }
     }
 
@@ -220,11 +314,22 @@ pub struct CellResponse {
     /// τ at which the run stopped early; `None` when it ran its whole
     /// window (or ended by tumbling or flight).
     pub stopped_at: Option<f64>,
+    /// Whether it stopped on reaching a periodic attractor already known
+    /// (module docs).
+    pub reached_known: bool,
+    /// τ at which the class was certain: where the run stopped early, or
+    /// where it ended (tumbling, flight, or the window's end for a run
+    /// that ran out its window). A late one marks a cell whose fate took a
+    /// long transient to show, which refinement does not trust its
+    /// neighbours to share ([`map_refine`](super::map_refine)).
+    pub settled_at: f64,
 }
 
 /// Runs `scenario` over `window` and classifies its steady response,
 /// stopping as soon as the class is certain when `early` is set and the
-/// forcing allows it (module docs); otherwise the full run of
+/// forcing allows it (module docs), or on reaching one of the `known`
+/// periodic attractors' cycles (a basin map's, found in other cells);
+/// otherwise the full run of
 /// [`steady_response`](super::steady::steady_response), with the same class.
 pub fn cell_response(
     scenario: &Scenario,
@@ -232,15 +337,16 @@ pub fn cell_response(
     opts: &ClassifyOptions,
     lyapunov: Option<&LyapunovFn<'_>>,
     early: bool,
+    known: &[Vec<[f64; 3]>],
 ) -> Result<CellResponse, SteadyError> {
     let (cfg, model, period, run) = section_run(scenario, window)?;
-    let mut watch = Settle::new(period, window.transient, *opts);
+    let mut watch = Settle::new(period, window.transient, *opts).knowing(known);
     let mut res = if early && forcing_is_periodic(&cfg) {
         simulate_into(model, &cfg.initial, &run, &mut watch)?
     } else {
         // Unwatched: the same run, never stopped.
-        struct Full<'a>(&'a mut Settle);
-        impl Sink for Full<'_> {
+        struct Full<'a, 'b>(&'a mut Settle<'b>);
+        impl Sink for Full<'_, '_> {
             fn sample(&mut self, _row: &HistoryRow) {}
             fn section(&mut self, row: &SectionRow) {
                 if row.tau >= self.0.transient {
@@ -255,7 +361,7 @@ pub fn cell_response(
     };
     let (mut response, cycle, stopped_at) = match watch.verdict() {
         Some(Verdict::Rest { tau }) => (Response::Rest, Vec::new(), Some(*tau)),
-        Some(Verdict::Periodic { tau, cycle }) => {
+        Some(Verdict::Periodic { tau, cycle } | Verdict::Reached { tau, cycle }) => {
             // The window's points as the full run would have them: those
             // already taken (a run may converge inside the window, after
             // points that had not), then the converged cycle repeated, the
@@ -305,5 +411,7 @@ pub fn cell_response(
         lyapunov: exponent,
         cycle,
         stopped_at,
+        reached_known: matches!(watch.verdict(), Some(Verdict::Reached { .. })),
+        settled_at: stopped_at.unwrap_or(res.tau_end),
     })
 }

@@ -221,6 +221,7 @@ pub(crate) fn run_with(args: &MapArgs, lyapunov: Option<&LyapunovFn<'_>>) -> Res
         "plan": plan,
         "cells_run": map.computed,
         "cells_stopped_early": map.stopped_early,
+        "cells_on_known_attractor": map.reached_known,
         "attractors": attractors,
         "config": config::to_json(&config),
         "units": "theta = θ/ψ; lyapunov per unit τ; config: the base configuration, the two axis keys take each cell's values",
@@ -293,13 +294,17 @@ pub(crate) fn run_with(args: &MapArgs, lyapunov: Option<&LyapunovFn<'_>>) -> Res
         counts.sort();
         let summary: Vec<String> = counts.iter().map(|(n, c)| format!("{n}: {c}")).collect();
         let total = x.n * y.n;
+        let reached = match map.reached_known {
+            0 => String::new(),
+            n => format!(", {n} on reaching a known attractor"),
+        };
         let how = if args.full {
             "every cell run over its whole window".to_string()
         } else if map.computed == total {
-            format!("every cell run, {} stopped early", map.stopped_early)
+            format!("every cell run, {} stopped early{reached}", map.stopped_early)
         } else {
             format!(
-                "{} cells run, {} of them stopped early; {} inherited from uniform neighbourhoods",
+                "{} cells run, {} of them stopped early{reached}; {} inherited from uniform neighbourhoods",
                 map.computed,
                 map.stopped_early,
                 total - map.computed

@@ -369,7 +369,9 @@ class OutcomeMap(_Inputs):
     x_dot), the representative section point, `cycle`, every point of the
     cycle, and `cells`, how many cells reach it). `cells_run` and
     `cells_stopped_early` count the cells run and those of them whose run
-    stopped once its class was certain. Its inputs: `scene`, `x_axis`,
+    stopped once its class was certain, `cells_on_known_attractor` those
+    that stopped on reaching an attractor found in another cell (basin
+    maps). Its inputs: `scene`, `x_axis`,
     `y_axis` (key, first, last, count), `transient`, `tau_end` (resolved),
     `lyapunov_asked`, `full`, `coarse`.
     """
@@ -384,6 +386,7 @@ class OutcomeMap(_Inputs):
         attractors: list[dict[str, Any]],
         cells_run: int,
         cells_stopped_early: int,
+        cells_on_known_attractor: int = 0,
     ) -> None:
         #: The config key along the horizontal axis.
         self.x_key = x_key
@@ -404,6 +407,8 @@ class OutcomeMap(_Inputs):
         self.cells_run = cells_run
         #: Cells run that stopped as soon as their class was certain.
         self.cells_stopped_early = cells_stopped_early
+        #: Of those, cells that stopped on reaching a known attractor.
+        self.cells_on_known_attractor = cells_on_known_attractor
 
     @classmethod
     def _of(cls, d: Mapping[str, Any]) -> "OutcomeMap":
@@ -431,6 +436,7 @@ class OutcomeMap(_Inputs):
             attractors,
             int(d["cells_run"]),
             int(d["cells_stopped_early"]),
+            int(d["cells_on_known_attractor"]),
         )
 
     def _grid(self, name: str) -> np.ndarray:
@@ -511,6 +517,7 @@ class OutcomeMap(_Inputs):
                     **getattr(self, "inputs", {}),
                     "cells_run": self.cells_run,
                     "cells_stopped_early": self.cells_stopped_early,
+                    "cells_on_known_attractor": self.cells_on_known_attractor,
                 }
             ),
         )

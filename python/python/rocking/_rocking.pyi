@@ -95,8 +95,8 @@ def _outcome_map(
     lyapunov: bool = False,
     threads: int | None = None,
     full: bool = False,
-    coarse: int = 64,
-    executor: Callable[[list[int]], Iterable[dict[str, Any]]] | None = None,
+    coarse: int = 32,
+    executor: Callable[[list[int], list[list[tuple[float, float, float]]]], Iterable[dict[str, Any]]] | None = None,
     progress: Callable[[int, int], Any] | None = None,
 ) -> dict[str, Any]: ...
 def _outcome_cells(
@@ -110,7 +110,8 @@ def _outcome_cells(
     lyapunov: bool = False,
     threads: int | None = None,
     full: bool = False,
-    coarse: int = 64,
+    coarse: int = 32,
+    known: list[list[tuple[float, float, float]]] = ...,
 ) -> dict[str, Any]: ...
 def _fragility_blocks(
     scene: Scene, blocks: list[tuple[float, float]] | None, im: str = "pga"

@@ -56,9 +56,12 @@ def _sweep_task(shard: tuple[int, int], scene: Scene, args: tuple[Any, ...], opt
     return _rocking._sweep(scene, *args, shard=shard, **options)
 
 
-def _cells_task(indices: list[int], scene: Scene, x: Axis, y: Axis, options: dict[str, Any]) -> dict[str, Any]:
-    """Cells `indices` of a map, on a worker, packed in arrays."""
-    return _rocking._outcome_cells(scene, x, y, indices, **options)
+def _cells_task(
+    indices: list[int], known: list[Any], scene: Scene, x: Axis, y: Axis, options: dict[str, Any]
+) -> dict[str, Any]:
+    """Cells `indices` of a map, on a worker, packed in arrays; a run stops
+    on reaching one of the `known` attractors' cycles, as on the client."""
+    return _rocking._outcome_cells(scene, x, y, indices, known=known, **options)
 
 
 def sweep(
@@ -150,9 +153,9 @@ def outcome_map(
     }
     n = chunks if chunks is not None else 4 * _worker_threads(client)
 
-    def executor(indices: list[int]) -> Iterator[dict[str, Any]]:
+    def executor(indices: list[int], known: list[Any]) -> Iterator[dict[str, Any]]:
         futures = client.map(
-            _cells_task, _split(indices, int(n)), scene=s, x=x, y=y,
+            _cells_task, _split(indices, int(n)), known=known, scene=s, x=x, y=y,
             options={**options, "threads": threads_per_task}, pure=False,
         )
         try:
