@@ -52,8 +52,8 @@ fn early_stopping_never_changes_a_cells_class_across_every_class() {
     let mut seen = Vec::new();
     for (cfg, what, stops) in cases {
         let full = steady_response(&cfg, &w, &o, None).unwrap();
-        let unwatched = cell_response(&cfg, &w, &o, None, false, &[]).unwrap();
-        let fast = cell_response(&cfg, &w, &o, None, true, &[]).unwrap();
+        let unwatched = cell_response(&cfg, &w, &o, None, false, &[], None).unwrap();
+        let fast = cell_response(&cfg, &w, &o, None, true, &[], None).unwrap();
         assert_eq!(
             unwatched.response, full.response,
             "{what}: the unwatched run is the full run"
@@ -235,7 +235,7 @@ fn a_run_that_reaches_a_known_attractor_stops_with_its_full_runs_class() {
         .collect();
     let mut known: Vec<Vec<[f64; 3]>> = Vec::new();
     for &(t, d) in &starts {
-        let c = cell_response(&at(t, d), &w, &o, None, true, &[]).unwrap();
+        let c = cell_response(&at(t, d), &w, &o, None, true, &[], None).unwrap();
         if !c.cycle.is_empty() && !known.iter().any(|k| k.len() == c.cycle.len()) {
             known.push(c.cycle);
         }
@@ -252,8 +252,8 @@ fn a_run_that_reaches_a_known_attractor_stops_with_its_full_runs_class() {
     for &(t, d) in &starts {
         let cfg = at(t, d);
         let full = steady_response(&cfg, &w, &o, None).unwrap();
-        let alone = cell_response(&cfg, &w, &o, None, true, &[]).unwrap();
-        let knowing = cell_response(&cfg, &w, &o, None, true, &known).unwrap();
+        let alone = cell_response(&cfg, &w, &o, None, true, &[], None).unwrap();
+        let knowing = cell_response(&cfg, &w, &o, None, true, &known, None).unwrap();
         assert_eq!(knowing.response, full.response, "({t}, {d})");
         if !knowing.reached_known {
             assert_eq!(knowing, alone, "({t}, {d}): not reached, the same run");
@@ -291,7 +291,50 @@ fn a_run_that_reaches_a_known_attractor_stops_with_its_full_runs_class() {
     ];
     for &(t, d) in &starts[..6] {
         let cfg = at(t, d);
-        let alone = cell_response(&cfg, &w, &o, None, true, &[]).unwrap();
-        assert_eq!(cell_response(&cfg, &w, &o, None, true, &far).unwrap(), alone);
+        let alone = cell_response(&cfg, &w, &o, None, true, &[], None).unwrap();
+        assert_eq!(cell_response(&cfg, &w, &o, None, true, &far, None).unwrap(), alone);
+    }
+}
+
+#[test]
+fn a_basin_map_whose_runs_stop_on_known_attractors_is_the_full_map() {
+    // fig4 at A_v = 1 over 13 × 13 initial states, a coarse lattice of
+    // stride 4: the cells of the finer levels may stop on reaching the
+    // cycles the coarser ones found, or on landing in their labelled
+    // cells, and must still reach the full map's class and attractor.
+    let base = preset("fig4", &["excitation.a_v=1"]);
+    let x = Axis::new("--x", "initial.theta", -0.6, 0.6, 13).unwrap();
+    let y = Axis::new("--y", "initial.theta_dot", -0.6, 0.6, 13).unwrap();
+    let spec = BlockMap {
+        window: Window {
+            transient: 100.0,
+            tau_end: 200.0,
+        },
+        ..basin_spec(&base, &x, &y)
+    };
+    let plan = MapPlan {
+        early_stop: true,
+        coarse: Some(3),
+    };
+    let fast = compute_map(&spec, plan, &silent).unwrap();
+    let full = compute_map(&spec, MapPlan::FULL, &silent).unwrap();
+    assert!(fast.reached_known > 0, "no run stopped on a known attractor");
+    assert!(fast.attractors.len() >= 2, "{:?}", fast.attractors);
+    let cycle_of = |m: &rocking::analysis::outcome_map::OutcomeMap, id: Option<u32>| {
+        id.map(|a| m.attractors[a as usize - 1].cycle.clone())
+    };
+    for (i, (a, b)) in fast.cells.iter().zip(&full.cells).enumerate() {
+        assert_eq!(a.response, b.response, "cell {i}");
+        // The same attractor: numbers may differ only if discovered in
+        // another order, so compare their cycles' periods and points.
+        let (ca, cb) = (cycle_of(&fast, a.attractor), cycle_of(&full, b.attractor));
+        assert_eq!(ca.as_ref().map(Vec::len), cb.as_ref().map(Vec::len), "cell {i}");
+        if let (Some(ca), Some(cb)) = (ca, cb) {
+            let near = ca
+                .iter()
+                .zip(&cb)
+                .all(|(p, q)| (0..3).all(|d| (p[d] - q[d]).abs() < 1e-3));
+            assert!(near, "cell {i}: {ca:?} against {cb:?}");
+        }
     }
 }

@@ -166,16 +166,19 @@ fn check(
 
 /// Cell `index` of the map, as [`MapRun::compute`] computes it (which
 /// needs the whole run; a worker has only the map's specification).
-/// `known`: the attractors' cycles the driver's run had found when it
-/// handed out the cell's batch ([`MapRun::known`]).
+/// `known` and `labels`: the attractors' cycles and the basin labels the
+/// driver's run had when it handed out the cell's batch
+/// ([`MapRun::known`], [`MapRun::basin_labels`]).
 fn compute(
     checked: &Checked,
     spec: &BlockMap<'_>,
     index: usize,
     known: &[Vec<[f64; 3]>],
+    labels: Option<&[i64]>,
 ) -> Result<CellResponse, String> {
     let (x, y) = checked.xy(index);
-    spec.cell(x, y, checked.plan.early_stop, known)
+    let basins = labels.and_then(|l| spec.basin_lookup(l));
+    spec.cell(x, y, checked.plan.early_stop, known, basins)
         .map_err(|e| checked.failure(index, &e))
 }
 
@@ -234,7 +237,7 @@ fn drive(run: &mut MapRun<'_>, checked: &Checked, cells: &Cells<'_>, progress: O
         }
         let batch = match cells {
             Cells::Local(workers) => local_batch(run, checked, workers, &todo, progress, &mut done, total)?,
-            Cells::Executor(f) => remote_batch(run.len(), f, &todo, run.known(), progress, &mut done, total)?,
+            Cells::Executor(f) => remote_batch(run, f, &todo, progress, &mut done, total)?,
         };
         run.record(batch);
     }
@@ -270,22 +273,22 @@ fn local_batch(
     Ok(batch)
 }
 
-/// One batch by the executor, called with the batch's indices and the
-/// `known` attractors' cycles (lists of (Θ, Θ', X') triples), which its
-/// tasks pass on to [`_outcome_cells`]: its chunks in the order they come
-/// back, progress and Ctrl-C checked after each; every index asked for
-/// must come back exactly once. The failure reported is the batch's first
-/// in index order, whichever chunk it was in.
-#[allow(clippy::too_many_arguments)]
+/// One batch by the executor, called with the batch's indices, the
+/// known attractors' cycles (lists of (Θ, Θ', X') triples) and the basin
+/// labels (an int64 array, or None), which its tasks pass on to
+/// [`_outcome_cells`]: its chunks in the order they come back, progress
+/// and Ctrl-C checked after each; every index asked for must come back
+/// exactly once. The failure reported is the batch's first in index
+/// order, whichever chunk it was in.
 fn remote_batch(
-    cells: usize,
+    run: &MapRun<'_>,
     executor: &Py<PyAny>,
     todo: &[usize],
-    known: &[Vec<[f64; 3]>],
     progress: Option<&Py<PyAny>>,
     done: &mut usize,
     total: usize,
 ) -> Result<Vec<(usize, CellResponse)>, Stop> {
+    let cells = run.len();
     let mut asked = vec![false; cells];
     for &i in todo {
         asked[i] = true;
@@ -294,7 +297,8 @@ fn remote_batch(
     let mut failed: Option<(usize, String)> = None;
     let iter = Python::attach(|py| -> PyResult<Py<PyAny>> {
         let indices = PyList::new(py, todo)?;
-        let parts = executor.call1(py, (indices, known.to_vec()))?;
+        let labels = run.basin_labels().map(|l| l.to_vec().into_pyarray(py));
+        let parts = executor.call1(py, (indices, run.known().to_vec(), labels))?;
         Ok(parts.bind(py).try_iter()?.into_any().unbind())
     })
     .map_err(Stop::Raised)?;
@@ -595,9 +599,10 @@ pub fn _outcome_map<'py>(
 /// cell), and `failed`: `(index, message)` of the first failed cell in
 /// index order (left out of the arrays), or None. `known`: the cycles of
 /// the attractors the driver had found, which a cell's run stops on
-/// reaching (the second argument of the driver's executor).
+/// reaching, and `labels` its basin labels (the executor's second and
+/// third arguments).
 #[pyfunction]
-#[pyo3(signature = (scene, x, y, indices, *, transient=600.0, tau_end=None, lyapunov=false, threads=None, full=false, coarse=COARSE_CELLS as i64, known=Vec::new()))]
+#[pyo3(signature = (scene, x, y, indices, *, transient=600.0, tau_end=None, lyapunov=false, threads=None, full=false, coarse=COARSE_CELLS as i64, known=Vec::new(), labels=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn _outcome_cells<'py>(
     py: Python<'py>,
@@ -612,7 +617,9 @@ pub fn _outcome_cells<'py>(
     full: bool,
     coarse: i64,
     known: Vec<Vec<[f64; 3]>>,
+    labels: Option<PyReadonlyArray1<'py, i64>>,
 ) -> PyResult<Bound<'py, PyDict>> {
+    let labels: Option<Vec<i64>> = labels.map(|l| l.as_array().to_vec());
     let base = scene.scenario();
     let computed = (|| {
         let checked = check(base, x, y, transient, tau_end, lyapunov, full, coarse, false)?;
@@ -622,8 +629,13 @@ pub fn _outcome_cells<'py>(
         }
         let workers = Workers::new(threads)?;
         let spec = checked.spec(base);
-        let chunk =
-            py.detach(|| workers.run(|| Chunk::compute(&indices, |index| compute(&checked, &spec, index, &known))));
+        let chunk = py.detach(|| {
+            workers.run(|| {
+                Chunk::compute(&indices, |index| {
+                    compute(&checked, &spec, index, &known, labels.as_deref())
+                })
+            })
+        });
         Ok(chunk)
     })();
     let chunk = computed.map_err(|e| with_python_args(e, MAP_ARGS))?;

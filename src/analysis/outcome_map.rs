@@ -18,7 +18,7 @@ use super::attractor::{Attractor, Catalogue};
 use super::classify::{ClassifyOptions, Response};
 use super::map_refine::Refiner;
 use super::orbit_diagram::{AxisRule, PlanError};
-use super::settle::{CellResponse, cell_response};
+use super::settle::{BasinLookup, CellResponse, cell_response};
 use super::steady::{LyapunovFn, SteadyError, Window, check_scenario};
 use super::{Progress, ProgressFn};
 use crate::sim::{Param, Scenario};
@@ -179,9 +179,37 @@ impl BlockMap<'_> {
     /// is certain when `early`, or on reaching one of the `known` cycles
     /// ([`cell_response`]). The one function every driver of a map runs
     /// per cell, wherever the cell runs.
-    pub fn cell(&self, x: f64, y: f64, early: bool, known: &[Vec<[f64; 3]>]) -> Result<CellResponse, SteadyError> {
+    pub fn cell(
+        &self,
+        x: f64,
+        y: f64,
+        early: bool,
+        known: &[Vec<[f64; 3]>],
+        basins: Option<BasinLookup<'_>>,
+    ) -> Result<CellResponse, SteadyError> {
         let cfg = self.scenario(x, y)?;
-        cell_response(&cfg, &self.window, &self.classify, self.lyapunov, early, known)
+        cell_response(&cfg, &self.window, &self.classify, self.lyapunov, early, known, basins)
+    }
+
+    /// The basin labels `labels` (one per cell, row order: an attractor's
+    /// index into the known cycles, or −1) as a run looks its section
+    /// points up in them: only for a basin map over Θ₀ × Θ'₀ whose cells
+    /// start without slipping (`initial.x_dot` unset), the state a rocking
+    /// section point is in ([`settle`](super::settle)).
+    pub fn basin_lookup<'b>(&self, labels: &'b [i64]) -> Option<BasinLookup<'b>> {
+        let theta_is_x = match (self.x_param, self.y_param) {
+            (Param::Theta0, Param::ThetaDot0) => true,
+            (Param::ThetaDot0, Param::Theta0) => false,
+            _ => return None,
+        };
+        let (t, d) = if theta_is_x { (self.x, self.y) } else { (self.y, self.x) };
+        let ok = self.base.initial.x_dot.is_none() && t.n >= 2 && d.n >= 2 && labels.len() == t.n * d.n;
+        ok.then_some(BasinLookup {
+            theta: (t.value(0), t.value(t.n - 1), t.n),
+            theta_dot: (d.value(0), d.value(d.n - 1), d.n),
+            theta_is_x,
+            labels,
+        })
     }
 
     /// Makes and checks every cell's scenario before anything runs.
@@ -287,6 +315,8 @@ pub struct MapRun<'a> {
     results: Vec<Option<CellResponse>>,
     labels: Vec<Option<u32>>,
     catalogue: Catalogue,
+    /// See [`basin_labels`](Self::basin_labels).
+    basin_labels: Option<Vec<i64>>,
 }
 
 impl<'a> MapRun<'a> {
@@ -310,6 +340,7 @@ impl<'a> MapRun<'a> {
             results: vec![None; n],
             labels: vec![None; n],
             catalogue: Catalogue::default(),
+            basin_labels: None,
         }
     }
 
@@ -353,6 +384,12 @@ impl<'a> MapRun<'a> {
                 let before = r.computed() + r.inherited();
                 let todo = r.next_level()?;
                 let inherited = r.computed() + r.inherited() - before;
+                if self.basin && self.plan.early_stop {
+                    let labels = (0..self.results.len())
+                        .map(|i| r.class(i).and_then(|l| l.attractor).map_or(-1, i64::from))
+                        .collect();
+                    self.basin_labels = Some(labels);
+                }
                 Some((todo, inherited))
             }
         }
@@ -362,7 +399,17 @@ impl<'a> MapRun<'a> {
     /// reaching one of the [`known`](Self::known) attractors too.
     pub fn compute(&self, index: usize) -> Result<CellResponse, SteadyError> {
         let (x, y) = self.xy(index);
-        self.spec.cell(x, y, self.plan.early_stop, self.known())
+        let basins = self.basin_labels.as_deref().and_then(|l| self.spec.basin_lookup(l));
+        self.spec.cell(x, y, self.plan.early_stop, self.known(), basins)
+    }
+
+    /// Per cell, the attractor (index into [`known`](Self::known)) its
+    /// label is at the levels before the batch last handed out (computed
+    /// or inherited), −1 where none: what a run of a basin map with
+    /// refinement and early stopping looks its section points up in
+    /// ([`BlockMap::basin_lookup`]); `None` for other maps.
+    pub fn basin_labels(&self) -> Option<&[i64]> {
+        self.basin_labels.as_deref()
     }
 
     /// The cycles a cell's run may stop on reaching: in a basin map with

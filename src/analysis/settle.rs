@@ -43,6 +43,21 @@
 //!   neighbourhood; here it saves the tail of the approach from 10⁻³ to
 //!   10⁻⁵ and the confirmation, about a third to a half of each periodic
 //!   cell's run (docs/analysis.md).
+//! - **A labelled basin entered** (basin maps over Θ₀ × Θ'₀): a section
+//!   point is a state at the forcing's phase 0, as every cell's initial
+//!   state is, so when the run rocks on its pivot without slipping (the
+//!   cells' own initial condition, X' following Θ') at a point inside the
+//!   map, its future is that of the cell it falls in, to within half a
+//!   cell. When `BASIN_HITS` consecutive section points fall in cells
+//!   already labelled with one periodic attractor (computed or inherited
+//!   at the levels before), the run stops with that attractor: Attractors.jl
+//!   labels a run that keeps hitting one basin the same way, with the
+//!   same default count (`mx_chk_hit_bas = 10`). This is not a certainty
+//!   in the strict sense of the criteria above: a cell label stands for
+//!   states within half a cell, so where two basins are intertwined more
+//!   finely than the grid, a run can be labelled with its neighbours'
+//!   attractor; ten hits in a row in cells of one label make that rare,
+//!   and docs/analysis.md gives the agreement measured against `--full`.
 //!
 //! Every other run (chaotic, quasiperiodic, slowly converging) runs its
 //! whole window, and tumbling and flight end a run by themselves.
@@ -83,6 +98,43 @@ pub(crate) const CONFIRM: usize = 8;
 /// periods. A trajectory near the orbit but leaving it would move away
 /// within them; one converging onto it stays.
 pub(crate) const REACH_CONFIRM: usize = 4;
+
+/// Consecutive section points in cells labelled with one attractor after
+/// which a basin map's run stops on it (module docs): 10, Attractors.jl's
+/// default for the same test.
+pub(crate) const BASIN_HITS: usize = 10;
+
+/// The labels a basin map over Θ₀ × Θ'₀ has so far, for looking a
+/// run's section points up in (module docs).
+#[derive(Clone, Copy, Debug)]
+pub struct BasinLookup<'a> {
+    /// The Θ₀ axis: first value, last value, count (≥ 2).
+    pub theta: (f64, f64, usize),
+    /// The Θ'₀ axis.
+    pub theta_dot: (f64, f64, usize),
+    /// Whether Θ₀ is the map's x axis (else its y axis).
+    pub theta_is_x: bool,
+    /// Per cell, in row order (y outer): the attractor its label is (an
+    /// index into the known cycles), or −1.
+    pub labels: &'a [i64],
+}
+
+impl BasinLookup<'_> {
+    /// The attractor of the cell (Θ, Θ') falls in, if labelled.
+    fn label(&self, theta: f64, theta_dot: f64) -> Option<usize> {
+        let index = |v: f64, (a, b, n): (f64, f64, usize)| {
+            let i = ((v - a) / (b - a) * (n - 1) as f64).round();
+            (i >= 0.0 && i < n as f64).then_some(i as usize)
+        };
+        let (i, j) = (index(theta, self.theta)?, index(theta_dot, self.theta_dot)?);
+        let cell = if self.theta_is_x {
+            j * self.theta.2 + i
+        } else {
+            i * self.theta_dot.2 + j
+        };
+        usize::try_from(*self.labels.get(cell)?).ok()
+    }
+}
 
 /// Why a watched run stopped early.
 #[derive(Clone, Debug, PartialEq)]
@@ -127,6 +179,12 @@ pub struct Settle<'a> {
     transient: f64,
     /// Cycles of the periodic attractors already known (basin maps).
     known: &'a [Vec<[f64; 3]>],
+    /// The basin map's labels so far, if its section points can be looked
+    /// up in them.
+    basins: Option<BasinLookup<'a>>,
+    /// The attractor the latest section points' cells are labelled with,
+    /// and how many in a row.
+    hits: Option<(usize, usize)>,
 }
 
 impl<'a> Settle<'a> {
@@ -145,13 +203,17 @@ impl<'a> Settle<'a> {
             kept: Vec::new(),
             transient,
             known: &[],
+            basins: None,
+            hits: None,
         }
     }
 
     /// The same watcher, also stopping a run that reaches one of the
-    /// `known` periodic attractors' cycles (module docs).
-    pub fn knowing(self, known: &'a [Vec<[f64; 3]>]) -> Self {
-        Self { known, ..self }
+    /// `known` periodic attractors' cycles, or whose section points keep
+    /// falling in cells of `basins` labelled with one of them (module
+    /// docs).
+    pub fn knowing(self, known: &'a [Vec<[f64; 3]>], basins: Option<BasinLookup<'a>>) -> Self {
+        Self { known, basins, ..self }
     }
 
     /// Why the run stopped, if it did.
@@ -268,6 +330,24 @@ impl Sink for Settle<'_> {
             self.verdict = Some(Verdict::Periodic { tau: row.tau, cycle });
         } else if let Some(cycle) = self.reached() {
             self.verdict = Some(Verdict::Reached { tau: row.tau, cycle });
+        } else if let Some(basins) = &self.basins {
+            let label = match row.mode {
+                Mode::Rock { .. } => basins.label(row.theta, row.theta_dot),
+                _ => None,
+            };
+            self.hits = match (label, self.hits) {
+                (Some(a), Some((b, n))) if a == b => Some((a, n + 1)),
+                (Some(a), _) => Some((a, 1)),
+                (None, _) => None,
+            };
+            if let Some((a, BASIN_HITS..)) = self.hits
+                && let Some(cycle) = self.known.get(a)
+            {
+                self.verdict = Some(Verdict::Reached {
+                    tau: row.tau,
+                    cycle: cycle.clone(),
+                });
+            }
         }
     }
 
@@ -328,7 +408,8 @@ pub struct CellResponse {
 /// Runs `scenario` over `window` and classifies its steady response,
 /// stopping as soon as the class is certain when `early` is set and the
 /// forcing allows it (module docs), or on reaching one of the `known`
-/// periodic attractors' cycles (a basin map's, found in other cells);
+/// periodic attractors' cycles (a basin map's, found in other cells) or
+/// their labelled cells in `basins`;
 /// otherwise the full run of
 /// [`steady_response`](super::steady::steady_response), with the same class.
 pub fn cell_response(
@@ -338,9 +419,10 @@ pub fn cell_response(
     lyapunov: Option<&LyapunovFn<'_>>,
     early: bool,
     known: &[Vec<[f64; 3]>],
+    basins: Option<BasinLookup<'_>>,
 ) -> Result<CellResponse, SteadyError> {
     let (cfg, model, period, run) = section_run(scenario, window)?;
-    let mut watch = Settle::new(period, window.transient, *opts).knowing(known);
+    let mut watch = Settle::new(period, window.transient, *opts).knowing(known, basins);
     let mut res = if early && forcing_is_periodic(&cfg) {
         simulate_into(model, &cfg.initial, &run, &mut watch)?
     } else {
@@ -414,4 +496,88 @@ pub fn cell_response(
         reached_known: matches!(watch.verdict(), Some(Verdict::Reached { .. })),
         settled_at: stopped_at.unwrap_or(res.tau_end),
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::Sign;
+
+    /// A 3 × 2 map: Θ₀ ∈ {−0.2, 0, 0.2} along x, Θ'₀ ∈ {0, 1} along y;
+    /// the cells' labels in row order (y outer).
+    const LABELS: [i64; 6] = [0, -1, 1, 0, 0, 1];
+
+    fn lookup(theta_is_x: bool) -> BasinLookup<'static> {
+        let (t, d) = ((-0.2, 0.2, 3), (0.0, 1.0, 2));
+        BasinLookup {
+            theta: t,
+            theta_dot: d,
+            theta_is_x,
+            labels: &LABELS,
+        }
+    }
+
+    #[test]
+    fn a_state_is_looked_up_in_the_nearest_cell_of_either_axis_order() {
+        let l = lookup(true);
+        // Θ = 0.19 is nearest 0.2 (column 2), Θ' = 0.4 nearest 0 (row 0).
+        assert_eq!(l.label(0.19, 0.4), Some(1));
+        assert_eq!(l.label(0.0, 0.4), None, "an unlabelled cell");
+        assert_eq!(l.label(0.05, 0.9), Some(0), "row 1, column 1");
+        assert_eq!(l.label(0.31, 0.0), None, "beyond half a cell past the last column");
+        assert_eq!(l.label(-0.29, 1.49), Some(0), "within half a cell of the corner");
+        // Θ₀ along y: 2 columns (Θ'), 3 rows (Θ): cell (Θ row 2, Θ' column 0).
+        let labels = [0, -1, 1, 0, 1, 1];
+        let swapped = BasinLookup {
+            theta_is_x: false,
+            labels: &labels,
+            ..lookup(true)
+        };
+        assert_eq!(swapped.label(0.2, 0.0), Some(1));
+        assert_eq!(swapped.label(-0.2, 1.0), None);
+    }
+
+    fn row(k: u64, theta: f64, theta_dot: f64, mode: Mode) -> SectionRow {
+        SectionRow {
+            k,
+            tau: k as f64,
+            theta,
+            theta_dot,
+            x: 0.0,
+            x_dot: 0.0,
+            mode,
+        }
+    }
+
+    #[test]
+    fn a_run_stops_after_ten_section_points_in_cells_of_one_attractor() {
+        let known = vec![vec![[0.5, 0.5, 0.0]], vec![[0.7, 0.1, 0.0], [-0.7, 0.1, 0.0]]];
+        let rock = Mode::Rock { pivot: Sign::Pos };
+        let feed = |points: &[(f64, f64, Mode)]| {
+            let mut s = Settle::new(1.0, 1e9, ClassifyOptions::default()).knowing(&known, Some(lookup(true)));
+            for (k, &(t, d, m)) in points.iter().enumerate() {
+                s.section(&row(k as u64, t, d, m));
+            }
+            s.verdict().cloned()
+        };
+        // Alternating between two cells of attractor 1 (far from its
+        // cycle): stopped at the tenth, with attractor 1's cycle.
+        let mut points: Vec<(f64, f64, Mode)> = (0..10)
+            .map(|k| if k % 2 == 0 { (0.2, 0.0, rock) } else { (0.2, 1.0, rock) })
+            .collect();
+        assert_eq!(
+            feed(&points),
+            Some(Verdict::Reached {
+                tau: 9.0,
+                cycle: known[1].clone()
+            })
+        );
+        // Nine, then one in a cell of another attractor: no verdict.
+        points[9] = (-0.2, 0.0, rock);
+        assert_eq!(feed(&points), None);
+        // Ten, but one of them sliding (a state no cell starts in): none.
+        points[9] = (0.2, 0.0, rock);
+        points[4].2 = Mode::Slide { slip: Sign::Pos };
+        assert_eq!(feed(&points), None);
+    }
 }

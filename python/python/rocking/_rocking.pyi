@@ -96,7 +96,7 @@ def _outcome_map(
     threads: int | None = None,
     full: bool = False,
     coarse: int = 32,
-    executor: Callable[[list[int], list[list[tuple[float, float, float]]]], Iterable[dict[str, Any]]] | None = None,
+    executor: Callable[[list[int], list[list[tuple[float, float, float]]], Any], Iterable[dict[str, Any]]] | None = None,
     progress: Callable[[int, int], Any] | None = None,
 ) -> dict[str, Any]: ...
 def _outcome_cells(
@@ -112,6 +112,7 @@ def _outcome_cells(
     full: bool = False,
     coarse: int = 32,
     known: list[list[tuple[float, float, float]]] = ...,
+    labels: Any = None,
 ) -> dict[str, Any]: ...
 def _fragility_blocks(
     scene: Scene, blocks: list[tuple[float, float]] | None, im: str = "pga"

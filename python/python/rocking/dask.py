@@ -57,11 +57,12 @@ def _sweep_task(shard: tuple[int, int], scene: Scene, args: tuple[Any, ...], opt
 
 
 def _cells_task(
-    indices: list[int], known: list[Any], scene: Scene, x: Axis, y: Axis, options: dict[str, Any]
+    indices: list[int], known: list[Any], labels: Any, scene: Scene, x: Axis, y: Axis, options: dict[str, Any]
 ) -> dict[str, Any]:
     """Cells `indices` of a map, on a worker, packed in arrays; a run stops
-    on reaching one of the `known` attractors' cycles, as on the client."""
-    return _rocking._outcome_cells(scene, x, y, indices, known=known, **options)
+    on reaching one of the `known` attractors' cycles or their `labels`
+    (a basin map's, or None), as on the client."""
+    return _rocking._outcome_cells(scene, x, y, indices, known=known, labels=labels, **options)
 
 
 def sweep(
@@ -153,9 +154,11 @@ def outcome_map(
     }
     n = chunks if chunks is not None else 4 * _worker_threads(client)
 
-    def executor(indices: list[int], known: list[Any]) -> Iterator[dict[str, Any]]:
+    def executor(indices: list[int], known: list[Any], labels: Any) -> Iterator[dict[str, Any]]:
+        # The labels (one int64 per cell) go to every worker once.
+        labels = None if labels is None else client.scatter(labels, broadcast=True)
         futures = client.map(
-            _cells_task, _split(indices, int(n)), known=known, scene=s, x=x, y=y,
+            _cells_task, _split(indices, int(n)), known=known, labels=labels, scene=s, x=x, y=y,
             options={**options, "threads": threads_per_task}, pure=False,
         )
         try:
