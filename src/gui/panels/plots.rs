@@ -747,7 +747,6 @@ pub(crate) fn spectrum_plot(
 mod tests {
     use super::*;
     use crate::model::Sign;
-    use crate::sim::HistoryRow;
     use crate::sim::protocol::Sample;
 
     fn history(modes: &[(f64, Mode)]) -> RunHistory {
