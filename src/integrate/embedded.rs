@@ -15,7 +15,7 @@ use std::fmt::Debug;
 
 use super::controller::{Controller, H_FALLBACK, MAX_REJECTIONS, h_min, hinit, next_step_size};
 use super::stages::{all_finite, hermite_leading, hermite_spread};
-use super::stepper::{Rhs, StepError, StepStats, Stepper, Tolerances};
+use super::stepper::{Rhs, StepError, StepStats, Stepper, Tolerances, step_ends};
 
 /// An embedded explicit Runge–Kutta pair with first-same-as-last: what
 /// [`EmbeddedRk`] needs to know of one method. `N` is the state size, `S`
@@ -262,17 +262,7 @@ impl<P: Pair<N, S>, const N: usize, const S: usize> Stepper<N> for EmbeddedRk<P,
         }
     }
 
-    fn t(&self) -> f64 {
-        self.t
-    }
-
-    fn y(&self) -> &[f64; N] {
-        &self.y
-    }
-
-    fn t_prev(&self) -> f64 {
-        self.t_old
-    }
+    step_ends!();
 
     /// The pair's dense output. Returns the stored end states bit for bit at
     /// `t_prev()` and `t()` without evaluating anything, and `y()` when no

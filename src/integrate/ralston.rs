@@ -17,7 +17,7 @@
 
 use super::controller::h_min;
 use super::stages::{all_finite, combine};
-use super::stepper::{Rhs, StepError, StepStats, Stepper, Tolerances};
+use super::stepper::{Rhs, StepError, StepStats, Stepper, Tolerances, step_ends};
 
 /// Ralston's node and weights.
 const A21: f64 = 2.0 / 3.0;
@@ -158,17 +158,7 @@ impl<const N: usize> Stepper<N> for Ralston<N> {
         Ok(())
     }
 
-    fn t(&self) -> f64 {
-        self.t
-    }
-
-    fn y(&self) -> &[f64; N] {
-        &self.y
-    }
-
-    fn t_prev(&self) -> f64 {
-        self.t_old
-    }
+    step_ends!();
 
     /// Cubic Hermite dense output from `y` and `f` at both ends (3rd-order
     /// interpolation, more than the method's 2nd order needs). Returns the end

@@ -107,6 +107,25 @@ pub enum StepError {
     },
 }
 
+/// The [`Stepper`] accessors of a stepper that keeps its last step's end
+/// in `t` and `y` and its start in `t_old` (each of ours does).
+macro_rules! step_ends {
+    () => {
+        fn t(&self) -> f64 {
+            self.t
+        }
+
+        fn y(&self) -> &[f64; N] {
+            &self.y
+        }
+
+        fn t_prev(&self) -> f64 {
+            self.t_old
+        }
+    };
+}
+pub(crate) use step_ends;
+
 /// A one-step method with dense output over its last step.
 ///
 /// Usage: [`restart`](Stepper::restart) at `(t0, y0)`, then call

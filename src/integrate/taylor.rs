@@ -20,7 +20,7 @@
 //! excitations) the step is DOP853's.
 
 use super::dop853::Dop853;
-use super::stepper::{Rhs, StepError, StepStats, Stepper, Tolerances};
+use super::stepper::{Rhs, StepError, StepStats, Stepper, Tolerances, step_ends};
 
 /// Highest order the stepper uses (the order for rtol 1e-14 is 28).
 pub(crate) const MAX_ORDER: usize = 28;
@@ -275,17 +275,7 @@ impl<const N: usize> Stepper<N> for Taylor<N> {
         Ok(())
     }
 
-    fn t(&self) -> f64 {
-        self.t
-    }
-
-    fn y(&self) -> &[f64; N] {
-        &self.y
-    }
-
-    fn t_prev(&self) -> f64 {
-        self.t_old
-    }
+    step_ends!();
 
     /// The step's polynomial (or DOP853's dense output). The end states are
     /// returned bit for bit.

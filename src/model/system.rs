@@ -20,7 +20,7 @@ mod reset;
 
 use std::cell::Cell;
 
-use self::reset::rock_from_flat;
+pub(crate) use self::reset::{Settles, accumulated, rock_from_flat, uplift};
 use super::ad::Scalar;
 use super::dynamics::{self, Accel, Forcing, Tilt};
 use super::energy;
@@ -28,9 +28,45 @@ use super::mode::{Mode, Sign};
 use super::params::{FlightPolicy, Model};
 // Re-exported: the driver, outputs, analyses, tests and benches index the
 // state by these paths.
+use super::excitation::Excitation;
 pub use super::state::{FRICTION_LOSS, N, THETA, THETA_DOT, WORK, X, X_DOT};
 use crate::integrate::StepError;
 use crate::integrate::hybrid::{DriverError, HybridSystem, Jump, MAX_GUARDS};
+
+/// The parts of [`HybridSystem`] the one-body models (the block, the
+/// frame) share: their mode, record and error types, their terminal modes,
+/// and the clock of the excitation in `self.model.excitation` (its
+/// breakpoints and time scale, and a step cap at rest).
+macro_rules! one_body_system {
+    () => {
+        type Mode = $crate::model::mode::Mode;
+        type Record = $crate::model::system::EventRecord;
+        type Error = $crate::model::system::ModelError;
+
+        fn is_terminal(&self, mode: $crate::model::mode::Mode) -> bool {
+            mode.is_terminal()
+        }
+
+        fn next_breakpoint(&self, t: f64) -> Option<f64> {
+            self.model.excitation.next_breakpoint(t)
+        }
+
+        fn time_scale(&self) -> f64 {
+            self.model.excitation.time_scale()
+        }
+
+        fn step_cap(&self, mode: $crate::model::mode::Mode) -> f64 {
+            // At rest the state does not move and every guard is a function
+            // of the forcing alone; in the other modes the forcing drives
+            // the state, whose error control resolves it.
+            match mode {
+                $crate::model::mode::Mode::Rest => self.model.excitation.time_scale(),
+                _ => f64::INFINITY,
+            }
+        }
+    };
+}
+pub(crate) use one_body_system;
 
 /// Kind of event, as written in `events.csv`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -89,6 +125,24 @@ pub struct EventRecord {
     /// X at the event (positions do not jump, so before = after).
     pub x: f64,
 }
+
+impl EventRecord {
+    /// The record of a switch at `t` from `before` with state `y` to
+    /// `after` with state `yn`.
+    pub(crate) fn switch(kind: EventKind, t: f64, before: Mode, after: Mode, y: &[f64; N], yn: &[f64; N]) -> Self {
+        Self {
+            tau: t,
+            kind,
+            before,
+            after,
+            theta: y[THETA],
+            theta_dot_before: y[THETA_DOT],
+            theta_dot_after: yn[THETA_DOT],
+            x_dot: yn[X_DOT],
+            x: yn[X],
+        }
+    }
+}
 /// Things the system tallies as it runs, beyond the state.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Tally {
@@ -112,10 +166,47 @@ pub struct BlockSystem {
     pub model: Model,
     /// Tallies.
     pub tally: Tally,
-    /// The forcing at the time of the last evaluation: the guards at a
-    /// step's end are evaluated at the time of its last (FSAL) right-hand
-    /// side and reuse its sine. Same bits either way.
-    last_forcing: Cell<(f64, Forcing)>,
+    /// The forcing at the time of the last evaluation.
+    last_forcing: LastForcing,
+}
+
+/// The forcing at the time of the last evaluation: the guards at a step's
+/// end are evaluated at the time of its last (FSAL) right-hand side and
+/// reuse its sine. Same bits either way. Kept by the block and the frame.
+#[derive(Clone, Debug)]
+pub(crate) struct LastForcing(Cell<(f64, Forcing)>);
+
+impl LastForcing {
+    /// Nothing remembered yet (no time equals NaN).
+    pub(crate) fn new() -> Self {
+        Self(Cell::new((f64::NAN, Forcing { a: 0.0, av: 0.0 })))
+    }
+
+    /// The forcing of `excitation` at `t`, remembered for the next call at
+    /// the same `t`.
+    #[inline]
+    pub(crate) fn at(&self, excitation: &Excitation, t: f64) -> Forcing {
+        let (tl, fl) = self.0.get();
+        if tl.to_bits() == t.to_bits() {
+            return fl;
+        }
+        let fo = excitation.forcing(t);
+        self.0.set((t, fo));
+        fo
+    }
+}
+
+/// A jump of a one-body model (the block's, the frame's).
+pub(crate) type ModelJump = Jump<Mode, EventRecord, N>;
+
+/// A jump to `mode` at `t` with state `y`, recording `record` if any.
+pub(crate) fn jump_to(mode: Mode, t: f64, y: [f64; N], record: Option<EventRecord>) -> ModelJump {
+    Jump {
+        mode,
+        t,
+        y,
+        records: [record, None],
+    }
 }
 
 /// Errors from the model side of a run.
@@ -150,20 +241,14 @@ impl BlockSystem {
         Self {
             model,
             tally: Tally::default(),
-            last_forcing: Cell::new((f64::NAN, Forcing { a: 0.0, av: 0.0 })),
+            last_forcing: LastForcing::new(),
         }
     }
 
     /// The forcing at `t`, remembered for the next call at the same `t`.
     #[inline]
     fn forcing(&self, t: f64) -> Forcing {
-        let (tl, fl) = self.last_forcing.get();
-        if tl.to_bits() == t.to_bits() {
-            return fl;
-        }
-        let fo = self.model.excitation.forcing(t);
-        self.last_forcing.set((t, fo));
-        fo
+        self.last_forcing.at(&self.model.excitation, t)
     }
 
     /// The effective tumble angle: `tumble_theta` capped at the side landing.
@@ -308,9 +393,7 @@ pub(crate) fn guard_values<S: Scalar>(
 }
 
 impl HybridSystem<N> for BlockSystem {
-    type Mode = Mode;
-    type Record = EventRecord;
-    type Error = ModelError;
+    one_body_system!();
 
     /// W and D: the vector field reads Θ, Θ' and X' only.
     const QUADRATURES: usize = 2;
@@ -441,20 +524,10 @@ impl HybridSystem<N> for BlockSystem {
         }
     }
 
-    fn jump(
-        &mut self,
-        mode: Mode,
-        index: usize,
-        t: f64,
-        y: &[f64; N],
-    ) -> Result<Jump<Mode, EventRecord, N>, ModelError> {
+    fn jump(&mut self, mode: Mode, index: usize, t: f64, y: &[f64; N]) -> Result<ModelJump, ModelError> {
         let mut yn = *y;
         let jump = match (mode, index) {
-            (Mode::Rest, 1 | 2) => {
-                let pivot = if index == 1 { Sign::Pos } else { Sign::Neg };
-                let target = rock_from_flat(pivot, &mut yn);
-                self.simple(EventKind::Uplift, mode, target, t, y, yn)
-            }
+            (Mode::Rest, 1 | 2) => self.simple(EventKind::Uplift, mode, uplift(index, &mut yn), t, y, yn),
             (Mode::Rest, 0) | (Mode::Slide { .. }, 1) | (Mode::Rock { .. } | Mode::SlideRock { .. }, 2) => {
                 self.simple(EventKind::Flight, mode, Mode::Flight, t, y, yn)
             }
@@ -483,36 +556,9 @@ impl HybridSystem<N> for BlockSystem {
                 yn[X_DOT] = tilt.c * self.model.geo.psi * y[THETA_DOT];
                 self.simple(EventKind::Stick, mode, Mode::Rock { pivot }, t, y, yn)
             }
-            (Mode::Tumbled | Mode::Flight, _) => Jump {
-                mode,
-                t,
-                y: yn,
-                records: [None, None],
-            },
+            (Mode::Tumbled | Mode::Flight, _) => jump_to(mode, t, yn, None),
         };
         Ok(jump)
-    }
-
-    fn is_terminal(&self, mode: Mode) -> bool {
-        mode.is_terminal()
-    }
-
-    fn next_breakpoint(&self, t: f64) -> Option<f64> {
-        self.model.excitation.next_breakpoint(t)
-    }
-
-    fn time_scale(&self) -> f64 {
-        self.model.excitation.time_scale()
-    }
-
-    fn step_cap(&self, mode: Mode) -> f64 {
-        // At rest the state does not move and every guard is a function of
-        // the forcing alone; in the other modes the forcing drives the
-        // state, whose error control resolves it.
-        match mode {
-            Mode::Rest => self.model.excitation.time_scale(),
-            _ => f64::INFINITY,
-        }
     }
 }
 

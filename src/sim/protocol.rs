@@ -220,6 +220,37 @@ pub fn face_mode(c: Contact) -> Mode {
     }
 }
 
+/// Samples the tests of the scene, the plots and the outbox draw from.
+#[cfg(test)]
+impl Sample {
+    /// `state` on a base that does not move, pressed with normal force
+    /// `normal` (N/(mg)) and no friction.
+    pub(crate) fn still(state: HistoryRow, normal: f64) -> Sample {
+        Sample {
+            state,
+            a_h: 0.0,
+            a_v: 0.0,
+            base_x: 0.0,
+            normal,
+            friction: 0.0,
+            stack: None,
+        }
+    }
+
+    /// A block flat and still in `mode` at `tau`, pressed with `normal`.
+    pub(crate) fn flat(tau: f64, mode: Mode, normal: f64) -> Sample {
+        let state = HistoryRow {
+            tau,
+            theta: 0.0,
+            theta_dot: 0.0,
+            x: 0.0,
+            x_dot: 0.0,
+            mode,
+        };
+        Sample::still(state, normal)
+    }
+}
+
 impl std::ops::Deref for Sample {
     type Target = HistoryRow;
 

@@ -39,6 +39,7 @@
 
 mod live;
 mod outbox;
+mod playhead;
 mod session;
 mod stack_session;
 mod worker;

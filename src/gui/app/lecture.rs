@@ -372,8 +372,8 @@ mod tests {
     use crate::sim::HistoryRow;
 
     fn at_tumble() -> Sample {
-        Sample {
-            state: HistoryRow {
+        Sample::still(
+            HistoryRow {
                 tau: 10.0,
                 theta: 1.0,
                 theta_dot: 0.3,
@@ -381,13 +381,8 @@ mod tests {
                 x_dot: 0.0,
                 mode: Mode::Tumbled,
             },
-            a_h: 0.0,
-            a_v: 0.0,
-            base_x: 0.0,
-            normal: 0.0,
-            friction: 0.0,
-            stack: None,
-        }
+            0.0,
+        )
     }
 
     /// The fall ends lying on the side, its centre of mass B/2 above the

@@ -318,15 +318,7 @@ mod tests {
         let mut y = [0.0; crate::model::system::N];
         y[crate::model::system::X] = -1e-9;
         let state = crate::sim::HistoryRow::of_state(geo.p, Mode::Rest, &y);
-        let sample = Sample {
-            state,
-            a_h: 0.0,
-            a_v: 0.0,
-            base_x: 0.0,
-            normal: 1.0,
-            friction: 0.0,
-            stack: None,
-        };
+        let sample = Sample::still(state, 1.0);
         let lines = Lines::playing(&sample, geo, None);
         assert_eq!(lines.headline, "t = 1.00 s");
         assert_eq!(lines.detail.as_deref(), Some("θ = 0.0° · sliding 0.0 cm"));

@@ -747,28 +747,12 @@ pub(crate) fn spectrum_plot(
 mod tests {
     use super::*;
     use crate::model::Sign;
-    use crate::sim::HistoryRow;
     use crate::sim::protocol::Sample;
 
     fn history(modes: &[(f64, Mode)]) -> RunHistory {
         let mut hist = RunHistory::default();
         for &(tau, mode) in modes {
-            hist.push_sample(Sample {
-                state: HistoryRow {
-                    tau,
-                    theta: 0.0,
-                    theta_dot: 0.0,
-                    x: 0.0,
-                    x_dot: 0.0,
-                    mode,
-                },
-                a_h: 0.0,
-                a_v: 0.0,
-                base_x: 0.0,
-                normal: 0.0,
-                friction: 0.0,
-                stack: None,
-            });
+            hist.push_sample(Sample::flat(tau, mode, 0.0));
         }
         hist
     }

@@ -19,23 +19,30 @@ where
         let Some(dt) = self.outputs.sample_dt else {
             return;
         };
-        let mode = self.mode;
-        let sys = &self.system;
-        let f = Field { sys, mode };
-        let t_end = self.stepper.t();
         let mut y = [0.0; N];
         loop {
             let ts = self.next_sample as f64 * dt;
             if ts > t_to {
                 break;
             }
-            if ts == t_end {
-                y = *self.stepper.y();
-            } else {
-                self.stepper.dense(&f, ts, &mut y);
-            }
-            obs.sample(ts, mode, &y);
+            self.dense_state(ts, &mut y);
+            obs.sample(ts, self.mode, &y);
             self.next_sample += 1;
+        }
+    }
+
+    /// The state at `ts` in the last step into `y`: the step's end state bit
+    /// for bit at its end, else its dense output.
+    #[inline]
+    fn dense_state(&mut self, ts: f64, y: &mut [f64; N]) {
+        if ts == self.stepper.t() {
+            *y = *self.stepper.y();
+        } else {
+            let f = Field {
+                sys: &self.system,
+                mode: self.mode,
+            };
+            self.stepper.dense(&f, ts, y);
         }
     }
 
@@ -52,22 +59,14 @@ where
         let Some(p) = self.outputs.section_period else {
             return;
         };
-        let mode = self.mode;
-        let sys = &self.system;
-        let f = Field { sys, mode };
-        let t_end = self.stepper.t();
         let mut y = [0.0; N];
         loop {
             let ts = self.next_section as f64 * p;
             if ts > t_to || (ts == t_to && !inclusive) {
                 break;
             }
-            if ts == t_end {
-                y = *self.stepper.y();
-            } else {
-                self.stepper.dense(&f, ts, &mut y);
-            }
-            obs.section(self.next_section, ts, mode, &y);
+            self.dense_state(ts, &mut y);
+            obs.section(self.next_section, ts, self.mode, &y);
             self.next_section += 1;
         }
     }

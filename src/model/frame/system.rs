@@ -10,18 +10,19 @@
 //! The indices of rest and of rock's first four guards are the block's, so
 //! events read alike in both models.
 
-use std::cell::Cell;
-
 use super::{Frame, FrameAccel, rock};
-use crate::integrate::hybrid::{HybridSystem, Jump, MAX_GUARDS};
+use crate::integrate::hybrid::{HybridSystem, MAX_GUARDS};
 use crate::model::dynamics::{self, Forcing, Tilt};
 use crate::model::energy;
 use crate::model::geometry::GAMMA;
 use crate::model::impact::{self, ImpactLaw};
 use crate::model::mode::{Mode, Sign};
 use crate::model::params::{FlightPolicy, Model};
-use crate::model::state::{N, THETA, THETA_DOT, X, X_DOT};
-use crate::model::system::{EventKind, EventRecord, ModelError, Tally};
+use crate::model::state::{N, THETA, THETA_DOT, X_DOT};
+use crate::model::system::{
+    EventKind, EventRecord, LastForcing, ModelError, ModelJump, Settles, Tally, accumulated, jump_to, one_body_system,
+    rock_from_flat, uplift,
+};
 
 /// The rocking frame as a hybrid system.
 #[derive(Clone, Debug)]
@@ -35,7 +36,7 @@ pub struct FrameSystem {
     /// [`Frame::kappa`], computed once.
     kappa: f64,
     /// The forcing at the last evaluation, as the block keeps it.
-    last_forcing: Cell<(f64, Forcing)>,
+    last_forcing: LastForcing,
 }
 
 impl FrameSystem {
@@ -50,19 +51,8 @@ impl FrameSystem {
             frame,
             model,
             tally: Tally::default(),
-            last_forcing: Cell::new((f64::NAN, Forcing { a: 0.0, av: 0.0 })),
+            last_forcing: LastForcing::new(),
         }
-    }
-
-    #[inline]
-    fn forcing(&self, t: f64) -> Forcing {
-        let (tl, fl) = self.last_forcing.get();
-        if tl.to_bits() == t.to_bits() {
-            return fl;
-        }
-        let fo = self.model.excitation.forcing(t);
-        self.last_forcing.set((t, fo));
-        fo
     }
 
     fn stops_at_flight(&self) -> bool {
@@ -156,31 +146,12 @@ impl FrameSystem {
         mode
     }
 
-    /// A switch other than an impact, settled, with its record.
-    fn simple(
-        &mut self,
-        kind: EventKind,
-        before: Mode,
-        target: Mode,
-        t: f64,
-        y: &[f64; N],
-        mut yn: [f64; N],
-    ) -> Jump<Mode, EventRecord, N> {
-        let mode = self.settle(target, t, &mut yn);
-        Jump {
-            mode,
-            t,
-            y: yn,
-            records: [Some(record(kind, t, before, mode, y, &yn)), None],
-        }
-    }
-
     /// The impact at Θ = 0 (docs/model.md §16.3): every column's other
     /// corner and the beam's other supports strike and stick; the
     /// angular velocity is multiplied by the frame's coefficient (or the
     /// `ratio` law's r). An accumulation is summed in closed form as the
     /// block's (docs/model.md §10, with the frame's κ).
-    fn impact(&mut self, before: Mode, pivot: Sign, t: f64, y: &[f64; N]) -> Jump<Mode, EventRecord, N> {
+    fn impact(&mut self, before: Mode, pivot: Sign, t: f64, y: &[f64; N]) -> ModelJump {
         let geo = self.model.geo;
         let striking = pivot.flip();
         let r = match self.model.law {
@@ -200,7 +171,7 @@ impl FrameSystem {
         yn[THETA] = 0.0;
         yn[THETA_DOT] = w_after / geo.psi;
         yn[X_DOT] = geo.cos_psi * w_after;
-        let mut impact = record(EventKind::Impact, t, before, Mode::Rock { pivot: striking }, y, &yn);
+        let mut impact = EventRecord::switch(EventKind::Impact, t, before, Mode::Rock { pivot: striking }, y, &yn);
         impact.theta = 0.0;
         if yn[THETA_DOT].abs() < self.model.zeno_eps {
             return self.accumulate(impact, e_before, t, striking, r.max(0.0), w_after, yn);
@@ -208,12 +179,7 @@ impl FrameSystem {
         self.tally.impact_loss += e_before - self.frame.kinetic(w_after);
         let mode = self.settle(Mode::Rock { pivot: striking }, t, &mut yn);
         impact.after = mode;
-        Jump {
-            mode,
-            t,
-            y: yn,
-            records: [Some(impact), None],
-        }
+        jump_to(mode, t, yn, Some(impact))
     }
 
     /// The rest of an impact accumulation summed in closed form: the frame
@@ -222,14 +188,14 @@ impl FrameSystem {
     #[allow(clippy::too_many_arguments)]
     fn accumulate(
         &mut self,
-        mut impact: EventRecord,
+        impact: EventRecord,
         e_before: f64,
         t: f64,
         striking: Sign,
         r: f64,
         w_after: f64,
         mut yn: [f64; N],
-    ) -> Jump<Mode, EventRecord, N> {
+    ) -> ModelJump {
         let geo = self.model.geo;
         let fo = self.model.excitation.forcing(t);
         let k_next = self.kappa * dynamics::restoring(&geo, striking, fo);
@@ -238,70 +204,24 @@ impl FrameSystem {
         yn[THETA] = 0.0;
         yn[THETA_DOT] = 0.0;
         yn[X_DOT] = 0.0;
-        if k_next > 0.0 && k_after > 0.0 {
-            let t_acc = impact::accumulation_end(t, w_after.abs(), r, k_next, k_after);
-            let mode = self.settle(Mode::Rest, t_acc, &mut yn);
-            let rest = EventRecord {
-                tau: t_acc,
-                kind: EventKind::Rest,
-                before: Mode::Rock { pivot: striking },
-                after: mode,
-                theta: 0.0,
-                theta_dot_before: impact.theta_dot_after,
-                theta_dot_after: 0.0,
-                x_dot: 0.0,
-                x: yn[X],
-            };
-            Jump {
-                mode,
-                t: t_acc,
-                y: yn,
-                records: [Some(impact), Some(rest)],
-            }
-        } else {
-            // The base lifts the frame at once: it restarts from flat.
-            let mode = self.settle(Mode::Rest, t, &mut yn);
-            impact.kind = EventKind::Rest;
-            impact.after = mode;
-            impact.theta_dot_after = 0.0;
-            impact.x_dot = 0.0;
-            Jump {
-                mode,
-                t,
-                y: yn,
-                records: [Some(impact), None],
-            }
-        }
+        // Without a restoring push on both sides the base lifts the frame at
+        // once: it restarts from flat.
+        let t_acc =
+            (k_next > 0.0 && k_after > 0.0).then(|| impact::accumulation_end(t, w_after.abs(), r, k_next, k_after));
+        let mode = self.settle(Mode::Rest, t_acc.unwrap_or(t), &mut yn);
+        accumulated(impact, striking, t_acc, mode, yn)
     }
 }
 
-/// The event record of a switch from `y` to `yn` at `t`.
-fn record(kind: EventKind, t: f64, before: Mode, after: Mode, y: &[f64; N], yn: &[f64; N]) -> EventRecord {
-    EventRecord {
-        tau: t,
-        kind,
-        before,
-        after,
-        theta: y[THETA],
-        theta_dot_before: y[THETA_DOT],
-        theta_dot_after: yn[THETA_DOT],
-        x_dot: yn[X_DOT],
-        x: yn[X],
+/// The frame never slides, so no switch of its settles into a slip.
+impl Settles for FrameSystem {
+    fn settled(&mut self, mode: Mode, t: f64, y: &mut [f64; N]) -> Mode {
+        self.settle(mode, t, y)
     }
-}
-
-/// A flat frame starting to rock about `pivot` from rest.
-fn rock_from_flat(pivot: Sign, y: &mut [f64; N]) -> Mode {
-    y[THETA] = 0.0;
-    y[THETA_DOT] = 0.0;
-    y[X_DOT] = 0.0;
-    Mode::Rock { pivot }
 }
 
 impl HybridSystem<N> for FrameSystem {
-    type Mode = Mode;
-    type Record = EventRecord;
-    type Error = ModelError;
+    one_body_system!();
 
     /// W and D.
     const QUADRATURES: usize = 2;
@@ -310,7 +230,7 @@ impl HybridSystem<N> for FrameSystem {
     fn rhs(&self, mode: Mode, t: f64, y: &[f64; N], dy: &mut [f64; N]) {
         match mode {
             Mode::Rock { pivot } => {
-                let fo = self.forcing(t);
+                let fo = self.last_forcing.at(&self.model.excitation, t);
                 let geo = &self.model.geo;
                 let acc = self.rocking(pivot, fo, y);
                 let tilt = Tilt::new(geo, pivot, y[THETA]);
@@ -331,7 +251,7 @@ impl HybridSystem<N> for FrameSystem {
     }
 
     fn guards(&self, mode: Mode, t: f64, y: &[f64; N], g: &mut [f64; MAX_GUARDS]) -> usize {
-        let fo = self.forcing(t);
+        let fo = self.last_forcing.at(&self.model.excitation, t);
         let geo = &self.model.geo;
         match mode {
             Mode::Rest => {
@@ -397,20 +317,10 @@ impl HybridSystem<N> for FrameSystem {
         }
     }
 
-    fn jump(
-        &mut self,
-        mode: Mode,
-        index: usize,
-        t: f64,
-        y: &[f64; N],
-    ) -> Result<Jump<Mode, EventRecord, N>, ModelError> {
+    fn jump(&mut self, mode: Mode, index: usize, t: f64, y: &[f64; N]) -> Result<ModelJump, ModelError> {
         let mut yn = *y;
         let jump = match (mode, index) {
-            (Mode::Rest, 1 | 2) => {
-                let pivot = if index == 1 { Sign::Pos } else { Sign::Neg };
-                let target = rock_from_flat(pivot, &mut yn);
-                self.simple(EventKind::Uplift, mode, target, t, y, yn)
-            }
+            (Mode::Rest, 1 | 2) => self.simple(EventKind::Uplift, mode, uplift(index, &mut yn), t, y, yn),
             (Mode::Rest, _) | (Mode::Rock { .. }, 2 | 4) => {
                 self.simple(EventKind::Flight, mode, Mode::Flight, t, y, yn)
             }
@@ -419,32 +329,10 @@ impl HybridSystem<N> for FrameSystem {
                 self.tally.max_abs_theta = self.tally.max_abs_theta.max(y[THETA].abs());
                 self.simple(EventKind::Tumble, mode, Mode::Tumbled, t, y, yn)
             }
-            (Mode::Slide { .. } | Mode::SlideRock { .. } | Mode::Tumbled | Mode::Flight, _) => Jump {
-                mode,
-                t,
-                y: yn,
-                records: [None, None],
-            },
+            (Mode::Slide { .. } | Mode::SlideRock { .. } | Mode::Tumbled | Mode::Flight, _) => {
+                jump_to(mode, t, yn, None)
+            }
         };
         Ok(jump)
-    }
-
-    fn is_terminal(&self, mode: Mode) -> bool {
-        mode.is_terminal()
-    }
-
-    fn next_breakpoint(&self, t: f64) -> Option<f64> {
-        self.model.excitation.next_breakpoint(t)
-    }
-
-    fn time_scale(&self) -> f64 {
-        self.model.excitation.time_scale()
-    }
-
-    fn step_cap(&self, mode: Mode) -> f64 {
-        match mode {
-            Mode::Rest => self.model.excitation.time_scale(),
-            _ => f64::INFINITY,
-        }
     }
 }

@@ -124,25 +124,57 @@ fn unknowns(contacts: &[Contact], k: usize) -> (Vec<usize>, Vec<Option<usize>>, 
     (fcol, ccol, col)
 }
 
-/// The generic Newton–Euler solve of the stack in `contacts` at the given
-/// angles and rates, under effective gravity `g_e`.
-fn newton_euler(geo: &StackGeometry, contacts: &[Contact], q: &[f64], qd: &[f64], g_e: V2) -> Generic {
+/// A row of a generic solve, for its right-hand side.
+#[derive(Clone, Copy)]
+enum Row {
+    /// Block `j`'s Newton row, component `d`.
+    Newton(usize, usize),
+    /// Block `j`'s Euler row about its centre.
+    Euler(usize),
+    /// Component `d` of the meeting of interface `i`'s two points.
+    Meet(usize, usize),
+    /// A closed interface turning with the block below.
+    Turn,
+}
+
+impl World {
+    /// Where interface `i`'s force acts: its pivot, or a closed face's left
+    /// corner.
+    fn force_point(&self, contacts: &[Contact], i: usize) -> V2 {
+        if contacts[i] == Contact::Closed {
+            self.left[i]
+        } else {
+            self.pivot[i]
+        }
+    }
+
+    /// Block `j`'s arm to `p`.
+    fn arm(&self, j: usize, p: V2) -> V2 {
+        [p[0] - self.centre[j][0], p[1] - self.centre[j][1]]
+    }
+}
+
+/// The generic system of the stack in `contacts` at `w`, on the unknowns
+/// of [`unknowns`]: Newton's and Euler's rows of each block (forces or
+/// impulses alike), then the rows that make the two points of each
+/// interface meet (and a closed face turn with the block below), each row's
+/// right-hand side from `rhs`. The matrix, the right-hand sides and the
+/// force and couple columns.
+#[allow(clippy::type_complexity)]
+fn generic_system(
+    geo: &StackGeometry,
+    contacts: &[Contact],
+    w: &World,
+    mut rhs: impl FnMut(Row) -> f64,
+) -> (Vec<Vec<f64>>, Vec<f64>, Vec<usize>, Vec<Option<usize>>) {
     let k = geo.k;
-    let w = world(geo, contacts, q, qd);
     let (fcol, ccol, n) = unknowns(contacts, k);
     let mut a = vec![];
     let mut b = vec![];
     let row = || vec![0.0; n];
-    // Where interface i's force acts: the pivot, or the left corner.
-    let at = |i: usize| {
-        if contacts[i] == Contact::Closed {
-            w.left[i]
-        } else {
-            w.pivot[i]
-        }
-    };
+    let at = |i: usize| w.force_point(contacts, i);
     for j in 0..k {
-        // Newton: m a_j − F_j + F_{j+1} = m g_e.
+        // Newton: m a_j − F_j + F_{j+1} = m g_e (or the momentum change).
         for d in 0..2 {
             let mut r = row();
             r[3 * j + d] = geo.mass[j];
@@ -151,51 +183,48 @@ fn newton_euler(geo: &StackGeometry, contacts: &[Contact], q: &[f64], qd: &[f64]
                 r[fcol[j + 1] + d] = 1.0;
             }
             a.push(r);
-            b.push(geo.mass[j] * g_e[d]);
+            b.push(rhs(Row::Newton(j, d)));
         }
         // Euler (clockwise): I α_j = M_cw(F_j at its point) − M_cw(F_{j+1}) + C_j − C_{j+1}.
         let mut r = row();
         r[3 * j + 2] = geo.inertia[j];
-        let arm = |p: V2| [p[0] - w.centre[j][0], p[1] - w.centre[j][1]];
-        let below = arm(at(j));
+        let below = w.arm(j, at(j));
         // M_cw(r, F) = −(r_x F_y − r_y F_x): coefficient of F_x is r_y, of F_y is −r_x.
         r[fcol[j]] -= below[1];
-        r[fcol[j] + 1] -= -below[0];
+        r[fcol[j] + 1] += below[0];
         if let Some(c) = ccol[j] {
             r[c] -= 1.0;
         }
         if j + 1 < k {
-            let above = arm(at(j + 1));
+            let above = w.arm(j, at(j + 1));
             r[fcol[j + 1]] += above[1];
-            r[fcol[j + 1] + 1] += -above[0];
+            r[fcol[j + 1] + 1] -= above[0];
             if let Some(c) = ccol[j + 1] {
                 r[c] += 1.0;
             }
         }
         a.push(r);
-        b.push(0.0);
+        b.push(rhs(Row::Euler(j)));
     }
     // Constraints: the point where interface i's force acts has the same
-    // acceleration on both blocks; a closed face also turns with the block
-    // below. A point at arm r of block j accelerates at a_j + α_j J r − ω_j² r.
+    // acceleration (velocity) on both blocks; a closed face also turns with
+    // the block below. A point at arm r of block j accelerates at
+    // a_j + α_j J r − ω_j² r.
     for i in 0..k {
         let p = at(i);
         for d in 0..2 {
             let mut r = row();
-            let mut rhs = 0.0;
-            let mut add = |j: usize, sign: f64, r: &mut Vec<f64>| {
-                let arm = [p[0] - w.centre[j][0], p[1] - w.centre[j][1]];
+            for (j, sign) in [(i, 1.0), (i.wrapping_sub(1), -1.0)] {
+                if j >= k {
+                    continue;
+                }
+                let arm = w.arm(j, p);
                 let jr = [arm[1], -arm[0]];
                 r[3 * j + d] += sign;
                 r[3 * j + 2] += sign * jr[d];
-                rhs += sign * w.omega[j] * w.omega[j] * arm[d];
-            };
-            add(i, 1.0, &mut r);
-            if i > 0 {
-                add(i - 1, -1.0, &mut r);
             }
             a.push(r);
-            b.push(rhs);
+            b.push(rhs(Row::Meet(i, d)));
         }
         if contacts[i] == Contact::Closed {
             let mut r = row();
@@ -204,9 +233,32 @@ fn newton_euler(geo: &StackGeometry, contacts: &[Contact], q: &[f64], qd: &[f64]
                 r[3 * (i - 1) + 2] = -1.0;
             }
             a.push(r);
-            b.push(0.0);
+            b.push(rhs(Row::Turn));
         }
     }
+    (a, b, fcol, ccol)
+}
+
+/// The generic Newton–Euler solve of the stack in `contacts` at the given
+/// angles and rates, under effective gravity `g_e`.
+fn newton_euler(geo: &StackGeometry, contacts: &[Contact], q: &[f64], qd: &[f64], g_e: V2) -> Generic {
+    let k = geo.k;
+    let w = world(geo, contacts, q, qd);
+    let (a, b, fcol, ccol) = generic_system(geo, contacts, &w, |row| match row {
+        Row::Newton(j, d) => geo.mass[j] * g_e[d],
+        // The centripetal terms, −ω_j² r on each side, moved right.
+        Row::Meet(i, d) => {
+            let p = w.force_point(contacts, i);
+            let mut rhs = 0.0;
+            for (j, sign) in [(i, 1.0), (i.wrapping_sub(1), -1.0)] {
+                if j < k {
+                    rhs += sign * w.omega[j] * w.omega[j] * w.arm(j, p)[d];
+                }
+            }
+            rhs
+        }
+        Row::Euler(_) | Row::Turn => 0.0,
+    });
     let x = solve(a, b);
     Generic {
         accel: (0..k).map(|j| ([x[3 * j], x[3 * j + 1]], x[3 * j + 2])).collect(),
@@ -356,73 +408,11 @@ fn impulse(geo: &StackGeometry, before: &[Contact], after: &[Contact], q: &[f64]
         v
     };
     let w1 = world(geo, after, q, qd);
-    let (fcol, ccol, n) = unknowns(after, k);
-    let at = |i: usize| {
-        if after[i] == Contact::Closed {
-            w1.left[i]
-        } else {
-            w1.pivot[i]
-        }
-    };
-    let (mut a, mut b) = (vec![], vec![]);
-    for j in 0..k {
-        let v0 = vel(w0.centre[j], j);
-        for d in 0..2 {
-            let mut r = vec![0.0; n];
-            r[3 * j + d] = geo.mass[j];
-            r[fcol[j] + d] = -1.0;
-            if j + 1 < k {
-                r[fcol[j + 1] + d] = 1.0;
-            }
-            a.push(r);
-            b.push(geo.mass[j] * v0[d]);
-        }
-        let mut r = vec![0.0; n];
-        r[3 * j + 2] = geo.inertia[j];
-        let arm = |p: V2| [p[0] - w1.centre[j][0], p[1] - w1.centre[j][1]];
-        let below = arm(at(j));
-        r[fcol[j]] -= below[1];
-        r[fcol[j] + 1] += below[0];
-        if let Some(c) = ccol[j] {
-            r[c] -= 1.0;
-        }
-        if j + 1 < k {
-            let above = arm(at(j + 1));
-            r[fcol[j + 1]] += above[1];
-            r[fcol[j + 1] + 1] -= above[0];
-            if let Some(c) = ccol[j + 1] {
-                r[c] += 1.0;
-            }
-        }
-        a.push(r);
-        b.push(geo.inertia[j] * w0.omega[j]);
-    }
-    for i in 0..k {
-        let p = at(i);
-        for d in 0..2 {
-            let mut r = vec![0.0; n];
-            for (j, sign) in [(i, 1.0), (i.wrapping_sub(1), -1.0)] {
-                if j >= k {
-                    continue;
-                }
-                let arm = [p[0] - w1.centre[j][0], p[1] - w1.centre[j][1]];
-                let jr = [arm[1], -arm[0]];
-                r[3 * j + d] += sign;
-                r[3 * j + 2] += sign * jr[d];
-            }
-            a.push(r);
-            b.push(0.0);
-        }
-        if after[i] == Contact::Closed {
-            let mut r = vec![0.0; n];
-            r[3 * i + 2] = 1.0;
-            if i > 0 {
-                r[3 * (i - 1) + 2] = -1.0;
-            }
-            a.push(r);
-            b.push(0.0);
-        }
-    }
+    let (a, b, _, _) = generic_system(geo, after, &w1, |row| match row {
+        Row::Newton(j, d) => geo.mass[j] * vel(w0.centre[j], j)[d],
+        Row::Euler(j) => geo.inertia[j] * w0.omega[j],
+        Row::Meet(..) | Row::Turn => 0.0,
+    });
     let x = solve(a, b);
     (0..k)
         .map(|j| x[3 * j + 2] - if j > 0 { x[3 * (j - 1) + 2] } else { 0.0 })

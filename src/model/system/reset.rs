@@ -2,7 +2,7 @@
 //! the state (impact, accumulation, the simple switches), and the settling
 //! of a freshly entered mode into a consistent one.
 
-use super::{BlockSystem, EventKind, EventRecord};
+use super::{BlockSystem, EventKind, EventRecord, ModelJump, jump_to};
 use crate::integrate::hybrid::Jump;
 use crate::model::dynamics::{self, Tilt};
 use crate::model::energy;
@@ -120,7 +120,7 @@ impl BlockSystem {
 
     /// The impact reset map (docs/model.md §7) with MODEL-DECISIONS'
     /// accumulation rule.
-    pub(super) fn impact(&mut self, before: Mode, pivot: Sign, t: f64, y: &[f64; N]) -> Jump<Mode, EventRecord, N> {
+    pub(super) fn impact(&mut self, before: Mode, pivot: Sign, t: f64, y: &[f64; N]) -> ModelJump {
         let geo = self.model.geo;
         let striking = pivot.flip();
         let w = geo.psi * y[THETA_DOT];
@@ -204,12 +204,7 @@ impl BlockSystem {
             self.tally.lift_off_y_dot = Some(post.y_dot);
             let e_after = energy::kinetic(&geo, post.x_dot, post.y_dot, yn[THETA_DOT]);
             self.tally.impact_loss += e_before - e_after;
-            return Jump {
-                mode,
-                t,
-                y: yn,
-                records: [Some(record), None],
-            };
+            return jump_to(mode, t, yn, Some(record));
         }
 
         if !post.flat && yn[THETA_DOT].abs() < self.model.zeno_eps {
@@ -226,12 +221,7 @@ impl BlockSystem {
             record.kind = EventKind::Rest;
             record.after = mode;
             record.x_dot = yn[X_DOT];
-            return Jump {
-                mode,
-                t,
-                y: yn,
-                records: [Some(record), None],
-            };
+            return jump_to(mode, t, yn, Some(record));
         }
         let (_, y_dot_after) = energy::height(&geo, mode, 0.0, yn[THETA_DOT]);
         let e_after = energy::kinetic(&geo, yn[X_DOT], y_dot_after, yn[THETA_DOT]);
@@ -239,25 +229,20 @@ impl BlockSystem {
         let mode = self.settle(mode, t, &mut yn);
         record.after = mode;
         record.x_dot = yn[X_DOT];
-        Jump {
-            mode,
-            t,
-            y: yn,
-            records: [Some(record), None],
-        }
+        jump_to(mode, t, yn, Some(record))
     }
 
     /// Impact accumulation (MODEL-DECISIONS): the remaining impacts are
     /// summed in closed form (docs/model.md §10) and the block put flat.
     fn accumulate(
         &mut self,
-        mut record: EventRecord,
+        record: EventRecord,
         e_before: f64,
         t: f64,
         pre: &PreImpact,
         post: &impact::PostImpact,
         mut yn: [f64; N],
-    ) -> Jump<Mode, EventRecord, N> {
+    ) -> ModelJump {
         let geo = self.model.geo;
         let fo = self.model.excitation.forcing(t);
         let striking = pre.striking;
@@ -289,50 +274,29 @@ impl BlockSystem {
         } else {
             Mode::Rest
         };
-        if k_next > 0.0 && k_after > 0.0 {
-            let v = post.w.abs();
+        // Without a restoring push on both sides the base lifts the block at
+        // once: rocking restarts from Θ = Θ' = 0 on the side the base drives
+        // it to.
+        let t_acc = (k_next > 0.0 && k_after > 0.0).then(|| {
             let r = if pre.w != 0.0 { (post.w / pre.w).abs() } else { 0.0 };
-            let t_acc = impact::accumulation_end(t, v, r, k_next, k_after);
-            let mode = self.settle(flat, t_acc, &mut yn);
-            record.after = Mode::Rock { pivot: striking };
-            let rest = EventRecord {
-                tau: t_acc,
-                kind: EventKind::Rest,
-                before: Mode::Rock { pivot: striking },
-                after: mode,
-                theta: 0.0,
-                theta_dot_before: record.theta_dot_after,
-                theta_dot_after: 0.0,
-                x_dot: yn[X_DOT],
-                x: yn[X],
-            };
-            Jump {
-                mode,
-                t: t_acc,
-                y: yn,
-                records: [Some(record), Some(rest)],
-            }
-        } else {
-            // The base lifts the block at once: rocking restarts from
-            // Θ = Θ' = 0 on the side the base drives it to.
-            let mode = self.settle(flat, t, &mut yn);
-            record.kind = EventKind::Rest;
-            record.after = mode;
-            record.theta_dot_after = 0.0;
-            record.x_dot = yn[X_DOT];
-            Jump {
-                mode,
-                t,
-                y: yn,
-                records: [Some(record), None],
-            }
-        }
+            impact::accumulation_end(t, post.w.abs(), r, k_next, k_after)
+        });
+        let mode = self.settle(flat, t_acc.unwrap_or(t), &mut yn);
+        accumulated(record, striking, t_acc, mode, yn)
     }
+}
+
+/// A one-body model (the block, the frame) that brings a freshly entered
+/// mode to a consistent one; its switches other than impacts are then
+/// alike.
+pub(crate) trait Settles {
+    /// The consistent mode `mode` leads to at `t`, `y` adjusted to it.
+    fn settled(&mut self, mode: Mode, t: f64, y: &mut [f64; N]) -> Mode;
 
     /// A switch other than an impact: `target` (with state `yn`) settled
     /// at `t`, and its event record, `kind` corrected for what settling
     /// made of it.
-    pub(super) fn simple(
+    fn simple(
         &mut self,
         kind: EventKind,
         before: Mode,
@@ -340,38 +304,71 @@ impl BlockSystem {
         t: f64,
         y: &[f64; N],
         mut yn: [f64; N],
-    ) -> Jump<Mode, EventRecord, N> {
-        let mode = self.settle(target, t, &mut yn);
+    ) -> ModelJump {
+        let mode = self.settled(target, t, &mut yn);
         // A stick that cannot hold is a slip reversal; a slide that stops
         // is a stick even if the base then lifts the block.
         let kind = match (kind, mode) {
             (EventKind::Stick, Mode::SlideRock { .. } | Mode::Slide { .. }) => EventKind::Slip,
             (k, _) => k,
         };
-        Jump {
-            mode,
-            t,
-            y: yn,
-            records: [
-                Some(EventRecord {
-                    tau: t,
-                    kind,
-                    before,
-                    after: mode,
-                    theta: y[THETA],
-                    theta_dot_before: y[THETA_DOT],
-                    theta_dot_after: yn[THETA_DOT],
-                    x_dot: yn[X_DOT],
-                    x: yn[X],
-                }),
-                None,
-            ],
-        }
+        jump_to(mode, t, yn, Some(EventRecord::switch(kind, t, before, mode, y, &yn)))
     }
 }
 
+impl Settles for BlockSystem {
+    fn settled(&mut self, mode: Mode, t: f64, y: &mut [f64; N]) -> Mode {
+        self.settle(mode, t, y)
+    }
+}
+
+/// The end of an impact accumulation begun by `impact` on corner
+/// `striking`, the body put flat in `mode` with state `yn`. One summed to
+/// `t_acc` records the impact and the rest there; one that ends at once
+/// (the base lifts the body at the impact) records the impact as the rest.
+/// The block's and the frame's.
+pub(crate) fn accumulated(
+    mut impact: EventRecord,
+    striking: Sign,
+    t_acc: Option<f64>,
+    mode: Mode,
+    yn: [f64; N],
+) -> ModelJump {
+    let Some(t_acc) = t_acc else {
+        impact.kind = EventKind::Rest;
+        impact.after = mode;
+        impact.theta_dot_after = 0.0;
+        impact.x_dot = yn[X_DOT];
+        return jump_to(mode, impact.tau, yn, Some(impact));
+    };
+    impact.after = Mode::Rock { pivot: striking };
+    let rest = EventRecord {
+        tau: t_acc,
+        kind: EventKind::Rest,
+        before: Mode::Rock { pivot: striking },
+        after: mode,
+        theta: 0.0,
+        theta_dot_before: impact.theta_dot_after,
+        theta_dot_after: 0.0,
+        x_dot: yn[X_DOT],
+        x: yn[X],
+    };
+    Jump {
+        mode,
+        t: t_acc,
+        y: yn,
+        records: [Some(impact), Some(rest)],
+    }
+}
+
+/// A flat body lifting off on the corner that uplift guard `index` names
+/// (1: the right, 2: the left), from rest.
+pub(crate) fn uplift(index: usize, y: &mut [f64; N]) -> Mode {
+    rock_from_flat(if index == 1 { Sign::Pos } else { Sign::Neg }, y)
+}
+
 /// A flat block starting to rock about `pivot` from rest.
-pub(super) fn rock_from_flat(pivot: Sign, y: &mut [f64; N]) -> Mode {
+pub(crate) fn rock_from_flat(pivot: Sign, y: &mut [f64; N]) -> Mode {
     y[THETA] = 0.0;
     y[THETA_DOT] = 0.0;
     y[X_DOT] = 0.0;

@@ -4,6 +4,7 @@
 //! restart from the state shown) is refused with its reason, and the
 //! worker then starts over from rest as it does for any refusal.
 
+use super::playhead::Playhead;
 use super::session::{Session, Start};
 use super::stack_session::StackSession;
 use crate::sim::Scenario;
@@ -33,20 +34,22 @@ impl Live {
         Session::with_phase(run, scenario, start, phase).map(Live::Block)
     }
 
+    /// What either kind keeps alike.
+    fn play(&self) -> &Playhead {
+        match self {
+            Live::Block(s) => &s.play,
+            Live::Stack(s) => &s.play,
+        }
+    }
+
     /// The run's id.
     pub fn run(&self) -> RunId {
-        match self {
-            Live::Block(s) => s.run(),
-            Live::Stack(s) => s.run(),
-        }
+        self.play().run
     }
 
     /// What the run is about.
     pub fn info(&self) -> &RunInfo {
-        match self {
-            Live::Block(s) => s.info(),
-            Live::Stack(s) => s.info(),
-        }
+        &self.play().info
     }
 
     /// τ integrated so far.
@@ -59,18 +62,12 @@ impl Live {
 
     /// τ released so far.
     pub fn released(&self) -> f64 {
-        match self {
-            Live::Block(s) => s.released(),
-            Live::Stack(s) => s.released(),
-        }
+        self.play().released
     }
 
     /// Whether the driver stopped.
     pub(crate) fn is_ended(&self) -> bool {
-        match self {
-            Live::Block(s) => s.is_ended(),
-            Live::Stack(s) => s.is_ended(),
-        }
+        self.play().ended.is_some()
     }
 
     /// How the run ended, once all before it is released.
@@ -105,12 +102,23 @@ impl Live {
         }
     }
 
-    /// The run's first frame.
+    /// Moves the run's first frame (the sample at its start, with a block's
+    /// ghosts there) into `batch` without moving the playhead: a run started
+    /// paused shows where it starts instead of an empty stage. Integrates
+    /// one chunk ahead, which the run would do next anyway.
     pub(crate) fn first_frame(&mut self, batch: &mut Batch) {
-        match self {
-            Live::Block(s) => s.first_frame(batch),
-            Live::Stack(s) => s.first_frame(batch),
+        let released = self.released();
+        if released > self.info().tau0 {
+            return;
         }
+        let next = match self {
+            Live::Block(s) => s.next_sample_tau(),
+            Live::Stack(s) => s.next_sample_tau(),
+        };
+        if !self.is_ended() && next.is_none_or(|tau| tau > released) {
+            self.advance_chunk();
+        }
+        self.release(released, batch);
     }
 
     /// Ghost copies (a block's only; a stack has none).

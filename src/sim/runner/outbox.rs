@@ -125,22 +125,7 @@ mod tests {
     use crate::sim::protocol::Sample;
 
     fn sample(tau: f64) -> Sample {
-        Sample {
-            state: crate::sim::HistoryRow {
-                tau,
-                theta: 0.0,
-                theta_dot: 0.0,
-                x: 0.0,
-                x_dot: 0.0,
-                mode: crate::model::Mode::Rest,
-            },
-            a_h: 0.0,
-            a_v: 0.0,
-            base_x: 0.0,
-            normal: 1.0,
-            friction: 0.0,
-            stack: None,
-        }
+        Sample::flat(tau, crate::model::Mode::Rest, 1.0)
     }
 
     #[test]

@@ -30,6 +30,7 @@
 
 use std::collections::VecDeque;
 
+use super::playhead::{Playhead, release_upto};
 use crate::integrate::Stepper;
 use crate::integrate::hybrid::{Advance, Driver, Limits, Observer, Outputs};
 use crate::model::rocker::RockerCore;
@@ -415,8 +416,7 @@ fn perturbed_state(
 
 /// One live run.
 pub struct Session {
-    run: RunId,
-    info: RunInfo,
+    pub(super) play: Playhead,
     driver: AnyDriver,
     probe: Box<dyn LiveSystem>,
     base: BaseMotion,
@@ -425,8 +425,6 @@ pub struct Session {
     grid: ChunkGrid,
     /// Index of the next chunk end on the grid.
     next_chunk: u64,
-    /// How the run ended, once the driver stopped.
-    ended: Option<RunEnd>,
     /// For a record run: its end, τ, after which rest ends the run
     /// ([`RunEnd::Rest`]); on a still base (no excitation) its start.
     rest_after: Option<f64>,
@@ -436,8 +434,6 @@ pub struct Session {
     last_event: f64,
     /// Whether the base never moves (no excitation): rest is then final.
     still_base: bool,
-    /// τ up to which output has been released.
-    released: f64,
     /// Whether section points come from landing on chunk ends (a section
     /// phase other than 0) rather than from the driver.
     exact_sections: bool,
@@ -520,17 +516,9 @@ impl Session {
         };
         let driver = system.into_driver(scenario, from, outputs);
         let still_base = scenario.excitation.kind == crate::sim::scenario::ExcitationKind::None;
+        let section_phase = if exact_sections { phase } else { 0.0 };
         Ok(Self {
-            run,
-            info: RunInfo {
-                scenario: scenario.clone(),
-                geometry,
-                section_period,
-                section_phase: if exact_sections { phase } else { 0.0 },
-                tau0,
-                sample_dt: LIVE_SAMPLE_DT,
-                stack: None,
-            },
+            play: Playhead::new(run, scenario, geometry, section_period, section_phase, tau0, None),
             driver,
             probe,
             base,
@@ -538,7 +526,6 @@ impl Session {
             ghosts: Vec::new(),
             grid,
             next_chunk,
-            ended: None,
             // Whatever `run.t_end` says: a live run ignores it, and rest after
             // the record lasts for ever. So does rest on a base that never
             // moves: a free-rocking block at rest ends the run there, and
@@ -547,7 +534,6 @@ impl Session {
             last_event: tau0,
             still_base,
             peaks,
-            released: tau0,
             exact_sections,
             start: (tau0, mode0, y0),
             batch_end: scenario
@@ -558,12 +544,12 @@ impl Session {
 
     /// The run's id.
     pub fn run(&self) -> RunId {
-        self.run
+        self.play.run
     }
 
     /// What the run is about.
     pub fn info(&self) -> &RunInfo {
-        &self.info
+        &self.play.info
     }
 
     /// τ integrated so far (ahead of [`Session::released`] by at most a chunk
@@ -574,18 +560,18 @@ impl Session {
 
     /// τ up to which output has been released.
     pub fn released(&self) -> f64 {
-        self.released
+        self.play.released
     }
 
     /// Whether the driver has stopped (terminal mode or error).
-    pub(crate) fn is_ended(&self) -> bool {
-        self.ended.is_some()
+    pub fn is_ended(&self) -> bool {
+        self.play.ended.is_some()
     }
 
     /// How the run ended, once everything before the end has been released.
     pub fn end(&self) -> Option<&RunEnd> {
         let drained = self.queue.samples.is_empty() && self.queue.events.is_empty() && self.queue.section.is_empty();
-        if drained { self.ended.as_ref() } else { None }
+        self.play.end(drained)
     }
 
     /// The current mode and state (at [`Session::computed`]).
@@ -610,23 +596,14 @@ impl Session {
         }
     }
 
-    /// Moves the run's first frame (the sample at its start, with the ghosts
-    /// there) into `batch` without moving the playhead: a run started
-    /// paused shows where the block starts instead of an empty stage.
-    /// Integrates one chunk ahead, which the run would do next anyway.
-    pub(crate) fn first_frame(&mut self, batch: &mut Batch) {
-        if self.released > self.start.0 {
-            return;
-        }
-        if self.ended.is_none() && self.queue.samples.front().is_none_or(|s| s.tau > self.released) {
-            self.advance_chunk();
-        }
-        self.release(self.released, batch);
+    /// τ of the next sample not yet released.
+    pub(crate) fn next_sample_tau(&self) -> Option<f64> {
+        self.queue.samples.front().map(|s| s.tau)
     }
 
     /// Integrates chunk by chunk until `tau` is computed or the run ends.
     pub(crate) fn fill_to(&mut self, tau: f64) {
-        while self.ended.is_none() && self.driver.t() < tau {
+        while self.play.ended.is_none() && self.driver.t() < tau {
             self.advance_chunk();
         }
     }
@@ -639,7 +616,7 @@ impl Session {
 
     /// Integrates one chunk (to the next point of the chunk grid).
     pub(crate) fn advance_chunk(&mut self) {
-        if self.ended.is_some() {
+        if self.play.ended.is_some() {
             return;
         }
         let t = self.driver.t();
@@ -684,7 +661,7 @@ impl Session {
                     } else {
                         t
                     };
-                    self.ended = Some(RunEnd::Rest {
+                    self.play.ended = Some(RunEnd::Rest {
                         tau,
                         max_abs_theta: self.peaks.theta.max(self.driver.peak_theta()),
                         max_abs_sliding: self.peaks.sliding,
@@ -692,12 +669,12 @@ impl Session {
                 }
             }
             Ok(Advance::Terminal) => {
-                self.ended = Some(RunEnd::Terminal {
+                self.play.ended = Some(RunEnd::Terminal {
                     mode: self.driver.mode(),
                     tau: self.driver.t(),
                 });
             }
-            Err(e) => self.ended = Some(RunEnd::Failed(e.to_string())),
+            Err(e) => self.play.ended = Some(RunEnd::Failed(e.to_string())),
         }
         let t_ghost = self.driver.t();
         for g in self.ghosts.iter_mut().filter(|g| !g.done) {
@@ -726,26 +703,10 @@ impl Session {
     /// Moves everything produced up to `tau` into `batch` (appending), and
     /// advances the playhead there. Ghost states: the latest at or before `tau`.
     pub fn release(&mut self, tau: f64, batch: &mut Batch) {
-        let upto = if self.ended.is_some() {
-            tau
-        } else {
-            tau.min(self.driver.t())
-        };
-        while self.queue.samples.front().is_some_and(|s| s.tau <= upto) {
-            if let Some(s) = self.queue.samples.pop_front() {
-                batch.samples.push(s);
-            }
-        }
-        while self.queue.events.front().is_some_and(|e| e.tau <= upto) {
-            if let Some(e) = self.queue.events.pop_front() {
-                batch.events.push(e);
-            }
-        }
-        while self.queue.section.front().is_some_and(|p| p.tau <= upto) {
-            if let Some(p) = self.queue.section.pop_front() {
-                batch.section.push(p);
-            }
-        }
+        let upto = self.play.release_limit(tau, self.driver.t());
+        release_upto(&mut self.queue.samples, upto, |s| s.tau, |s| batch.samples.push(s));
+        release_upto(&mut self.queue.events, upto, |e| e.tau, |e| batch.events.push(e));
+        release_upto(&mut self.queue.section, upto, |p| p.tau, |p| batch.section.push(p));
         if !self.ghosts.is_empty() {
             batch.ghosts.clear();
             for g in &mut self.ghosts {
@@ -757,10 +718,7 @@ impl Session {
                 batch.ghosts.push(g.latest);
             }
         }
-        if upto > self.released {
-            self.released = upto.min(self.driver.t());
-        }
-        batch.tau = self.released;
+        self.play.move_to(upto, self.driver.t(), batch);
     }
 
     /// Replaces the ghosts with `count` copies started from the state shown
@@ -789,7 +747,8 @@ impl Session {
                 sample_dt: Some(LIVE_SAMPLE_DT),
                 section_period: None,
             };
-            let mut driver = system.into_driver(&self.info.scenario, DriverStart { mode: m, t0: tau, y0 }, outputs);
+            let mut driver =
+                system.into_driver(&self.play.info.scenario, DriverStart { mode: m, t0: tau, y0 }, outputs);
             let mut states = VecDeque::new();
             // Bring the ghost level with the main trajectory's computed τ.
             let done = self.driver.t() > tau
@@ -828,7 +787,7 @@ impl Session {
             section_period: None,
         };
         let system = live_system(self.probe.params().clone());
-        let mut driver = system.into_driver(&self.info.scenario, DriverStart { mode, t0: tau, y0: y }, outputs);
+        let mut driver = system.into_driver(&self.play.info.scenario, DriverStart { mode, t0: tau, y0: y }, outputs);
         let mut moved = FirstMove(None);
         let mut t = tau;
         while t < self.batch_end {
@@ -850,9 +809,9 @@ impl Session {
         let (tau, mode, y) = self.shown_state(last_sample);
         Session::with_phase(
             run,
-            &self.info.scenario,
+            &self.play.info.scenario,
             Start::Perturbed { tau, y, mode, eps },
-            self.info.section_phase,
+            self.play.info.section_phase,
         )
     }
 

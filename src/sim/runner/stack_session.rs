@@ -23,9 +23,10 @@ use crate::integrate::{Dop853, Dopri5, Stepper};
 use crate::model::Mode;
 use crate::model::excitation::Excitation;
 use crate::model::stack::{MAX_BLOCKS, NS, StackEnd, StackError, StackEvent, StackMode, StackSystem, StackTally};
-use crate::sim::protocol::{BaseMotion, Batch, RunEnd, RunId, RunInfo, Sample, StackFrame};
+use crate::sim::protocol::{BaseMotion, Batch, RunEnd, RunId, Sample, StackFrame};
 use crate::sim::{Method, Scenario, SectionRow};
 
+use super::playhead::{Playhead, release_upto};
 use super::session::{LIVE_SAMPLE_DT, MAX_CHUNK};
 
 /// A stack's driver, whatever its stepper: dispatch per chunk, stepping
@@ -143,8 +144,7 @@ impl Observer<StackMode, StackEvent, NS> for Sink<'_> {
 
 /// One live run of a stack.
 pub struct StackSession {
-    run: RunId,
-    info: RunInfo,
+    pub(super) play: Playhead,
     driver: Box<dyn StackDriver>,
     excitation: Excitation,
     base: BaseMotion,
@@ -155,13 +155,11 @@ pub struct StackSession {
     period: Option<f64>,
     parts: u64,
     next_chunk: u64,
-    ended: Option<RunEnd>,
     /// For a record: its end, after which rest ends the run; on a still
     /// base, 0.
     rest_after: Option<f64>,
     still_base: bool,
     last_event: f64,
-    released: f64,
     /// Where the batch run's first advance ends: steps end there at the
     /// latest, as its do.
     batch_end: f64,
@@ -211,16 +209,7 @@ impl StackSession {
         let geometry = scenario.geometry();
         let base = BaseMotion::new(&excitation, 0.0);
         Ok(Self {
-            run,
-            info: RunInfo {
-                scenario: scenario.clone(),
-                geometry,
-                section_period,
-                section_phase: 0.0,
-                tau0: 0.0,
-                sample_dt: LIVE_SAMPLE_DT,
-                stack: Some(geo),
-            },
+            play: Playhead::new(run, scenario, geometry, section_period, 0.0, 0.0, Some(geo)),
             driver,
             excitation,
             base,
@@ -229,11 +218,9 @@ impl StackSession {
             period: section_period,
             parts,
             next_chunk: 1,
-            ended: None,
             rest_after: scenario.record_end_tau().or(still_base.then_some(0.0)),
             still_base,
             last_event: 0.0,
-            released: 0.0,
             batch_end: scenario
                 .record_end_tau()
                 .map_or(scenario.tau_end(), |end| end.min(scenario.tau_end())),
@@ -242,35 +229,15 @@ impl StackSession {
         })
     }
 
-    /// The run's id.
-    pub fn run(&self) -> RunId {
-        self.run
-    }
-
-    /// What the run is about.
-    pub fn info(&self) -> &RunInfo {
-        &self.info
-    }
-
     /// τ integrated so far.
     pub fn computed(&self) -> f64 {
         self.driver.t()
     }
 
-    /// τ up to which output has been released.
-    pub fn released(&self) -> f64 {
-        self.released
-    }
-
-    /// Whether the driver has stopped.
-    pub(crate) fn is_ended(&self) -> bool {
-        self.ended.is_some()
-    }
-
     /// How the run ended, once everything before the end is released.
     pub fn end(&self) -> Option<&RunEnd> {
         let drained = self.queue.samples.is_empty() && self.queue.events.is_empty() && self.queue.section.is_empty();
-        if drained { self.ended.as_ref() } else { None }
+        self.play.end(drained)
     }
 
     /// The contacts and state at [`StackSession::computed`].
@@ -291,28 +258,21 @@ impl StackSession {
         }
     }
 
-    /// The run's first frame, without moving the playhead (a run started
-    /// paused shows the stack where it stands).
-    pub(crate) fn first_frame(&mut self, batch: &mut Batch) {
-        if self.released > 0.0 {
-            return;
-        }
-        if self.ended.is_none() && self.queue.samples.front().is_none_or(|s| s.tau > self.released) {
-            self.advance_chunk();
-        }
-        self.release(self.released, batch);
+    /// τ of the next sample not yet released.
+    pub(crate) fn next_sample_tau(&self) -> Option<f64> {
+        self.queue.samples.front().map(|s| s.tau)
     }
 
     /// Integrates chunk by chunk until `tau` is computed or the run ends.
     pub(crate) fn fill_to(&mut self, tau: f64) {
-        while self.ended.is_none() && self.driver.t() < tau {
+        while self.play.ended.is_none() && self.driver.t() < tau {
             self.advance_chunk();
         }
     }
 
     /// Integrates one chunk.
     pub(crate) fn advance_chunk(&mut self) {
-        if self.ended.is_some() {
+        if self.play.ended.is_some() {
             return;
         }
         let t = self.driver.t();
@@ -344,7 +304,7 @@ impl StackSession {
                     };
                     let tally = self.driver.tally();
                     let peak = tally.max_phi[..self.k].iter().copied().fold(0.0, f64::max);
-                    self.ended = Some(RunEnd::Rest {
+                    self.play.ended = Some(RunEnd::Rest {
                         tau,
                         max_abs_theta: peak / self.psi,
                         max_abs_sliding: 0.0,
@@ -356,49 +316,31 @@ impl StackSession {
                     Some(StackEnd::Flight(_)) => Mode::Flight,
                     Some(StackEnd::Overturned(_)) | None => Mode::Tumbled,
                 };
-                self.ended = Some(RunEnd::Terminal {
+                self.play.ended = Some(RunEnd::Terminal {
                     mode,
                     tau: self.driver.t(),
                 });
             }
-            Err(e) => self.ended = Some(RunEnd::Failed(e.to_string())),
+            Err(e) => self.play.ended = Some(RunEnd::Failed(e.to_string())),
         }
     }
 
     /// Moves everything produced up to `tau` into `batch` and advances the
     /// playhead there.
     pub fn release(&mut self, tau: f64, batch: &mut Batch) {
-        let upto = if self.ended.is_some() {
-            tau
-        } else {
-            tau.min(self.driver.t())
-        };
-        while let Some(s) = self.queue.samples.pop_front() {
-            if s.tau > upto {
-                self.queue.samples.push_front(s);
-                break;
-            }
-            batch.samples.push(s);
-        }
-        while let Some(e) = self.queue.events.pop_front() {
-            if e.tau > upto {
-                self.queue.events.push_front(e);
-                break;
-            }
-            batch.stack_events.push(e);
-        }
-        while let Some((p, f)) = self.queue.section.pop_front() {
-            if p.tau > upto {
-                self.queue.section.push_front((p, f));
-                break;
-            }
-            batch.section.push(p);
-            batch.stack_section.push(f);
-        }
-        if upto > self.released {
-            self.released = upto.min(self.driver.t());
-        }
-        batch.tau = self.released;
+        let upto = self.play.release_limit(tau, self.driver.t());
+        release_upto(&mut self.queue.samples, upto, |s| s.tau, |s| batch.samples.push(s));
+        release_upto(&mut self.queue.events, upto, |e| e.tau, |e| batch.stack_events.push(e));
+        release_upto(
+            &mut self.queue.section,
+            upto,
+            |(p, _)| p.tau,
+            |(p, f)| {
+                batch.section.push(p);
+                batch.stack_section.push(f);
+            },
+        );
+        self.play.move_to(upto, self.driver.t(), batch);
     }
 
     /// The largest |φ_j| so far of each block, rad (exact: the model's
