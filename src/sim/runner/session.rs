@@ -30,6 +30,7 @@
 
 use std::collections::VecDeque;
 
+pub use super::playhead::LIVE_SAMPLE_DT;
 use super::playhead::{Playhead, release_upto};
 use crate::integrate::Stepper;
 use crate::integrate::hybrid::{Advance, Driver, Limits, Observer, Outputs};
@@ -41,11 +42,6 @@ use crate::sim::method::{StepperVisitor, with_stepper};
 use crate::sim::protocol::{BaseMotion, Batch, GhostState, RunEnd, RunId, RunInfo, Sample};
 use crate::sim::{HistoryRow, SectionRow};
 use crate::sim::{InitialState, initial_mode};
-
-/// Spacing of the live samples, τ. Fine enough that the paper's block
-/// (p ≈ 1.9 s⁻¹) shows a new pose about 40 times a second at ×0.1 playback;
-/// samples come from the dense output, so they add no step stops.
-pub const LIVE_SAMPLE_DT: f64 = 0.005;
 
 /// Longest chunk, τ: bounds the data produced ahead of the playhead.
 pub const MAX_CHUNK: f64 = 1.0;
