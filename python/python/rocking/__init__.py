@@ -270,7 +270,12 @@ def outcome_map(
     `initial.theta_dot`, `initial.x_dot`: a basin map), each periodic cell
     is also labelled with the attractor it reaches (`attractor`, numbered
     from 1 in row order of the first cell reaching it; `attractors` lists
-    them). `progress`: see the module's help (an inherited cell counts as
+    them). There, once the coarser levels have found attractors, a run also
+    stops when it follows one of their cycles to 1e-3 of its amplitude for
+    a cycle and 4 more periods, or when its section points land ten times
+    in a row in cells labelled with one attractor
+    (`cells_on_known_attractor` counts them; docs/analysis.md gives the
+    criteria and their agreement with `full=True`). `progress`: see the module's help (an inherited cell counts as
     done). Ctrl-C stops it between chunks of a few hundred cells."""
     s = _scene(scene)
     with _Reporter(progress, "outcome_map") as report:
