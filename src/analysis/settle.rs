@@ -27,7 +27,6 @@
 //!   [`classify_points`] (so period k may still come out as a smaller
 //!   period, when two of the cycle's points agree to the classifier's
 //!   tolerance, as the full run would find).
-//!
 //! - **A known attractor reached** (basin maps): the last `k + REACH_CONFIRM`
 //!   section points follow, in order, the cycle of a periodic attractor
 //!   already found in another cell of the same map (its k points, at
@@ -37,7 +36,9 @@
 //!   from other initial states converged onto it to 10⁻⁵ of its
 //!   amplitude), and a trajectory that has stayed within 10⁻³ of its
 //!   amplitude for a whole cycle and `REACH_CONFIRM` more forcing periods
-//!   is in its basin: it converges onto that orbit, and the full run's
+//!   is in its basin (short of a chaotic transient shadowing the orbit
+//!   that closely for that long, which a looser 1 % match was seen to
+//!   let through): it converges onto that orbit, and the full run's
 //!   window would show the same cycle. This is how Attractors.jl's
 //!   recurrence method ends a run that enters a known attractor's
 //!   neighbourhood; here it saves the tail of the approach from 10⁻³ to
