@@ -327,7 +327,7 @@ fn a_stack_refuses_what_it_cannot_run_with_one_line_naming_the_key() {
         s.model()
             .unwrap_err()
             .to_string()
-            .starts_with("stack: a [[stack]] is simulated one run at a time")
+            .starts_with("stack: a [[stack]] has its own equations")
     );
 }
 

@@ -39,6 +39,7 @@ use rayon::prelude::*;
 
 use super::classify::{ClassifyOptions, Response};
 use super::field::{FieldNames, OwnNames, StudyField};
+use super::stack_steady::check_stack_study;
 use super::steady::{LyapunovFn, SteadyError, Window, check_scenario, steady_response};
 use super::{Progress, ProgressFn};
 use crate::sim::{InitialState, Param, Scenario, SectionRow};
@@ -528,6 +529,14 @@ impl BlockSweep<'_> {
     /// that an out-of-range value, a non-harmonic excitation or a window
     /// too short is reported at once.
     pub fn scenarios(&self, plan: &Plan) -> Result<Vec<Scenario>, SweepError<SteadyError>> {
+        let continued = plan.continuation != Continuation::None;
+        check_stack_study(self.base, &[self.param], continued, self.lyapunov.is_some()).map_err(|error| {
+            SweepError {
+                index: 0,
+                value: plan.grid.value(0),
+                error,
+            }
+        })?;
         plan.indices()
             .into_iter()
             .map(|i| {

@@ -19,6 +19,7 @@ use super::classify::{ClassifyOptions, Response};
 use super::map_refine::Refiner;
 use super::orbit_diagram::{AxisRule, PlanError};
 use super::settle::{BasinLookup, CellResponse, cell_response};
+use super::stack_steady::{check_stack_study, stack_cell};
 use super::steady::{LyapunovFn, SteadyError, Window, check_scenario};
 use super::{Progress, ProgressFn};
 use crate::sim::{Param, Scenario};
@@ -188,6 +189,9 @@ impl BlockMap<'_> {
         basins: Option<BasinLookup<'_>>,
     ) -> Result<CellResponse, SteadyError> {
         let cfg = self.scenario(x, y)?;
+        if cfg.stack.is_some() {
+            return stack_cell(&cfg, &self.window, &self.classify);
+        }
         cell_response(&cfg, &self.window, &self.classify, self.lyapunov, early, known, basins)
     }
 
@@ -214,6 +218,13 @@ impl BlockMap<'_> {
 
     /// Makes and checks every cell's scenario before anything runs.
     pub fn check(&self) -> Result<(), MapError<SteadyError>> {
+        check_stack_study(self.base, &[self.x_param, self.y_param], false, self.lyapunov.is_some()).map_err(
+            |error| MapError {
+                x: self.x.value(0),
+                y: self.y.value(0),
+                error,
+            },
+        )?;
         for yv in self.y.values() {
             for xv in self.x.values() {
                 let cfg = self

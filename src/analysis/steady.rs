@@ -19,8 +19,10 @@
 use super::classify::{ClassifyError, ClassifyOptions, Response, classify_run};
 use super::field::{FieldNames, OwnNames, StudyField};
 use super::section::{after_transient, points_in_window};
+use super::stack_steady::{check_stack_study, stack_steady};
 use crate::model::{Mode, Model};
 use crate::sim::scenario::ExcitationKind;
+use crate::sim::stack_run::StackError;
 use crate::sim::{InitialState, RunOptions, Scenario, ScenarioError, SectionRow, SimError, simulate};
 
 /// The largest Lyapunov exponent of a configuration, per unit τ, if the
@@ -130,13 +132,8 @@ impl WindowError {
 
 impl Window {
     /// The window of a study of `base` from `transient` and `tau_end`
-    /// (default: `base`'s `run.tau_end`), checked. A stack is refused
-    /// first, for what it is: its run is often shorter than a transient,
-    /// and the window alone would blame the length.
+    /// (default: `base`'s `run.tau_end`), checked.
     pub fn of_study(base: &Scenario, transient: f64, tau_end: Option<f64>) -> Result<Window, SteadyError> {
-        if base.stack.is_some() {
-            base.model()?;
-        }
         let window = Window {
             transient,
             tau_end: tau_end.unwrap_or(base.run.tau_end),
@@ -178,6 +175,10 @@ pub enum SteadyError {
     /// The simulation failed.
     #[error("simulation failed: {0}")]
     Sim(#[from] SimError),
+    /// A stack's run stopped at a slip it does not follow (its `static` is
+    /// too low for the motion: bad input) or failed.
+    #[error(transparent)]
+    Stack(#[from] StackError),
     /// The points could not be classified.
     #[error(transparent)]
     Classify(#[from] ClassifyError),
@@ -199,6 +200,7 @@ impl SteadyError {
             SteadyError::Scenario(_)
             | SteadyError::NotHarmonic
             | SteadyError::Sim(_)
+            | SteadyError::Stack(_)
             | SteadyError::Classify(_)
             | SteadyError::Unfinished => self.to_string(),
         }
@@ -271,13 +273,18 @@ pub(crate) fn exponent_of(
     }
 }
 
-/// Runs `scenario` over `window` and classifies its steady response.
+/// Runs `scenario` over `window` and classifies its steady response (a
+/// stack's: [`stack_steady`]).
 pub fn steady_response(
     scenario: &Scenario,
     window: &Window,
     opts: &ClassifyOptions,
     lyapunov: Option<&LyapunovFn<'_>>,
 ) -> Result<Steady, SteadyError> {
+    if scenario.stack.is_some() {
+        check_stack_study(scenario, &[], false, lyapunov.is_some())?;
+        return stack_steady(scenario, window, opts);
+    }
     let (cfg, model, period, run) = section_run(scenario, window)?;
     let res = simulate(model, &cfg.initial, &run)?;
     let mut response = classify_run(&res, period, window.transient, None, opts)?;

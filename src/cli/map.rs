@@ -36,7 +36,7 @@ use crate::analysis::steady::LyapunovFn;
 use crate::io::config;
 use crate::io::csv::{self, Num, Row};
 use crate::io::output;
-use crate::plot::labels::{fixed_parameters, num, param_label, param_symbol};
+use crate::plot::labels::{fixed_parameters, num, param_label, param_symbol, section_units};
 use crate::plot::outcome_map::{Basins, MapColouring, OutcomeMapFigure, attractor_label};
 use crate::sim::Param;
 
@@ -224,7 +224,7 @@ pub(crate) fn run_with(args: &MapArgs, lyapunov: Option<&LyapunovFn<'_>>) -> Res
         "cells_on_known_attractor": map.reached_known,
         "attractors": attractors,
         "config": config::to_json(&config),
-        "units": "theta = θ/ψ; lyapunov per unit τ; config: the base configuration, the two axis keys take each cell's values",
+        "units": format!("{}; lyapunov per unit τ; config: the base configuration, the two axis keys take each cell's values", section_units(&config)),
     });
     let (sx, sy) = (param_symbol(x_param), param_symbol(y_param));
     let what = if map.attractors.is_empty() {

@@ -34,7 +34,9 @@ use crate::io::config::{self, to_json};
 use crate::io::output;
 use crate::io::sweep_files::{classes_csv, points_csv};
 use crate::plot::bifurcation::BifurcationFigure;
-use crate::plot::labels::{fixed_parameters, grid_decimals, grid_num, num, param_label, param_symbol};
+use crate::plot::labels::{
+    fixed_parameters, grid_decimals, grid_num, num, param_label, param_symbol, section_theta, section_units,
+};
 use crate::sim::{Param, Scenario};
 
 /// Continuation as a command-line value.
@@ -125,7 +127,7 @@ impl SweepMeta {
             "window": self.window,
             "classify": self.classify,
             "config": to_json(&self.config),
-            "units": "tau = p t, theta = θ/ψ, theta_dot = dΘ/dτ; lyapunov per unit τ; config: the base configuration, `param` takes each value in turn",
+            "units": format!("tau = p t, {}; lyapunov per unit τ; config: the base configuration, `param` takes each value in turn", section_units(&self.config)),
         })
     }
 
@@ -152,6 +154,7 @@ impl SweepMeta {
                 num(self.grid.step)
             ),
             x_label: param_label(self.param),
+            y_label: section_theta(&self.config),
             values,
             points,
             step: self.grid.step,

@@ -21,6 +21,8 @@ pub struct BifurcationFigure<'a> {
     pub subtitle: String,
     /// x-axis label with unit.
     pub x_label: String,
+    /// y-axis label: what Θ is ([`section_theta`](super::labels::section_theta)).
+    pub y_label: &'static str,
     /// Every swept value with its response, increasing.
     pub values: &'a [(f64, Response)],
     /// The points: (value, Θ) for every kept section point.
@@ -80,7 +82,7 @@ impl Figure for BifurcationFigure<'_> {
         let frame = Frame::whole((56, 80));
         let mut chart = frame.chart(&area, None, x0..x1, y0..y1)?;
         frame.grid(&mut chart).draw().map_err(e)?;
-        frame.titles(root, &chart, (self.x_label.as_str(), "Θ = θ/ψ at τ_k = 2πk/Ω_h"))?;
+        frame.titles(root, &chart, (self.x_label.as_str(), self.y_label))?;
 
         for (band, colour, label) in [
             (Response::Tumbled, TUMBLED_BAND, "tumbled (blank)"),
@@ -150,6 +152,7 @@ mod tests {
             title: "Bifurcation diagram over A_v".into(),
             subtitle: "Ω_h = Ω_v = 8".into(),
             x_label: crate::plot::labels::param_label(crate::sim::Param::Av),
+            y_label: crate::plot::labels::section_theta(&crate::sim::Scenario::default()),
             values: &values,
             points: &points,
             step: 1.0,

@@ -72,14 +72,56 @@ pub(crate) fn param_symbol(param: Param) -> String {
     s.to_string()
 }
 
+/// What a section point's Θ is, as an axis label: the block's θ/ψ, or a
+/// stack's top block's rotation over its own α
+/// ([`stack_steady`](crate::analysis::stack_steady)).
+pub fn section_theta(cfg: &Scenario) -> &'static str {
+    if cfg.stack.is_some() {
+        "Θ = φ/α of the top block at τ_k = 2πk/Ω_h"
+    } else {
+        "Θ = θ/ψ at τ_k = 2πk/Ω_h"
+    }
+}
+
+/// What a sweep's or a map's `theta` and `theta_dot` are, for its JSON's
+/// `units` line.
+pub fn section_units(cfg: &Scenario) -> &'static str {
+    if cfg.stack.is_some() {
+        "theta = φ/α of the top block (its rotation φ = q_1 + … + q_K over its own α = atan(B/H)), theta_dot = dΘ/dτ, τ the bottom block's; max_abs_theta the top block's"
+    } else {
+        "theta = θ/ψ, theta_dot = dΘ/dτ"
+    }
+}
+
+/// A number with at most 4 decimals, trailing zeros dropped.
+pub fn short_num(x: f64) -> String {
+    let s = format!("{x:.4}");
+    let s = s.trim_end_matches('0').trim_end_matches('.');
+    if s.is_empty() || s == "-" {
+        "0".to_string()
+    } else {
+        s.to_string()
+    }
+}
+
 /// The parameters of `cfg` that define a harmonic response, except those in
 /// `varied`: block, excitation, friction and impact law, e.g.
 /// `B × H = 1 × 4 m, Ω_h = Ω_v = 8, A_h = 3, no sliding, impact ratio r = 0.925`.
 pub(crate) fn fixed_parameters(cfg: &Scenario, varied: &[Param]) -> String {
     let free = |p: Param| !varied.contains(&p);
     let x = &cfg.excitation;
+    // A stack's normalised values come from the physical ones it is given
+    // in (its presets': g, Hz), so they are shown to 4 decimals.
+    let num = |v: f64| if cfg.stack.is_some() { short_num(v) } else { num(v) };
     let mut parts = Vec::new();
-    if free(Param::Width) && free(Param::Height) {
+    if let Some(blocks) = &cfg.stack {
+        // A stack's own sizes, impact law and friction (it does not slide).
+        let sizes: Vec<String> = blocks
+            .iter()
+            .map(|b| format!("{} × {}", num(b.width), num(b.height)))
+            .collect();
+        parts.push(format!("{}-block stack {} m", blocks.len(), sizes.join(" + ")));
+    } else if free(Param::Width) && free(Param::Height) {
         parts.push(format!(
             "B × H = {} × {} m",
             num(cfg.block.width),
@@ -113,6 +155,10 @@ pub(crate) fn fixed_parameters(cfg: &Scenario, varied: &[Param]) -> String {
         if free(Param::PhaseV) && x.phase_v != 0.0 {
             parts.push(format!("Φ_v = {}", num(x.phase_v)));
         }
+    }
+    if cfg.stack.is_some() {
+        parts.push("no sliding".to_string());
+        return parts.join(", ");
     }
     if free(Param::MuS) && free(Param::MuK) {
         parts.push(friction_text(cfg));

@@ -5,6 +5,7 @@
 
 use super::diagrams::Diagram;
 use super::variant::Variant;
+pub(crate) use crate::plot::labels::short_num;
 use crate::plot::labels::{friction_text, num};
 use crate::sim::Scenario;
 use crate::sim::scenario::LawKind;
@@ -56,15 +57,4 @@ pub(crate) fn block_and_impact(cfg: &Scenario) -> String {
         LawKind::Ratio => format!("impact ratio r = {}", short_num(cfg.impact_r())),
     };
     format!("B × H = {} × {} m, {law}", num(cfg.block.width), num(cfg.block.height))
-}
-
-/// A number with at most 4 decimals, trailing zeros dropped.
-pub(crate) fn short_num(x: f64) -> String {
-    let s = format!("{x:.4}");
-    let s = s.trim_end_matches('0').trim_end_matches('.');
-    if s.is_empty() || s == "-" {
-        "0".to_string()
-    } else {
-        s.to_string()
-    }
 }

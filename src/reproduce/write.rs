@@ -132,6 +132,7 @@ fn bifurcation_figure<'a>(
         title,
         subtitle,
         x_label: param_label(super::diagrams::PARAM),
+        y_label: crate::plot::labels::section_theta(&crate::sim::Scenario::default()),
         values,
         points,
         step: g.step,

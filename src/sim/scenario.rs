@@ -766,7 +766,7 @@ impl Scenario {
         if self.stack.is_some() {
             return Err(ScenarioError::new(
                 "stack",
-                "a [[stack]] is simulated one run at a time so far (alone, live, in spectra and in fragility studies): sweeps, maps and Lyapunov exponents take a [block] or a [frame]",
+                "a [[stack]] has its own equations (docs/model.md §18) and runs alone, live, in sweeps, maps, spectra and fragility studies; the studies built on the single block's (Lyapunov exponents) take a [block] or a [frame]",
             ));
         }
         Ok(Model {

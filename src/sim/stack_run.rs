@@ -27,6 +27,15 @@ pub struct StackSample {
     pub y: [f64; NS],
 }
 
+/// A state at a section time τ_k = 2πk/Ω_h (harmonic forcing only).
+#[derive(Clone, Copy, Debug)]
+pub struct StackSection {
+    /// k.
+    pub k: u64,
+    /// The state at τ_k.
+    pub at: StackSample,
+}
+
 /// Everything a stack's run produces.
 #[derive(Clone, Debug)]
 pub struct StackRun {
@@ -47,6 +56,9 @@ pub struct StackRun {
     pub events: Vec<StackEvent>,
     /// The regular history (every `output_dt`).
     pub history: Vec<StackSample>,
+    /// The stroboscopic section at τ_k = 2πk/Ω_h, when `run.section` was
+    /// asked for and the forcing is harmonic (a sweep's or a map's points).
+    pub section: Vec<StackSection>,
     /// The final state.
     pub last: StackSample,
     /// Impacts and extremes.
@@ -81,6 +93,7 @@ struct Keep {
     events: Vec<StackEvent>,
     history: Vec<StackSample>,
     keep_history: bool,
+    section: Vec<StackSection>,
     rest_since: Option<f64>,
     rest_tau: f64,
 }
@@ -92,7 +105,12 @@ impl Observer<StackMode, StackEvent, NS> for Keep {
         }
     }
 
-    fn section(&mut self, _k: u64, _t: f64, _mode: StackMode, _y: &[f64; NS]) {}
+    fn section(&mut self, k: u64, t: f64, mode: StackMode, y: &[f64; NS]) {
+        self.section.push(StackSection {
+            k,
+            at: StackSample { tau: t, mode, y: *y },
+        });
+    }
 
     fn event(&mut self, t: f64, _before: StackMode, _y: &[f64; NS], record: StackEvent) {
         let (was, is) = (record.before.at_rest(self.k), record.after.at_rest(self.k));
@@ -133,7 +151,11 @@ fn run_with<S: Stepper<NS>>(stepper: S, system: StackSystem, opts: &RunOptions) 
     let e0 = system.energy(&mode0, &y0);
     let outputs = Outputs {
         sample_dt: opts.output_dt,
-        section_period: None,
+        section_period: if opts.section {
+            system.excitation.forcing_period()
+        } else {
+            None
+        },
     };
     let mut driver = Driver::new(stepper, system, mode0, 0.0, y0, opts.limits, outputs);
     let mut keep = Keep {
@@ -141,6 +163,7 @@ fn run_with<S: Stepper<NS>>(stepper: S, system: StackSystem, opts: &RunOptions) 
         events: Vec::new(),
         history: Vec::new(),
         keep_history: opts.output_dt.is_some(),
+        section: Vec::new(),
         rest_since: mode0.at_rest(k).then_some(0.0),
         rest_tau: 0.0,
     };
@@ -204,6 +227,7 @@ fn run_with<S: Stepper<NS>>(stepper: S, system: StackSystem, opts: &RunOptions) 
         rest_tau,
         events: keep.events,
         history: keep.history,
+        section: keep.section,
         last: StackSample { tau: t, mode, y },
         tally,
         energy,

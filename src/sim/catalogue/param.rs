@@ -106,6 +106,30 @@ impl Param {
         matches!(self, Param::Theta0 | Param::ThetaDot0 | Param::XDot0)
     }
 
+    /// Whether a `[[stack]]` reads it: the excitation's keys and the run's
+    /// tolerances, end and outputs. The block's size, friction, impact law
+    /// and initial state, Ralston's step and the tumble angle are the
+    /// single block's (a stack has its own tables, impulse law and
+    /// overturning, and starts at rest).
+    pub fn applies_to_stack(self) -> bool {
+        matches!(
+            self,
+            Param::Ah
+                | Param::Av
+                | Param::OmegaH
+                | Param::OmegaV
+                | Param::PhaseH
+                | Param::PhaseV
+                | Param::ScaleH
+                | Param::ScaleV
+                | Param::TauEnd
+                | Param::Rtol
+                | Param::Atol
+                | Param::OutputDt
+                | Param::ZenoEps
+        )
+    }
+
     /// The config key it is written and shown as, e.g. `excitation.a_v`:
     /// its entry's in the catalogue, where the key is declared.
     pub fn key(self) -> &'static str {

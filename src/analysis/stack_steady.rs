@@ -1,0 +1,218 @@
+//! A stack's steady response (config `[[stack]]`): its run over a sampling
+//! window, its section points classified over every interface.
+//!
+//! The same study as the block's [`steady_response`](super::steady), with
+//! what a stack has instead of the block's one angle:
+//! - **Classified on the whole state.** A section point is every
+//!   interface's rotation q_i and rate q_i' (each over the top block's α,
+//!   so that the classifier's relative tolerance reads as on the block's
+//!   Θ = θ/ψ); a stack is periodic only when every interface repeats.
+//! - **Reported as its top block.** The points a sweep writes and a map
+//!   keeps (`theta`, `theta_dot`, `max_abs_theta`) are the top block's
+//!   rotation φ_K = q_1 + … + q_K over its own α_K = atan(B_K/H_K), and its
+//!   rate: the body an owner of a statue or a tombstone watches, whose
+//!   rotation carries every interface below it. `x` and `x_dot` are 0 (the
+//!   stack does not slide).
+//! - **No seed and no exponent.** A stack starts at rest on its base, so a
+//!   continuation sweep cannot start it where the previous value ended, and
+//!   its tangent dynamics are not derived, so it has no Lyapunov exponent;
+//!   both are refused before anything runs ([`check_stack_study`]).
+//! - **No early stop.** Every run goes over its whole window: the map's
+//!   early stop ([`settle`](super::settle)) watches the block's section.
+
+use super::classify::{ClassifyOptions, Response, classify_points};
+use super::settle::CellResponse;
+use super::steady::{Steady, SteadyError, Window};
+use crate::model::stack::{Contact, MAX_BLOCKS, Pose, StackGeometry};
+use crate::model::{Mode, Sign};
+use crate::sim::stack_run::{StackRun, StackSection, simulate_stack};
+use crate::sim::{Param, Scenario, ScenarioError, SectionRow};
+
+/// The stack's classified coordinates: q_1 … q_K, q_1' … q_K' (padded).
+const D: usize = 2 * MAX_BLOCKS;
+
+/// Refuses, before anything runs, what a study cannot do with the stack of
+/// `base`: a swept key the stack does not read (its blocks' sizes and
+/// friction are the `[[stack]]` tables'; it starts at rest), a
+/// continuation (`continued`) and Lyapunov exponents (`lyapunov`).
+pub fn check_stack_study(
+    base: &Scenario,
+    params: &[Param],
+    continued: bool,
+    lyapunov: bool,
+) -> Result<(), SteadyError> {
+    if base.stack.is_none() {
+        return Ok(());
+    }
+    let refuse = |key: &str, why: &str| Err(SteadyError::Scenario(ScenarioError::new(key, why)));
+    for &p in params {
+        if !p.applies_to_stack() {
+            return refuse(
+                p.key(),
+                "is not read by a [[stack]] (its blocks' sizes and friction are its tables', and it starts at rest): vary an excitation key",
+            );
+        }
+    }
+    if continued {
+        return refuse(
+            "stack",
+            "a [[stack]] starts at rest on its base, so a sweep cannot continue from the previous value's state: sweep without continuation",
+        );
+    }
+    if lyapunov {
+        return refuse(
+            "stack",
+            "a [[stack]] has no Lyapunov exponents (its tangent dynamics are not derived): leave them out, or study a [block] or a [frame]",
+        );
+    }
+    Ok(())
+}
+
+/// The top block's section point as the block's [`SectionRow`] (module
+/// docs): Θ = φ_K/α_K and its rate, the mode `rest` with every interface
+/// closed and otherwise rocking on the side of the topmost open interface.
+fn top_row(geo: &StackGeometry, s: &StackSection) -> SectionRow {
+    let (theta, theta_dot) = top_angle(geo, &s.at.mode.contacts, &s.at.y);
+    let open = s.at.mode.contacts[..geo.k]
+        .iter()
+        .rev()
+        .find(|c| **c != Contact::Closed);
+    let mode = match open {
+        None => Mode::Rest,
+        Some(Contact::Right) => Mode::Rock { pivot: Sign::Pos },
+        Some(_) => Mode::Rock { pivot: Sign::Neg },
+    };
+    SectionRow {
+        k: s.k,
+        tau: s.at.tau,
+        theta,
+        theta_dot,
+        x: 0.0,
+        x_dot: 0.0,
+        mode,
+    }
+}
+
+/// The top block's rotation and rate over its α (rad over rad, per τ).
+fn top_angle(geo: &StackGeometry, contacts: &[Contact; MAX_BLOCKS], y: &[f64; crate::model::stack::NS]) -> (f64, f64) {
+    let top = geo.k - 1;
+    let alpha = top_alpha(geo);
+    let pose = Pose::new(geo, contacts, y);
+    (pose.phi[top] / alpha, pose.omega[top] / alpha)
+}
+
+/// α_K = atan(B_K/H_K) of the top block, rad.
+fn top_alpha(geo: &StackGeometry) -> f64 {
+    let [b, h] = geo.size[geo.k - 1];
+    (b / h).atan()
+}
+
+/// The section point's classified coordinates (module docs).
+fn coordinates(geo: &StackGeometry, s: &StackSection) -> [f64; D] {
+    let alpha = top_alpha(geo);
+    std::array::from_fn(|d| s.at.y[d] / alpha)
+}
+
+/// The class of a stack's run sampled over `window` with forcing period
+/// `period` (τ), as [`classify_run`](super::classify::classify_run) gives
+/// the block's: the terminal ends and rest (nothing happening in the last
+/// forcing period) first, then the points after the transient.
+fn classify_stack(
+    run: &StackRun,
+    period: f64,
+    transient: f64,
+    opts: &ClassifyOptions,
+) -> Result<Response, SteadyError> {
+    use crate::sim::Outcome;
+    match run.outcome {
+        Outcome::Tumbled => return Ok(Response::Tumbled),
+        Outcome::Flight => return Ok(Response::Flight),
+        Outcome::Rest => {
+            let last_event = run.events.last().map_or(0.0, |e| e.tau);
+            if last_event <= run.tau_end - period {
+                return Ok(Response::Rest);
+            }
+        }
+        Outcome::Running => {}
+    }
+    let points: Vec<[f64; D]> = run
+        .section
+        .iter()
+        .filter(|s| s.at.tau >= transient)
+        .map(|s| coordinates(&run.geo, s))
+        .collect();
+    Ok(classify_points(&points, None, opts)?)
+}
+
+/// Runs the stack of `scenario` over `window` and classifies its steady
+/// response (module docs). The scenario must have a `[[stack]]` and
+/// harmonic excitation.
+pub fn stack_steady(scenario: &Scenario, window: &Window, opts: &ClassifyOptions) -> Result<Steady, SteadyError> {
+    Ok(run_and_classify(scenario, window, opts)?.0)
+}
+
+/// A map cell of a stack: [`stack_steady`]'s run, whole (module docs), as
+/// the map keeps it; its cycle is the top block's last `period` points.
+pub(crate) fn stack_cell(
+    scenario: &Scenario,
+    window: &Window,
+    opts: &ClassifyOptions,
+) -> Result<CellResponse, SteadyError> {
+    let (steady, tau_end) = run_and_classify(scenario, window, opts)?;
+    let cycle = match steady.response {
+        Response::Periodic { period } => steady.points[steady.points.len() - period as usize..]
+            .iter()
+            .map(|r| [r.theta, r.theta_dot, r.x_dot])
+            .collect(),
+        _ => Vec::new(),
+    };
+    Ok(CellResponse {
+        response: steady.response,
+        max_abs_theta: steady.max_abs_theta,
+        lyapunov: None,
+        cycle,
+        stopped_at: None,
+        reached_known: false,
+        settled_at: tau_end,
+    })
+}
+
+/// The steady response and the τ at which the run ended.
+fn run_and_classify(
+    scenario: &Scenario,
+    window: &Window,
+    opts: &ClassifyOptions,
+) -> Result<(Steady, f64), SteadyError> {
+    let mut cfg = scenario.clone();
+    cfg.run.tau_end = window.tau_end;
+    let geo = cfg
+        .stack_geometry()
+        .ok_or_else(|| SteadyError::Scenario(ScenarioError::new("stack", "its blocks do not stand on each other")))?;
+    let excitation = cfg.excitation()?;
+    let Some(period) = excitation.forcing_period() else {
+        return Err(SteadyError::NotHarmonic);
+    };
+    let mut opts_run = cfg.run_options();
+    opts_run.output_dt = None;
+    opts_run.section = true;
+    let run = simulate_stack(geo, excitation, cfg.run.zeno_eps, &opts_run)?;
+    let response = classify_stack(&run, period, window.transient, opts)?;
+    let points = if response.is_terminal() {
+        Vec::new()
+    } else {
+        run.section
+            .iter()
+            .filter(|s| s.at.tau >= window.transient)
+            .map(|s| top_row(&geo, s))
+            .collect()
+    };
+    let top = geo.k - 1;
+    let steady = Steady {
+        response,
+        max_abs_theta: run.tally.max_phi[top] / top_alpha(&geo),
+        lyapunov: None,
+        points,
+        seed: None,
+    };
+    Ok((steady, run.tau_end))
+}
