@@ -229,28 +229,28 @@ fn the_commands_and_flags_that_cannot_take_a_stack_refuse_it_in_one_line() {
     let tomb = ["--preset", "tombstone"];
     let kobe = ["--record", KOBE, "--unit", "m/s2"];
     let suite = ["fragility", "--records", KOBE, "--unit", "m/s2", "--levels", "0.5"];
-    let stack_first = "a [[stack]] is simulated one run at a time so far";
     let patterns = ["--preset", "stack-patterns"];
     let cases: [(Vec<&str>, &[&str]); 8] = [
-        // Its run (55.7 τ) is shorter than a sweep's transient (600): the
-        // stack is named, not the window.
+        // What a sweep or a map of a stack cannot vary or compute.
         (
             [
                 &[
                     "sweep",
                     "--param",
-                    "excitation.a_h",
+                    "block.width",
                     "--from",
                     "0.1",
                     "--to",
                     "0.3",
                     "--step",
                     "0.1",
+                    "--tau-end",
+                    "700",
                 ][..],
                 &patterns,
             ]
             .concat(),
-            &[stack_first, "sweeps, maps"],
+            &["block.width: is not read by a [[stack]]", "vary an excitation key"],
         ),
         (
             [
@@ -266,11 +266,14 @@ fn the_commands_and_flags_that_cannot_take_a_stack_refuse_it_in_one_line() {
                     "1",
                     "2",
                     "3",
+                    "--tau-end",
+                    "700",
+                    "--lyapunov",
                 ][..],
                 &patterns,
             ]
             .concat(),
-            &[stack_first],
+            &["a [[stack]] has no Lyapunov exponents"],
         ),
         (
             [

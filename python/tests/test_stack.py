@@ -66,14 +66,32 @@ def test_a_stack_spectrum_keeps_its_shape_and_agrees_with_the_cli(cli, tmp_path:
         rocking.spectrum(KOBE, (0.3, 3, 12), unit="m/s2", base=rocking.Scene("tombstone"), b_over_h=[0.2])
 
 
-def test_sweeps_and_maps_refuse_a_stack_for_what_it_is() -> None:
-    # Its run (55.7 τ) is shorter than the default transient (600): the
-    # stack is named, not the window.
-    scene = rocking.Scene("stack-patterns")
-    with pytest.raises(rocking.ConfigError, match="a \\[\\[stack\\]\\] is simulated one run at a time"):
-        rocking.sweep(scene, "excitation.a_h", 0.1, 0.3, 0.1)
-    with pytest.raises(rocking.ConfigError, match="sweeps, maps and Lyapunov exponents"):
-        rocking.outcome_map(scene, ("excitation.a_h", 0.1, 0.3, 3), ("excitation.omega_h", 1, 2, 3))
+def test_a_stack_sweeps_and_maps_as_the_cli_does(cli, tmp_path: Path) -> None:
+    # stack-patterns at A_h = 1.0 rocks in a period-4 cycle, at 1.2 in a
+    # period-1 one (its section classified over both interfaces).
+    window = ["--transient", "400", "--tau-end", "600"]
+    cli.ok("sweep", "--preset", "stack-patterns", "--param", "excitation.a_h", "--from", "1.0", "--to", "1.2",
+           "--step", "0.2", *window, "--out", str(tmp_path / "s"), "-q")
+    sweep = rocking.sweep("stack-patterns", "excitation.a_h", 1.0, 1.2, 0.2, transient=400, tau_end=600)
+    classes = read_csv(tmp_path / "s" / "classes.csv")
+    assert list(sweep.outcome) == [r["outcome"] for r in classes] == ["periodic", "periodic"]
+    assert [int(r["period"]) for r in classes] == [4, 1]
+    assert list(sweep.max_abs_theta) == floats(classes, "max_abs_theta")
+    points = read_csv(tmp_path / "s" / "points.csv")
+    for name in ("tau", "theta", "theta_dot"):
+        assert list(sweep.points[name]) == floats(points, name), name
+    cli.ok("map", "--preset", "stack-patterns", "--x", "excitation.a_h", "1.0", "1.2", "2", "--y",
+           "excitation.phase_h", "0", "1", "2", *window, "--out", str(tmp_path / "m"), "-q")
+    m = rocking.outcome_map("stack-patterns", ("excitation.a_h", 1.0, 1.2, 2), ("excitation.phase_h", 0, 1, 2),
+                            transient=400, tau_end=600)
+    cells = read_csv(tmp_path / "m" / "map.csv")
+    assert list(m.cells["outcome"]) == [r["outcome"] for r in cells]
+    assert list(m.cells["max_abs_theta"]) == floats(cells, "max_abs_theta")
+    # What a stack cannot vary or compute is refused with the CLI's words.
+    with pytest.raises(rocking.ConfigError, match="block.width: is not read by a \\[\\[stack\\]\\]"):
+        rocking.sweep("stack-patterns", "block.width", 0.1, 0.3, 0.1, tau_end=700)
+    with pytest.raises(rocking.ConfigError, match="sweep without continuation"):
+        rocking.sweep("stack-patterns", "excitation.a_h", 1.0, 1.2, 0.2, tau_end=700, continuation="up")
 
 
 def test_a_stack_fragility_runs_the_stack_as_given_without_blocks(cli, tmp_path: Path) -> None:

@@ -204,8 +204,11 @@ def sweep(
     the previous one's final state). `lyapunov` adds the largest exponent
     of each value. `threads`: worker threads (default one per core).
     Values are in the config key's own bare unit (normalised, as
-    `rocking sweep --from/--to/--step`). `progress`: see the module's
-    help. Ctrl-C stops it between chunks."""
+    `rocking sweep --from/--to/--step`). A `[[stack]]` scene (e.g.
+    "stack-patterns") is classified over every interface and its points are
+    its top block's (`theta` = φ/α of the top block); it varies excitation
+    and run keys only, from rest, without `continuation` or `lyapunov`.
+    `progress`: see the module's help. Ctrl-C stops it between chunks."""
     s = _scene(scene)
     with _Reporter(progress, "sweep") as report:
         data = _rocking._sweep(
@@ -275,8 +278,10 @@ def outcome_map(
     a cycle and 4 more periods, or when its section points land ten times
     in a row in cells labelled with one attractor
     (`cells_on_known_attractor` counts them; docs/analysis.md gives the
-    criteria and their agreement with `full=True`). `progress`: see the module's help (an inherited cell counts as
-    done). Ctrl-C stops it between chunks of a few hundred cells."""
+    criteria and their agreement with `full=True`). A `[[stack]]` scene is
+    mapped as `sweep` takes it (its top block's `max_abs_theta`; every
+    cell run over its whole window). `progress`: see the module's help (an
+    inherited cell counts as done). Ctrl-C stops it between chunks of a few hundred cells."""
     s = _scene(scene)
     with _Reporter(progress, "outcome_map") as report:
         data = _rocking._outcome_map(

@@ -1,0 +1,271 @@
+//! Sweeps and maps of a stack of blocks (`[[stack]]`): a glued stack of one
+//! width classified as the single block of its height, cell for cell and
+//! point for point in physical units; `rocking sweep` and `rocking map` of
+//! a stack against its own `--batch` run sampled at the section times.
+
+mod common;
+use common::scene;
+use rocking::analysis::classify::{ClassifyOptions, Response};
+use rocking::analysis::outcome_map::{Axis, BlockMap};
+use rocking::analysis::steady::{Steady, Window, steady_response};
+use rocking::sim::{Param, Scenario};
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+const FORCING_HZ: f64 = 1.5;
+
+/// A block of 0.5 × 1.0 m under a glued 0.5 × 0.8 m one, and the single
+/// 0.5 × 1.8 m block without sliding, under `a_h` g at 1.5 Hz and the phase
+/// `phase` rad.
+fn pair(a_h: f64, phase: f64) -> (Scenario, Scenario) {
+    let excitation = format!(
+        "[excitation]\nkind = \"harmonic\"\na_h = \"{a_h} g\"\nomega_h = \"{FORCING_HZ} Hz\"\nphase_h = {phase:?}\n"
+    );
+    let stack = scene(&format!(
+        "[[stack]]\nwidth = 0.5\nheight = 1.0\n[[stack]]\nwidth = 0.5\nheight = 0.8\nglued = true\n{excitation}"
+    ));
+    let block = scene(&format!(
+        "[block]\nwidth = 0.5\nheight = 1.8\n[friction]\nstatic = \"inf\"\n{excitation}"
+    ));
+    (stack, block)
+}
+
+/// The window from 60 s to 120 s of physical time in `s`'s τ, its ends half
+/// a forcing period off the section times so that both systems keep the
+/// same section points.
+fn window(s: &Scenario) -> Window {
+    let p = s.geometry().p;
+    let half = 0.5 / FORCING_HZ;
+    Window {
+        transient: (60.0 + half) * p,
+        tau_end: (120.0 + half) * p,
+    }
+}
+
+/// The top block's α of the glued stack, and the block's ψ.
+fn angles() -> (f64, f64) {
+    ((0.5_f64 / 0.8).atan(), (0.5_f64 / 1.8).atan())
+}
+
+fn compare(stack: &Steady, block: &Steady, ps: f64, pb: f64) {
+    let (alpha, psi) = angles();
+    assert_eq!(stack.response, block.response);
+    let (ms, mb) = (stack.max_abs_theta * alpha, block.max_abs_theta * psi);
+    assert!((ms - mb).abs() < 1e-9, "peak rotation {ms} rad against {mb} rad");
+    assert_eq!(stack.points.len(), block.points.len());
+    for (s, b) in stack.points.iter().zip(&block.points) {
+        assert_eq!(s.k, b.k);
+        assert!((s.tau / ps - b.tau / pb).abs() < 1e-9, "section times differ");
+        let (ts, tb) = (s.theta * alpha, b.theta * psi);
+        assert!((ts - tb).abs() < 1e-9, "k = {}: θ {ts} rad against {tb} rad", s.k);
+        let (ws, wb) = (s.theta_dot * alpha * ps, b.theta_dot * psi * pb);
+        assert!((ws - wb).abs() < 1e-8, "k = {}: θ' {ws} rad/s against {wb} rad/s", s.k);
+    }
+}
+
+#[test]
+fn a_glued_stack_of_one_width_sweeps_as_the_single_block_of_its_height() {
+    let opts = ClassifyOptions::default();
+    let mut seen = Vec::new();
+    for (a_h, phase) in [(0.2, 0.0), (0.3, 0.0), (0.5, 0.0), (0.5, 1.0)] {
+        let (stack, block) = pair(a_h, phase);
+        let s = steady_response(&stack, &window(&stack), &opts, None).expect("stack");
+        let b = steady_response(&block, &window(&block), &opts, None).expect("block");
+        compare(&s, &b, stack.geometry().p, block.geometry().p);
+        assert!(s.seed.is_none(), "a stack starts at rest: no seed");
+        seen.push(s.response);
+    }
+    // Rest below the block's uplift (tan ψ = 0.278 g), a periodic rocking
+    // cycle, tumbling and, at another phase, a cycle again.
+    assert_eq!(
+        seen,
+        [
+            Response::Rest,
+            Response::Periodic { period: 1 },
+            Response::Tumbled,
+            Response::Periodic { period: 1 }
+        ]
+    );
+}
+
+#[test]
+fn a_glued_stack_of_one_width_maps_as_the_single_block_of_its_height() {
+    // The phase of each motion along both axes: radians in both systems.
+    let (stack, block) = pair(0.5, 0.0);
+    let axis = Axis::new("x", "excitation.phase_h", 0.0, 1.0, 3).expect("axis");
+    let opts = ClassifyOptions::default();
+    fn map<'a>(s: &'a Scenario, axis: &'a Axis, opts: ClassifyOptions) -> BlockMap<'a> {
+        BlockMap {
+            base: s,
+            x_param: Param::PhaseH,
+            x: axis,
+            y_param: Param::PhaseV,
+            y: axis,
+            window: window(s),
+            classify: opts,
+            lyapunov: None,
+        }
+    }
+    let (ms, mb) = (map(&stack, &axis, opts), map(&block, &axis, opts));
+    ms.check().expect("a stack's map is accepted");
+    let (alpha, psi) = angles();
+    let mut classes = Vec::new();
+    for x in axis.values() {
+        let (cs, cb) = (
+            ms.cell(x, 0.0, true, &[], None).expect("stack"),
+            mb.cell(x, 0.0, false, &[], None).expect("block"),
+        );
+        assert_eq!(cs.response, cb.response, "phase {x}");
+        assert!((cs.max_abs_theta * alpha - cb.max_abs_theta * psi).abs() < 1e-9);
+        assert_eq!(cs.cycle.len(), cb.cycle.len());
+        for (a, b) in cs.cycle.iter().zip(&cb.cycle) {
+            assert!((a[0] * alpha - b[0] * psi).abs() < 1e-9, "cycle {a:?} against {b:?}");
+        }
+        assert_eq!(cs.stopped_at, None, "a stack's cell runs its whole window");
+        classes.push(cs.response);
+    }
+    assert!(
+        classes.contains(&Response::Tumbled) && classes.iter().any(|r| r.period().is_some()),
+        "{classes:?}"
+    );
+}
+
+fn rocking() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_rocking"))
+}
+
+fn tmpdir(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("rocking-stack-sweeps-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).expect("temp dir");
+    d
+}
+
+fn run_ok(args: &[&str]) {
+    let o = rocking().args(args).output().expect("run");
+    assert!(o.status.success(), "{args:?}: {}", String::from_utf8_lossy(&o.stderr));
+}
+
+/// The rows of a CSV file as (header → cell) lookups.
+fn rows(path: &Path) -> Vec<std::collections::HashMap<String, String>> {
+    let text = std::fs::read_to_string(path).expect("csv");
+    let mut lines = text.lines();
+    let head: Vec<String> = lines.next().expect("header").split(',').map(String::from).collect();
+    lines
+        .map(|l| head.iter().cloned().zip(l.split(',').map(String::from)).collect())
+        .collect()
+}
+
+fn num(row: &std::collections::HashMap<String, String>, key: &str) -> f64 {
+    row[key].parse().unwrap_or_else(|_| panic!("{key} = {:?}", row[key]))
+}
+
+#[test]
+fn a_stack_sweep_and_map_agree_with_its_batch_run_at_the_section_times() {
+    let d = tmpdir("cli");
+    let (sweep, map) = (d.join("sweep"), d.join("map"));
+    let s = sweep.to_str().unwrap();
+    let window = ["--transient", "400", "--tau-end", "600"];
+    let preset = ["--preset", "stack-patterns"];
+    let args = [
+        "sweep",
+        "--param",
+        "excitation.a_h",
+        "--from",
+        "1.0",
+        "--to",
+        "1.2",
+        "--step",
+        "0.2",
+        "-q",
+        "--out",
+        s,
+    ];
+    run_ok(&[&args[..], &window, &preset].concat());
+    let classes = rows(&sweep.join("classes.csv"));
+    let periods: Vec<&str> = classes.iter().map(|r| r["period"].as_str()).collect();
+    // A period-4 cycle at A_h = 1.0 and a period-1 one at 1.2.
+    assert_eq!(periods, ["4", "1"]);
+    let meta: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(sweep.join("sweep.json")).unwrap()).unwrap();
+    let omega = meta["config"]["excitation"]["omega_h"].as_f64().expect("omega_h");
+    assert!(
+        meta["units"].as_str().unwrap().contains("top block"),
+        "{}",
+        meta["units"]
+    );
+    let period = std::f64::consts::TAU / omega;
+    let points = rows(&sweep.join("points.csv"));
+    // The top block (0.4 × 1.2 m) of the preset.
+    let alpha = (0.4_f64 / 1.2).atan();
+    for value in ["1.0", "1.2"] {
+        let out = d.join(format!("batch-{value}"));
+        let set_a = format!("excitation.a_h={value}");
+        let set_dt = format!("run.output_dt={period:?}");
+        let batch = [
+            "--batch",
+            "-q",
+            "--set",
+            &set_a,
+            "--set",
+            "run.tau_end=600",
+            "--set",
+            &set_dt,
+            "--out",
+            out.to_str().unwrap(),
+        ];
+        run_ok(&[&batch[..], &preset].concat());
+        let history = rows(&out.join("history.csv"));
+        let mine: Vec<_> = points
+            .iter()
+            .filter(|p| num(p, "value") == value.parse::<f64>().unwrap())
+            .collect();
+        assert!(mine.len() >= 40, "{} points", mine.len());
+        for p in mine {
+            let k: usize = p["k"].parse().unwrap();
+            let h = &history[k];
+            assert!((num(h, "tau") - num(p, "tau")).abs() < 1e-9, "k = {k}");
+            let top = num(h, "theta_1_rad");
+            assert!(
+                (num(p, "theta") * alpha - top).abs() < 1e-8,
+                "k = {k}: {} against {top}",
+                num(p, "theta") * alpha
+            );
+            let rate = num(h, "theta_dot_1_rad_s");
+            let p_scale = num(h, "tau") / num(h, "t_s");
+            assert!((num(p, "theta_dot") * alpha * p_scale - rate).abs() < 1e-7, "k = {k}");
+        }
+    }
+    // The map's cells at the same values are the sweep's.
+    let m = map.to_str().unwrap();
+    let omega_s = format!("{omega:?}");
+    let omega_2 = format!("{:?}", omega + 1.0);
+    let args = [
+        "map",
+        "--x",
+        "excitation.a_h",
+        "1.0",
+        "1.2",
+        "2",
+        "--y",
+        "excitation.omega_h",
+        &omega_s,
+        &omega_2,
+        "2",
+        "-q",
+        "--out",
+        m,
+    ];
+    run_ok(&[&args[..], &window, &preset].concat());
+    let cells = rows(&map.join("map.csv"));
+    for (cell, class) in cells.iter().take(2).zip(&classes) {
+        assert_eq!(num(cell, "y"), omega);
+        assert_eq!(cell["x"], class["value"]);
+        assert_eq!(
+            (&cell["outcome"], &cell["period"]),
+            (&class["outcome"], &class["period"])
+        );
+        assert_eq!(cell["max_abs_theta"], class["max_abs_theta"]);
+    }
+    let _ = std::fs::remove_dir_all(&d);
+}
