@@ -10,7 +10,7 @@ mod gui_common;
 use std::time::Duration;
 
 use egui_kittest::Harness;
-use egui_kittest::kittest::Queryable as _;
+use egui_kittest::kittest::{NodeT as _, Queryable as _};
 use gui_common::{pointer, pump, scene};
 use rocking::gui::RockingApp;
 use rocking::model::stack::{Contact, MAX_BLOCKS, StackBlock};
@@ -260,10 +260,39 @@ fn the_plots_show_the_block_chosen_and_the_analyses_say_they_take_one_block() {
     h.step();
     h.step();
     assert!(
-        h.query_by_label_contains("for a stack of blocks it is not computed yet")
+        h.query_by_label_contains("a stack's tangent dynamics are not derived")
             .is_some(),
         "a note instead of a wrong picture"
     );
+}
+
+#[test]
+fn the_outcome_map_of_a_stack_offers_its_excitation_and_maps_it() {
+    let mut h = live("stack-patterns", Speed::RealTime(1.0));
+    h.state_mut().show.map = true;
+    let m = h.state_mut().outcome_map_mut();
+    m.set_axes(("excitation.a_h", 0.6, 1.6), ("excitation.omega_h", 3.5, 5.5));
+    m.resolution = 8;
+    h.step();
+    let mut waited = 0;
+    while !h.state().outcome_map().done() && waited < 1200 {
+        h.step();
+        std::thread::sleep(Duration::from_millis(50));
+        waited += 1;
+    }
+    let m = h.state().outcome_map();
+    assert_eq!(m.invalid(), None);
+    assert!(m.done(), "the map finished");
+    // Rest at the lowest amplitude, rocking cycles and tumbling above.
+    let classes: std::collections::BTreeSet<String> = (0..8)
+        .flat_map(|i| (0..8).map(move |j| (i, j)))
+        .filter_map(|(i, j)| m.response(i, j).map(|c| format!("{c:?}")))
+        .collect();
+    assert!(classes.len() >= 2, "{classes:?}");
+    // The menus list what a stack reads; the basin button is off.
+    let keys = rocking::gui::panels::outcome_map::keys(h.state().config());
+    assert!(keys.contains(&"excitation.a_h") && !keys.contains(&"initial.theta") && !keys.contains(&"friction.static"));
+    assert!(h.get_by_label("Θ₀ × Θ'₀").accesskit_node().is_disabled());
 }
 
 #[test]

@@ -27,7 +27,7 @@ const FLASH_S: f64 = 0.18;
 const FALL_NOTE: &str = "the fall after the tumble is drawn (not simulated)";
 
 /// What the block-only analyses say for a stack.
-pub(crate) const STACK_ANALYSES: &str = "This analysis takes one block or a frame: for a stack of blocks it is not computed yet (the plots show the chosen block; rocking --batch writes every block's history).";
+pub(crate) const STACK_ANALYSES: &str = "The Lyapunov exponent takes one block or a frame: a stack's tangent dynamics are not derived (its bifurcation diagram and outcome map are: see their tabs).";
 
 impl RockingApp {
     fn params_panel(&mut self, ui: &mut egui::Ui) {
@@ -125,9 +125,9 @@ impl RockingApp {
             });
             ui.separator();
         }
-        if self.config.stack.is_some() && self.lecture.tab != SideTab::Plots {
-            // These analyses run one block's model (its tangent equations,
-            // its sweeps); a stack's would be a wrong picture.
+        if self.config.stack.is_some() && self.lecture.tab == SideTab::Lyapunov {
+            // The exponent runs one block's tangent equations; a stack's
+            // would be a wrong picture.
             ui.label(STACK_ANALYSES);
             return;
         }

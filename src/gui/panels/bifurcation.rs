@@ -162,12 +162,14 @@ pub fn default_range(param: &str, current: f64) -> (f64, f64) {
 
 /// The numeric keys a sweep may vary, with their current values in `cfg`
 /// (infinite for `inf`). Solver settings are left out: the window replaces
-/// the run's end, and the others do not change the physics.
+/// the run's end, and the others do not change the physics. A stack's are
+/// its excitation's ([`Param::applies_to_stack`]).
 pub(crate) fn sweepable(cfg: &Scenario) -> Vec<(String, f64)> {
     Param::ALL
         .into_iter()
         .filter(|p| !p.key().starts_with("run."))
         .filter(|p| *p != Param::XDot0 || cfg.initial.x_dot.is_some())
+        .filter(|p| cfg.stack.is_none() || p.applies_to_stack())
         .map(|p| (p.key().to_string(), p.get(cfg)))
         .collect()
 }

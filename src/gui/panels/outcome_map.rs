@@ -65,9 +65,14 @@ pub(crate) const PARAMS: [Param; 9] = [
     Param::ThetaDot0,
 ];
 
-/// The config keys of [`PARAMS`], as the axis menus list them.
-pub fn keys() -> [&'static str; 9] {
-    PARAMS.map(Param::key)
+/// The config keys of [`PARAMS`] that `cfg` reads, as the axis menus list
+/// them (a stack reads the excitation's only: [`Param::applies_to_stack`]).
+pub fn keys(cfg: &Scenario) -> Vec<&'static str> {
+    PARAMS
+        .into_iter()
+        .filter(|p| cfg.stack.is_none() || p.applies_to_stack())
+        .map(Param::key)
+        .collect()
 }
 
 /// Cells per axis to choose from. 128 is the default: fine enough to see

@@ -22,7 +22,7 @@ impl OutcomeMapView {
             egui::ComboBox::from_id_salt(("outcome map axis", name))
                 .selected_text(&axis.key)
                 .show_ui(ui, |ui| {
-                    for k in keys() {
+                    for k in keys(cfg) {
                         if ui.selectable_label(k == axis.key, k).clicked() {
                             chosen = Some(k);
                         }
@@ -58,10 +58,12 @@ impl OutcomeMapView {
                 self.y = self.edit.1.clone();
                 self.range_from(cfg);
             }
-            if ui
-                .button("Θ₀ × Θ'₀")
+            // A stack starts at rest: it has no initial state to map.
+            let basin = ui
+                .add_enabled(cfg.stack.is_none(), egui::Button::new("Θ₀ × Θ'₀"))
                 .on_hover_text("The basin of attraction: where each initial state ends up")
-                .clicked()
+                .on_disabled_hover_text("A stack of blocks starts at rest on its base: it has no basin to map");
+            if basin.clicked()
             {
                 self.edit.0.key = "initial.theta".into();
                 self.edit.1.key = "initial.theta_dot".into();
