@@ -213,3 +213,53 @@ fn a_frame_config_is_refused_where_it_would_be_misread() {
         assert!(!e.contains('\n'), "one line: {e}");
     }
 }
+
+/// The rows of a CSV file as (header → cell) lookups.
+fn csv_rows(path: &std::path::Path) -> Vec<std::collections::HashMap<String, String>> {
+    let text = std::fs::read_to_string(path).expect("csv");
+    let mut lines = text.lines();
+    let head: Vec<String> = lines.next().expect("header").split(',').map(String::from).collect();
+    lines
+        .map(|l| head.iter().cloned().zip(l.split(',').map(String::from)).collect())
+        .collect()
+}
+
+#[test]
+fn a_frames_files_name_the_body_of_each_event_and_give_each_bodys_motion() {
+    let out = std::env::temp_dir().join(format!("rocking-frame-files-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&out);
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_rocking"))
+        .args(["--batch", "--preset", "rocking-frame", "-q", "--out"])
+        .arg(&out)
+        .output()
+        .expect("run");
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let events = csv_rows(&out.join("events.csv"));
+    assert!(events.len() >= 3 && events.iter().all(|e| e["body"] == "columns"));
+    let history = csv_rows(&out.join("history.csv"));
+    // The preset's columns: 0.7 × 4.2 m, two of them under the beam.
+    let (b, h) = (0.35_f64, 2.1_f64);
+    let r = (b * b + h * h).sqrt();
+    let psi = (b / h).atan();
+    let num = |row: &std::collections::HashMap<String, String>, k: &str| -> f64 { row[k].parse().expect(k) };
+    let mut rocked = 0;
+    for row in &history {
+        let theta = num(row, "theta_rad");
+        for j in 0..2 {
+            assert_eq!(num(row, &format!("theta_{j}_rad")), theta);
+            // The column's centre, X = x_G/R in the normalised columns.
+            assert!((num(row, &format!("x_{j}_m")) - num(row, "x") * r).abs() < 1e-12);
+        }
+        // The beam rides on the columns' top corners, 2R from the pivots:
+        // it rises by 2R(cos(ψ − |θ|) − cos ψ), moves by
+        // 2R(sin ψ − sin(ψ − |θ|)) towards the tilt, and does not turn.
+        let rise = 2.0 * r * ((psi - theta.abs()).cos() - psi.cos());
+        let drift = theta.signum() * 2.0 * r * (psi.sin() - (psi - theta.abs()).sin());
+        assert!((num(row, "y_2_m") - rise).abs() < 1e-12, "τ {}", row["tau"]);
+        assert!((num(row, "x_2_m") - drift).abs() < 1e-12, "τ {}", row["tau"]);
+        assert_eq!(num(row, "theta_2_rad"), 0.0);
+        rocked += usize::from(theta.abs() > 0.01);
+    }
+    assert!(rocked > 100, "{rocked} rows rocking");
+    let _ = std::fs::remove_dir_all(&out);
+}

@@ -7,8 +7,10 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use rocking::analysis::lyapunov::{self, Lyapunov, LyapunovError, LyapunovOptions, Method};
 use rocking::analysis::spectrum::{SpectrumOptions, SpectrumWindow, theta_spectrum};
-use rocking::io::output;
+use rocking::io::csv::Num;
+use rocking::io::output::{self, FRAME_EVENT_BODY, frame_body_cells, frame_history_header};
 use rocking::model::Geometry;
+use rocking::model::frame::Frame;
 use rocking::model::system::EventRecord;
 use rocking::sim::scenario::{LyapunovChoice, SpectrumRange};
 use rocking::sim::{self, HistoryRow, Keep, RunResult, Scenario, SectionRow, Sink};
@@ -190,7 +192,7 @@ fn names<T>(rows: &[T], f: impl Fn(&T) -> &'static str) -> Vec<&'static str> {
 /// The columns of a run: `history`, `events` and `poincare` as dicts of
 /// arrays named as the CSV columns of `rocking --batch` (same numbers:
 /// physical columns computed as in `io::output`), and `summary`.
-fn columns<'py>(py: Python<'py>, s: &Simulated, geo: &Geometry) -> PyResult<Bound<'py, PyDict>> {
+fn columns<'py>(py: Python<'py>, s: &Simulated, geo: &Geometry, frame: Option<&Frame>) -> PyResult<Bound<'py, PyDict>> {
     let res = &s.result;
     let h = &res.history;
     let history = PyDict::new(py);
@@ -203,6 +205,13 @@ fn columns<'py>(py: Python<'py>, s: &Simulated, geo: &Geometry) -> PyResult<Boun
     history.set_item("t_s", column(py, h, |r| r.tau / geo.p))?;
     history.set_item("theta_rad", column(py, h, |r| r.theta * geo.psi))?;
     history.set_item("sliding_m", column(py, h, |r| geo.sliding(r.theta, r.x) * geo.r))?;
+    if let Some(f) = frame {
+        // Each body's columns, as a frame's history.csv adds them.
+        let cells: Vec<Vec<Num>> = h.iter().map(|r| frame_body_cells(f, geo, r)).collect();
+        for (i, name) in frame_history_header(f).iter().enumerate() {
+            history.set_item(name, column(py, &cells, |c| c[i].0))?;
+        }
+    }
 
     let e = &res.events;
     let events = PyDict::new(py);
@@ -217,6 +226,9 @@ fn columns<'py>(py: Python<'py>, s: &Simulated, geo: &Geometry) -> PyResult<Boun
     events.set_item("t_s", column(py, e, |r| r.tau / geo.p))?;
     events.set_item("theta_rad", column(py, e, |r| r.theta * geo.psi))?;
     events.set_item("sliding_m", column(py, e, |r| geo.sliding(r.theta, r.x) * geo.r))?;
+    if frame.is_some() {
+        events.set_item("body", names(e, |_| FRAME_EVENT_BODY))?;
+    }
 
     let p = &res.section;
     let poincare = PyDict::new(py);
@@ -251,7 +263,7 @@ pub fn _simulate<'py>(py: Python<'py>, scene: &Scene) -> PyResult<Bound<'py, PyD
         return crate::stack::stack_columns(py, &done, cfg.geometry().p);
     }
     let done = interrupt::run(py, move |cancel| run_scene(&owned, cancel))?.map_err(Failure::into_py)?;
-    columns(py, &done, &cfg.geometry())
+    columns(py, &done, &cfg.geometry(), cfg.frame.as_ref())
 }
 
 /// The Lyapunov exponents of `scene` over its run (`run.tau_end`) by its

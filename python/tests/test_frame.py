@@ -7,7 +7,7 @@ from pathlib import Path
 import pytest
 
 import rocking
-from conftest import read_json
+from conftest import floats, read_csv, read_json
 
 
 def test_the_frame_preset_runs_as_the_cli_runs_it(cli, tmp_path: Path) -> None:
@@ -18,6 +18,17 @@ def test_the_frame_preset_runs_as_the_cli_runs_it(cli, tmp_path: Path) -> None:
     assert physical == summary["physical"]
     assert [b["name"] for b in physical["bodies"]] == ["column 1", "column 2", "beam"]
     assert run.summary["config"]["frame"] == {"width": 0.7, "height": 4.2, "columns": 2, "beam_mass_ratio": 2.0}
+    # Every column of history.csv and events.csv, each body's included.
+    for name in ("history", "events"):
+        rows = read_csv(tmp_path / "o" / f"{name}.csv")
+        table = getattr(run, name)
+        assert list(table.dtype.names) == list(rows[0].keys()), name
+        for col in table.dtype.names:
+            if col in ("mode", "kind", "mode_before", "mode_after", "body"):
+                assert list(table[col]) == [r[col] for r in rows], col
+            else:
+                assert list(table[col]) == floats(rows, col), col
+    assert set(run.events["body"]) == {"columns"}
 
 
 def test_a_frame_from_its_section_and_the_blocks_width_keyword_stay_apart() -> None:

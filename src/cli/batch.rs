@@ -69,7 +69,7 @@ pub fn run(cli: &Cli) -> Result<(), BatchError> {
     let mut staging = Staging::new(&cli.out)
         .context("--out")
         .map_err(super::write::output_error)?;
-    let mut files = RunFiles::create(&mut staging, geo, cfg.analyses.spectrum)
+    let mut files = RunFiles::create(&mut staging, geo, cfg.frame, cfg.analyses.spectrum)
         .context("--out")
         .map_err(super::write::output_error)?;
     let res = sim::simulate_into(model, &cfg.initial, &cfg.run_options(), &mut files)

@@ -17,6 +17,7 @@ use super::config::to_json;
 use super::csv::{self, Num, Row};
 use super::output_error::{OutputError, io_err};
 use super::staging::{self, Staging};
+use crate::model::frame::Frame;
 use crate::model::geometry::G;
 use crate::model::system::EventRecord;
 use crate::model::{Geometry, Mode};
@@ -75,6 +76,42 @@ fn event_row(e: &EventRecord, geo: &Geometry) -> EventRow {
         theta_rad: Num(e.theta * geo.psi),
         sliding_m: Num(geo.sliding(e.theta, e.x) * geo.r),
     }
+}
+
+/// A frame's `events.csv` `body`: every event of a frame is at its columns
+/// (they lift, land and overturn together, the beam carried on their top
+/// corners).
+pub const FRAME_EVENT_BODY: &str = "columns";
+
+/// The per-body columns a frame's `history.csv` adds, as the stack's:
+/// `theta_j_rad`, `theta_dot_j_rad_s`, `x_j_m` and `y_j_m` for each column
+/// j from 0, then the beam. A frame's `x_j_m` and `y_j_m` are the body's
+/// centre's displacement from where it stands at rest (the model needs no
+/// spacing between the columns, so it has no common origin).
+pub fn frame_history_header(frame: &Frame) -> Vec<String> {
+    (0..=frame.columns)
+        .flat_map(|j| {
+            [
+                format!("theta_{j}_rad"),
+                format!("theta_dot_{j}_rad_s"),
+                format!("x_{j}_m"),
+                format!("y_{j}_m"),
+            ]
+        })
+        .collect()
+}
+
+/// Each body's cells of a frame's `history.csv` row `r`
+/// ([`frame_history_header`]; [`Frame::bodies`]).
+pub fn frame_body_cells(frame: &Frame, geo: &Geometry, r: &HistoryRow) -> Vec<Num> {
+    let [column, beam] = frame.bodies(geo, r.theta * geo.psi);
+    let rate = r.theta_dot * geo.psi * geo.p;
+    let mut cells = Vec::with_capacity(4 * (frame.columns as usize + 1));
+    for _ in 0..frame.columns {
+        cells.extend([column[0], rate, column[1], column[2]].map(Num));
+    }
+    cells.extend([beam[0], 0.0, beam[1], beam[2]].map(Num));
+    cells
 }
 
 /// A row of `poincare.csv`.
@@ -228,6 +265,8 @@ pub(crate) struct RunFiles {
     history: ::csv::Writer<BufWriter<File>>,
     paths: [PathBuf; 3],
     geo: Geometry,
+    /// A frame's, whose files add each body ([`frame_history_header`]).
+    frame: Option<Frame>,
     /// History rows kept for an analysis that needs them (the spectrum).
     kept: Option<Vec<HistoryRow>>,
     error: Option<OutputError>,
@@ -237,7 +276,12 @@ impl RunFiles {
     /// Opens `events.csv`, `poincare.csv` and `history.csv` in `staging`
     /// and writes their headers; with `keep_history` the history rows are
     /// also kept in memory (for `analysis.spectrum`).
-    pub fn create(staging: &mut Staging, geo: Geometry, keep_history: bool) -> Result<Self, OutputError> {
+    pub fn create(
+        staging: &mut Staging,
+        geo: Geometry,
+        frame: Option<Frame>,
+        keep_history: bool,
+    ) -> Result<Self, OutputError> {
         let paths = [
             staging.path("events.csv"),
             staging.path("poincare.csv"),
@@ -259,12 +303,24 @@ impl RunFiles {
             w.write_record(header).map_err(|e| csv_error(path, e))?;
             Ok(w)
         };
+        let owned = |h: &[&str]| h.iter().map(|s| s.to_string()).collect::<Vec<String>>();
+        let (events, history) = match &frame {
+            None => (owned(EventRow::HEADER), owned(HistoryCsvRow::HEADER)),
+            Some(f) => (
+                owned(&[EventRow::HEADER, &["body"]].concat()),
+                [owned(HistoryCsvRow::HEADER), frame_history_header(f)].concat(),
+            ),
+        };
+        fn refs(h: &[String]) -> Vec<&str> {
+            h.iter().map(String::as_str).collect()
+        }
         Ok(Self {
-            events: open(&paths[0], EventRow::HEADER)?,
+            events: open(&paths[0], &refs(&events))?,
             poincare: open(&paths[1], PoincareRow::HEADER)?,
-            history: open(&paths[2], HistoryCsvRow::HEADER)?,
+            history: open(&paths[2], &refs(&history))?,
             paths,
             geo,
+            frame,
             kept: keep_history.then(Vec::new),
             error: None,
         })
@@ -322,7 +378,19 @@ impl Sink for RunFiles {
     fn sample(&mut self, row: &HistoryRow) {
         let values = [row.tau, row.theta, row.theta_dot, row.x, row.x_dot];
         let csv_row = history_row(row, &self.geo);
-        Self::write(&mut self.error, &mut self.history, &self.paths[2], &values, csv_row);
+        match &self.frame {
+            None => Self::write(&mut self.error, &mut self.history, &self.paths[2], &values, csv_row),
+            Some(f) => {
+                let bodies = frame_body_cells(f, &self.geo, row);
+                Self::write(
+                    &mut self.error,
+                    &mut self.history,
+                    &self.paths[2],
+                    &values,
+                    (csv_row, bodies),
+                );
+            }
+        }
         if let Some(kept) = &mut self.kept {
             kept.push(*row);
         }
@@ -342,7 +410,16 @@ impl Sink for RunFiles {
     fn event(&mut self, e: &EventRecord) {
         let values = [e.tau, e.theta, e.theta_dot_before, e.theta_dot_after, e.x_dot, e.x];
         let row = event_row(e, &self.geo);
-        Self::write(&mut self.error, &mut self.events, &self.paths[0], &values, row);
+        match self.frame {
+            None => Self::write(&mut self.error, &mut self.events, &self.paths[0], &values, row),
+            Some(_) => Self::write(
+                &mut self.error,
+                &mut self.events,
+                &self.paths[0],
+                &values,
+                (row, FRAME_EVENT_BODY),
+            ),
+        }
     }
 }
 

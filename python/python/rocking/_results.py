@@ -41,6 +41,11 @@ CLASSES = ("index", "value", "outcome", "period", "max_abs_theta", "lyapunov", "
 CELLS = ("x", "y", "outcome", "period", "max_abs_theta", "lyapunov", "has_lyapunov", "attractor", "computed")
 
 
+def _with_extra(order: Sequence[str], columns: Mapping[str, Any]) -> tuple[str, ...]:
+    """`order`, then the columns of `columns` it does not name, in their own order."""
+    return tuple(order) + tuple(k for k in columns if k not in order)
+
+
 class Run:
     """One run, as `rocking --batch` writes it.
 
@@ -56,9 +61,10 @@ class Run:
         #: summary.json as a dict (same keys and numbers as the CLI's file).
         self.summary: dict[str, Any] = data["summary"]
         #: The regular time history (history.csv's columns).
-        self.history: Table = table(data["history"], HISTORY)
-        #: Every event (events.csv's columns).
-        self.events: Table = table(data["events"], EVENTS)
+        #: A frame's adds each body's columns after the block's, as its CSV.
+        self.history: Table = table(data["history"], _with_extra(HISTORY, data["history"]))
+        #: Every event (events.csv's columns; a frame's with `body`).
+        self.events: Table = table(data["events"], _with_extra(EVENTS, data["events"]))
         #: The stroboscopic section at τ_k = 2πk/Ω_h (poincare.csv's columns).
         self.poincare: Table = table(data["poincare"], POINCARE)
 

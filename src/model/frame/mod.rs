@@ -67,6 +67,24 @@ impl Frame {
     pub fn lever(&self) -> f64 {
         1.0 + 2.0 * self.beam_mass_ratio
     }
+
+    /// Where a column and the beam are when the columns of `geo` are
+    /// turned by θ = `theta` rad (clockwise, on their right corners when
+    /// positive): each body's rotation (rad) and its centre's displacement
+    /// from where it stands at rest, horizontal and up (m). A column turns
+    /// about its pivot, its centre moving by
+    /// (s b (1 − cos θ) + h sin θ, b |sin θ| − h (1 − cos θ)) with s the
+    /// pivot's side and b, h its half width and half height; the beam does
+    /// not turn and its supports, the columns' opposite top corners, are
+    /// twice as far from the pivots, so it moves by twice that
+    /// (docs/model.md §16.1: it rises by 2R(cos(ψ − |θ|) − cos ψ)).
+    pub fn bodies(&self, geo: &Geometry, theta: f64) -> [[f64; 3]; 2] {
+        let (b, h) = (0.5 * geo.width, 0.5 * geo.height);
+        let (sn, c) = theta.sin_cos();
+        let dx = theta.signum() * b * (1.0 - c) + h * sn;
+        let dy = b * sn.abs() - h * (1.0 - c);
+        [[theta, dx, dy], [0.0, 2.0 * dx, 2.0 * dy]]
+    }
 }
 
 /// Accelerations and contact forces of a rocking frame at one state.

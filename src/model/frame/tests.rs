@@ -302,3 +302,37 @@ fn without_a_beam_the_frame_equations_are_a_lone_columns_bit_for_bit() {
         assert_eq!(frame.base_normal, block.normal);
     }
 }
+
+#[test]
+fn a_column_and_the_beam_move_as_their_corners_turned_about_the_pivot() {
+    let geo = Geometry::new(0.7, 4.2);
+    let frame = Frame {
+        columns: 2,
+        beam_mass_ratio: 2.0,
+    };
+    let (b, h) = (0.35, 2.1);
+    // Clockwise rotation by θ of a point about a pivot, written out.
+    let turn = |p: [f64; 2], pivot: [f64; 2], t: f64| {
+        let (u, v) = (p[0] - pivot[0], p[1] - pivot[1]);
+        [
+            pivot[0] + u * t.cos() + v * t.sin(),
+            pivot[1] - u * t.sin() + v * t.cos(),
+        ]
+    };
+    for theta in [0.0, 0.05, -0.05, 0.2, -0.31] {
+        let s: f64 = if theta < 0.0 { -1.0 } else { 1.0 };
+        let pivot = [s * b, 0.0];
+        let centre = turn([0.0, h], pivot, theta);
+        // The beam rests on the top corner opposite the pivot.
+        let support = [-s * b, 2.0 * h];
+        let moved = turn(support, pivot, theta);
+        let [column, beam] = frame.bodies(&geo, theta);
+        assert_eq!(column[0], theta);
+        assert!((column[1] - centre[0]).abs() < 1e-15 && (column[2] - (centre[1] - h)).abs() < 1e-15);
+        assert_eq!(beam[0], 0.0);
+        assert!((beam[1] - (moved[0] - support[0])).abs() < 1e-14, "{theta}");
+        assert!((beam[2] - (moved[1] - support[1])).abs() < 1e-14, "{theta}");
+        let rise = 2.0 * geo.r * ((geo.psi - theta.abs()).cos() - geo.cos_psi);
+        assert!((beam[2] - rise).abs() < 1e-14, "{theta}: {} against {rise}", beam[2]);
+    }
+}
