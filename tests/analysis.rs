@@ -279,6 +279,7 @@ fn figures_are_written_as_png_and_svg() {
         title: "Bifurcation diagram over A_v".into(),
         subtitle: "short window".into(),
         x_label: "A_v".into(),
+        y_label: "Θ = θ/ψ at τ_k = 2πk/Ω_h",
         values: &classes,
         points: &points,
         step: 0.1,
