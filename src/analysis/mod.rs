@@ -33,7 +33,6 @@ pub mod outcome_map;
 pub mod section;
 pub mod settle;
 pub mod spectrum;
-pub mod stack_steady;
 pub mod steady;
 
 /// Progress of a long analysis.

@@ -39,8 +39,7 @@ use rayon::prelude::*;
 
 use super::classify::{ClassifyOptions, Response};
 use super::field::{FieldNames, OwnNames, StudyField};
-use super::stack_steady::check_stack_study;
-use super::steady::{LyapunovFn, SteadyError, Window, check_scenario, steady_response};
+use super::steady::{LyapunovFn, SteadyError, Window, check_scenario, check_stack_study, steady_response};
 use super::{Progress, ProgressFn};
 use crate::sim::{InitialState, Param, Scenario, SectionRow};
 

@@ -19,8 +19,7 @@ use super::classify::{ClassifyOptions, Response};
 use super::map_refine::Refiner;
 use super::orbit_diagram::{AxisRule, PlanError};
 use super::settle::{BasinLookup, CellResponse, cell_response};
-use super::stack_steady::{check_stack_study, stack_cell};
-use super::steady::{LyapunovFn, SteadyError, Window, check_scenario};
+use super::steady::{LyapunovFn, SteadyError, Window, check_scenario, check_stack_study, stack_cell};
 use super::{Progress, ProgressFn};
 use crate::sim::{Param, Scenario};
 

@@ -19,11 +19,14 @@
 use super::classify::{ClassifyError, ClassifyOptions, Response, classify_run};
 use super::field::{FieldNames, OwnNames, StudyField};
 use super::section::{after_transient, points_in_window};
-use super::stack_steady::{check_stack_study, stack_steady};
 use crate::model::{Mode, Model};
 use crate::sim::scenario::ExcitationKind;
 use crate::sim::stack_run::StackError;
+
+mod stack;
 use crate::sim::{InitialState, RunOptions, Scenario, ScenarioError, SectionRow, SimError, simulate};
+pub(crate) use stack::stack_cell;
+pub use stack::{check_stack_study, stack_steady};
 
 /// The largest Lyapunov exponent of a configuration, per unit τ, if the
 /// caller can compute it (the hook the Lyapunov module is wired into).

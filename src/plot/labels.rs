@@ -74,7 +74,7 @@ pub(crate) fn param_symbol(param: Param) -> String {
 
 /// What a section point's Θ is, as an axis label: the block's θ/ψ, or a
 /// stack's top block's rotation over its own α
-/// ([`stack_steady`](crate::analysis::stack_steady)).
+/// ([`stack_steady`](crate::analysis::steady::stack_steady)).
 pub fn section_theta(cfg: &Scenario) -> &'static str {
     if cfg.stack.is_some() {
         "Θ = φ/α of the top block at τ_k = 2πk/Ω_h"

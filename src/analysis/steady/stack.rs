@@ -1,7 +1,7 @@
 //! A stack's steady response (config `[[stack]]`): its run over a sampling
 //! window, its section points classified over every interface.
 //!
-//! The same study as the block's [`steady_response`](super::steady), with
+//! The same study as the block's [`steady_response`](super::steady_response), with
 //! what a stack has instead of the block's one angle:
 //! - **Classified on the whole state.** A section point is every
 //!   interface's rotation q_i and rate q_i' (each over the top block's α,
@@ -18,11 +18,11 @@
 //!   its tangent dynamics are not derived, so it has no Lyapunov exponent;
 //!   both are refused before anything runs ([`check_stack_study`]).
 //! - **No early stop.** Every run goes over its whole window: the map's
-//!   early stop ([`settle`](super::settle)) watches the block's section.
+//!   early stop ([`settle`](crate::analysis::settle)) watches the block's section.
 
-use super::classify::{ClassifyOptions, Response, classify_points};
-use super::settle::CellResponse;
-use super::steady::{Steady, SteadyError, Window};
+use super::{Steady, SteadyError, Window};
+use crate::analysis::classify::{ClassifyOptions, Response, classify_points};
+use crate::analysis::settle::CellResponse;
 use crate::model::stack::{Contact, MAX_BLOCKS, Pose, StackGeometry};
 use crate::model::{Mode, Sign};
 use crate::sim::stack_run::{StackRun, StackSection, simulate_stack};
