@@ -171,6 +171,10 @@ pub struct Settle<'a> {
     /// The latest section points, newest last, at most `capacity`.
     recent: VecDeque<[f64; 3]>,
     capacity: usize,
+    /// The largest |coordinate| of every point pushed so far: at least the
+    /// amplitude of any range of `recent`, so the quick rejection of
+    /// [`Settle::converged_period`] may use it without a pass over them.
+    bound: [f64; 3],
     /// The latest event (the rest criterion reads its τ).
     last_event: Option<EventRecord>,
     verdict: Option<Verdict>,
@@ -180,6 +184,9 @@ pub struct Settle<'a> {
     transient: f64,
     /// Cycles of the periodic attractors already known (basin maps).
     known: &'a [Vec<[f64; 3]>],
+    /// Each known cycle's tolerance (the classifier's, of its amplitude),
+    /// computed once.
+    known_tol: Vec<[f64; 3]>,
     /// The basin map's labels so far, if its section points can be looked
     /// up in them.
     basins: Option<BasinLookup<'a>>,
@@ -199,11 +206,13 @@ impl<'a> Settle<'a> {
             opts,
             recent: VecDeque::with_capacity(capacity),
             capacity,
+            bound: [0.0; 3],
             last_event: None,
             verdict: None,
             kept: Vec::new(),
             transient,
             known: &[],
+            known_tol: Vec::new(),
             basins: None,
             hits: None,
         }
@@ -214,7 +223,24 @@ impl<'a> Settle<'a> {
     /// falling in cells of `basins` labelled with one of them (module
     /// docs).
     pub fn knowing(self, known: &'a [Vec<[f64; 3]>], basins: Option<BasinLookup<'a>>) -> Self {
-        Self { known, basins, ..self }
+        let known_tol = known
+            .iter()
+            .map(|cycle| {
+                let mut amplitude = [0.0_f64; 3];
+                for p in cycle {
+                    for (a, x) in amplitude.iter_mut().zip(p) {
+                        *a = a.max(x.abs());
+                    }
+                }
+                std::array::from_fn(|d| self.opts.rel_tol * amplitude[d] + self.opts.abs_tol)
+            })
+            .collect();
+        Self {
+            known,
+            known_tol,
+            basins,
+            ..self
+        }
     }
 
     /// Why the run stopped, if it did.
@@ -233,16 +259,11 @@ impl<'a> Settle<'a> {
         let n = self.recent.len();
         let newest = self.recent.back()?;
         // A quick rejection first: the newest pair against the tolerance of
-        // the whole buffer's amplitude. That amplitude bounds the one of any
-        // range tested below, so a pair outside this looser tolerance fails
-        // the exact test too, and most periods k fail here after three
-        // comparisons instead of a pass over up to 3k + 8 points.
-        let mut bound = [0.0_f64; 3];
-        for p in &self.recent {
-            for (a, x) in bound.iter_mut().zip(p) {
-                *a = a.max(x.abs());
-            }
-        }
+        // the largest amplitude seen so far. That bounds the amplitude of
+        // any range tested below, so a pair outside this looser tolerance
+        // fails the exact test too, and most periods k fail here after
+        // three comparisons instead of a pass over up to 3k + 8 points.
+        let bound = self.bound;
         let loose: [f64; 3] =
             std::array::from_fn(|d| SETTLE_FRACTION * (self.opts.rel_tol * bound[d] + self.opts.abs_tol));
         (1..=self.opts.k_max as usize).find(|&k| {
@@ -283,20 +304,13 @@ impl Settle<'_> {
     fn reached(&self) -> Option<Vec<[f64; 3]>> {
         let n = self.recent.len();
         let newest = self.recent.back()?;
-        self.known.iter().find_map(|cycle| {
+        self.known.iter().zip(&self.known_tol).find_map(|(cycle, tol)| {
             let k = cycle.len();
             let m = k + REACH_CONFIRM;
             if k == 0 || n < m {
                 return None;
             }
-            let mut amplitude = [0.0_f64; 3];
-            for p in cycle {
-                for (a, x) in amplitude.iter_mut().zip(p) {
-                    *a = a.max(x.abs());
-                }
-            }
-            let tol: [f64; 3] = std::array::from_fn(|d| self.opts.rel_tol * amplitude[d] + self.opts.abs_tol);
-            let near = |p: &[f64; 3], c: &[f64; 3]| p.iter().zip(c).zip(&tol).all(|((x, y), t)| (x - y).abs() <= *t);
+            let near = |p: &[f64; 3], c: &[f64; 3]| p.iter().zip(c).zip(tol).all(|((x, y), t)| (x - y).abs() <= *t);
             // The cycle's point the newest one matches, then the earlier
             // points against the cycle's earlier points, in order.
             let end = (0..k).find(|&e| {
@@ -325,7 +339,11 @@ impl Sink for Settle<'_> {
         if self.recent.len() == self.capacity {
             self.recent.pop_front();
         }
-        self.recent.push_back([row.theta, row.theta_dot, row.x_dot]);
+        let point = [row.theta, row.theta_dot, row.x_dot];
+        for (a, x) in self.bound.iter_mut().zip(&point) {
+            *a = a.max(x.abs());
+        }
+        self.recent.push_back(point);
         if let Some(k) = self.converged_period() {
             let cycle = self.recent.range(self.recent.len() - k..).copied().collect();
             self.verdict = Some(Verdict::Periodic { tau: row.tau, cycle });
