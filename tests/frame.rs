@@ -4,7 +4,7 @@
 //! outputs, and the inputs it refuses.
 
 mod common;
-use common::{refusal, scene};
+use common::{CsvRow, csv_rows, refusal, scene};
 use rocking::sim::{Outcome, RunResult, Scenario, simulate};
 
 fn run(s: &Scenario) -> RunResult {
@@ -214,16 +214,6 @@ fn a_frame_config_is_refused_where_it_would_be_misread() {
     }
 }
 
-/// The rows of a CSV file as (header → cell) lookups.
-fn csv_rows(path: &std::path::Path) -> Vec<std::collections::HashMap<String, String>> {
-    let text = std::fs::read_to_string(path).expect("csv");
-    let mut lines = text.lines();
-    let head: Vec<String> = lines.next().expect("header").split(',').map(String::from).collect();
-    lines
-        .map(|l| head.iter().cloned().zip(l.split(',').map(String::from)).collect())
-        .collect()
-}
-
 #[test]
 fn a_frames_files_name_the_body_of_each_event_and_give_each_bodys_motion() {
     let out = std::env::temp_dir().join(format!("rocking-frame-files-{}", std::process::id()));
@@ -241,7 +231,7 @@ fn a_frames_files_name_the_body_of_each_event_and_give_each_bodys_motion() {
     let (b, h) = (0.35_f64, 2.1_f64);
     let r = (b * b + h * h).sqrt();
     let psi = (b / h).atan();
-    let num = |row: &std::collections::HashMap<String, String>, k: &str| -> f64 { row[k].parse().expect(k) };
+    let num = |row: &CsvRow, k: &str| -> f64 { row[k].parse().expect(k) };
     let mut rocked = 0;
     for row in &history {
         let theta = num(row, "theta_rad");

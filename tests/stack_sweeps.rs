@@ -4,12 +4,12 @@
 //! a stack against its own `--batch` run sampled at the section times.
 
 mod common;
-use common::scene;
+use common::{CsvRow, csv_rows, scene};
 use rocking::analysis::classify::{ClassifyOptions, Response};
 use rocking::analysis::outcome_map::{Axis, BlockMap};
 use rocking::analysis::steady::{Steady, Window, steady_response};
 use rocking::sim::{Param, Scenario};
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::process::Command;
 
 const FORCING_HZ: f64 = 1.5;
@@ -146,17 +146,7 @@ fn run_ok(args: &[&str]) {
     assert!(o.status.success(), "{args:?}: {}", String::from_utf8_lossy(&o.stderr));
 }
 
-/// The rows of a CSV file as (header → cell) lookups.
-fn rows(path: &Path) -> Vec<std::collections::HashMap<String, String>> {
-    let text = std::fs::read_to_string(path).expect("csv");
-    let mut lines = text.lines();
-    let head: Vec<String> = lines.next().expect("header").split(',').map(String::from).collect();
-    lines
-        .map(|l| head.iter().cloned().zip(l.split(',').map(String::from)).collect())
-        .collect()
-}
-
-fn num(row: &std::collections::HashMap<String, String>, key: &str) -> f64 {
+fn num(row: &CsvRow, key: &str) -> f64 {
     row[key].parse().unwrap_or_else(|_| panic!("{key} = {:?}", row[key]))
 }
 
@@ -182,7 +172,7 @@ fn a_stack_sweep_and_map_agree_with_its_batch_run_at_the_section_times() {
         s,
     ];
     run_ok(&[&args[..], &window, &preset].concat());
-    let classes = rows(&sweep.join("classes.csv"));
+    let classes = csv_rows(&sweep.join("classes.csv"));
     let periods: Vec<&str> = classes.iter().map(|r| r["period"].as_str()).collect();
     // A period-4 cycle at A_h = 1.0 and a period-1 one at 1.2.
     assert_eq!(periods, ["4", "1"]);
@@ -195,7 +185,7 @@ fn a_stack_sweep_and_map_agree_with_its_batch_run_at_the_section_times() {
         meta["units"]
     );
     let period = std::f64::consts::TAU / omega;
-    let points = rows(&sweep.join("points.csv"));
+    let points = csv_rows(&sweep.join("points.csv"));
     // The top block (0.4 × 1.2 m) of the preset.
     let alpha = (0.4_f64 / 1.2).atan();
     for value in ["1.0", "1.2"] {
@@ -215,7 +205,7 @@ fn a_stack_sweep_and_map_agree_with_its_batch_run_at_the_section_times() {
             out.to_str().unwrap(),
         ];
         run_ok(&[&batch[..], &preset].concat());
-        let history = rows(&out.join("history.csv"));
+        let history = csv_rows(&out.join("history.csv"));
         let mine: Vec<_> = points
             .iter()
             .filter(|p| num(p, "value") == value.parse::<f64>().unwrap())
@@ -257,7 +247,7 @@ fn a_stack_sweep_and_map_agree_with_its_batch_run_at_the_section_times() {
         m,
     ];
     run_ok(&[&args[..], &window, &preset].concat());
-    let cells = rows(&map.join("map.csv"));
+    let cells = csv_rows(&map.join("map.csv"));
     for (cell, class) in cells.iter().take(2).zip(&classes) {
         assert_eq!(num(cell, "y"), omega);
         assert_eq!(cell["x"], class["value"]);

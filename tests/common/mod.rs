@@ -95,3 +95,16 @@ pub fn refusal(text: &str) -> String {
         Err(e) => e.to_string(),
     }
 }
+
+/// One row of a CSV file: header → cell.
+pub type CsvRow = std::collections::HashMap<String, String>;
+
+/// The rows of the CSV file at `path` (a test's own output).
+pub fn csv_rows(path: &std::path::Path) -> Vec<CsvRow> {
+    let text = std::fs::read_to_string(path).expect("csv");
+    let mut lines = text.lines();
+    let head: Vec<String> = lines.next().expect("header").split(',').map(String::from).collect();
+    lines
+        .map(|l| head.iter().cloned().zip(l.split(',').map(String::from)).collect())
+        .collect()
+}
