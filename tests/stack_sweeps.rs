@@ -257,5 +257,31 @@ fn a_stack_sweep_and_map_agree_with_its_batch_run_at_the_section_times() {
         );
         assert_eq!(cell["max_abs_theta"], class["max_abs_theta"]);
     }
+    // Without --tau-end the study would end at the preset's own 20 s
+    // (τ = 55.7), before the default transient: the message says so.
+    let o = rocking()
+        .args([
+            "sweep",
+            "--param",
+            "excitation.a_h",
+            "--from",
+            "1.0",
+            "--to",
+            "1.2",
+            "--step",
+            "0.2",
+            "--out",
+        ])
+        .arg(d.join("none"))
+        .args(preset)
+        .output()
+        .expect("run");
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert_eq!(
+        err.trim(),
+        "error: --tau-end: not given, and the scene's run.tau_end = 55.70 ends before --transient 600: give --tau-end above the transient (the paper's window is 600 to 800)"
+    );
+    assert!(!d.join("none").exists());
     let _ = std::fs::remove_dir_all(&d);
 }

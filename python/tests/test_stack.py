@@ -90,6 +90,8 @@ def test_a_stack_sweeps_and_maps_as_the_cli_does(cli, tmp_path: Path) -> None:
     # What a stack cannot vary or compute is refused with the CLI's words.
     with pytest.raises(rocking.ConfigError, match="block.width: is not read by a \\[\\[stack\\]\\]"):
         rocking.sweep("stack-patterns", "block.width", 0.1, 0.3, 0.1, tau_end=700)
+    with pytest.raises(rocking.ConfigError, match="tau_end: not given, and the scene's run.tau_end = 55.70 ends before transient=600"):
+        rocking.sweep("stack-patterns", "excitation.a_h", 1.0, 1.2, 0.2)
     with pytest.raises(rocking.ConfigError, match="sweep without continuation"):
         rocking.sweep("stack-patterns", "excitation.a_h", 1.0, 1.2, 0.2, tau_end=700, continuation="up")
 

@@ -96,6 +96,10 @@ pub enum WindowError {
     TauEnd(f64),
     /// `tau_end <= transient`: nothing to sample.
     Empty(Window),
+    /// `tau_end` was not given and the scene's own `run.tau_end` (its
+    /// batch run's end, e.g. 55.7 for a 20 s preset) is at or before the
+    /// transient: the study needs its own end.
+    SceneEnd(Window),
     /// Fewer section points in the window than the classifier needs.
     TooFewPoints {
         /// The window.
@@ -119,6 +123,13 @@ impl WindowError {
             WindowError::Transient(v) => format!("{}: must be finite and >= 0", transient(v)),
             WindowError::TauEnd(v) => format!("{}: must be finite and <= 1e9", tau_end(v)),
             WindowError::Empty(w) => format!("{}: must be larger than {}", tau_end(w.tau_end), transient(w.transient)),
+            WindowError::SceneEnd(w) => format!(
+                "{}: not given, and the scene's run.tau_end = {:.2} ends before {}: give {} above the transient (the paper's window is 600 to 800)",
+                names.name(StudyField::TauEnd),
+                w.tau_end,
+                transient(w.transient),
+                names.name(StudyField::TauEnd)
+            ),
             WindowError::TooFewPoints {
                 window,
                 forcing_period,
@@ -135,13 +146,19 @@ impl WindowError {
 
 impl Window {
     /// The window of a study of `base` from `transient` and `tau_end`
-    /// (default: `base`'s `run.tau_end`), checked.
+    /// (default: `base`'s `run.tau_end`), checked; a default end at or
+    /// before the transient is reported as the scene's
+    /// ([`WindowError::SceneEnd`]).
     pub fn of_study(base: &Scenario, transient: f64, tau_end: Option<f64>) -> Result<Window, SteadyError> {
         let window = Window {
             transient,
             tau_end: tau_end.unwrap_or(base.run.tau_end),
         };
-        window.validate()?;
+        match window.validate() {
+            // The end the user did not give: say where it came from.
+            Err(WindowError::Empty(w)) if tau_end.is_none() => return Err(WindowError::SceneEnd(w).into()),
+            r => r?,
+        }
         Ok(window)
     }
 }
