@@ -285,3 +285,49 @@ fn a_stack_sweep_and_map_agree_with_its_batch_run_at_the_section_times() {
     assert!(!d.join("none").exists());
     let _ = std::fs::remove_dir_all(&d);
 }
+
+#[test]
+fn a_stack_whose_friction_cannot_hold_stops_a_sweep_as_bad_input() {
+    // A squat top block (B/H = 2) on friction 0.3: at A_h = 1 it would
+    // slide long before it tips, and a stack's inner sliding is not
+    // followed.
+    let d = tmpdir("slip");
+    let config = d.join("slip.toml");
+    std::fs::write(
+        &config,
+        "[[stack]]\nwidth = 0.5\nheight = 2.0\n[[stack]]\nwidth = 0.6\nheight = 0.3\nstatic = 0.3\n\
+         [excitation]\nkind = \"harmonic\"\na_h = \"0.5 g\"\nomega_h = \"1 Hz\"\n",
+    )
+    .unwrap();
+    let out = d.join("out");
+    let o = rocking()
+        .args([
+            "sweep",
+            "--param",
+            "excitation.a_h",
+            "--from",
+            "0.5",
+            "--to",
+            "1",
+            "--step",
+            "0.5",
+        ])
+        .args(["--tau-end", "900", "--config"])
+        .arg(&config)
+        .arg("--out")
+        .arg(&out)
+        .output()
+        .expect("run");
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(
+        err.starts_with("error: excitation.a_h = 1: stack block 2's lower face would slip at t = "),
+        "{err}"
+    );
+    assert!(
+        err.contains("raise static or set it to inf") && err.trim().lines().count() == 1,
+        "{err}"
+    );
+    assert!(!out.exists());
+    let _ = std::fs::remove_dir_all(&d);
+}

@@ -212,6 +212,17 @@ pub enum SteadyError {
 }
 
 impl SteadyError {
+    /// Whether the error is the input's (a value out of range, a window
+    /// that cannot be sampled, a stack whose friction cannot hold the
+    /// motion: the user's to change) rather than a failure of the run.
+    pub fn is_input(&self) -> bool {
+        match self {
+            SteadyError::Scenario(_) | SteadyError::NotHarmonic | SteadyError::Window(_) => true,
+            SteadyError::Stack(e) => matches!(e, StackError::Slip { .. }),
+            SteadyError::Sim(_) | SteadyError::Classify(_) | SteadyError::Unfinished => false,
+        }
+    }
+
     /// The one-line message with the study's inputs named by `names` (the
     /// other variants name config keys, the same on every surface).
     pub fn render(&self, names: &impl FieldNames) -> String {

@@ -192,8 +192,12 @@ pub(crate) fn run_with(args: &MapArgs, lyapunov: Option<&LyapunovFn<'_>>) -> Res
     let map = pool
         .install(|| compute_map(&spec, plan, &progress_fn(&bar)))
         .map_err(|e| {
-            let error = e.error.render(&Flags);
-            BatchError::Run(anyhow!("{} = {}, {} = {}: {}", x.key, e.x, y.key, e.y, error))
+            let message = anyhow!("{} = {}, {} = {}: {}", x.key, e.x, y.key, e.y, e.error.render(&Flags));
+            if e.error.is_input() {
+                BatchError::Input(message)
+            } else {
+                BatchError::Run(message)
+            }
         })?;
     bar.finish_and_clear();
     let wall = start.elapsed().as_secs_f64();

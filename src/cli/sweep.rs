@@ -301,12 +301,12 @@ pub(crate) fn run_with(args: &SweepArgs, lyapunov: Option<&LyapunovFn<'_>>) -> R
     let values = pool
         .install(|| block_sweep(&spec, &plan, &progress_fn(&bar)))
         .map_err(|e| {
-            BatchError::Run(anyhow::anyhow!(
-                "{} = {}: {}",
-                meta.param.key(),
-                e.value,
-                e.error.render(&Flags)
-            ))
+            let message = anyhow::anyhow!("{} = {}: {}", meta.param.key(), e.value, e.error.render(&Flags));
+            if e.error.is_input() {
+                BatchError::Input(message)
+            } else {
+                BatchError::Run(message)
+            }
         })?;
     bar.finish_and_clear();
     let wall = start.elapsed().as_secs_f64();
