@@ -7,7 +7,7 @@
 mod common;
 use common::{refusal, scene};
 use rocking::io::config;
-use rocking::model::stack::{MAX_BLOCKS, StackEnd, StackEventKind};
+use rocking::model::stack::{MAX_BLOCKS, SLIDE, StackEnd, StackEventKind};
 use rocking::sim::stack_run::{StackRun, simulate_stack};
 use rocking::sim::{Outcome, RunResult, Scenario, simulate};
 
@@ -25,72 +25,150 @@ fn run_stack(s: &Scenario) -> StackRun {
     .expect("run")
 }
 
+/// How a glued stack and its single block compared: the largest
+/// difference of θ (rad), of the impact times (s) and of the sliding
+/// displacement (m), and the impacts and slips counted.
+struct Compared {
+    theta: f64,
+    impact_t: f64,
+    sliding: f64,
+    impacts: usize,
+    slips: usize,
+}
+
 /// A stack of blocks of one width B glued on each other, the bottom face
-/// free, and the single block B × ΣH under the same ground motion: θ on
-/// the same grid of physical time, and the impact times.
-fn glued_against_block(excitation: &str, width: f64, heights: &[f64], t_end: &str) -> (f64, f64, usize) {
+/// free, and the single block B × ΣH under the same ground motion: θ and
+/// the sliding displacement on the same grid of physical time, and the
+/// impact times. `friction`, if given, is the base face's (static,
+/// kinetic): the block then takes the same `[friction]` and the impact law
+/// that keeps the momentum about the striking corner with the slip before
+/// the impact included (`corner-momentum`), which is what a stack's impact
+/// does (docs/model.md §18.7).
+fn glued_against_block(
+    excitation: &str,
+    width: f64,
+    heights: &[f64],
+    t_end: &str,
+    friction: Option<(f64, f64)>,
+) -> Compared {
     let run_keys = format!(
         "[run]\nmethod = \"dop853\"\nrtol = 1e-13\natol = 1e-15\noutput_dt = \"0.01 s\"\nt_end = \"{t_end}\"\n"
     );
     let mut text = String::new();
     for (i, h) in heights.iter().enumerate() {
         text += &format!("[[stack]]\nwidth = {width:?}\nheight = {h:?}\nglued = {}\n", i > 0);
+        if let (0, Some((s, k))) = (i, friction) {
+            text += &format!("static = {s:?}\nkinetic = {k:?}\n");
+        }
     }
     let stack = scene(&format!("{text}{excitation}\n{run_keys}"));
     let total: f64 = heights.iter().sum();
+    let block_friction = friction.map_or(String::new(), |(s, k)| {
+        format!("[friction]\nstatic = {s:?}\nkinetic = {k:?}\n[impact]\nlaw = \"corner-momentum\"\n")
+    });
     let block = scene(&format!(
-        "[block]\nwidth = {width:?}\nheight = {total:?}\n{excitation}\n{run_keys}"
+        "[block]\nwidth = {width:?}\nheight = {total:?}\n{block_friction}{excitation}\n{run_keys}"
     ));
     let (s, b) = (run_stack(&stack), run_block(&block));
     let (ps, pb) = (stack.geometry().p, block.geometry().p);
-    let psi = block.geometry().psi;
+    let geo = block.geometry();
     let n = s.history.len().min(b.history.len());
     assert!(n > 100, "{n} rows");
-    let mut worst = 0.0f64;
+    let (mut theta, mut sliding) = (0.0f64, 0.0f64);
     for (rs, rb) in s.history.iter().zip(&b.history).take(n) {
         let (ts, tb) = (rs.tau / ps, rb.tau / pb);
         assert!((ts - tb).abs() < 1e-12, "grids differ: {ts} s vs {tb} s");
-        worst = worst.max((rs.y[0] - psi * rb.theta).abs());
+        theta = theta.max((rs.y[0] - geo.psi * rb.theta).abs());
+        sliding = sliding.max((rs.y[SLIDE] - geo.sliding(rb.theta, rb.x) * geo.r).abs());
     }
-    let si: Vec<f64> = s
-        .events
-        .iter()
-        .filter(|e| e.kind == StackEventKind::Impact)
-        .map(|e| e.tau / ps)
-        .collect();
-    let bi: Vec<f64> = b
-        .events
-        .iter()
-        .filter(|e| e.kind.name() == "impact")
-        .map(|e| e.tau / pb)
-        .collect();
+    let times = |kinds: &[&str], stack: bool| -> Vec<f64> {
+        if stack {
+            s.events
+                .iter()
+                .filter(|e| kinds.contains(&e.kind.name()))
+                .map(|e| e.tau / ps)
+                .collect()
+        } else {
+            b.events
+                .iter()
+                .filter(|e| kinds.contains(&e.kind.name()))
+                .map(|e| e.tau / pb)
+                .collect()
+        }
+    };
+    let (si, bi) = (times(&["impact"], true), times(&["impact"], false));
     assert_eq!(si.len(), bi.len(), "impacts");
-    let worst_impact = si.iter().zip(&bi).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
+    let (ss, bs) = (times(&["slip", "stick"], true), times(&["slip", "stick"], false));
+    assert_eq!(ss.len(), bs.len(), "slips and sticks");
+    let worst = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
+    let impact_t = worst(&si, &bi).max(worst(&ss, &bs));
     eprintln!(
-        "θ differs by at most {worst:e} rad, impact times by {worst_impact:e} s ({} impacts)",
-        si.len()
+        "θ differs by at most {theta:e} rad, sliding by {sliding:e} m, event times by {impact_t:e} s ({} impacts, {} slips and sticks)",
+        si.len(),
+        ss.len()
     );
-    (worst, worst_impact, si.len())
+    Compared {
+        theta,
+        impact_t,
+        sliding,
+        impacts: si.len(),
+        slips: ss.len(),
+    }
 }
 
 #[test]
 fn a_glued_stack_of_one_width_rocks_as_the_single_block_of_their_height_under_harmonic_motion() {
     let excitation =
         "[excitation]\nkind = \"harmonic\"\na_h = \"0.3 g\"\nomega_h = \"1.5 Hz\"\na_v = \"0.1 g\"\nomega_v = \"3 Hz\"";
-    let (worst, worst_impact, impacts) = glued_against_block(excitation, 0.5, &[1.0, 0.8, 0.7], "30 s");
-    assert!(impacts >= 3, "{impacts} impacts");
-    assert!(worst < 1e-12, "θ differs by {worst:e} rad");
-    assert!(worst_impact < 1e-12, "impact times differ by {worst_impact:e} s");
+    let c = glued_against_block(excitation, 0.5, &[1.0, 0.8, 0.7], "30 s", None);
+    assert!(c.impacts >= 3, "{} impacts", c.impacts);
+    assert!(c.theta < 1e-12, "θ differs by {:e} rad", c.theta);
+    assert!(c.impact_t < 1e-12, "impact times differ by {:e} s", c.impact_t);
 }
 
 #[test]
 fn a_glued_stack_of_one_width_rocks_as_the_single_block_of_their_height_under_el_centro() {
     let excitation =
         "[excitation]\nkind = \"record\"\nfile_h = \"shipped:elcentro-1940-ns.dat\"\nunit_h = \"g\"\nscale_h = 2.0";
-    let (worst, worst_impact, impacts) = glued_against_block(excitation, 0.4, &[1.2, 0.8], "15 s");
-    assert!(impacts >= 3, "{impacts} impacts");
-    assert!(worst < 1e-12, "θ differs by {worst:e} rad");
-    assert!(worst_impact < 1e-12, "impact times differ by {worst_impact:e} s");
+    let c = glued_against_block(excitation, 0.4, &[1.2, 0.8], "15 s", None);
+    assert!(c.impacts >= 3, "{} impacts", c.impacts);
+    assert!(c.theta < 1e-12, "θ differs by {:e} rad", c.theta);
+    assert!(c.impact_t < 1e-12, "impact times differ by {:e} s", c.impact_t);
+}
+
+#[test]
+fn a_glued_stack_sliding_on_its_base_slides_and_rocks_as_the_single_block_under_harmonic_motion() {
+    // 0.45 g against friction 0.3/0.25 and a slenderness of tan α = 0.28:
+    // the block slides, lifts off while sliding (slide-rock), sticks and
+    // rocks, with impacts after a slip.
+    let excitation = "[excitation]\nkind = \"harmonic\"\na_h = \"0.45 g\"\nomega_h = \"1.5 Hz\"\na_v = \"0.1 g\"\nomega_v = \"3 Hz\"";
+    let c = glued_against_block(excitation, 0.5, &[1.0, 0.8], "20 s", Some((0.3, 0.25)));
+    assert!(
+        c.impacts >= 3 && c.slips >= 4,
+        "{} impacts, {} slips",
+        c.impacts,
+        c.slips
+    );
+    assert!(c.theta < 1e-10, "θ differs by {:e} rad", c.theta);
+    assert!(c.sliding < 1e-10, "sliding differs by {:e} m", c.sliding);
+    assert!(c.impact_t < 1e-10, "event times differ by {:e} s", c.impact_t);
+}
+
+#[test]
+fn a_glued_stack_sliding_on_its_base_slides_and_rocks_as_the_single_block_under_el_centro() {
+    let excitation =
+        "[excitation]\nkind = \"record\"\nfile_h = \"shipped:elcentro-1940-ns.dat\"\nunit_h = \"g\"\nscale_h = 2.5";
+    // Slips, sticks and rocks, and overturns at 4.6 s.
+    let c = glued_against_block(excitation, 0.5, &[1.2, 0.8], "15 s", Some((0.28, 0.22)));
+    assert!(
+        c.impacts >= 3 && c.slips >= 3,
+        "{} impacts, {} slips",
+        c.impacts,
+        c.slips
+    );
+    assert!(c.theta < 1e-10, "θ differs by {:e} rad", c.theta);
+    assert!(c.sliding < 1e-10, "sliding differs by {:e} m", c.sliding);
+    assert!(c.impact_t < 1e-10, "event times differ by {:e} s", c.impact_t);
 }
 
 /// The horizontal base acceleration, per g + a_v, at which interface `i`

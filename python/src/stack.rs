@@ -7,7 +7,8 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use rocking::io::stack_files::{body_states, stack_summary};
 use rocking::sim::Scenario;
-use rocking::sim::stack_run::{StackError, StackRun, simulate_stack};
+use rocking::model::stack::SLIDE;
+use rocking::sim::stack_run::{StackRun, simulate_stack};
 use serde_json::Value as Json;
 
 use crate::convert::json_to_py;
@@ -30,15 +31,16 @@ pub fn run_stack(cfg: &Scenario) -> Result<StackSimulated, Failure> {
         .stack_geometry()
         .ok_or_else(|| input("stack", "stack: its blocks do not stand on each other".into()))?;
     let excitation = cfg.excitation().map_err(|e| input(&e.key.clone(), e.to_string()))?;
-    let run = simulate_stack(geo, excitation, cfg.run.zeno_eps, &cfg.run_options()).map_err(|e| match e {
-        StackError::Slip { block, .. } => input(&format!("stack[{}].static", block.saturating_sub(1)), e.to_string()),
-        StackError::Driver(_) => Failure::Run(anyhow::Error::new(e).context("simulation failed")),
+    let run = simulate_stack(geo, excitation, cfg.run.zeno_eps, &cfg.run_options()).map_err(|e| match e.key() {
+        Some(key) => input(&key, e.to_string()),
+        None => Failure::Run(anyhow::Error::new(e).context("simulation failed")),
     })?;
     let summary = stack_summary(cfg, &run);
     Ok(StackSimulated { run, summary })
 }
 
-/// The columns of a stack's run: `history` (`tau`, `t_s`, `mode`, then
+/// The columns of a stack's run: `history` (`tau`, `t_s`, `mode`,
+/// `sliding_m`, then
 /// each body's `theta_J_rad`, `theta_dot_J_rad_s`, `x_J_m`, `y_J_m`) and
 /// `events` as history.csv's and events.csv's columns, and `summary`.
 pub fn stack_columns<'py>(py: Python<'py>, s: &StackSimulated, p: f64) -> PyResult<Bound<'py, PyDict>> {
@@ -50,6 +52,7 @@ pub fn stack_columns<'py>(py: Python<'py>, s: &StackSimulated, p: f64) -> PyResu
     history.set_item("tau", col(h.iter().map(|r| r.tau).collect()))?;
     history.set_item("t_s", col(h.iter().map(|r| r.tau / p).collect()))?;
     history.set_item("mode", h.iter().map(|r| r.mode.name(k)).collect::<Vec<String>>())?;
+    history.set_item("sliding_m", col(h.iter().map(|r| r.y[SLIDE]).collect()))?;
     let states: Vec<_> = h.iter().map(|r| body_states(run, r, p)).collect();
     for j in 0..k {
         for (c, name) in ["theta_{j}_rad", "theta_dot_{j}_rad_s", "x_{j}_m", "y_{j}_m"]

@@ -218,7 +218,7 @@ impl SteadyError {
     pub fn is_input(&self) -> bool {
         match self {
             SteadyError::Scenario(_) | SteadyError::NotHarmonic | SteadyError::Window(_) => true,
-            SteadyError::Stack(e) => matches!(e, StackError::Slip { .. }),
+            SteadyError::Stack(e) => e.is_input(),
             SteadyError::Sim(_) | SteadyError::Classify(_) | SteadyError::Unfinished => false,
         }
     }

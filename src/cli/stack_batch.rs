@@ -7,7 +7,7 @@ use super::error::BatchError;
 use crate::io::output;
 use crate::io::stack_files::{stack_summary, write_stack};
 use crate::sim::Scenario;
-use crate::sim::stack_run::{StackError, simulate_stack};
+use crate::sim::stack_run::simulate_stack;
 
 /// Runs the stack of `cfg` as `cli` says. Nothing is written unless the
 /// run succeeds; a face that would slip is bad input (exit 2): its
@@ -25,9 +25,12 @@ pub fn run(cli: &Cli, cfg: &Scenario) -> Result<(), BatchError> {
     output::check_writable(&cli.out)
         .with_context(|| "--out: cannot write the output directory".to_string())
         .map_err(input)?;
-    let run = simulate_stack(geo, excitation, cfg.run.zeno_eps, &cfg.run_options()).map_err(|e| match e {
-        StackError::Slip { .. } => input(anyhow::Error::new(e)),
-        StackError::Driver(_) => BatchError::Run(anyhow::Error::new(e).context("simulation failed")),
+    let run = simulate_stack(geo, excitation, cfg.run.zeno_eps, &cfg.run_options()).map_err(|e| {
+        if e.is_input() {
+            input(anyhow::Error::new(e))
+        } else {
+            BatchError::Run(anyhow::Error::new(e).context("simulation failed"))
+        }
     })?;
     let summary = stack_summary(cfg, &run);
     let text = serde_json::to_string_pretty(&summary)

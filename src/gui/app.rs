@@ -453,7 +453,11 @@ impl RockingApp {
         let end = match e.kind {
             StackEventKind::Overturn => StackEnd::Overturned(e.body),
             StackEventKind::Flight => StackEnd::Flight(e.body),
-            StackEventKind::Uplift | StackEventKind::Impact | StackEventKind::Close => return None,
+            StackEventKind::Uplift
+            | StackEventKind::Impact
+            | StackEventKind::Close
+            | StackEventKind::Slip
+            | StackEventKind::Stick => return None,
         };
         self.end.as_ref()?;
         Some((end, crate::sim::stack_answer::body_name(e.body, k)))

@@ -13,7 +13,7 @@ use super::output_error::OutputError;
 use super::resolved::resolved_json;
 use super::staging::Staging;
 use crate::model::geometry::G;
-use crate::model::stack::{MAX_BLOCKS, Pose};
+use crate::model::stack::{MAX_BLOCKS, Pose, SLIDE};
 use crate::sim::stack_run::{StackRun, StackSample};
 use crate::sim::{Physical, Scenario};
 
@@ -94,12 +94,14 @@ pub fn body_states(run: &StackRun, s: &StackSample, p: f64) -> [[f64; 4]; MAX_BL
     out
 }
 
-/// `history.csv`: `tau,t_s,mode`, then for each body j from 0:
+/// `history.csv`: `tau,t_s,mode,sliding_m` (the base face's slip: the
+/// whole stack's displacement along the base caused by sliding), then for
+/// each body j from 0:
 /// `theta_j_rad` (its rotation, clockwise), `theta_dot_j_rad_s`, `x_j_m`
 /// and `y_j_m` (its centre relative to the base).
 pub fn history_csv(run: &StackRun, p: f64) -> String {
     let k = run.geo.k;
-    let mut out = String::from("tau,t_s,mode");
+    let mut out = String::from("tau,t_s,mode,sliding_m");
     for j in 0..k {
         let _ = write!(out, ",theta_{j}_rad,theta_dot_{j}_rad_s,x_{j}_m,y_{j}_m");
     }
@@ -108,7 +110,8 @@ pub fn history_csv(run: &StackRun, p: f64) -> String {
         num(out, s.tau);
         out.push(',');
         num(out, s.tau / p);
-        let _ = write!(out, ",{}", s.mode.name(k));
+        let _ = write!(out, ",{},", s.mode.name(k));
+        num(out, s.y[SLIDE]);
         for body in &body_states(run, s, p)[..k] {
             for &v in body {
                 out.push(',');

@@ -21,7 +21,7 @@
 
 use super::{EndState, HistoryRow, Scenario};
 use crate::model::geometry::Geometry;
-use crate::model::stack::{Contact, MAX_BLOCKS, NS, StackEnd, StackEvent, StackGeometry, StackMode};
+use crate::model::stack::{Contact, MAX_BLOCKS, NS, Slip, StackEnd, StackEvent, StackGeometry, StackMode};
 use crate::model::system::EventRecord;
 use crate::model::{Mode, Sign, energy, kinematics};
 
@@ -184,15 +184,17 @@ impl StackFrame {
     /// Block `j` as a block's history row, so the plots built for one
     /// block show it: Θ = φ_j/ψ and Θ' = φ_j'/ψ with ψ the bottom block's
     /// slenderness (a stack's amplitude unit, so the units switch turns
-    /// them into the body's degrees), X = X' = 0 (a stack does not slide),
-    /// and the mode of its lower face: closed as rest (glued faces too),
-    /// open as rocking on that corner, or the run's end.
+    /// them into the body's degrees), X = X' = 0 (the rows carry the
+    /// rotations; the base face's slip is in the state's u), and the mode
+    /// of its lower face: closed as rest (glued faces too), open as rocking
+    /// on that corner, sliding on the base as the block's slide or
+    /// slide-rock, or the run's end.
     pub fn body_row(&self, j: usize, psi: f64) -> HistoryRow {
         let (phi, omega) = self.body(j);
         let mode = match self.mode.end {
             Some(StackEnd::Overturned(_)) => Mode::Tumbled,
             Some(StackEnd::Flight(_)) => Mode::Flight,
-            None => face_mode(self.mode.contacts[j.min(MAX_BLOCKS - 1)]),
+            None => face_mode(self.mode.contacts[j.min(MAX_BLOCKS - 1)], face_slip(&self.mode, j)),
         };
         HistoryRow {
             tau: self.tau,
@@ -210,14 +212,27 @@ impl StackFrame {
     }
 }
 
-/// The block's mode a face's contact is drawn and plotted as: closed as
-/// rest, rocking on a corner as the block's rocking on that corner.
-pub fn face_mode(c: Contact) -> Mode {
-    match c {
-        Contact::Closed => Mode::Rest,
-        Contact::Left => Mode::Rock { pivot: Sign::Neg },
-        Contact::Right => Mode::Rock { pivot: Sign::Pos },
+/// The block's mode a face's contact (and, for the base face, its `slip`)
+/// is drawn and plotted as: closed as rest, rocking on a corner as the
+/// block's rocking on that corner, and a sliding base face as the block's
+/// slide or slide-rock.
+pub fn face_mode(c: Contact, slip: Slip) -> Mode {
+    let sign = |s: f64| if s > 0.0 { Sign::Pos } else { Sign::Neg };
+    match (c, slip) {
+        (Contact::Closed, Slip::Stuck) => Mode::Rest,
+        (c, Slip::Stuck) => Mode::Rock { pivot: sign(c.sign()) },
+        (Contact::Closed, s) => Mode::Slide { slip: sign(s.sign()) },
+        (c, s) => Mode::SlideRock {
+            pivot: sign(c.sign()),
+            slip: sign(s.sign()),
+        },
     }
+}
+
+/// Block `j`'s lower face's slip in `mode`: the base face's for the
+/// bottom block; upper faces do not slide.
+pub fn face_slip(mode: &StackMode, j: usize) -> Slip {
+    if j == 0 { mode.slip } else { Slip::Stuck }
 }
 
 /// Samples the tests of the scene, the plots and the outbox draw from.

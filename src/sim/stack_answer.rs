@@ -37,9 +37,10 @@ impl Physical {
                 max_rotation_deg: run.tally.max_phi[j].to_degrees(),
                 // Everything above an interface that overturns goes over.
                 overturned: over.is_some_and(|(i, _)| j >= i),
-                // Sliding is not followed inside a stack: a run stops
-                // before any face slips (docs/model.md §18.7).
-                max_sliding_m: 0.0,
+                // Only the base face slides (docs/model.md §18.7), and it
+                // carries every block: each one's displacement along the
+                // base caused by sliding is the base face's slip.
+                max_sliding_m: run.tally.max_slide,
                 // The lifted corner of its lower face rises span·sin q.
                 max_uplift_m: run.geo.span(j) * run.tally.max_q[j].min(std::f64::consts::FRAC_PI_2).sin(),
             })
@@ -52,15 +53,15 @@ impl Physical {
             max_rotation_rad: phi,
             max_rotation_deg: phi.to_degrees(),
             max_rotation_over_alpha: phi_over_alpha,
-            max_sliding_m: 0.0,
-            residual_sliding_m: 0.0,
+            max_sliding_m: run.tally.max_slide,
+            residual_sliding_m: run.last.y[crate::model::stack::SLIDE],
             max_uplift_m: bodies.iter().map(|b| b.max_uplift_m).fold(0.0, f64::max),
             impacts: run.tally.impacts,
             mode_time_s: ModeSeconds {
-                rest: sec(run.rest_tau),
-                slide: 0.0,
-                rock: sec(run.tau_end - run.rest_tau),
-                slide_rock: 0.0,
+                rest: sec(run.mode_tau[0]),
+                slide: sec(run.mode_tau[1]),
+                rock: sec(run.mode_tau[2]),
+                slide_rock: sec(run.mode_tau[3]),
             },
             t_end_s: sec(run.tau_end),
             t_rest_s: run.tau_rest.map(sec),
@@ -72,7 +73,7 @@ impl Physical {
             impact_law: "stack",
             impact_r: None,
             friction_static: base_mu.is_finite().then_some(base_mu),
-            friction_kinetic: base_mu.is_finite().then(|| s.block.kinetic()),
+            friction_kinetic: base_mu.is_finite().then_some(run.geo.mu_k[0]),
             bodies: Some(bodies),
             subject: Some(match run.end {
                 Some((StackEnd::Overturned(i) | StackEnd::Flight(i), _)) => body_name(i, k),

@@ -5,7 +5,7 @@
 //! built on the block's angle).
 
 use super::method::Method;
-use super::scenario::{LawKind, MIN_PSI, Scenario, ScenarioError};
+use super::scenario::{LawKind, MIN_PSI, MU_K_LIMIT, Scenario, ScenarioError};
 use super::validate::check;
 use crate::model::stack::{MAX_BLOCKS, StackGeometry, StackShapeError};
 
@@ -40,6 +40,28 @@ impl Scenario {
                 ));
             }
             check(&key("static"), b.mu_s >= 0.0, ">= 0 or inf", b.mu_s)?;
+            let mu_k = b.mu_k.unwrap_or(b.mu_s);
+            // An absent kinetic coefficient takes the static one: say so.
+            let kinetic = if b.mu_k.is_some() {
+                key("kinetic")
+            } else {
+                format!("stack[{i}].kinetic (absent, so equal to stack[{i}].static)")
+            };
+            check(&kinetic, mu_k >= 0.0, ">= 0 or inf", mu_k)?;
+            check(
+                &kinetic,
+                mu_k.is_finite() || b.mu_s.is_infinite(),
+                "finite when the static one is finite",
+                mu_k,
+            )?;
+            // The base face slides with it: the single block's Painlevé
+            // bound (docs/model.md §4.2, §18.7).
+            check(
+                &kinetic,
+                i > 0 || mu_k < MU_K_LIMIT || b.mu_s.is_infinite(),
+                "< 4/3 (larger kinetic friction makes the base face's slide-rock ill-posed: the Painlevé paradox, docs/model.md §18.7)",
+                mu_k,
+            )?;
         }
         if blocks.iter().all(|b| b.glued) {
             return Err(ScenarioError::new(

@@ -12,7 +12,9 @@ use super::run::{EnergyAudit, Outcome, RunOptions};
 use crate::integrate::hybrid::{Driver, Observer, Outputs};
 use crate::integrate::{Dop853, Dopri5, StepStats, Stepper};
 use crate::model::excitation::Excitation;
-use crate::model::stack::{NS, StackEnd, StackEvent, StackGeometry, StackMode, StackSystem, StackTally, WORK_S};
+use crate::model::stack::{
+    FRICTION_S, NS, StackEnd, StackEvent, StackGeometry, StackMode, StackSystem, StackTally, WORK_S,
+};
 
 pub use crate::model::stack::StackError;
 
@@ -50,8 +52,12 @@ pub struct StackRun {
     /// τ at which it last came to rest (every interface closed), if it
     /// ended at rest; 0 if it never moved.
     pub tau_rest: Option<f64>,
-    /// τ spent with every interface closed, and with any open.
+    /// τ spent with every interface closed and the base stuck.
     pub rest_tau: f64,
+    /// τ spent in each of the single block's mode kinds: rest, slide
+    /// (every interface closed, the base face sliding), rock (any
+    /// interface open, the base stuck) and slide-rock (both).
+    pub mode_tau: [f64; 4],
     /// Events in time order.
     pub events: Vec<StackEvent>,
     /// The regular history (every `output_dt`).
@@ -96,6 +102,18 @@ struct Keep {
     section: Vec<StackSection>,
     rest_since: Option<f64>,
     rest_tau: f64,
+    /// τ in each mode kind, and the kind and start of the current one.
+    mode_tau: [f64; 4],
+    kind: usize,
+    since: f64,
+}
+
+/// A running mode's kind: 0 rest, 1 slide, 2 rock, 3 slide-rock.
+fn kind_of(mode: &StackMode, k: usize) -> usize {
+    let open = mode.contacts[..k]
+        .iter()
+        .any(|&c| c != crate::model::stack::Contact::Closed);
+    usize::from(mode.sliding()) + 2 * usize::from(open)
 }
 
 impl Observer<StackMode, StackEvent, NS> for Keep {
@@ -120,6 +138,9 @@ impl Observer<StackMode, StackEvent, NS> for Keep {
         } else if !was && is {
             self.rest_since = Some(t);
         }
+        self.mode_tau[self.kind] += t - self.since;
+        self.kind = kind_of(&record.after, self.k);
+        self.since = t;
         self.events.push(record);
     }
 }
@@ -146,8 +167,7 @@ fn run_with<S: Stepper<NS>>(stepper: S, system: StackSystem, opts: &RunOptions) 
     let k = system.geo.k;
     let geo = system.geo;
     let mut y0 = [0.0; NS];
-    let contacts = system.settle(StackMode::REST.contacts, 0.0, &mut y0);
-    let mode0 = StackMode { contacts, end: None };
+    let mode0 = system.settle(StackMode::REST, 0.0, &mut y0);
     let e0 = system.energy(&mode0, &y0);
     let outputs = Outputs {
         sample_dt: opts.output_dt,
@@ -166,6 +186,9 @@ fn run_with<S: Stepper<NS>>(stepper: S, system: StackSystem, opts: &RunOptions) 
         section: Vec::new(),
         rest_since: mode0.at_rest(k).then_some(0.0),
         rest_tau: 0.0,
+        mode_tau: [0.0; 4],
+        kind: kind_of(&mode0, k),
+        since: 0.0,
     };
     match opts.rest_after {
         None => {
@@ -192,14 +215,20 @@ fn run_with<S: Stepper<NS>>(stepper: S, system: StackSystem, opts: &RunOptions) 
         tally.max_q[j] = tally.max_q[j].max(q.abs());
     }
     let e_final = system.energy(&mode, &y);
-    let (work, impact) = (y[WORK_S], tally.impact_loss);
-    let residual = (e_final - e0) - (work - impact);
-    let scale = e0.abs().max(e_final.abs()).max(work.abs()).max(impact.abs());
+    tally.max_slide = tally.max_slide.max(y[crate::model::stack::SLIDE].abs());
+    let (work, impact, friction) = (y[WORK_S], tally.impact_loss, y[FRICTION_S]);
+    let residual = (e_final - e0) - (work - impact - friction);
+    let scale = e0
+        .abs()
+        .max(e_final.abs())
+        .max(work.abs())
+        .max(impact.abs())
+        .max(friction);
     let energy = EnergyAudit {
         initial: e0,
         r#final: e_final,
         work_base: work,
-        loss_friction: 0.0,
+        loss_friction: friction,
         loss_impact: impact,
         residual,
         relative_residual: if scale > 0.0 { residual.abs() / scale } else { 0.0 },
@@ -215,6 +244,10 @@ fn run_with<S: Stepper<NS>>(stepper: S, system: StackSystem, opts: &RunOptions) 
     if let Some(since) = keep.rest_since {
         rest_tau += t - since;
     }
+    let mut mode_tau = keep.mode_tau;
+    if mode.end.is_none() {
+        mode_tau[keep.kind] += t - keep.since;
+    }
     let tau_rest = (outcome == Outcome::Rest).then(|| keep.rest_since.unwrap_or(0.0));
     let mut stats = driver.stepper().stats();
     stats.accepted = stats.accepted.max(driver.steps());
@@ -225,6 +258,7 @@ fn run_with<S: Stepper<NS>>(stepper: S, system: StackSystem, opts: &RunOptions) 
         tau_end: t,
         tau_rest,
         rest_tau,
+        mode_tau,
         events: keep.events,
         history: keep.history,
         section: keep.section,

@@ -14,7 +14,7 @@ use super::scene::{Camera, fit, mode_color, stage};
 use crate::gui::block_view::Shape;
 use crate::model::Mode;
 use crate::model::stack::{Contact, Pose, StackEnd, StackGeometry};
-use crate::sim::protocol::{StackFrame, face_mode};
+use crate::sim::protocol::{StackFrame, face_mode, face_slip};
 
 /// What the stack's scene needs from the app.
 pub struct StackSceneInput<'a> {
@@ -76,7 +76,9 @@ fn body_color(frame: &StackFrame, ended: Option<StackEnd>, j: usize) -> Color32 
     let mode = match ended.or(frame.mode.end) {
         Some(StackEnd::Overturned(i)) if j >= i => Mode::Tumbled,
         Some(StackEnd::Flight(i)) if j >= i => Mode::Flight,
-        Some(StackEnd::Overturned(_) | StackEnd::Flight(_)) | None => face_mode(frame.mode.contacts[j]),
+        Some(StackEnd::Overturned(_) | StackEnd::Flight(_)) | None => {
+            face_mode(frame.mode.contacts[j], face_slip(&frame.mode, j))
+        }
     };
     mode_color(mode)
 }

@@ -64,7 +64,7 @@ pub use driver::{Advance, Driver, DriverError, Limits, Outputs};
 pub use screen::SCREEN_MARGIN;
 
 /// Most guards a mode may have.
-pub const MAX_GUARDS: usize = 16;
+pub const MAX_GUARDS: usize = 17;
 
 /// Sub-intervals per step at which guards are sampled on the dense output.
 /// Eight keeps a DOP853 step's interior sample spacing well below the

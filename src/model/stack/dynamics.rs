@@ -10,6 +10,13 @@
 //! gravity in the base frame, (−a_h, −(g + a_v)). Contact forces at stuck
 //! pivots and closed faces do no work in these coordinates, so they do
 //! not appear.
+//!
+//! While the base face slides (§18.7) its slip u is a coordinate too: its
+//! row is the stack's horizontal momentum balance with the friction
+//! −s μ_k N, and N is itself linear in the accelerations, so the system
+//! is the symmetric mass matrix of (q_F, u) plus s μ_k times a rank-one
+//! term, solved by Sherman–Morrison; its determinant ratio
+//! D = 1 + s μ_k c·M⁻¹e_u is the Painlevé margin (D ≤ 0: no unique motion).
 
 // Linear algebra over interfaces and blocks: indices name them.
 #![allow(clippy::needless_range_loop)]
@@ -26,6 +33,22 @@ pub struct StackAccel {
     pub centre_acc: [V2; MAX_BLOCKS],
     /// Each block's angular acceleration φ_j'', rad per τ².
     pub alpha: [f64; MAX_BLOCKS],
+    /// The base face's slip acceleration u'', m per τ² (0 when stuck).
+    pub slide_acc: f64,
+    /// The Painlevé ratio D of the sliding system (1 when stuck).
+    pub painleve: f64,
+}
+
+/// What the vector field needs: each interface's q_i'' and the slip's u''.
+#[derive(Clone, Copy, Debug)]
+pub struct Rates {
+    /// Each interface's q_i'', rad per τ² (0 when closed or glued).
+    pub q_ddot: [f64; MAX_BLOCKS],
+    /// u'', m per τ² (0 when stuck).
+    pub slide_acc: f64,
+    /// The base's normal force while sliding, mass times m per τ² (0 when
+    /// stuck: the field does not need it then).
+    pub normal: f64,
 }
 
 /// What interface i carries, per weight of the blocks above it
@@ -203,46 +226,217 @@ fn solve_open(
     b
 }
 
-/// Each interface's q_i'' (0 when closed or glued), rad per τ²: the part
-/// of [`accelerations`] that the vector field needs, the same numbers bit
-/// for bit without the blocks' accelerations.
+/// Rows of the sliding system: the open coordinates, then u.
+const ROWS: usize = MAX_BLOCKS + 1;
+
+/// The generalised mass matrix of (q_F, u) (symmetric positive definite)
+/// and c, each open coordinate's weight in the base's normal force:
+/// c_f = Σ_{j ≥ f} m_j v_jf,y.
+#[inline(always)]
+fn slide_matrix(
+    geo: &StackGeometry,
+    pose: &Pose,
+    free: &[usize; MAX_BLOCKS],
+    n: usize,
+) -> ([[f64; ROWS]; ROWS], [f64; ROWS]) {
+    let mm = mass_matrix(geo, pose, free, n);
+    let mut a = [[0.0; ROWS]; ROWS];
+    let mut c = [0.0; ROWS];
+    for r in 0..n {
+        a[r][..n].copy_from_slice(&mm[r][..n]);
+        let (mut ax, mut cy) = (0.0, 0.0);
+        for j in free[r]..geo.blocks() {
+            let v = partial(pose, free[r], j);
+            ax += geo.mass[j] * v[0];
+            cy += geo.mass[j] * v[1];
+        }
+        a[r][n] = ax;
+        a[n][r] = ax;
+        c[r] = cy;
+    }
+    a[n][n] = geo.total_mass;
+    (a, c)
+}
+
+/// Solves (A₀ + s μ e_u cᵀ) x = `rhs` (size n + 1, u last): A₀ by
+/// Cholesky, the rank-one friction term by Sherman–Morrison. Returns x and
+/// the Painlevé ratio D = det(A)/det(A₀) = 1 + s μ c·A₀⁻¹e_u.
+#[inline(always)]
+fn solve_sliding(
+    mut a: [[f64; ROWS]; ROWS],
+    c: &[f64; ROWS],
+    mut rhs: [f64; ROWS],
+    n: usize,
+    smu: f64,
+) -> ([f64; ROWS], f64) {
+    let m = n + 1;
+    for j in 0..m {
+        let mut d = a[j][j];
+        for k in 0..j {
+            d -= a[j][k] * a[j][k];
+        }
+        let d = d.sqrt();
+        a[j][j] = d;
+        for i in j + 1..m {
+            let mut s = a[i][j];
+            for k in 0..j {
+                s -= a[i][k] * a[j][k];
+            }
+            a[i][j] = s / d;
+        }
+    }
+    let back = |b: &mut [f64; ROWS]| {
+        for i in 0..m {
+            let mut s = b[i];
+            for k in 0..i {
+                s -= a[i][k] * b[k];
+            }
+            b[i] = s / a[i][i];
+        }
+        for i in (0..m).rev() {
+            let mut s = b[i];
+            for k in i + 1..m {
+                s -= a[k][i] * b[k];
+            }
+            b[i] = s / a[i][i];
+        }
+    };
+    let mut w = [0.0; ROWS];
+    w[n] = 1.0;
+    back(&mut rhs);
+    back(&mut w);
+    let (mut cx, mut cw) = (0.0, 0.0);
+    for f in 0..n {
+        cx += c[f] * rhs[f];
+        cw += c[f] * w[f];
+    }
+    let d = 1.0 + smu * cw;
+    let t = smu * cx / d;
+    for i in 0..m {
+        rhs[i] -= t * w[i];
+    }
+    (rhs, d)
+}
+
+/// The accelerations of the open set `free[..n]` and u while the base
+/// face slides with s μ_k = `smu`: (q'' in the open set's order, u'', N,
+/// D), N the base's normal force (mass times m per τ²).
+#[inline(always)]
+fn solve_slide(
+    geo: &StackGeometry,
+    pose: &Pose,
+    free: &[usize; MAX_BLOCKS],
+    n: usize,
+    kappa: &[V2; MAX_BLOCKS],
+    g_e: V2,
+    smu: f64,
+) -> ([f64; MAX_BLOCKS], f64, f64, f64) {
+    let (a, c) = slide_matrix(geo, pose, free, n);
+    let mut rhs = [0.0; ROWS];
+    for f in 0..n {
+        let mut s = 0.0;
+        for j in free[f]..geo.blocks() {
+            s -= geo.mass[j] * dot(partial(pose, free[f], j), sub(kappa[j], g_e));
+        }
+        rhs[f] = s;
+    }
+    // Horizontal momentum: Σ m_j (u'' + c_jx'') = Σ m_j g_ex − s μ_k N,
+    // N = Σ m_j (c_jy'' − g_ey).
+    let (mut hx, mut vy) = (0.0, 0.0);
+    for j in 0..geo.blocks() {
+        hx += geo.mass[j] * (g_e[0] - kappa[j][0]);
+        vy += geo.mass[j] * (kappa[j][1] - g_e[1]);
+    }
+    rhs[n] = hx - smu * vy;
+    let (x, d) = solve_sliding(a, &c, rhs, n, smu);
+    let mut q = [0.0; MAX_BLOCKS];
+    q[..n].copy_from_slice(&x[..n]);
+    let mut normal = vy;
+    for f in 0..n {
+        normal += c[f] * x[f];
+    }
+    (q, x[n], normal, d)
+}
+
+/// Each interface's q_i'' (0 when closed or glued), rad per τ², and the
+/// slip's u'': the part of [`accelerations`] that the vector field needs,
+/// the same numbers bit for bit without the blocks' accelerations.
+/// `friction` is s μ_k while the base face slides (s the sense of u').
 pub fn rotation_rates(
     geo: &StackGeometry,
     contacts: &[Contact; MAX_BLOCKS],
+    friction: Option<f64>,
     pose: &Pose,
     g_e: V2,
-) -> [f64; MAX_BLOCKS] {
+) -> Rates {
     let mut q_ddot = [0.0; MAX_BLOCKS];
     let (free, n) = open_set(geo, contacts);
+    if let Some(smu) = friction {
+        let kappa = centripetal(geo, pose);
+        let (b, u, normal, _) = solve_slide(geo, pose, &free, n, &kappa, g_e, smu);
+        for a in 0..n {
+            q_ddot[free[a]] = b[a];
+        }
+        return Rates {
+            q_ddot,
+            slide_acc: u,
+            normal,
+        };
+    }
+    let stuck = Rates {
+        q_ddot,
+        slide_acc: 0.0,
+        normal: 0.0,
+    };
     if n == 0 {
-        return q_ddot;
+        return stuck;
     }
     let kappa = centripetal(geo, pose);
     let b = solve_open(geo, pose, &free, n, &kappa, g_e);
     for a in 0..n {
         q_ddot[free[a]] = b[a];
     }
-    q_ddot
+    Rates { q_ddot, ..stuck }
 }
 
 /// The accelerations of `pose` with contacts `contacts` under the
-/// effective gravity `g_e` (m per τ², base frame).
-pub fn accelerations(geo: &StackGeometry, contacts: &[Contact; MAX_BLOCKS], pose: &Pose, g_e: V2) -> StackAccel {
-    let k = geo.blocks();
+/// effective gravity `g_e` (m per τ², base frame), the base face sliding
+/// with s μ_k = `friction` if it is `Some`.
+pub fn accelerations(
+    geo: &StackGeometry,
+    contacts: &[Contact; MAX_BLOCKS],
+    friction: Option<f64>,
+    pose: &Pose,
+    g_e: V2,
+) -> StackAccel {
+    let k = geo.k;
     let kappa = centripetal(geo, pose);
     let (free, n) = open_set(geo, contacts);
     let mut q_ddot = [0.0; MAX_BLOCKS];
     let mut centre_acc = kappa;
     let mut alpha = [0.0; MAX_BLOCKS];
-    if n == 0 {
-        // Every face shut: the stack moves with the base.
-        return StackAccel {
-            q_ddot,
-            centre_acc,
-            alpha,
-        };
+    let (b, slide_acc, painleve) = match friction {
+        Some(smu) => {
+            let (b, u, _, d) = solve_slide(geo, pose, &free, n, &kappa, g_e, smu);
+            (b, u, d)
+        }
+        None if n == 0 => {
+            // Every face shut: the stack moves with the base.
+            return StackAccel {
+                q_ddot,
+                centre_acc,
+                alpha,
+                slide_acc: 0.0,
+                painleve: 1.0,
+            };
+        }
+        None => (solve_open(geo, pose, &free, n, &kappa, g_e), 0.0, 1.0),
+    };
+    if friction.is_some() {
+        for c in centre_acc.iter_mut().take(k) {
+            c[0] += slide_acc;
+        }
     }
-    let b = solve_open(geo, pose, &free, n, &kappa, g_e);
     for a in 0..n {
         q_ddot[free[a]] = b[a];
         for j in free[a]..k {
@@ -260,6 +454,8 @@ pub fn accelerations(geo: &StackGeometry, contacts: &[Contact; MAX_BLOCKS], pose
         q_ddot,
         centre_acc,
         alpha,
+        slide_acc,
+        painleve,
     }
 }
 
@@ -274,7 +470,9 @@ pub fn interface_load(
     i: usize,
 ) -> InterfaceLoad {
     let (normal_dir, along, left, right) = if i == 0 {
-        ([0.0, 1.0], [1.0, 0.0], geo.corners[0][0], geo.corners[0][1])
+        // The base face's corners slide with it.
+        let at = |c: V2| [c[0] + pose.slide, c[1]];
+        ([0.0, 1.0], [1.0, 0.0], at(geo.corners[0][0]), at(geo.corners[0][1]))
     } else {
         (
             pose.direction(i - 1, [0.0, 1.0]),
@@ -305,30 +503,60 @@ pub fn interface_load(
     }
 }
 
-/// The interface rates just after an impact, in which the contacts become
-/// `after` (the impacting interfaces' new pivots stick and do not bounce,
-/// every other contact holds): the velocities in `after`'s coordinates
-/// that keep the generalised momentum of each of them,
-/// M(after) q'⁺ = Σ_j (m_j v_jf·c_j'⁻ + I_j φ_j'⁻) (docs/model.md §18.5).
-/// `before` is the pose just before (its velocities), `at` the same
-/// positions with `after`'s pivots.
-pub fn impact_rates(geo: &StackGeometry, after: &[Contact; MAX_BLOCKS], before: &Pose, at: &Pose) -> [f64; MAX_BLOCKS] {
+/// The interface rates and the slip rate just after an impact, in which
+/// the contacts become `after` (the impacting interfaces' new pivots stick
+/// and do not bounce, every other contact holds): the velocities in
+/// `after`'s coordinates that keep the generalised momentum of each of
+/// them, M(after) q'⁺ = Σ_j (m_j v_jf·c_j'⁻ + I_j φ_j'⁻) (docs/model.md
+/// §18.5). `before` is the pose just before (its velocities), `at` the
+/// same positions with `after`'s pivots. With `friction` = s μ_k the base
+/// face goes on sliding through the impact, its friction impulse −s μ_k
+/// times the base's normal impulse (§18.7); otherwise it sticks (u'⁺ = 0).
+pub fn impact_rates(
+    geo: &StackGeometry,
+    after: &[Contact; MAX_BLOCKS],
+    friction: Option<f64>,
+    before: &Pose,
+    at: &Pose,
+) -> ([f64; MAX_BLOCKS], f64) {
     let (free, n) = open_set(geo, after);
+    let momentum = |f: usize| {
+        let mut s = 0.0;
+        for j in free[f]..geo.k {
+            s += geo.mass[j] * dot(partial(at, free[f], j), before.centre_vel[j]) + geo.inertia[j] * before.omega[j];
+        }
+        s
+    };
+    let mut q_dot = [0.0; MAX_BLOCKS];
+    if let Some(smu) = friction {
+        let (a, c) = slide_matrix(geo, at, &free, n);
+        let mut rhs = [0.0; ROWS];
+        for f in 0..n {
+            rhs[f] = momentum(f);
+        }
+        // Σ m_j c_jx'⁺ − Σ m_j c_jx'⁻ = −s μ_k P_N, P_N = Σ m_j (c_jy'⁺ − c_jy'⁻).
+        let (mut px, mut py) = (0.0, 0.0);
+        for j in 0..geo.k {
+            px += geo.mass[j] * before.centre_vel[j][0];
+            py += geo.mass[j] * before.centre_vel[j][1];
+        }
+        rhs[n] = px + smu * py;
+        let (x, _) = solve_sliding(a, &c, rhs, n, smu);
+        for f in 0..n {
+            q_dot[free[f]] = x[f];
+        }
+        return (q_dot, x[n]);
+    }
     let mut m = mass_matrix(geo, at, &free, n);
     let mut b = [0.0; MAX_BLOCKS];
-    for a in 0..n {
-        let mut s = 0.0;
-        for j in free[a]..geo.k {
-            s += geo.mass[j] * dot(partial(at, free[a], j), before.centre_vel[j]) + geo.inertia[j] * before.omega[j];
-        }
-        b[a] = s;
+    for (f, bf) in b.iter_mut().enumerate().take(n) {
+        *bf = momentum(f);
     }
     solve_spd(&mut m, &mut b, n);
-    let mut q_dot = [0.0; MAX_BLOCKS];
     for a in 0..n {
         q_dot[free[a]] = b[a];
     }
-    q_dot
+    (q_dot, 0.0)
 }
 
 /// Kinetic energy of `pose`, m² per τ² times mass.

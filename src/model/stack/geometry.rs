@@ -38,6 +38,9 @@ pub struct StackGeometry {
     pub size: [[f64; 2]; MAX_BLOCKS],
     /// Each interface's static friction coefficient.
     pub mu_s: [f64; MAX_BLOCKS],
+    /// Each interface's kinetic friction coefficient (the static one when
+    /// none is given): the base face's acts while it slides.
+    pub mu_k: [f64; MAX_BLOCKS],
     /// Whether each interface is glued.
     pub glued: [bool; MAX_BLOCKS],
     /// The stack's mass.
@@ -61,6 +64,7 @@ impl StackGeometry {
             corners: [[[0.0; 2]; 2]; MAX_BLOCKS],
             size: [[0.0; 2]; MAX_BLOCKS],
             mu_s: [f64::INFINITY; MAX_BLOCKS],
+            mu_k: [f64::INFINITY; MAX_BLOCKS],
             glued: [false; MAX_BLOCKS],
             total_mass: 0.0,
             r1: 0.5 * blocks[0].width.hypot(blocks[0].height),
@@ -85,6 +89,7 @@ impl StackGeometry {
             geo.corners[j] = [[left, top], [right, top]];
             geo.size[j] = [w, h];
             geo.mu_s[j] = b.mu_s;
+            geo.mu_k[j] = b.mu_k.unwrap_or(b.mu_s);
             geo.glued[j] = b.glued;
             geo.total_mass += geo.mass[j];
             top += h;
@@ -103,6 +108,11 @@ impl StackGeometry {
     /// The mass of blocks `i..K` (what interface `i` carries).
     pub fn mass_above(&self, i: usize) -> f64 {
         self.mass[i..self.k].iter().sum()
+    }
+
+    /// Whether the base face can slide (finite friction, not glued).
+    pub fn base_slides(&self) -> bool {
+        self.mu_s[0].is_finite() && !self.glued[0]
     }
 
     /// The length of interface `i`'s overlap, m.

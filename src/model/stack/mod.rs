@@ -15,11 +15,16 @@
 //! rocks interface i on its right corner). Masses are per unit depth and
 //! density (a block's mass is its area), so forces are per ρ.
 //!
+//! The base face slides on the base with Coulomb friction (the bottom
+//! table's `static` and `kinetic`), flat or while any interface rocks, as
+//! the single block's slide and slide-rock (§18.7): the slip u of the
+//! whole stack along the base is then a coordinate too.
+//!
 //! What the model does not follow, each stopping the run with its reason
 //! rather than going on wrongly: flight of any block (as the single
-//! block's flight), and slip at an interface whose friction demand reaches
-//! its static coefficient (sliding inside a stack is not modelled: a
-//! finite `static` is checked, not followed).
+//! block's flight), and slip at an upper interface whose friction demand
+//! reaches its static coefficient (a finite upper `static` is checked, not
+//! followed).
 
 mod dynamics;
 mod geometry;
@@ -37,16 +42,30 @@ pub use system::{StackEnd, StackError, StackEvent, StackEventKind, StackMode, St
 
 /// Most blocks in a stack: the driver's guard budget (one guard per
 /// interface, one per block's rotation extremum and one per interface's
-/// opening extremum, and one for the run's end: 3·5 + 1 = 16).
+/// opening extremum, one for the run's end and one for the base's slip:
+/// 3·5 + 2 = 17).
 pub const MAX_BLOCKS: usize = 5;
 
-/// Length of a stack's state: `[q_1 … q_K, q_1' … q_K', W]` padded to
-/// [`MAX_BLOCKS`] (the unused components stay 0).
-pub const NS: usize = 2 * MAX_BLOCKS + 1;
+/// Length of a stack's state: `[q_1 … q_K, q_1' … q_K', u, u', W, D]`
+/// with the rotations padded to [`MAX_BLOCKS`] (the unused components
+/// stay 0).
+pub const NS: usize = 2 * MAX_BLOCKS + 4;
+
+/// Index of the base face's slip u in the state: the stack's horizontal
+/// displacement along the base caused by sliding, m.
+pub const SLIDE: usize = 2 * MAX_BLOCKS;
+
+/// Index of the slip rate u', m per τ.
+pub const SLIDE_RATE: usize = 2 * MAX_BLOCKS + 1;
 
 /// Index of the base's work W in the state, per M G R₁ (M the stack's
-/// mass, G = g/p², R₁ the bottom block's half-diagonal).
-pub const WORK_S: usize = 2 * MAX_BLOCKS;
+/// mass, G = g/p², R₁ the bottom block's half-diagonal). W and D come
+/// last: the driver takes the trailing components as quadratures.
+pub const WORK_S: usize = 2 * MAX_BLOCKS + 2;
+
+/// Index of the energy D dissipated by the base face's sliding friction,
+/// per M G R₁.
+pub const FRICTION_S: usize = 2 * MAX_BLOCKS + 3;
 
 /// One block of a stack (config `[[stack]]`, bottom to top).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -59,12 +78,13 @@ pub struct StackBlock {
     /// at rest, m (0 for the bottom block, whose centre is the origin).
     pub offset: f64,
     /// Static friction coefficient at its lower face (`inf`: no slip).
-    /// Sliding inside a stack is not followed: a demand reaching it stops
-    /// the run with its time and value.
+    /// The bottom block's face slides on the base when the demand reaches
+    /// it; an upper face's is checked, not followed: a demand reaching it
+    /// stops the run with its time and value.
     pub mu_s: f64,
     /// Kinetic friction coefficient at its lower face, as given (`None`:
-    /// the static one). Kept for the config's echo: a run stops before any
-    /// slip inside a stack, so it never acts.
+    /// the static one). Acts while the base face slides; an upper face
+    /// never slips, so its value is only echoed.
     pub mu_k: Option<f64>,
     /// Whether its lower face is glued (never opens: an anchored object).
     pub glued: bool,
@@ -83,6 +103,33 @@ impl StackBlock {
             mu_k: None,
             glued: false,
         }
+    }
+}
+
+/// Whether the base face slips on the base, and which way.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Slip {
+    /// The face (or its pivot) sticks to the base.
+    Stuck,
+    /// Sliding to the right (u' > 0).
+    Right,
+    /// Sliding to the left (u' < 0).
+    Left,
+}
+
+impl Slip {
+    /// +1 sliding right, −1 left, 0 stuck.
+    pub fn sign(self) -> f64 {
+        match self {
+            Slip::Stuck => 0.0,
+            Slip::Right => 1.0,
+            Slip::Left => -1.0,
+        }
+    }
+
+    /// Sliding towards the sign of `v`.
+    pub fn of_sign(v: f64) -> Slip {
+        if v > 0.0 { Slip::Right } else { Slip::Left }
     }
 }
 

@@ -6,9 +6,11 @@
 //! and the pivot of each open interface held where the block below puts
 //! it. A point x of block j moves at Σ_{i ≤ j} q_i' J(x − P_i), J the
 //! clockwise quarter turn (x, y) ↦ (y, −x): each open interface turns
-//! everything above it about its pivot.
+//! everything above it about its pivot. The base face's slip u carries
+//! everything along the base: it adds (u, 0) to every position and
+//! (u', 0) to every velocity.
 
-use super::{Contact, MAX_BLOCKS, NS, StackGeometry};
+use super::{Contact, MAX_BLOCKS, NS, SLIDE, SLIDE_RATE, StackGeometry};
 
 /// A vector in the base frame, m (or m per τ).
 pub type V2 = [f64; 2];
@@ -52,6 +54,10 @@ pub struct Pose {
     pub pivot_vel: [V2; MAX_BLOCKS],
     /// The interfaces' rates q_i', rad per τ.
     pub q_dot: [f64; MAX_BLOCKS],
+    /// The base face's slip u, m.
+    pub slide: f64,
+    /// Its rate u', m per τ.
+    pub slide_vel: f64,
 }
 
 impl Pose {
@@ -68,6 +74,8 @@ impl Pose {
             centre_vel: [[0.0; 2]; MAX_BLOCKS],
             pivot_vel: [[0.0; 2]; MAX_BLOCKS],
             q_dot: [0.0; MAX_BLOCKS],
+            slide: 0.0,
+            slide_vel: 0.0,
         };
         pose.fill(geo, contacts, y);
         pose
@@ -80,6 +88,8 @@ impl Pose {
     pub fn fill(&mut self, geo: &StackGeometry, contacts: &[Contact; MAX_BLOCKS], y: &[f64; NS]) {
         let k = geo.blocks();
         self.k = k;
+        self.slide = y[SLIDE];
+        self.slide_vel = y[SLIDE_RATE];
         let (mut phi, mut omega) = (0.0, 0.0);
         for j in 0..k {
             phi += y[j];
@@ -96,7 +106,11 @@ impl Pose {
             };
             let corner = geo.corners[j][usize::from(contacts[j] == Contact::Right)];
             // The pivot is a point of the block below (the base for j = 0).
-            let p = if j == 0 { corner } else { self.place(j - 1, corner) };
+            let p = if j == 0 {
+                [corner[0] + self.slide, corner[1]]
+            } else {
+                self.place(j - 1, corner)
+            };
             self.pivot[j] = p;
             let turned = self.turn(j, corner);
             self.origin[j] = sub(p, turned);
@@ -104,7 +118,7 @@ impl Pose {
         }
         for j in 0..k {
             self.pivot_vel[j] = if j == 0 {
-                [0.0; 2]
+                [self.slide_vel, 0.0]
             } else {
                 self.velocity(j - 1, self.pivot[j])
             };
@@ -135,7 +149,7 @@ impl Pose {
     /// The velocity of block j's point now at `x`.
     #[inline]
     pub fn velocity(&self, j: usize, x: V2) -> V2 {
-        let mut v = [0.0; 2];
+        let mut v = [self.slide_vel, 0.0];
         for i in 0..=j {
             let qd = self.q_dot[i];
             if qd != 0.0 {

@@ -6,9 +6,10 @@
 //! | i < K, interface i closed | min(right, left margin) | the resultant is inside the overlap |
 //! | i < K, interface i open | s_i q_i | it rocks on corner s_i (0 is an impact) |
 //! | i < K, interface i glued | 1 | always |
-//! | K | the run's end: min of every open interface's normal force and overturning margin and every finite-friction interface's μ_s N − \|T\| | nothing ends the run |
+//! | K | the run's end: min of every open interface's normal force and overturning margin, every finite-friction interface's μ_s N − \|T\| (the base's only while it sticks: there it starts a slip) and, while the base slides, the Painlevé ratio D | nothing ends the run |
 //! | K + 1 + j (observer) | φ_j φ_j' | block j's \|φ_j\| grows |
 //! | 2K + 1 + i (observer) | q_i q_i' | interface i's opening grows |
+//! | 3K + 1 | s u' while the base slides with sense s, else 1 | it slides on |
 
 // Interfaces and blocks are numbered: indices name them.
 #![allow(clippy::needless_range_loop)]
@@ -17,7 +18,7 @@ use std::cell::{Cell, RefCell};
 
 use super::dynamics::{self, InterfaceLoad, StackAccel, is_open};
 use super::pose::{Pose, V2};
-use super::{Contact, MAX_BLOCKS, NS, StackGeometry, WORK_S};
+use super::{Contact, FRICTION_S, MAX_BLOCKS, NS, SLIDE, SLIDE_RATE, Slip, StackGeometry, WORK_S};
 use crate::integrate::hybrid::{DriverError, HybridSystem, Jump, MAX_GUARDS};
 use crate::model::dynamics::Forcing;
 use crate::model::excitation::Excitation;
@@ -46,6 +47,8 @@ impl StackEnd {
 pub struct StackMode {
     /// Each interface's contact (unused entries closed).
     pub contacts: [Contact; MAX_BLOCKS],
+    /// Whether the base face slides on the base.
+    pub slip: Slip,
     /// How the run ended, if it did.
     pub end: Option<StackEnd>,
 }
@@ -54,23 +57,46 @@ impl StackMode {
     /// Every interface closed.
     pub const REST: StackMode = StackMode {
         contacts: [Contact::Closed; MAX_BLOCKS],
+        slip: Slip::Stuck,
         end: None,
     };
 
-    /// Whether every interface is closed (the stack moves with the base).
+    /// A running mode with `contacts`, the base stuck.
+    pub fn stuck(contacts: [Contact; MAX_BLOCKS]) -> StackMode {
+        StackMode {
+            contacts,
+            slip: Slip::Stuck,
+            end: None,
+        }
+    }
+
+    /// Whether every interface is closed and the base face sticks (the
+    /// stack moves with the base).
     pub fn at_rest(&self, k: usize) -> bool {
-        self.end.is_none() && self.contacts[..k].iter().all(|&c| c == Contact::Closed)
+        self.end.is_none() && self.slip == Slip::Stuck && self.contacts[..k].iter().all(|&c| c == Contact::Closed)
+    }
+
+    /// Whether the base face slides.
+    pub fn sliding(&self) -> bool {
+        self.slip != Slip::Stuck
     }
 
     /// The contacts as written in outputs: `closed/rock-right/…`, bottom
-    /// first.
+    /// first; a sliding base face reads `slide` (closed) or
+    /// `slide-rock-left`/`slide-rock-right`, as the single block's modes.
     pub fn name(&self, k: usize) -> String {
         match self.end {
             Some(StackEnd::Overturned(_)) => "tumbled".to_string(),
             Some(StackEnd::Flight(_)) => "flight".to_string(),
             None => self.contacts[..k]
                 .iter()
-                .map(|c| c.name())
+                .enumerate()
+                .map(|(i, c)| match (i, self.slip, c) {
+                    (0, Slip::Stuck, c) | (1.., _, c) => c.name(),
+                    (0, _, Contact::Closed) => "slide",
+                    (0, _, Contact::Left) => "slide-rock-left",
+                    (0, _, Contact::Right) => "slide-rock-right",
+                })
                 .collect::<Vec<_>>()
                 .join("/"),
         }
@@ -92,6 +118,10 @@ pub enum StackEventKind {
     Overturn,
     /// A block lost contact.
     Flight,
+    /// The base face started to slide (or reversed).
+    Slip,
+    /// The base face's slip stopped and it sticks.
+    Stick,
 }
 
 impl StackEventKind {
@@ -103,6 +133,8 @@ impl StackEventKind {
             StackEventKind::Close => "close",
             StackEventKind::Overturn => "tumble",
             StackEventKind::Flight => "flight",
+            StackEventKind::Slip => "slip",
+            StackEventKind::Stick => "stick",
         }
     }
 }
@@ -137,6 +169,8 @@ pub struct StackTally {
     pub max_phi: [f64; MAX_BLOCKS],
     /// Each interface's largest |q_i|, rad.
     pub max_q: [f64; MAX_BLOCKS],
+    /// The largest |u|, the base face's slip, m.
+    pub max_slide: f64,
 }
 
 /// A slip the model does not follow: the run stops there, as bad input
@@ -148,7 +182,7 @@ pub enum StackError {
     Driver(#[from] DriverError),
     /// Interface `iface` needs more friction than its `static`.
     #[error(
-        "stack block {block}'s lower face would slip at t = {t_s:.4} s (τ = {tau:.4}): the friction it needs, |T|/N, reaches its static = {mu} there; sliding inside a stack is not simulated (docs/model.md §18.7): raise static or set it to inf"
+        "stack block {block}'s lower face would slip at t = {t_s:.4} s (τ = {tau:.4}): the friction it needs, |T|/N, reaches its static = {mu} there; sliding between blocks is not simulated, only on the base (docs/model.md §18.8): raise stack[{index}].static or set it to inf", index = block - 1
     )]
     Slip {
         /// 1-based index of the block above the interface.
@@ -162,6 +196,35 @@ pub enum StackError {
         /// The interface's static coefficient.
         mu: f64,
     },
+    /// The sliding base face has no unique motion (the Painlevé paradox).
+    #[error(
+        "the stack's base face would slide with no unique motion at t = {t_s:.4} s (τ = {tau:.4}): its kinetic friction {mu} is too high for this stack's shape (the Painlevé paradox, docs/model.md §18.7): lower stack[0].kinetic"
+    )]
+    Painleve {
+        /// τ.
+        tau: f64,
+        /// t, s.
+        t_s: f64,
+        /// The base face's kinetic coefficient.
+        mu: f64,
+    },
+}
+
+impl StackError {
+    /// Whether the input (a friction coefficient) is to blame, not the
+    /// solver.
+    pub fn is_input(&self) -> bool {
+        !matches!(self, StackError::Driver(_))
+    }
+
+    /// The config key to change, for an input error.
+    pub fn key(&self) -> Option<String> {
+        match self {
+            StackError::Driver(_) => None,
+            StackError::Slip { block, .. } => Some(format!("stack[{}].static", block.saturating_sub(1))),
+            StackError::Painleve { .. } => Some("stack[0].kinetic".to_string()),
+        }
+    }
 }
 
 /// A stack of blocks on the moving base.
@@ -239,7 +302,10 @@ impl StackSystem {
         // At rest (most of a record) the pose is the one at rest. Not for
         // an open face at q = 0: its pivot decides its partial velocities.
         let k = self.geo.k;
+        // The slip u only translates the stack, which moves nothing the
+        // callers read (they take differences of positions).
         let still = contacts[..k].iter().all(|&c| c == Contact::Closed)
+            && y[SLIDE_RATE] == 0.0
             && y[..k].iter().chain(&y[MAX_BLOCKS..MAX_BLOCKS + k]).all(|&x| x == 0.0);
         if still {
             &self.rest_pose
@@ -249,19 +315,19 @@ impl StackSystem {
         }
     }
 
-    /// The pose, accelerations and gravity at `(t, y)` with `contacts`
-    /// (the pose filled in `slot` unless it is the one at rest).
+    /// s μ_k while `mode`'s base face slides.
     #[inline]
-    fn snapshot<'a>(
-        &'a self,
-        contacts: &[Contact; MAX_BLOCKS],
-        t: f64,
-        y: &[f64; NS],
-        slot: &'a mut Pose,
-    ) -> Snapshot<'a> {
-        let pose = self.pose_in(contacts, y, slot);
+    fn friction(&self, mode: &StackMode) -> Option<f64> {
+        mode.sliding().then(|| mode.slip.sign() * self.geo.mu_k[0])
+    }
+
+    /// The pose, accelerations and gravity at `(t, y)` in `mode` (the pose
+    /// filled in `slot` unless it is the one at rest).
+    #[inline]
+    fn snapshot<'a>(&'a self, mode: &StackMode, t: f64, y: &[f64; NS], slot: &'a mut Pose) -> Snapshot<'a> {
+        let pose = self.pose_in(&mode.contacts, y, slot);
         let g_e = self.gravity(t);
-        let acc = dynamics::accelerations(&self.geo, contacts, pose, g_e);
+        let acc = dynamics::accelerations(&self.geo, &mode.contacts, self.friction(mode), pose, g_e);
         Snapshot { pose, acc, g_e }
     }
 
@@ -273,7 +339,7 @@ impl StackSystem {
     /// The loads on every interface at `(t, y)` in `mode`.
     pub fn loads(&self, mode: &StackMode, t: f64, y: &[f64; NS]) -> [InterfaceLoad; MAX_BLOCKS] {
         let mut slot = self.rest_pose;
-        let s = self.snapshot(&mode.contacts, t, y, &mut slot);
+        let s = self.snapshot(mode, t, y, &mut slot);
         let mut out = [InterfaceLoad {
             normal: 0.0,
             tangential: 0.0,
@@ -307,15 +373,20 @@ impl StackSystem {
         }
     }
 
-    /// The margins whose least ends the run: which interface, what, and
-    /// the value.
+    /// The margins whose least ends the run (or starts the base's slip):
+    /// which interface, what, and the value.
     fn end_margin(&self, mode: &StackMode, s: &Snapshot) -> (usize, Ending, f64) {
         let mut least = (0, Ending::None, f64::INFINITY);
+        if mode.sliding() {
+            least = (0, Ending::Painleve, s.acc.painleve);
+        }
         for i in 0..self.geo.k {
             if self.geo.glued[i] {
                 continue;
             }
-            let finite_mu = self.geo.mu_s[i].is_finite();
+            // A sliding base face has no static margin: its slip stops on
+            // its own guard.
+            let finite_mu = self.geo.mu_s[i].is_finite() && !(i == 0 && mode.sliding());
             let open = is_open(&self.geo, &mode.contacts, i);
             if !open && !finite_mu {
                 continue;
@@ -379,40 +450,63 @@ impl StackSystem {
         }
     }
 
+    /// The slip's guard: s u' while the base face slides with sense s
+    /// (0: the slip stops), 1 while it sticks.
+    fn slide_guard(&self, mode: &StackMode, y: &[f64; NS]) -> f64 {
+        if mode.sliding() {
+            mode.slip.sign() * y[SLIDE_RATE]
+        } else {
+            1.0
+        }
+    }
+
     fn note_extremes(&mut self, pose: &Pose, y: &[f64; NS]) {
         for j in 0..self.geo.k {
             self.tally.max_phi[j] = self.tally.max_phi[j].max(pose.phi[j].abs());
             self.tally.max_q[j] = self.tally.max_q[j].max(y[j].abs());
         }
+        self.tally.max_slide = self.tally.max_slide.max(y[SLIDE].abs());
     }
 
-    /// Brings `contacts` at `(t, y)` to a consistent set: a closed face
-    /// whose resultant has left its overlap opens on that corner; an
-    /// interface at q = q' = 0 whose acceleration would close it closes.
-    pub fn settle(&self, mut contacts: [Contact; MAX_BLOCKS], t: f64, y: &mut [f64; NS]) -> [Contact; MAX_BLOCKS] {
+    /// Whether the base face, stuck in `mode` at `s`, needs more friction
+    /// than its `static` (beyond `tol`, per weight); if so, the sense it
+    /// slides in: against the tangential force it would need.
+    fn base_slips(&self, mode: &StackMode, s: &Snapshot, tol: f64) -> Option<Slip> {
+        if mode.sliding() || !self.geo.base_slides() {
+            return None;
+        }
+        let load = self.load(s, 0);
+        (self.slip_margin(&load, 0) < -tol).then(|| Slip::of_sign(-load.tangential))
+    }
+
+    /// Brings `mode` at `(t, y)` to a consistent set of contacts: a closed
+    /// face whose resultant has left its overlap opens on that corner; an
+    /// interface at q = q' = 0 whose acceleration would close it closes; a
+    /// stuck base face that needs more than its static friction slides.
+    pub fn settle(&self, mut mode: StackMode, t: f64, y: &mut [f64; NS]) -> StackMode {
         let k = self.geo.k;
         let tol_m = 1e-12 * self.geo.r1;
         let tol_acc = 1e-12 * self.g_unit / self.geo.r1;
-        for _ in 0..(2 * k + 2) {
+        for _ in 0..(2 * k + 3) {
             let mut slot = self.rest_pose;
-            let s = self.snapshot(&contacts, t, y, &mut slot);
+            let s = self.snapshot(&mode, t, y, &mut slot);
             let mut changed = false;
             for i in 0..k {
                 if self.geo.glued[i] {
                     continue;
                 }
-                match contacts[i] {
+                match mode.contacts[i] {
                     Contact::Closed => {
                         let load = self.load(&s, i);
                         let (r, l) = (load.right_margin(), load.left_margin());
                         if r.min(l) < -tol_m {
-                            contacts[i] = if r < l { Contact::Right } else { Contact::Left };
+                            mode.contacts[i] = if r < l { Contact::Right } else { Contact::Left };
                             changed = true;
                         }
                     }
                     c => {
                         if y[i] == 0.0 && y[MAX_BLOCKS + i] == 0.0 && s.acc.q_ddot[i] * c.sign() < -tol_acc {
-                            contacts[i] = Contact::Closed;
+                            mode.contacts[i] = Contact::Closed;
                             changed = true;
                         }
                     }
@@ -421,37 +515,37 @@ impl StackSystem {
                     break;
                 }
             }
+            if !changed && let Some(slip) = self.base_slips(&mode, &s, 1e-12) {
+                mode.slip = slip;
+                changed = true;
+            }
             if !changed {
                 break;
             }
         }
-        contacts
-    }
-
-    fn running(contacts: [Contact; MAX_BLOCKS]) -> StackMode {
-        StackMode { contacts, end: None }
+        mode
     }
 
     /// A face of interface `i` opened on the corner its resultant reached.
     fn uplift(&mut self, mode: StackMode, i: usize, t: f64, y: &[f64; NS]) -> Jump<StackMode, StackEvent, NS> {
         let mut slot = self.rest_pose;
-        let s = self.snapshot(&mode.contacts, t, y, &mut slot);
+        let s = self.snapshot(&mode, t, y, &mut slot);
         let load = self.load(&s, i);
-        let mut contacts = mode.contacts;
-        contacts[i] = if load.right_margin() <= load.left_margin() {
+        let mut after = mode;
+        after.contacts[i] = if load.right_margin() <= load.left_margin() {
             Contact::Right
         } else {
             Contact::Left
         };
         let mut y = *y;
-        let contacts = self.settle(contacts, t, &mut y);
-        let after = Self::running(contacts);
+        let after = self.settle(after, t, &mut y);
         self.record_jump(mode, after, StackEventKind::Uplift, i, 0.0, 0.0, t, y)
     }
 
     /// Interface `i` closed while open: the impulse of the impact, with
     /// every interface then at q = 0 and closing (within round-off) taking
-    /// part (docs/model.md §18.5).
+    /// part (docs/model.md §18.5), and the base face's friction through it
+    /// (§18.7).
     fn impact(&mut self, mode: StackMode, i: usize, t: f64, y: &[f64; NS]) -> Jump<StackMode, StackEvent, NS> {
         let k = self.geo.k;
         let before = Pose::new(&self.geo, &mode.contacts, y);
@@ -472,10 +566,12 @@ impl StackSystem {
                 };
             }
         }
-        let mut rates = [0.0; MAX_BLOCKS];
-        for _ in 0..=k {
-            let at = Pose::new(&self.geo, &contacts, &y);
-            rates = dynamics::impact_rates(&self.geo, &contacts, &before, &at);
+        // A slip goes on through an impact above the base; an impact at
+        // the base stops it unless its new pivot cannot hold.
+        let carried = if impacting[0] { Slip::Stuck } else { mode.slip };
+        let (mut slip, mut rates, mut slide_rate);
+        loop {
+            (slip, rates, slide_rate) = self.impact_slip(&contacts, carried, &before, &y);
             // An impacting interface that would bounce back, or move on too
             // slowly to matter, stays closed.
             let mut closed_one = false;
@@ -493,18 +589,139 @@ impl StackSystem {
             }
         }
         y[MAX_BLOCKS..MAX_BLOCKS + k].copy_from_slice(&rates[..k]);
+        y[SLIDE_RATE] = slide_rate;
         let after_pose = Pose::new(&self.geo, &contacts, &y);
         let loss = dynamics::kinetic(&self.geo, &before) - dynamics::kinetic(&self.geo, &after_pose);
         self.tally.impacts += 1;
         self.tally.impact_loss += loss / self.energy_unit();
-        let contacts = self.settle(contacts, t, &mut y);
-        let kind = if contacts[i] == Contact::Closed {
+        let after = self.settle(
+            StackMode {
+                contacts,
+                slip,
+                end: None,
+            },
+            t,
+            &mut y,
+        );
+        let kind = if after.contacts[i] == Contact::Closed {
             StackEventKind::Close
         } else {
             StackEventKind::Impact
         };
-        let after = Self::running(contacts);
         self.record_jump(mode, after, kind, i, q_dot_before, y[MAX_BLOCKS + i], t, y)
+    }
+
+    /// The base face's friction through an impact into `contacts`, from
+    /// the pose `before` at the impact's positions `y`: the slip after it,
+    /// the interface rates and the slip rate. The single block's rules,
+    /// carried over (docs/model.md §7.3, §7.5, §18.7):
+    /// - a slip `carried` through the impact goes on if its friction
+    ///   impulse, −s μ_k times the normal one, leaves it moving the same way;
+    /// - else the base sticks: a pivot (the base rocking) holds unless the
+    ///   sticking impulse would pull it off the base, a closed face (a
+    ///   landing flat on the base) holds while its impulse lies within
+    ///   the static cone |P_T| ≤ μ_s P_N;
+    /// - if it cannot hold, it slips against the impulse it would need,
+    ///   in the first sense whose slip after is consistent.
+    fn impact_slip(
+        &self,
+        contacts: &[Contact; MAX_BLOCKS],
+        carried: Slip,
+        before: &Pose,
+        y: &[f64; NS],
+    ) -> (Slip, [f64; MAX_BLOCKS], f64) {
+        let at = Pose::new(&self.geo, contacts, y);
+        let solve = |slip: Slip| {
+            let friction = (slip != Slip::Stuck).then(|| slip.sign() * self.geo.mu_k[0]);
+            dynamics::impact_rates(&self.geo, contacts, friction, before, &at)
+        };
+        if carried != Slip::Stuck {
+            let (rates, u) = solve(carried);
+            if u * carried.sign() > 0.0 {
+                return (carried, rates, u);
+            }
+        }
+        let (rates, _) = solve(Slip::Stuck);
+        if !self.geo.base_slides() {
+            return (Slip::Stuck, rates, 0.0);
+        }
+        // The base's impulse: the stack's change of momentum.
+        let mut after = *y;
+        after[MAX_BLOCKS..MAX_BLOCKS + self.geo.k].copy_from_slice(&rates[..self.geo.k]);
+        after[SLIDE_RATE] = 0.0;
+        let stuck = Pose::new(&self.geo, contacts, &after);
+        let (mut pt, mut pn) = (0.0, 0.0);
+        for j in 0..self.geo.k {
+            pt += self.geo.mass[j] * (stuck.centre_vel[j][0] - before.centre_vel[j][0]);
+            pn += self.geo.mass[j] * (stuck.centre_vel[j][1] - before.centre_vel[j][1]);
+        }
+        let holds = if contacts[0] == Contact::Closed {
+            pt.abs() <= self.geo.mu_s[0] * pn
+        } else {
+            pn >= 0.0
+        };
+        if holds {
+            return (Slip::Stuck, rates, 0.0);
+        }
+        let first = Slip::of_sign(-pt);
+        let second = if first == Slip::Right { Slip::Left } else { Slip::Right };
+        for slip in [first, second] {
+            let (r, u) = solve(slip);
+            if u * slip.sign() >= 0.0 {
+                return if u == 0.0 { (Slip::Stuck, r, 0.0) } else { (slip, r, u) };
+            }
+        }
+        (Slip::Stuck, rates, 0.0)
+    }
+
+    /// The base face's friction switches at `(t, y)`: at the `onset` of a
+    /// slip (its stuck friction demand reached its static) it slides
+    /// against the force it would need; when a slip stops (u' = 0) it
+    /// sticks if its static friction can hold it, else it slides back.
+    fn base_switch(
+        &mut self,
+        mode: StackMode,
+        t: f64,
+        y: &[f64; NS],
+        onset: bool,
+    ) -> Result<Jump<StackMode, StackEvent, NS>, StackError> {
+        let mut y = *y;
+        y[SLIDE_RATE] = 0.0;
+        let stuck = StackMode {
+            slip: Slip::Stuck,
+            ..mode
+        };
+        let mut slot = self.rest_pose;
+        let s = self.snapshot(&stuck, t, &y, &mut slot);
+        let load = self.load(&s, 0);
+        let mut after = stuck;
+        let mut kind = StackEventKind::Stick;
+        if onset || self.slip_margin(&load, 0) < 0.0 {
+            after.slip = Slip::of_sign(-load.tangential);
+            kind = StackEventKind::Slip;
+            let mut slot = self.rest_pose;
+            let d = self.snapshot(&after, t, &y, &mut slot).acc.painleve;
+            if d <= 0.0 {
+                return Err(self.painleve(t));
+            }
+        }
+        let after = self.settle(after, t, &mut y);
+        let q_dot = y[MAX_BLOCKS];
+        Ok(self.record_jump(mode, after, kind, 0, q_dot, q_dot, t, y))
+    }
+
+    /// The Painlevé error at τ = `t`.
+    fn painleve(&self, t: f64) -> StackError {
+        StackError::Painleve {
+            tau: t,
+            t_s: t / self.p(),
+            mu: self.geo.mu_k[0],
+        }
+    }
+
+    /// p, 1/s: τ = p t with p² = g/G (G = g/p², the gravity unit).
+    fn p(&self) -> f64 {
+        (crate::model::geometry::G / self.g_unit).sqrt()
     }
 
     #[allow(clippy::too_many_arguments)]
@@ -548,6 +765,7 @@ enum Ending {
     Flight,
     Overturn,
     Slip,
+    Painleve,
 }
 
 impl HybridSystem<NS> for StackSystem {
@@ -555,8 +773,8 @@ impl HybridSystem<NS> for StackSystem {
     type Record = StackEvent;
     type Error = StackError;
 
-    /// W.
-    const QUADRATURES: usize = 1;
+    /// W and D.
+    const QUADRATURES: usize = 2;
 
     fn rhs(&self, mode: StackMode, t: f64, y: &[f64; NS], dy: &mut [f64; NS]) {
         *dy = [0.0; NS];
@@ -566,10 +784,17 @@ impl HybridSystem<NS> for StackSystem {
         let mut slot = self.scratch.borrow_mut();
         // The rates alone: the blocks' accelerations are for the guards.
         let pose = self.pose_in(&mode.contacts, y, &mut slot);
-        let q_ddot = dynamics::rotation_rates(&self.geo, &mode.contacts, pose, self.gravity(t));
+        let friction = self.friction(&mode);
+        let rates = dynamics::rotation_rates(&self.geo, &mode.contacts, friction, pose, self.gravity(t));
         let k = self.geo.k;
         dy[..k].copy_from_slice(&y[MAX_BLOCKS..MAX_BLOCKS + k]);
-        dy[MAX_BLOCKS..MAX_BLOCKS + k].copy_from_slice(&q_ddot[..k]);
+        dy[MAX_BLOCKS..MAX_BLOCKS + k].copy_from_slice(&rates.q_ddot[..k]);
+        if friction.is_some() {
+            dy[SLIDE] = y[SLIDE_RATE];
+            dy[SLIDE_RATE] = rates.slide_acc;
+            // Friction's power against the slip: μ_k N |u'|.
+            dy[FRICTION_S] = self.geo.mu_k[0] * rates.normal * y[SLIDE_RATE].abs() / self.energy_unit();
+        }
         // The base's pseudo-forces (its acceleration, not gravity) on each
         // block's centre.
         let fo = self.forcing(t);
@@ -588,7 +813,7 @@ impl HybridSystem<NS> for StackSystem {
         }
         let k = self.geo.k;
         let mut slot = self.scratch.borrow_mut();
-        let s = self.snapshot(&mode.contacts, t, y, &mut slot);
+        let s = self.snapshot(&mode, t, y, &mut slot);
         for i in 0..k {
             g[i] = if self.geo.glued[i] {
                 1.0
@@ -607,7 +832,8 @@ impl HybridSystem<NS> for StackSystem {
         for index in k + 1..3 * k + 1 {
             g[index] = self.observer_guard(&mode, index, y);
         }
-        3 * k + 1
+        g[3 * k + 1] = self.slide_guard(&mode, y);
+        3 * k + 2
     }
 
     fn guard(&self, mode: StackMode, index: usize, t: f64, y: &[f64; NS]) -> f64 {
@@ -620,6 +846,9 @@ impl HybridSystem<NS> for StackSystem {
                     mode.contacts[index].sign() * y[index]
                 };
             }
+            if index == 3 * k + 1 {
+                return self.slide_guard(&mode, y);
+            }
             return self.observer_guard(&mode, index, y);
         }
         let mut g = [0.0; MAX_GUARDS];
@@ -627,7 +856,8 @@ impl HybridSystem<NS> for StackSystem {
         g[index]
     }
 
-    /// The impact guards and the observers read the state alone.
+    /// The impact guards, the observers and the slip's guard read the
+    /// state alone.
     fn guard_is_cheap(&self, mode: StackMode, index: usize) -> bool {
         let k = self.geo.k;
         if index < k {
@@ -649,6 +879,8 @@ impl HybridSystem<NS> for StackSystem {
             index + 1
         } else if index > k && index <= 2 * k {
             MAX_BLOCKS + index - k
+        } else if index == 3 * k + 1 {
+            SLIDE_RATE + 1
         } else if index > 2 * k {
             MAX_BLOCKS + index - 2 * k
         } else {
@@ -657,7 +889,7 @@ impl HybridSystem<NS> for StackSystem {
     }
 
     fn is_observer(&self, _mode: StackMode, index: usize) -> bool {
-        index > self.geo.k
+        index > self.geo.k && index <= 3 * self.geo.k
     }
 
     fn observe(&mut self, mode: StackMode, _index: usize, _t: f64, y: &[f64; NS]) {
@@ -680,29 +912,29 @@ impl HybridSystem<NS> for StackSystem {
                 self.impact(mode, index, t, y)
             });
         }
+        if index == 3 * k + 1 {
+            return self.base_switch(mode, t, y, false);
+        }
         let mut slot = self.rest_pose;
-        let s = self.snapshot(&mode.contacts, t, y, &mut slot);
+        let s = self.snapshot(&mode, t, y, &mut slot);
         let (i, ending, _) = self.end_margin(&mode, &s);
         let (end, kind) = match ending {
+            Ending::Slip if i == 0 => return self.base_switch(mode, t, y, true),
             Ending::Slip => {
                 let load = self.load(&s, i);
-                // τ = p t with p² = g/G (G = g/p², the gravity unit).
-                let p = (crate::model::geometry::G / self.g_unit).sqrt();
                 return Err(StackError::Slip {
                     block: i + 1,
                     tau: t,
-                    t_s: t / p,
+                    t_s: t / self.p(),
                     demand: load.tangential.abs() / load.normal,
                     mu: self.geo.mu_s[i],
                 });
             }
+            Ending::Painleve => return Err(self.painleve(t)),
             Ending::Flight => (StackEnd::Flight(i), StackEventKind::Flight),
             Ending::Overturn | Ending::None => (StackEnd::Overturned(i), StackEventKind::Overturn),
         };
-        let after = StackMode {
-            contacts: mode.contacts,
-            end: Some(end),
-        };
+        let after = StackMode { end: Some(end), ..mode };
         let q_dot = y[MAX_BLOCKS + i];
         Ok(self.record_jump(mode, after, kind, i, q_dot, q_dot, t, *y))
     }

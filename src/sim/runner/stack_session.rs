@@ -177,8 +177,7 @@ impl StackSession {
         let excitation = scenario.excitation().map_err(|e| e.to_string())?;
         let system = StackSystem::new(geo, excitation.clone(), scenario.run.zeno_eps);
         let mut y0 = [0.0; NS];
-        let contacts = system.settle(StackMode::REST.contacts, 0.0, &mut y0);
-        let mode0 = StackMode { contacts, end: None };
+        let mode0 = system.settle(StackMode::REST, 0.0, &mut y0);
         let section_period = excitation.forcing_period();
         let opts = scenario.run_options();
         let outputs = Outputs {
