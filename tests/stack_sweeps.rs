@@ -325,7 +325,7 @@ fn a_stack_whose_friction_cannot_hold_stops_a_sweep_as_bad_input() {
         "{err}"
     );
     assert!(
-        err.contains("raise static or set it to inf") && err.trim().lines().count() == 1,
+        err.contains("raise stack[1].static or set it to inf") && err.trim().lines().count() == 1,
         "{err}"
     );
     assert!(!out.exists());

@@ -116,7 +116,7 @@ pub fn run(args: &SlidingSpectrumArgs) -> Result<(), BatchError> {
     super::eng_args::refuse_stack(
         &base,
         "sliding-spectrum",
-        "slides single blocks, and sliding inside a [[stack]] is not simulated (docs/model.md §18.7): use a [block] scene",
+        "varies a single block's friction (--mu); a [[stack]] gives its base face's friction in its bottom table (docs/model.md §18.7): use a [block] scene",
     )?;
     let motion = motion(args)?;
     let mu = positive_list("--mu", &args.mu)?;

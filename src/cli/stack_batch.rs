@@ -10,9 +10,9 @@ use crate::sim::Scenario;
 use crate::sim::stack_run::simulate_stack;
 
 /// Runs the stack of `cfg` as `cli` says. Nothing is written unless the
-/// run succeeds; a face that would slip is bad input (exit 2): its
-/// `static` is below what the motion needs, and sliding inside a stack is
-/// not simulated.
+/// run succeeds; an upper face that would slip is bad input (exit 2): its
+/// `static` is below what the motion needs, and sliding between blocks is
+/// not simulated (the base face's is).
 pub fn run(cli: &Cli, cfg: &Scenario) -> Result<(), BatchError> {
     let input = |e: anyhow::Error| BatchError::Input(e);
     let geo = cfg

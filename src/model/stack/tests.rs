@@ -10,7 +10,7 @@
 
 use super::dynamics::{self, accelerations, impact_rates, interface_load};
 use super::pose::{Pose, V2};
-use super::{Contact, MAX_BLOCKS, NS, StackBlock, StackGeometry};
+use super::{Contact, MAX_BLOCKS, NS, SLIDE, SLIDE_RATE, StackBlock, StackGeometry};
 
 /// Solves a dense `a x = b` by Gaussian elimination with partial pivoting.
 fn solve(mut a: Vec<Vec<f64>>, mut b: Vec<f64>) -> Vec<f64> {
@@ -158,13 +158,15 @@ impl World {
 /// of [`unknowns`]: Newton's and Euler's rows of each block (forces or
 /// impulses alike), then the rows that make the two points of each
 /// interface meet (and a closed face turn with the block below), each row's
-/// right-hand side from `rhs`. The matrix, the right-hand sides and the
-/// force and couple columns.
+/// right-hand side from `rhs`. With `slide` = s μ_k the base contact slips:
+/// its horizontal meeting row becomes Coulomb's law F_x = −s μ_k F_y. The
+/// matrix, the right-hand sides and the force and couple columns.
 #[allow(clippy::type_complexity)]
 fn generic_system(
     geo: &StackGeometry,
     contacts: &[Contact],
     w: &World,
+    slide: Option<f64>,
     mut rhs: impl FnMut(Row) -> f64,
 ) -> (Vec<Vec<f64>>, Vec<f64>, Vec<usize>, Vec<Option<usize>>) {
     let k = geo.k;
@@ -213,6 +215,14 @@ fn generic_system(
     for i in 0..k {
         let p = at(i);
         for d in 0..2 {
+            if let (0, 0, Some(smu)) = (i, d, slide) {
+                let mut r = row();
+                r[fcol[0]] = 1.0;
+                r[fcol[0] + 1] = smu;
+                a.push(r);
+                b.push(0.0);
+                continue;
+            }
             let mut r = row();
             for (j, sign) in [(i, 1.0), (i.wrapping_sub(1), -1.0)] {
                 if j >= k {
@@ -240,11 +250,19 @@ fn generic_system(
 }
 
 /// The generic Newton–Euler solve of the stack in `contacts` at the given
-/// angles and rates, under effective gravity `g_e`.
-fn newton_euler(geo: &StackGeometry, contacts: &[Contact], q: &[f64], qd: &[f64], g_e: V2) -> Generic {
+/// angles and rates, under effective gravity `g_e`, the base contact
+/// slipping with s μ_k = `slide` if given.
+fn newton_euler(
+    geo: &StackGeometry,
+    contacts: &[Contact],
+    q: &[f64],
+    qd: &[f64],
+    g_e: V2,
+    slide: Option<f64>,
+) -> Generic {
     let k = geo.k;
     let w = world(geo, contacts, q, qd);
-    let (a, b, fcol, ccol) = generic_system(geo, contacts, &w, |row| match row {
+    let (a, b, fcol, ccol) = generic_system(geo, contacts, &w, slide, |row| match row {
         Row::Newton(j, d) => geo.mass[j] * g_e[d],
         // The centripetal terms, −ω_j² r on each side, moved right.
         Row::Meet(i, d) => {
@@ -338,8 +356,8 @@ fn every_contact_combination_accelerates_as_a_generic_newton_euler_solve_says() 
                 let contacts = contacts_of(&cs);
                 let y = state(&q, &qd);
                 let pose = Pose::new(&geo, &contacts, &y);
-                let acc = accelerations(&geo, &contacts, &pose, g_e);
-                let generic = newton_euler(&geo, &cs, &q, &qd, g_e);
+                let acc = accelerations(&geo, &contacts, None, &pose, g_e);
+                let generic = newton_euler(&geo, &cs, &q, &qd, g_e, None);
                 let w = world(&geo, &cs, &q, &qd);
                 let scale = g_unit;
                 for j in 0..geo.k {
@@ -408,7 +426,7 @@ fn impulse(geo: &StackGeometry, before: &[Contact], after: &[Contact], q: &[f64]
         v
     };
     let w1 = world(geo, after, q, qd);
-    let (a, b, _, _) = generic_system(geo, after, &w1, |row| match row {
+    let (a, b, _, _) = generic_system(geo, after, &w1, None, |row| match row {
         Row::Newton(j, d) => geo.mass[j] * vel(w0.centre[j], j)[d],
         Row::Euler(j) => geo.inertia[j] * w0.omega[j],
         Row::Meet(..) | Row::Turn => 0.0,
@@ -446,7 +464,7 @@ fn every_impact_matches_a_generic_impulse_solve() {
                     let y = state(&q, &qd);
                     let before = Pose::new(&geo, &contacts_of(&cs), &y);
                     let at = Pose::new(&geo, &contacts_of(&after), &y);
-                    let rates = impact_rates(&geo, &contacts_of(&after), &before, &at);
+                    let (rates, _) = impact_rates(&geo, &contacts_of(&after), None, &before, &at);
                     let generic = impulse(&geo, &cs, &after, &q, &qd);
                     for j in 0..geo.k {
                         worst = worst.max((rates[j] - generic[j]).abs());
@@ -471,9 +489,10 @@ fn a_glued_stack_of_equal_widths_impacts_with_housners_coefficient() {
     let before = contacts_of(&[Contact::Right, Contact::Closed]);
     let after = contacts_of(&[Contact::Left, Contact::Closed]);
     let y = state(&[0.0, 0.0], &[-0.6, 0.0]);
-    let rates = impact_rates(
+    let (rates, _) = impact_rates(
         &geo,
         &after,
+        None,
         &Pose::new(&geo, &before, &y),
         &Pose::new(&geo, &after, &y),
     );
@@ -486,4 +505,151 @@ fn a_glued_stack_of_equal_widths_impacts_with_housners_coefficient() {
     let io = m * (b * b + (h1 + h2).powi(2)) / 3.0;
     let kinetic = dynamics::kinetic(&geo, &pose);
     assert!((kinetic - 0.5 * io * rates[0] * rates[0]).abs() < 1e-14 * kinetic.max(1e-300));
+}
+
+/// s μ_k of a sliding base face: either sense, and no friction.
+const SLIDES: [f64; 3] = [0.35, -0.6, 0.0];
+
+#[test]
+fn every_contact_combination_sliding_on_the_base_accelerates_as_a_generic_newton_euler_solve_says() {
+    let mut worst: f64 = 0.0;
+    let mut checked = 0;
+    for blocks in shapes() {
+        let geo = StackGeometry::new(&blocks).unwrap();
+        let g_unit = 4.0 * geo.r1 / 3.0;
+        for g_e in [
+            [0.0, -g_unit],
+            [0.37 * g_unit, -1.2 * g_unit],
+            [-0.8 * g_unit, -0.6 * g_unit],
+        ] {
+            for (cs, q, qd) in cases(geo.k) {
+                for smu in SLIDES {
+                    let contacts = contacts_of(&cs);
+                    let mut y = state(&q, &qd);
+                    // The slip moves everything, and its rate nothing
+                    // that accelerates.
+                    y[SLIDE] = 0.07;
+                    y[SLIDE_RATE] = 0.2 * smu.signum();
+                    let pose = Pose::new(&geo, &contacts, &y);
+                    let acc = accelerations(&geo, &contacts, Some(smu), &pose, g_e);
+                    let generic = newton_euler(&geo, &cs, &q, &qd, g_e, Some(smu));
+                    let w = world(&geo, &cs, &q, &qd);
+                    for j in 0..geo.k {
+                        assert!((pose.centre[j][0] - 0.07 - w.centre[j][0]).abs() < 1e-13);
+                        for d in 0..2 {
+                            worst = worst.max((acc.centre_acc[j][d] - generic.accel[j].0[d]).abs() / g_unit);
+                        }
+                        worst = worst.max((acc.alpha[j] - generic.accel[j].1).abs() * geo.r1 / g_unit);
+                    }
+                    for i in 0..geo.k {
+                        let load = interface_load(&geo, &pose, &acc, g_e, g_unit, i);
+                        let weight = geo.mass_above(i) * g_unit;
+                        let f = generic.force[i];
+                        let n = if i == 0 {
+                            [0.0, 1.0]
+                        } else {
+                            rot(pose.phi[i - 1], [0.0, 1.0])
+                        };
+                        worst = worst.max((load.normal - (f[0] * n[0] + f[1] * n[1]) / weight).abs());
+                        if i == 0 {
+                            // Coulomb: the base's friction is −s μ_k N.
+                            worst = worst.max((load.tangential + smu * load.normal).abs());
+                            worst = worst.max((load.tangential - f[0] / weight).abs());
+                        }
+                    }
+                    // The slip's acceleration is the base contact point's.
+                    let p = w.force_point(&cs, 0);
+                    let arm = w.arm(0, p);
+                    let (a0, al0) = generic.accel[0];
+                    let point = a0[0] + al0 * arm[1] - w.omega[0] * w.omega[0] * arm[0];
+                    worst = worst.max((acc.slide_acc - point).abs() / g_unit);
+                    checked += 1;
+                }
+            }
+        }
+    }
+    assert!(checked > 900, "{checked}");
+    assert!(worst < 1e-11, "largest difference {worst:e}");
+}
+
+/// The generic impulse solve with the base sliding through the impact
+/// (`slide` = s μ_k: its friction impulse −s μ_k times its normal one) or
+/// its contact point stopped (None): each block's centre velocity and
+/// angular velocity after.
+fn impulse_on_base(
+    geo: &StackGeometry,
+    before: &[Contact],
+    after: &[Contact],
+    q: &[f64],
+    qd: &[f64],
+    u_dot: f64,
+    slide: Option<f64>,
+) -> Vec<(V2, f64)> {
+    let k = geo.k;
+    let w0 = world(geo, before, q, qd);
+    let vel = |p: V2, j: usize| {
+        let mut v = [u_dot, 0.0];
+        for i in 0..=j {
+            v[0] += qd[i] * (p[1] - w0.pivot[i][1]);
+            v[1] += qd[i] * -(p[0] - w0.pivot[i][0]);
+        }
+        v
+    };
+    let w1 = world(geo, after, q, qd);
+    let (a, b, _, _) = generic_system(geo, after, &w1, slide, |row| match row {
+        Row::Newton(j, d) => geo.mass[j] * vel(w0.centre[j], j)[d],
+        Row::Euler(j) => geo.inertia[j] * w0.omega[j],
+        Row::Meet(..) | Row::Turn => 0.0,
+    });
+    let x = solve(a, b);
+    (0..k).map(|j| ([x[3 * j], x[3 * j + 1]], x[3 * j + 2])).collect()
+}
+
+#[test]
+fn every_impact_with_the_base_sliding_or_stopped_matches_a_generic_impulse_solve() {
+    let mut worst: f64 = 0.0;
+    let mut checked = 0;
+    for blocks in shapes() {
+        let geo = StackGeometry::new(&blocks).unwrap();
+        for (cs, q, qd) in cases(geo.k) {
+            for i in 0..geo.k {
+                if cs[i] == Contact::Closed {
+                    continue;
+                }
+                let (mut q, mut qd) = (q.clone(), qd.clone());
+                q[i] = 0.0;
+                qd[i] = -cs[i].sign() * qd[i].abs().max(0.3);
+                let flipped = if cs[i] == Contact::Right {
+                    Contact::Left
+                } else {
+                    Contact::Right
+                };
+                for new in [flipped, Contact::Closed] {
+                    for slide in [None, Some(0.4), Some(-0.3)] {
+                        let mut after = cs.clone();
+                        after[i] = new;
+                        let mut y = state(&q, &qd);
+                        let u_dot = -0.25;
+                        y[SLIDE_RATE] = u_dot;
+                        let before = Pose::new(&geo, &contacts_of(&cs), &y);
+                        let at = Pose::new(&geo, &contacts_of(&after), &y);
+                        let (rates, u) = impact_rates(&geo, &contacts_of(&after), slide, &before, &at);
+                        let generic = impulse_on_base(&geo, &cs, &after, &q, &qd, u_dot, slide);
+                        let mut y_after = state(&q, &rates[..geo.k]);
+                        y_after[SLIDE_RATE] = u;
+                        let pose = Pose::new(&geo, &contacts_of(&after), &y_after);
+                        for j in 0..geo.k {
+                            for d in 0..2 {
+                                worst = worst.max((pose.centre_vel[j][d] - generic[j].0[d]).abs());
+                            }
+                            worst = worst.max((pose.omega[j] - generic[j].1).abs() * geo.r1);
+                        }
+                        checked += 1;
+                    }
+                }
+            }
+        }
+    }
+    assert!(checked > 300, "{checked}");
+    assert!(worst < 1e-11, "largest difference {worst:e}");
 }

@@ -177,7 +177,7 @@ pub const CATALOGUE: &[KeySpec] = &[
         symbol: "μ_s",
         meaning: "static friction coefficient at a stacked block's lower face",
         written: "dimensionless, or \"inf\" (no slip)",
-        doc: "Static friction at this block's lower face, >= 0 or inf. Default inf. Inside a stack sliding is not simulated: a run whose friction demand reaches it stops with a one-line error (docs/model.md §18.7).",
+        doc: "Static friction at this block's lower face, >= 0 or inf. Default inf. The bottom block's face slides on the base when its friction demand reaches it, as the single block does; between blocks sliding is not simulated: a run whose demand reaches an upper face's static stops with a one-line error (docs/model.md §18.7).",
         range: COEFFICIENT,
         ..B
     },
@@ -187,7 +187,7 @@ pub const CATALOGUE: &[KeySpec] = &[
         symbol: "μ_k",
         meaning: "kinetic friction coefficient at a stacked block's lower face",
         written: "dimensionless, or \"inf\"",
-        doc: "Kinetic friction at this block's lower face, <= static. Used by a one-entry stack (the single block slides); a taller stack stops before any slip.",
+        doc: "Kinetic friction at this block's lower face, <= static; default the static one. Acts while the bottom block's face slides on the base (< 4/3 there, the Painlevé bound); an upper face never slides, so its value is only echoed.",
         range: COEFFICIENT,
         ..B
     },
