@@ -59,10 +59,15 @@ fn examples(text: &str) -> Vec<Example> {
 }
 
 /// Runs `command` in `dir`: `rocking …` is this crate's binary (its words
-/// split on white space, as the README's commands need no quoting), the
-/// rest goes to `sh -c`. Returns stdout followed by stderr.
+/// split on white space, a word in single quotes taken without them, as a
+/// shell would: the README quotes `--set 'stack[0].static=0.2'`, whose
+/// brackets some shells would glob), the rest goes to `sh -c`. Returns
+/// stdout followed by stderr.
 fn run(command: &str, dir: &Path) -> (bool, String) {
-    let words: Vec<&str> = command.split_whitespace().collect();
+    let words: Vec<&str> = command
+        .split_whitespace()
+        .map(|w| w.strip_prefix('\'').and_then(|w| w.strip_suffix('\'')).unwrap_or(w))
+        .collect();
     let output = if words.first() == Some(&"rocking") {
         Command::new(env!("CARGO_BIN_EXE_rocking"))
             .args(&words[1..])

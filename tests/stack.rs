@@ -374,6 +374,41 @@ fn a_stack_sliding_on_its_base_closes_its_energy_audit_and_its_mirror_image_is_e
 }
 
 #[test]
+fn a_pedestal_sliding_under_a_statue_that_never_lifts_is_the_single_block_slider() {
+    // On friction 0.2 the floor passes up about 0.2 g, below the statue's
+    // tan α = 0.22: nothing lifts, so the stack slides as one rigid body,
+    // and sliding alone does not depend on its shape: the 0.9 m pedestal
+    // block alone, on the same floor, slides the same way.
+    let friction = "static = 0.2\nkinetic = 0.16\n";
+    let record = "[excitation]\nkind = \"record\"\nfile_h = \"shipped:elcentro-1940-ns.dat\"\nunit_h = \"g\"\n[run]\noutput_dt = \"0.01 s\"\n";
+    let stack = scene(&format!(
+        "[[stack]]\nwidth = 0.9\nheight = 0.9\n{friction}[[stack]]\nwidth = 0.4\nheight = 1.8\n{record}"
+    ));
+    let block = scene(&format!(
+        "[block]\nwidth = 0.9\nheight = 0.9\n[friction]\n{friction}{record}"
+    ));
+    let (s, b) = (run_stack(&stack), run_block(&block));
+    let geo = block.geometry();
+    assert_eq!(s.tally.impacts, 0);
+    assert!(s.tally.max_phi.iter().all(|&phi| phi == 0.0), "{:?}", s.tally.max_phi);
+    assert!(s.tally.max_slide > 0.01, "{}", s.tally.max_slide);
+    assert!((s.tally.max_slide - b.max_abs_sliding * geo.r).abs() < 1e-12);
+    assert_eq!(s.history.len(), b.history.len());
+    for (rs, rb) in s.history.iter().zip(&b.history) {
+        assert!(
+            (rs.y[SLIDE] - geo.sliding(rb.theta, rb.x) * geo.r).abs() < 1e-12,
+            "τ {}",
+            rs.tau
+        );
+    }
+    let slips = |names: Vec<&str>| names.into_iter().filter(|n| *n == "slip" || *n == "stick").count();
+    assert_eq!(
+        slips(s.events.iter().map(|e| e.kind.name()).collect()),
+        slips(b.events.iter().map(|e| e.kind.name()).collect())
+    );
+}
+
+#[test]
 fn a_one_table_stack_is_the_single_block_bit_for_bit() {
     let stack = scene(
         "[[stack]]\nwidth = 0.4\nheight = 1.8\nstatic = 0.6\n[excitation]\nkind = \"record\"\nfile_h = \"shipped:elcentro-1940-ns.dat\"\nunit_h = \"g\"\n",

@@ -296,7 +296,7 @@ fn the_commands_and_flags_that_cannot_take_a_stack_refuse_it_in_one_line() {
         (suite.to_vec(), &["--block: give at least one block"]),
         (
             [&["sliding-spectrum", "--mu", "0.1,0.2"][..], &kobe, &tomb].concat(),
-            &["stack: sliding-spectrum", "not simulated"],
+            &["stack: sliding-spectrum", "varies a single block's friction"],
         ),
         (
             [&["pulse-map"][..], &tomb].concat(),

@@ -45,6 +45,26 @@ def test_the_tombstone_runs_as_the_cli_runs_it(cli, tmp_path: Path) -> None:
         run.theta_rad(3)
 
 
+def test_a_stack_sliding_on_its_base_runs_as_the_cli_runs_it(cli, tmp_path: Path) -> None:
+    keys = {"stack[0].static": 0.3, "stack[0].kinetic": 0.25}
+    sets = [a for k, v in keys.items() for a in ("--set", f"{k}={v}")]
+    cli.ok("--batch", "--preset", "statue-on-pedestal", *sets, "--out", str(tmp_path / "o"), "-q")
+    summary = read_json(tmp_path / "o" / "summary.json")
+    run = rocking.simulate(rocking.Scene("statue-on-pedestal", config=keys))
+    assert run.summary["physical"] == summary["physical"]
+    history = read_csv(tmp_path / "o" / "history.csv")
+    assert list(run.history.dtype.names)[:4] == ["tau", "t_s", "mode", "sliding_m"]
+    assert np.array_equal(run.history["sliding_m"], floats(history, "sliding_m"))
+    kinds = list(run.events["kind"])
+    assert "slip" in kinds and "stick" in kinds
+    # The pedestal slides under the rocking statue, and both ride on it.
+    physical = run.summary["physical"]
+    assert physical["max_sliding_m"] >= np.abs(run.history["sliding_m"]).max() > 1e-4
+    assert [b["max_sliding_m"] for b in run.bodies] == [physical["max_sliding_m"]] * 2
+    assert physical["mode_time_s"]["slide-rock"] + physical["mode_time_s"]["slide"] > 0.0
+    assert run.summary["energy"]["loss_friction"] > 0.0
+
+
 def test_a_slipping_face_is_refused_naming_its_key() -> None:
     scene = rocking.Scene("tombstone", config={"stack[2].static": 0.05})
     with pytest.raises(rocking.ConfigError, match="stack block 3's lower face would slip"):

@@ -652,13 +652,18 @@ impl StackSystem {
         let stuck = Pose::new(&self.geo, contacts, &after);
         let (mut pt, mut pn) = (0.0, 0.0);
         for j in 0..self.geo.k {
-            pt += self.geo.mass[j] * (stuck.centre_vel[j][0] - before.centre_vel[j][0]);
-            pn += self.geo.mass[j] * (stuck.centre_vel[j][1] - before.centre_vel[j][1]);
+            let v = before.centre_vel[j];
+            pt += self.geo.mass[j] * (stuck.centre_vel[j][0] - v[0]);
+            pn += self.geo.mass[j] * (stuck.centre_vel[j][1] - v[1]);
         }
+        // An impulse at round-off against the stack's momentum scale
+        // M √(G R₁) (the end of an accumulation of impacts) holds: its sign
+        // is noise.
+        let tol = 1e-12 * self.geo.total_mass * (self.g_unit * self.geo.r1).sqrt();
         let holds = if contacts[0] == Contact::Closed {
-            pt.abs() <= self.geo.mu_s[0] * pn
+            pt.abs() <= self.geo.mu_s[0] * pn + tol
         } else {
-            pn >= 0.0
+            pn >= -tol
         };
         if holds {
             return (Slip::Stuck, rates, 0.0);

@@ -177,7 +177,7 @@ pub const CATALOGUE: &[KeySpec] = &[
         symbol: "μ_s",
         meaning: "static friction coefficient at a stacked block's lower face",
         written: "dimensionless, or \"inf\" (no slip)",
-        doc: "Static friction at this block's lower face, >= 0 or inf. Default inf. The bottom block's face slides on the base when its friction demand reaches it, as the single block does; between blocks sliding is not simulated: a run whose demand reaches an upper face's static stops with a one-line error (docs/model.md §18.7).",
+        doc: "Static friction at this block's lower face, >= 0 or inf. Default inf. The bottom block's face slides on the base when its friction demand reaches it, as the single block does; between blocks sliding is not simulated: a run whose demand reaches an upper face's static stops with a one-line error (docs/model.md §18.7, §18.8).",
         range: COEFFICIENT,
         ..B
     },
