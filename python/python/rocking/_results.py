@@ -142,7 +142,10 @@ class StackRun:
     `rocking --batch` writes it.
 
     `history` has history.csv's columns: `tau`, `t_s`, `mode` (every
-    face's contact, bottom to top: `rock-left/closed`), then for each body
+    face's contact, bottom to top: `rock-left/closed`, the bottom one
+    `slide…` while the stack slides on its floor), `sliding_m` (the
+    stack's displacement along the floor caused by sliding, m), then for
+    each body
     J from 0 (the bottom block) `theta_J_rad` (its rotation, clockwise),
     `theta_dot_J_rad_s`, `x_J_m` and `y_J_m` (its centre relative to the
     base). `events` has events.csv's, with `body` the block whose lower
@@ -156,7 +159,7 @@ class StackRun:
         self.blocks: int = int(data["blocks"])
         #: summary.json as a dict (same keys and numbers as the CLI's file).
         self.summary: dict[str, Any] = data["summary"]
-        order = ["tau", "t_s", "mode"]
+        order = ["tau", "t_s", "mode", "sliding_m"]
         for j in range(self.blocks):
             order += [f"theta_{j}_rad", f"theta_dot_{j}_rad_s", f"x_{j}_m", f"y_{j}_m"]
         #: The regular time history (history.csv's columns).
