@@ -13,14 +13,18 @@ use egui_kittest::Harness;
 use egui_kittest::kittest::{NodeT as _, Queryable as _};
 use gui_common::{pointer, pump, scene};
 use rocking::gui::RockingApp;
-use rocking::model::stack::{Contact, MAX_BLOCKS, StackBlock};
+use rocking::model::stack::{Contact, MAX_BLOCKS, SLIDE, StackBlock};
 use rocking::sim::protocol::{RunEnd, Speed};
 use rocking::sim::runner::LIVE_SAMPLE_DT;
 use rocking::sim::stack_run::simulate_stack;
 use rocking::sim::{Physical, RunOptions, Scenario};
 
 fn live(preset: &str, speed: Speed) -> Harness<'static, RockingApp> {
-    let (s, c) = scene(preset, &[]);
+    live_with(preset, &[], speed)
+}
+
+fn live_with(preset: &str, sets: &[&str], speed: Speed) -> Harness<'static, RockingApp> {
+    let (s, c) = scene(preset, sets);
     Harness::builder()
         .with_size(egui::vec2(1280.0, 800.0))
         .build_eframe(move |cc| RockingApp::live(cc, s, c, speed, false))
@@ -129,9 +133,47 @@ fn the_drawn_blocks_corners_are_the_core_pose_of_the_streamed_state() {
 }
 
 #[test]
+fn a_stack_sliding_on_its_floor_is_drawn_where_it_slid() {
+    // The statue's pedestal on friction 0.2 under El Centro: it slides
+    // 11 mm and nothing lifts.
+    let sets = ["stack[0].static=0.2", "stack[0].kinetic=0.16"];
+    let mut h = live_with("statue-on-pedestal", &sets, Speed::RealTime(4.0));
+    let slid = |a: &RockingApp| {
+        a.stack_drawn()
+            .is_some_and(|(f, _)| f.mode.sliding() && f.y[SLIDE].abs() > 1e-3)
+    };
+    assert!(pump(&mut h, Duration::from_secs(90), slid), "the stack never slid 1 mm");
+    let app = h.state();
+    let (frame, drawn) = app.stack_drawn().expect("drawn");
+    let b = blocks(app.config());
+    let r1 = 0.5 * b[0].width.hypot(b[0].height);
+    let base_x = app.shown_sample().expect("a sample shown").base_x * r1;
+    // Every block closed, moved with the base and by the slip.
+    let want = corners_by_hand(&b, &frame.mode.contacts, &[0.0; 2], base_x + frame.y[SLIDE]);
+    for (j, (w, d)) in want.iter().zip(drawn).enumerate() {
+        for (wc, dc) in w.iter().zip(d) {
+            assert!(
+                (wc[0] - dc[0]).abs() < 1e-12 && (wc[1] - dc[1]).abs() < 1e-12,
+                "block {j}: drawn {dc:?}, by hand {wc:?}"
+            );
+        }
+    }
+    assert_eq!(frame.mode.name(2), "slide/closed");
+}
+
+#[test]
 fn the_live_app_streams_the_batch_runs_states() {
-    for (preset, tau) in [("stack-patterns", 40.0), ("tombstone", 9.0)] {
-        let mut h = live(preset, Speed::Max);
+    for (preset, sets, tau) in [
+        ("stack-patterns", &[][..], 40.0),
+        ("tombstone", &[][..], 9.0),
+        // Sliding on the floor while the statue rocks.
+        (
+            "statue-on-pedestal",
+            &["stack[0].static=0.3", "stack[0].kinetic=0.24"][..],
+            25.0,
+        ),
+    ] {
+        let mut h = live_with(preset, sets, Speed::Max);
         assert!(
             pump(&mut h, Duration::from_secs(60), |a| a.tau() >= tau || a.end().is_some()),
             "{preset}: no progress"
@@ -153,8 +195,8 @@ fn the_live_app_streams_the_batch_runs_states() {
             let i = (f.tau / LIVE_SAMPLE_DT).round() as usize;
             let Some(row) = batch.history.get(i) else { continue };
             assert!((row.tau - f.tau).abs() < 1e-12, "{preset}: τ {} vs {}", row.tau, f.tau);
-            assert_eq!(row.mode.contacts, f.mode.contacts, "{preset}: contacts at τ {}", f.tau);
-            for c in (0..k).chain(MAX_BLOCKS..MAX_BLOCKS + k) {
+            assert_eq!(row.mode, f.mode, "{preset}: mode at τ {}", f.tau);
+            for c in (0..k).chain(MAX_BLOCKS..MAX_BLOCKS + k).chain([SLIDE, SLIDE + 1]) {
                 assert!(
                     (row.y[c] - f.y[c]).abs() <= 1e-9,
                     "{preset}: y[{c}] at τ {}: batch {}, live {}",
