@@ -159,6 +159,21 @@ fn a_stack_sliding_on_its_floor_is_drawn_where_it_slid() {
         }
     }
     assert_eq!(frame.mode.name(2), "slide/closed");
+    // The plots' sliding displacement is the slip, at every sample.
+    let geo = app.config().geometry();
+    let mut checked = 0;
+    for s in app.history().samples.iter() {
+        let f = s.stack.expect("a stack's sample carries its state");
+        let shown = geo.sliding(s.state.theta, s.state.x) * geo.r;
+        assert!(
+            (shown - f.y[SLIDE]).abs() < 1e-12,
+            "τ {}: {shown} vs {}",
+            f.tau,
+            f.y[SLIDE]
+        );
+        checked += 1;
+    }
+    assert!(checked > 100, "{checked}");
 }
 
 #[test]
@@ -196,6 +211,14 @@ fn the_live_app_streams_the_batch_runs_states() {
             let Some(row) = batch.history.get(i) else { continue };
             assert!((row.tau - f.tau).abs() < 1e-12, "{preset}: τ {} vs {}", row.tau, f.tau);
             assert_eq!(row.mode, f.mode, "{preset}: mode at τ {}", f.tau);
+            // The plots' sliding displacement is the slip, tilted or not.
+            let unit = c.geometry();
+            let shown = unit.sliding(s.state.theta, s.state.x) * unit.r;
+            assert!(
+                (shown - f.y[SLIDE]).abs() < 1e-12,
+                "{preset}: sliding {shown} vs {}",
+                f.y[SLIDE]
+            );
             for c in (0..k).chain(MAX_BLOCKS..MAX_BLOCKS + k).chain([SLIDE, SLIDE + 1]) {
                 assert!(
                     (row.y[c] - f.y[c]).abs() <= 1e-9,

@@ -436,10 +436,10 @@ impl RockingApp {
     /// kept: the run goes on.
     pub fn choose_body(&mut self, j: usize) {
         self.body = Some(j);
-        let Some((k, psi)) = self.info.as_ref().and_then(|i| i.stack.map(|g| (g.k, i.geometry.psi))) else {
+        let Some((k, geo)) = self.info.as_ref().and_then(|i| i.stack.map(|g| (g.k, i.geometry))) else {
             return;
         };
-        self.hist.show_body(j.min(k - 1), psi);
+        self.hist.show_body(j.min(k - 1), &geo);
         self.poincare.reset();
         self.spectrum.reset();
     }

@@ -17,6 +17,7 @@ use std::collections::VecDeque;
 use egui_plot::PlotPoint;
 
 use crate::gui::ghost_trails::GhostTrails;
+use crate::model::Geometry;
 use crate::model::stack::{StackEvent, StackEventKind};
 use crate::model::system::EventRecord;
 use crate::sim::SectionRow;
@@ -279,19 +280,19 @@ impl RunHistory {
         self.push_section(p);
     }
 
-    /// Shows block `body` of a stack (ψ the bottom block's, rad) in the
+    /// Shows block `body` of a stack (`geo` the bottom block's) in the
     /// plots: every kept sample's and section point's rotation becomes
     /// that block's, from the whole state each carries.
-    pub(crate) fn show_body(&mut self, body: usize, psi: f64) {
+    pub(crate) fn show_body(&mut self, body: usize, geo: &Geometry) {
         for s in self.samples.iter_mut() {
             if let Some(f) = s.stack {
-                s.state = f.body_row(body, psi);
+                s.state = f.body_row(body, geo);
             }
         }
         let kept: Vec<(u64, StackFrame)> = self.stack_section.iter().copied().collect();
         self.clear_section();
         for (k, f) in kept {
-            self.push_section(section_row(k, &f, body, psi));
+            self.push_section(section_row(k, &f, body, geo));
         }
     }
 
@@ -309,10 +310,10 @@ impl RunHistory {
     }
 }
 
-/// Block `body`'s section point `k` of a stack in state `f` (ψ the
+/// Block `body`'s section point `k` of a stack in state `f` (`geo` the
 /// bottom block's).
-pub(crate) fn section_row(k: u64, f: &StackFrame, body: usize, psi: f64) -> SectionRow {
-    let row = f.body_row(body, psi);
+pub(crate) fn section_row(k: u64, f: &StackFrame, body: usize, geo: &Geometry) -> SectionRow {
+    let row = f.body_row(body, geo);
     SectionRow {
         k,
         tau: row.tau,

@@ -21,7 +21,9 @@
 
 use super::{EndState, HistoryRow, Scenario};
 use crate::model::geometry::Geometry;
-use crate::model::stack::{Contact, MAX_BLOCKS, NS, Slip, StackEnd, StackEvent, StackGeometry, StackMode};
+use crate::model::stack::{
+    Contact, MAX_BLOCKS, NS, SLIDE, SLIDE_RATE, Slip, StackEnd, StackEvent, StackGeometry, StackMode,
+};
 use crate::model::system::EventRecord;
 use crate::model::{Mode, Sign, energy, kinematics};
 
@@ -182,26 +184,36 @@ impl StackFrame {
     }
 
     /// Block `j` as a block's history row, so the plots built for one
-    /// block show it: Θ = φ_j/ψ and Θ' = φ_j'/ψ with ψ the bottom block's
-    /// slenderness (a stack's amplitude unit, so the units switch turns
-    /// them into the body's degrees), X = X' = 0 (the rows carry the
-    /// rotations; the base face's slip is in the state's u), and the mode
-    /// of its lower face: closed as rest (glued faces too), open as rocking
-    /// on that corner, sliding on the base as the block's slide or
+    /// block show it: Θ = φ_j/ψ and Θ' = φ_j'/ψ with `geo` the bottom
+    /// block's (a stack's amplitude and length units, so the units switch
+    /// turns them into the body's degrees), X such that the plots' sliding
+    /// displacement ([`Geometry::sliding`] × R) is the stack's slip on its
+    /// floor u, which carries every block, X' = u' per R, and the mode of
+    /// its lower face: closed as rest (glued faces too), open as rocking on
+    /// that corner, sliding on the floor as the block's slide or
     /// slide-rock, or the run's end.
-    pub fn body_row(&self, j: usize, psi: f64) -> HistoryRow {
+    pub fn body_row(&self, j: usize, geo: &Geometry) -> HistoryRow {
+        let psi = geo.psi;
         let (phi, omega) = self.body(j);
         let mode = match self.mode.end {
             Some(StackEnd::Overturned(_)) => Mode::Tumbled,
             Some(StackEnd::Flight(_)) => Mode::Flight,
             None => face_mode(self.mode.contacts[j.min(MAX_BLOCKS - 1)], face_slip(&self.mode, j)),
         };
+        let theta = phi / psi;
+        // The inverse of Geometry::sliding: the rocking part it adds for a
+        // tilted block, taken off so that it reads u alone.
+        let rocking = if theta == 0.0 {
+            0.0
+        } else {
+            theta.signum() * ((psi * (1.0 - theta.abs())).sin() - geo.sin_psi)
+        };
         HistoryRow {
             tau: self.tau,
-            theta: phi / psi,
+            theta,
             theta_dot: omega / psi,
-            x: 0.0,
-            x_dot: 0.0,
+            x: self.y[SLIDE] / geo.r - rocking,
+            x_dot: self.y[SLIDE_RATE] / geo.r,
             mode,
         }
     }

@@ -41,10 +41,10 @@ impl RockingApp {
             SimUpdate::Batch { batch, .. } => {
                 // A stack's samples carry its whole state: the plots show
                 // the chosen block's.
-                let body = self.chosen_body().zip(self.info.as_ref().map(|i| i.geometry.psi));
+                let body = self.chosen_body().zip(self.info.as_ref().map(|i| i.geometry));
                 for mut s in batch.samples {
-                    if let (Some(f), Some((j, psi))) = (s.stack, body) {
-                        s.state = f.body_row(j, psi);
+                    if let (Some(f), Some((j, geo))) = (s.stack, body) {
+                        s.state = f.body_row(j, &geo);
                     }
                     self.hist.push_sample(s);
                 }
@@ -56,10 +56,10 @@ impl RockingApp {
                     self.hist.push_stack_event(e);
                 }
                 let mut section = batch.section.into_iter();
-                if let Some((j, psi)) = body {
+                if let Some((j, geo)) = body {
                     for f in batch.stack_section {
                         if let Some(p) = section.next() {
-                            self.hist.push_stack_section(section_row(p.k, &f, j, psi), f);
+                            self.hist.push_stack_section(section_row(p.k, &f, j, &geo), f);
                         }
                     }
                 }

@@ -20,6 +20,7 @@ use std::collections::VecDeque;
 
 use crate::integrate::hybrid::{Advance, Driver, Limits, Observer, Outputs};
 use crate::integrate::{Dop853, Dopri5, Stepper};
+use crate::model::Geometry;
 use crate::model::Mode;
 use crate::model::excitation::Excitation;
 use crate::model::stack::{MAX_BLOCKS, NS, StackEnd, StackError, StackEvent, StackMode, StackSystem, StackTally};
@@ -97,9 +98,9 @@ struct Sink<'a> {
     excitation: &'a Excitation,
     base: &'a mut BaseMotion,
     queue: &'a mut Queue,
-    /// Blocks, and the bottom block's ψ (rad).
+    /// Blocks, and the bottom block (the stack's units).
     k: usize,
-    psi: f64,
+    geo: Geometry,
     last_event: &'a mut f64,
 }
 
@@ -109,7 +110,7 @@ impl Observer<StackMode, StackEvent, NS> for Sink<'_> {
         let base_x = self.base.advance(t, fo.a);
         let frame = StackFrame { tau: t, mode, y: *y };
         self.queue.samples.push_back(Sample {
-            state: frame.body_row(self.k - 1, self.psi),
+            state: frame.body_row(self.k - 1, &self.geo),
             a_h: fo.a,
             a_v: fo.av,
             base_x,
@@ -123,7 +124,7 @@ impl Observer<StackMode, StackEvent, NS> for Sink<'_> {
 
     fn section(&mut self, k: u64, t: f64, mode: StackMode, y: &[f64; NS]) {
         let frame = StackFrame { tau: t, mode, y: *y };
-        let row = frame.body_row(self.k - 1, self.psi);
+        let row = frame.body_row(self.k - 1, &self.geo);
         let point = SectionRow {
             k,
             tau: t,
@@ -164,7 +165,7 @@ pub struct StackSession {
     /// latest, as its do.
     batch_end: f64,
     k: usize,
-    psi: f64,
+    geo: Geometry,
 }
 
 impl StackSession {
@@ -224,7 +225,7 @@ impl StackSession {
                 .record_end_tau()
                 .map_or(scenario.tau_end(), |end| end.min(scenario.tau_end())),
             k: geo.k,
-            psi: geometry.psi,
+            geo: geometry,
         })
     }
 
@@ -285,7 +286,7 @@ impl StackSession {
             base: &mut self.base,
             queue: &mut self.queue,
             k: self.k,
-            psi: self.psi,
+            geo: self.geo,
             last_event: &mut self.last_event,
         };
         match self.driver.advance(t_end, horizon, &mut sink) {
@@ -305,8 +306,8 @@ impl StackSession {
                     let peak = tally.max_phi[..self.k].iter().copied().fold(0.0, f64::max);
                     self.play.ended = Some(RunEnd::Rest {
                         tau,
-                        max_abs_theta: peak / self.psi,
-                        max_abs_sliding: 0.0,
+                        max_abs_theta: peak / self.geo.psi,
+                        max_abs_sliding: tally.max_slide / self.geo.r,
                     });
                 }
             }
