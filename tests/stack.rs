@@ -480,6 +480,16 @@ fn a_stack_refuses_what_it_cannot_run_with_one_line_naming_the_key() {
             "stack[0].kinetic",
         ),
         ("[[stack]]\nwidth = 1.0\nheight = 1.0\nglued = true\n", "stack[0].glued"),
+        // The floor's friction past the Painlevé bound, given or taken
+        // from the static one; an upper face's is only echoed.
+        (
+            "[[stack]]\nwidth = 1.0\nheight = 1.0\nstatic = 2.0\nkinetic = 1.5\n[[stack]]\nwidth = 0.5\nheight = 1.0\n",
+            "stack[0].kinetic: 1.5 is out of range: must be < 4/3",
+        ),
+        (
+            "[[stack]]\nwidth = 1.0\nheight = 1.0\nstatic = 2.0\n[[stack]]\nwidth = 0.5\nheight = 1.0\n",
+            "stack[0].kinetic (absent, so equal to stack[0].static)",
+        ),
         ("[stack]\nwidth = 1.0\nheight = 1.0\n", "stack"),
         ("[[stack]]\nwidth = 1.0\nheight = 1.0\ncolour = 3\n", "stack"),
     ] {

@@ -653,3 +653,32 @@ fn every_impact_with_the_base_sliding_or_stopped_matches_a_generic_impulse_solve
     assert!(checked > 300, "{checked}");
     assert!(worst < 1e-11, "largest difference {worst:e}");
 }
+
+#[test]
+fn a_glued_stacks_painleve_ratio_is_the_single_blocks_denominator_over_its_frictionless_value() {
+    // docs/model.md §4.2: a slide-rocking block's D = ¼(1 + 3 sn² − 3 s σ μ_k sn c),
+    // sn and c of φ = α − |θ| (the diagonal's angle from the vertical),
+    // s the pivot's side and σ the slip's sense; the stack's ratio is
+    // D over its value without friction.
+    let (b, h1, h2) = (0.5, 0.9, 0.7);
+    let mut blocks = vec![block(b, h1, 0.0), block(b, h2, 0.0)];
+    blocks[1].glued = true;
+    let geo = StackGeometry::new(&blocks).unwrap();
+    let alpha = (b / (h1 + h2)).atan();
+    let g_e = [0.1, -4.0 * geo.r1 / 3.0];
+    let mut checked = 0;
+    for theta in [0.02, 0.1, 0.25, -0.05, -0.2] {
+        let contact = Contact::of_sign(theta);
+        let contacts = contacts_of(&[contact, Contact::Closed]);
+        let pose = Pose::new(&geo, &contacts, &state(&[theta, 0.0], &[0.3, 0.0]));
+        for smu in [0.3, -0.3, 1.2, -1.25] {
+            let d = accelerations(&geo, &contacts, Some(smu), &pose, g_e).painleve;
+            let (sn, c) = (alpha - theta.abs()).sin_cos();
+            let s = theta.signum();
+            let want = (1.0 + 3.0 * sn * sn - 3.0 * s * smu * sn * c) / (1.0 + 3.0 * sn * sn);
+            assert!((d - want).abs() < 1e-13, "θ {theta}, sμ {smu}: {d} vs {want}");
+            checked += 1;
+        }
+    }
+    assert_eq!(checked, 20);
+}
