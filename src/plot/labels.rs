@@ -87,7 +87,7 @@ pub fn section_theta(cfg: &Scenario) -> &'static str {
 /// `units` line.
 pub fn section_units(cfg: &Scenario) -> &'static str {
     if cfg.stack.is_some() {
-        "theta = φ/α of the top block (its rotation φ = q_1 + … + q_K over its own α = atan(B/H)), theta_dot = dΘ/dτ, τ the bottom block's; max_abs_theta the top block's"
+        "theta = φ/α of the top block (its rotation φ = q_1 + … + q_K over its own α = atan(B/H)), theta_dot = dΘ/dτ, τ the bottom block's; max_abs_theta the top block's; x, x_dot the stack's slip on its floor and its rate per the bottom block's R"
     } else {
         "theta = θ/ψ, theta_dot = dΘ/dτ"
     }

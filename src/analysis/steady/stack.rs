@@ -4,15 +4,17 @@
 //! The same study as the block's [`steady_response`](super::steady_response), with
 //! what a stack has instead of the block's one angle:
 //! - **Classified on the whole state.** A section point is every
-//!   interface's rotation q_i and rate q_i' (each over the top block's α,
-//!   so that the classifier's relative tolerance reads as on the block's
-//!   Θ = θ/ψ); a stack is periodic only when every interface repeats.
+//!   interface's rotation q_i and rate q_i' and the rate u' of its slip on
+//!   the floor (u'/R₁, each over the top block's α, so that the
+//!   classifier's relative tolerance reads as on the block's Θ = θ/ψ); a
+//!   stack is periodic only when every interface and the slip's rate
+//!   repeat (the slip itself may drift, as the block's X does).
 //! - **Reported as its top block.** The points a sweep writes and a map
 //!   keeps (`theta`, `theta_dot`, `max_abs_theta`) are the top block's
 //!   rotation φ_K = q_1 + … + q_K over its own α_K = atan(B_K/H_K), and its
 //!   rate: the body an owner of a statue or a tombstone watches, whose
-//!   rotation carries every interface below it. `x` and `x_dot` are 0 (the
-//!   stack does not slide).
+//!   rotation carries every interface below it. `x` and `x_dot` are the
+//!   slip u on the floor and its rate, per the bottom block's R₁.
 //! - **No seed and no exponent.** A stack starts at rest on its base, so a
 //!   continuation sweep cannot start it where the previous value ended, and
 //!   its tangent dynamics are not derived, so it has no Lyapunov exponent;
@@ -23,13 +25,13 @@
 use super::{Steady, SteadyError, Window};
 use crate::analysis::classify::{ClassifyOptions, Response, classify_points};
 use crate::analysis::settle::CellResponse;
-use crate::model::stack::{Contact, MAX_BLOCKS, Pose, StackGeometry};
-use crate::model::{Mode, Sign};
+use crate::model::stack::{Contact, MAX_BLOCKS, Pose, SLIDE, SLIDE_RATE, StackGeometry};
 use crate::sim::stack_run::{StackRun, StackSection, simulate_stack};
 use crate::sim::{Param, Scenario, ScenarioError, SectionRow};
 
-/// The stack's classified coordinates: q_1 … q_K, q_1' … q_K' (padded).
-const D: usize = 2 * MAX_BLOCKS;
+/// The stack's classified coordinates: q_1 … q_K, q_1' … q_K' (padded),
+/// u'.
+const D: usize = 2 * MAX_BLOCKS + 1;
 
 /// Refuses, before anything runs, what a study cannot do with the stack of
 /// `base`: a swept key the stack does not read (its blocks' sizes and
@@ -69,26 +71,25 @@ pub fn check_stack_study(
 }
 
 /// The top block's section point as the block's [`SectionRow`] (module
-/// docs): Θ = φ_K/α_K and its rate, the mode `rest` with every interface
-/// closed and otherwise rocking on the side of the topmost open interface.
+/// docs): Θ = φ_K/α_K and its rate, the slip and its rate per R₁, and
+/// the mode: `rest` with every interface closed, otherwise rocking on the
+/// side of the topmost open interface, each sliding while the floor slips.
 fn top_row(geo: &StackGeometry, s: &StackSection) -> SectionRow {
     let (theta, theta_dot) = top_angle(geo, &s.at.mode.contacts, &s.at.y);
     let open = s.at.mode.contacts[..geo.k]
         .iter()
         .rev()
-        .find(|c| **c != Contact::Closed);
-    let mode = match open {
-        None => Mode::Rest,
-        Some(Contact::Right) => Mode::Rock { pivot: Sign::Pos },
-        Some(_) => Mode::Rock { pivot: Sign::Neg },
-    };
+        .find(|c| **c != Contact::Closed)
+        .copied()
+        .unwrap_or(Contact::Closed);
+    let mode = crate::sim::protocol::face_mode(open, s.at.mode.slip);
     SectionRow {
         k: s.k,
         tau: s.at.tau,
         theta,
         theta_dot,
-        x: 0.0,
-        x_dot: 0.0,
+        x: s.at.y[SLIDE] / geo.r1,
+        x_dot: s.at.y[SLIDE_RATE] / geo.r1,
         mode,
     }
 }
@@ -110,7 +111,13 @@ fn top_alpha(geo: &StackGeometry) -> f64 {
 /// The section point's classified coordinates (module docs).
 fn coordinates(geo: &StackGeometry, s: &StackSection) -> [f64; D] {
     let alpha = top_alpha(geo);
-    std::array::from_fn(|d| s.at.y[d] / alpha)
+    std::array::from_fn(|d| {
+        if d < 2 * MAX_BLOCKS {
+            s.at.y[d] / alpha
+        } else {
+            s.at.y[SLIDE_RATE] / (geo.r1 * alpha)
+        }
+    })
 }
 
 /// The class of a stack's run sampled over `window` with forcing period
