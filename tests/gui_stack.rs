@@ -306,6 +306,33 @@ fn a_drag_of_a_blocks_width_slider_resizes_that_block_in_the_next_run() {
 }
 
 #[test]
+fn the_floors_friction_typed_in_the_panel_makes_the_next_run_slide() {
+    let mut h = live("statue-on-pedestal", Speed::RealTime(4.0));
+    assert!(
+        pump(&mut h, Duration::from_secs(30), |a| a.stack_drawn().is_some()),
+        "drawn"
+    );
+    assert!(
+        h.state().config().stack.as_ref().expect("a stack")[0]
+            .mu_s
+            .is_infinite()
+    );
+    for (label, value) in [("μ_s floor", "0.2"), ("μ_k floor", "0.16")] {
+        h.get_by_label(label).focus();
+        h.step();
+        h.get_by_label(label).set_text_value_accesskit(value);
+        h.step();
+        h.key_press(egui::Key::Enter);
+        h.step();
+        h.step();
+    }
+    let bottom = h.state().config().stack.as_ref().expect("a stack")[0];
+    assert_eq!((bottom.mu_s, bottom.mu_k), (0.2, Some(0.16)));
+    let slid = |a: &RockingApp| a.stack_drawn().is_some_and(|(f, _)| f.mode.sliding());
+    assert!(pump(&mut h, Duration::from_secs(60), slid), "the next run never slid");
+}
+
+#[test]
 fn the_plots_show_the_block_chosen_and_the_analyses_say_they_take_one_block() {
     let mut h = live("stack-patterns", Speed::Max);
     assert!(pump(&mut h, Duration::from_secs(30), |a| a.tau() > 5.0), "played");

@@ -1,9 +1,11 @@
 //! The parameter panel's group for a stack of blocks: each block's width,
 //! height and offset (`stack[i].width`, `stack[i].height`,
 //! `stack[i].offset`, as `--set` spells them, i from 0 at the bottom),
-//! each with a slider and a field as the block's size has. A drag
-//! restarts the stack from rest with the new size, as any drag of a
-//! stack does (a stack has no start but rest).
+//! each with a slider and a field as the block's size has, and the
+//! floor's friction under the bottom block (`stack[0].static`,
+//! `stack[0].kinetic`) as the block's friction has. A drag restarts the
+//! stack from rest with the new value, as any drag of a stack does (a
+//! stack has no start but rest).
 
 use super::params::{Commit, Edits, Key, Kind, slider_range, slider_row};
 use super::slider::SliderRange;
@@ -34,6 +36,23 @@ const HELP: [&str; 3] = [
     "Width of this block of the stack, m (stack[i].width).",
     "Height of this block of the stack, m (stack[i].height).",
     "This block's centre relative to the centre of the block below, m (+ right; stack[i].offset); its face must overlap the one below.",
+];
+
+/// The floor's friction: keys, symbols, help and the block's friction
+/// keys whose slider spans they take.
+const FLOOR: [(&str, &str, &str, &str); 2] = [
+    (
+        "stack[0].static",
+        "μ_s floor",
+        "Static friction between the bottom block and the floor (stack[0].static; inf: the stack never slides). The stack slides on the floor when the friction it needs reaches it.",
+        "friction.static",
+    ),
+    (
+        "stack[0].kinetic",
+        "μ_k floor",
+        "Kinetic friction while the stack slides on the floor (stack[0].kinetic; <= the static one, < 4/3).",
+        "friction.kinetic",
+    ),
 ];
 
 /// The span of an offset's slider, m: ±1 m in centimetres covers a
@@ -78,6 +97,23 @@ pub fn show(ui: &mut egui::Ui, cfg: &Scenario, edits: &mut Edits) -> Option<Comm
                         }
                         ui.end_row();
                     }
+                }
+                ui.label(egui::RichText::new("floor").strong());
+                ui.end_row();
+                let bottom = blocks[0];
+                let values = [bottom.mu_s, bottom.mu_k.unwrap_or(bottom.mu_s)];
+                for ((key, label, help, like), value) in FLOOR.into_iter().zip(values) {
+                    let k = Key {
+                        key,
+                        label,
+                        unit: "",
+                        help,
+                        kind: Kind::Number,
+                    };
+                    if let Some(got) = slider_row(ui, &k, &format!("{value}"), slider_range(like), edits) {
+                        commit = Some(got);
+                    }
+                    ui.end_row();
                 }
             });
     });
