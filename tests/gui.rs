@@ -11,7 +11,7 @@ use std::time::{Duration, Instant};
 
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable as _;
-use gui_common::{henon, open_menu, open_preset, pointer, pump, scene};
+use gui_common::{henon, open_menu, open_preset, pointer, pump, scene, set_field};
 use rocking::analysis::classify::ClassifyOptions;
 use rocking::analysis::lyapunov::{LyapunovOptions, Method, lyapunov};
 use rocking::analysis::orbit_diagram::{BlockSweep, Continuation, Grid, Plan, block_sweep};
@@ -53,16 +53,6 @@ fn toggle_view(h: &mut Harness<'static, RockingApp>, item: &str) {
     h.step();
     open_menu(h, "View", item);
     h.get_by_label(item).click();
-    h.step();
-    h.step();
-}
-
-fn set_field(h: &mut Harness<'static, RockingApp>, label: &str, value: &str) {
-    h.get_by_label(label).focus();
-    h.step();
-    h.get_by_label(label).set_text_value_accesskit(value);
-    h.step();
-    h.key_press(egui::Key::Enter);
     h.step();
     h.step();
 }

@@ -11,7 +11,7 @@ use std::time::Duration;
 
 use egui_kittest::Harness;
 use egui_kittest::kittest::{NodeT as _, Queryable as _};
-use gui_common::{pointer, pump, scene};
+use gui_common::{pointer, pump, scene, set_field};
 use rocking::gui::RockingApp;
 use rocking::model::stack::{Contact, MAX_BLOCKS, SLIDE, StackBlock};
 use rocking::sim::protocol::{RunEnd, Speed};
@@ -317,15 +317,8 @@ fn the_floors_friction_typed_in_the_panel_makes_the_next_run_slide() {
             .mu_s
             .is_infinite()
     );
-    for (label, value) in [("μ_s floor", "0.2"), ("μ_k floor", "0.16")] {
-        h.get_by_label(label).focus();
-        h.step();
-        h.get_by_label(label).set_text_value_accesskit(value);
-        h.step();
-        h.key_press(egui::Key::Enter);
-        h.step();
-        h.step();
-    }
+    set_field(&mut h, "μ_s floor", "0.2");
+    set_field(&mut h, "μ_k floor", "0.16");
     let bottom = h.state().config().stack.as_ref().expect("a stack")[0];
     assert_eq!((bottom.mu_s, bottom.mu_k), (0.2, Some(0.16)));
     let slid = |a: &RockingApp| a.stack_drawn().is_some_and(|(f, _)| f.mode.sliding());

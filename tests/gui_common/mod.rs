@@ -98,3 +98,15 @@ pub fn pointer(h: &mut Harness<'static, RockingApp>, pos: egui::Pos2, pressed: O
     }
     h.step();
 }
+
+/// Types `value` into the field named `label` and presses Enter, as a
+/// user commits a parameter.
+pub fn set_field(h: &mut Harness<'static, RockingApp>, label: &str, value: &str) {
+    h.get_by_label(label).focus();
+    h.step();
+    h.get_by_label(label).set_text_value_accesskit(value);
+    h.step();
+    h.key_press(egui::Key::Enter);
+    h.step();
+    h.step();
+}

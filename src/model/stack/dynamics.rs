@@ -107,6 +107,14 @@ fn solve_spd(a: &mut [[f64; MAX_BLOCKS]; MAX_BLOCKS], b: &mut [f64; MAX_BLOCKS],
         }
         _ => {}
     }
+    cholesky(a, n);
+    back_substitute(a, b, n);
+}
+
+/// Factors the symmetric positive definite leading `n` × `n` block of `a`
+/// in place: its lower triangle becomes L, a = L Lᵀ.
+#[inline(always)]
+fn cholesky<const M: usize>(a: &mut [[f64; M]; M], n: usize) {
     for j in 0..n {
         let mut d = a[j][j];
         for k in 0..j {
@@ -122,19 +130,24 @@ fn solve_spd(a: &mut [[f64; MAX_BLOCKS]; MAX_BLOCKS], b: &mut [f64; MAX_BLOCKS],
             a[i][j] = s / d;
         }
     }
+}
+
+/// Solves L Lᵀ x = `b` in place with the factor [`cholesky`] left in `l`.
+#[inline(always)]
+fn back_substitute<const M: usize>(l: &[[f64; M]; M], b: &mut [f64; M], n: usize) {
     for i in 0..n {
         let mut s = b[i];
         for k in 0..i {
-            s -= a[i][k] * b[k];
+            s -= l[i][k] * b[k];
         }
-        b[i] = s / a[i][i];
+        b[i] = s / l[i][i];
     }
     for i in (0..n).rev() {
         let mut s = b[i];
         for k in i + 1..n {
-            s -= a[k][i] * b[k];
+            s -= l[k][i] * b[k];
         }
-        b[i] = s / a[i][i];
+        b[i] = s / l[i][i];
     }
 }
 
@@ -270,41 +283,11 @@ fn solve_sliding(
     smu: f64,
 ) -> ([f64; ROWS], f64) {
     let m = n + 1;
-    for j in 0..m {
-        let mut d = a[j][j];
-        for k in 0..j {
-            d -= a[j][k] * a[j][k];
-        }
-        let d = d.sqrt();
-        a[j][j] = d;
-        for i in j + 1..m {
-            let mut s = a[i][j];
-            for k in 0..j {
-                s -= a[i][k] * a[j][k];
-            }
-            a[i][j] = s / d;
-        }
-    }
-    let back = |b: &mut [f64; ROWS]| {
-        for i in 0..m {
-            let mut s = b[i];
-            for k in 0..i {
-                s -= a[i][k] * b[k];
-            }
-            b[i] = s / a[i][i];
-        }
-        for i in (0..m).rev() {
-            let mut s = b[i];
-            for k in i + 1..m {
-                s -= a[k][i] * b[k];
-            }
-            b[i] = s / a[i][i];
-        }
-    };
+    cholesky(&mut a, m);
     let mut w = [0.0; ROWS];
     w[n] = 1.0;
-    back(&mut rhs);
-    back(&mut w);
+    back_substitute(&a, &mut rhs, m);
+    back_substitute(&a, &mut w, m);
     let (mut cx, mut cw) = (0.0, 0.0);
     for f in 0..n {
         cx += c[f] * rhs[f];

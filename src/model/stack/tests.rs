@@ -437,10 +437,11 @@ fn impulse(geo: &StackGeometry, before: &[Contact], after: &[Contact], q: &[f64]
         .collect()
 }
 
-#[test]
-fn every_impact_matches_a_generic_impulse_solve() {
-    let mut worst: f64 = 0.0;
-    let mut checked = 0;
+/// Every impact of the test stacks: for each shape, contact case and open
+/// interface i, interface i hitting (q_i = 0, moving towards it) into its
+/// other corner or closed; `check` gets the shape, the contacts before
+/// and after, and the angles and rates.
+fn each_impact(mut check: impl FnMut(&StackGeometry, &[Contact], &[Contact], &[f64], &[f64])) {
     for blocks in shapes() {
         let geo = StackGeometry::new(&blocks).unwrap();
         for (cs, q, qd) in cases(geo.k) {
@@ -448,8 +449,6 @@ fn every_impact_matches_a_generic_impulse_solve() {
                 if cs[i] == Contact::Closed {
                     continue;
                 }
-                // Interface i hits: q_i = 0, moving towards it; its new
-                // pivot is the other corner (or it closes).
                 let (mut q, mut qd) = (q.clone(), qd.clone());
                 q[i] = 0.0;
                 qd[i] = -cs[i].sign() * qd[i].abs().max(0.3);
@@ -461,19 +460,28 @@ fn every_impact_matches_a_generic_impulse_solve() {
                 for new in [flipped, Contact::Closed] {
                     let mut after = cs.clone();
                     after[i] = new;
-                    let y = state(&q, &qd);
-                    let before = Pose::new(&geo, &contacts_of(&cs), &y);
-                    let at = Pose::new(&geo, &contacts_of(&after), &y);
-                    let (rates, _) = impact_rates(&geo, &contacts_of(&after), None, &before, &at);
-                    let generic = impulse(&geo, &cs, &after, &q, &qd);
-                    for j in 0..geo.k {
-                        worst = worst.max((rates[j] - generic[j]).abs());
-                    }
-                    checked += 1;
+                    check(&geo, &cs, &after, &q, &qd);
                 }
             }
         }
     }
+}
+
+#[test]
+fn every_impact_matches_a_generic_impulse_solve() {
+    let mut worst: f64 = 0.0;
+    let mut checked = 0;
+    each_impact(|geo, cs, after, q, qd| {
+        let y = state(q, qd);
+        let before = Pose::new(geo, &contacts_of(cs), &y);
+        let at = Pose::new(geo, &contacts_of(after), &y);
+        let (rates, _) = impact_rates(geo, &contacts_of(after), None, &before, &at);
+        let generic = impulse(geo, cs, after, q, qd);
+        for j in 0..geo.k {
+            worst = worst.max((rates[j] - generic[j]).abs());
+        }
+        checked += 1;
+    });
     assert!(checked > 100, "{checked}");
     assert!(worst < 1e-11, "largest difference {worst:e}");
 }
@@ -609,47 +617,27 @@ fn impulse_on_base(
 fn every_impact_with_the_base_sliding_or_stopped_matches_a_generic_impulse_solve() {
     let mut worst: f64 = 0.0;
     let mut checked = 0;
-    for blocks in shapes() {
-        let geo = StackGeometry::new(&blocks).unwrap();
-        for (cs, q, qd) in cases(geo.k) {
-            for i in 0..geo.k {
-                if cs[i] == Contact::Closed {
-                    continue;
+    each_impact(|geo, cs, after, q, qd| {
+        for slide in [None, Some(0.4), Some(-0.3)] {
+            let mut y = state(q, qd);
+            let u_dot = -0.25;
+            y[SLIDE_RATE] = u_dot;
+            let before = Pose::new(geo, &contacts_of(cs), &y);
+            let at = Pose::new(geo, &contacts_of(after), &y);
+            let (rates, u) = impact_rates(geo, &contacts_of(after), slide, &before, &at);
+            let generic = impulse_on_base(geo, cs, after, q, qd, u_dot, slide);
+            let mut y_after = state(q, &rates[..geo.k]);
+            y_after[SLIDE_RATE] = u;
+            let pose = Pose::new(geo, &contacts_of(after), &y_after);
+            for j in 0..geo.k {
+                for d in 0..2 {
+                    worst = worst.max((pose.centre_vel[j][d] - generic[j].0[d]).abs());
                 }
-                let (mut q, mut qd) = (q.clone(), qd.clone());
-                q[i] = 0.0;
-                qd[i] = -cs[i].sign() * qd[i].abs().max(0.3);
-                let flipped = if cs[i] == Contact::Right {
-                    Contact::Left
-                } else {
-                    Contact::Right
-                };
-                for new in [flipped, Contact::Closed] {
-                    for slide in [None, Some(0.4), Some(-0.3)] {
-                        let mut after = cs.clone();
-                        after[i] = new;
-                        let mut y = state(&q, &qd);
-                        let u_dot = -0.25;
-                        y[SLIDE_RATE] = u_dot;
-                        let before = Pose::new(&geo, &contacts_of(&cs), &y);
-                        let at = Pose::new(&geo, &contacts_of(&after), &y);
-                        let (rates, u) = impact_rates(&geo, &contacts_of(&after), slide, &before, &at);
-                        let generic = impulse_on_base(&geo, &cs, &after, &q, &qd, u_dot, slide);
-                        let mut y_after = state(&q, &rates[..geo.k]);
-                        y_after[SLIDE_RATE] = u;
-                        let pose = Pose::new(&geo, &contacts_of(&after), &y_after);
-                        for j in 0..geo.k {
-                            for d in 0..2 {
-                                worst = worst.max((pose.centre_vel[j][d] - generic[j].0[d]).abs());
-                            }
-                            worst = worst.max((pose.omega[j] - generic[j].1).abs() * geo.r1);
-                        }
-                        checked += 1;
-                    }
-                }
+                worst = worst.max((pose.omega[j] - generic[j].1).abs() * geo.r1);
             }
+            checked += 1;
         }
-    }
+    });
     assert!(checked > 300, "{checked}");
     assert!(worst < 1e-11, "largest difference {worst:e}");
 }
