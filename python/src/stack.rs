@@ -6,8 +6,8 @@ use numpy::IntoPyArray as _;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use rocking::io::stack_files::{body_states, stack_summary};
-use rocking::sim::Scenario;
 use rocking::model::stack::SLIDE;
+use rocking::sim::Scenario;
 use rocking::sim::stack_run::{StackRun, simulate_stack};
 use serde_json::Value as Json;
 
