@@ -1,6 +1,7 @@
 //! The layout at every presentation scale a window holds: at 1280 × 800
 //! and 1920 × 1080, at each scale the View menu offers and each step of
-//! Ctrl +/−, with the default scene and the period-doubling lesson, no
+//! Ctrl +/−, with the default scene, the period-doubling lesson, a stack
+//! (harmonic, and the tombstone on Kobe) and the rocking frame, no
 //! panel covers another, every plot keeps two numbered ticks on each axis,
 //! no text is cut at a panel's edge, and the block keeps 30 % of the width.
 //! Then the text sizes (at least 14 px at scale 1, plot numbers 20 px in
@@ -222,7 +223,13 @@ fn check_config(size: egui::Vec2, preset: &str, scale: f32, lecture: bool) {
         h.state().presentation_scale()
     );
     let mut seen = check_frame(&h, &what);
-    for tab in ["Phase portrait", "Poincaré points", "Time history", "Power spectrum"] {
+    for tab in [
+        "Phase portrait",
+        "Poincaré points",
+        "Time history",
+        "Power spectrum",
+        "Ground acceleration",
+    ] {
         if let Some(node) = h.query_by_label(tab) {
             node.click();
             h.step();
@@ -230,8 +237,16 @@ fn check_config(size: egui::Vec2, preset: &str, scale: f32, lecture: bool) {
             seen.extend(check_frame(&h, &format!("{what}, tab {tab}")));
         }
     }
-    for plot in ["phase", "poincare", "history", "spectrum"] {
-        assert!(seen.contains(&plot), "{what}: {plot} never shown ({seen:?})");
+    // A record has no forcing period, so no Poincaré section, and shows
+    // the ground's acceleration where a harmonic scene has a spectrum.
+    let record = preset == "rocking-frame" || preset == "tombstone";
+    let plots: &[&str] = if record {
+        &["phase", "history", "ground"]
+    } else {
+        &["phase", "poincare", "history", "spectrum"]
+    };
+    for plot in plots {
+        assert!(seen.contains(plot), "{what}: {plot} never shown ({seen:?})");
     }
 }
 
@@ -239,7 +254,13 @@ fn check_config(size: egui::Vec2, preset: &str, scale: f32, lecture: bool) {
 fn every_offered_scale_lays_out_every_panel_without_overlap_cut_text_or_lost_ticks() {
     for size in WINDOWS {
         for scale in scales_at(size, false) {
-            for preset in ["default", "period-doubling"] {
+            for preset in [
+                "default",
+                "period-doubling",
+                "stack-patterns",
+                "rocking-frame",
+                "tombstone",
+            ] {
                 check_config(size, preset, scale, false);
             }
         }
@@ -250,7 +271,9 @@ fn every_offered_scale_lays_out_every_panel_without_overlap_cut_text_or_lost_tic
 fn the_lecture_presentation_lays_out_at_every_offered_scale() {
     for size in WINDOWS {
         for scale in scales_at(size, true) {
-            check_config(size, "period-doubling", scale, true);
+            for preset in ["period-doubling", "stack-patterns", "rocking-frame"] {
+                check_config(size, preset, scale, true);
+            }
         }
     }
 }

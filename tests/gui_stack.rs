@@ -317,8 +317,8 @@ fn the_floors_friction_typed_in_the_panel_makes_the_next_run_slide() {
             .mu_s
             .is_infinite()
     );
-    set_field(&mut h, "μ_s floor", "0.2");
-    set_field(&mut h, "μ_k floor", "0.16");
+    set_field(&mut h, "μ_s", "0.2");
+    set_field(&mut h, "μ_k", "0.16");
     let bottom = h.state().config().stack.as_ref().expect("a stack")[0];
     assert_eq!((bottom.mu_s, bottom.mu_k), (0.2, Some(0.16)));
     let slid = |a: &RockingApp| a.stack_drawn().is_some_and(|(f, _)| f.mode.sliding());

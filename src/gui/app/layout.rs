@@ -351,7 +351,7 @@ impl RockingApp {
             } else {
                 "Power spectrum"
             };
-            ui.horizontal(|ui| {
+            ui.horizontal_wrapped(|ui| {
                 ui.selectable_value(&mut self.lecture.bottom_tab, BottomTab::History, "Time history");
                 ui.selectable_value(&mut self.lecture.bottom_tab, BottomTab::Other, other);
             });
@@ -412,16 +412,21 @@ impl RockingApp {
         let tabbed = both && (self.lecture.presentation || ui.available_height() < 2.0 * min_plot(ui).y + 5.0 * row);
         let (mut phase, mut section) = (self.show.phase, poincare);
         if tabbed {
-            ui.horizontal(|ui| {
+            // Wrapped: a row that cannot wrap widens a narrow column past
+            // the window (a stack's wide parameter panel at 150 %).
+            ui.horizontal_wrapped(|ui| {
                 ui.selectable_value(&mut self.lecture.plot_tab, PlotTab::Phase, "Phase portrait");
-                ui.selectable_value(&mut self.lecture.plot_tab, PlotTab::Poincare, "Poincaré points");
+                ui.selectable_value(&mut self.lecture.plot_tab, PlotTab::Poincare, "Poincaré points")
+                    .on_hover_text("Double-click the plot to fit it to its points");
             });
             phase = self.lecture.plot_tab == PlotTab::Phase;
             section = !phase;
         }
         let h = ui.available_height();
         if phase {
-            ui.label("Phase portrait (click to start there)");
+            // One line, cut with "…" in a narrow column (whole on hover):
+            // the plot's height below counts one row for it.
+            ui.add(egui::Label::new("Phase portrait (click to start there)").truncate());
             // The Poincaré plot below has its section controls to fit too.
             let height = if section { 0.44 * h - row } else { h - row };
             ui.allocate_ui(egui::vec2(ui.available_width(), height), |ui| {
@@ -432,7 +437,11 @@ impl RockingApp {
             });
         }
         if section {
-            ui.label("Poincaré points (double-click to fit)");
+            // Under its own tab the title would repeat the tab's name: the
+            // hint goes on the tab's hover instead, and the plot keeps the row.
+            if !tabbed {
+                ui.add(egui::Label::new("Poincaré points (double-click to fit)").truncate());
+            }
             if let Some(phase) = plots::poincare_plot(ui, &self.hist, &mut self.poincare, &scales) {
                 self.set_section_phase(phase);
             }
@@ -548,9 +557,11 @@ impl eframe::App for RockingApp {
         // the plots beside an analysis; a narrower one tabs them.
         let wide = w >= 1500.0;
         // What the right-hand panels may take: the block scene keeps 30 %
-        // of the width whatever the parameter panel took.
+        // of the width whatever the parameter panel took, inside the
+        // central panel's margins.
         let left = panels.iter().find(|p| p.0 == "params").map_or(0.0, |p| p.1.width());
-        let mut budget = 0.7 * w - left - 2.0;
+        let margins = egui::Frame::central_panel(ui.style()).total_margin().sum().x;
+        let mut budget = 0.7 * w - left - margins - 2.0;
         if wide && tabs.len() > 1 && tabs[0] == SideTab::Plots {
             let (lo, hi) = range_within(200.0, 0.27 * w, budget - 200.0);
             let r = egui::Panel::right(("analyses", at))

@@ -116,6 +116,11 @@ impl RockingApp {
                     right.push(item);
                 }
             }
+            // Nothing to the right (and no room for a cut message): no
+            // layout, which would take a few points past the window.
+            if right.is_empty() && (message.is_none() || ui.available_width() < 30.0) {
+                return;
+            }
             ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
                 for item in right.iter().rev() {
                     item.show(ui, false);

@@ -114,7 +114,7 @@ pub(crate) fn ground_plot(
     view.work += view.scratch.len() as u64;
     let pts = view.scratch.clone();
     let pga = label.floor_pga_g.unwrap_or(label.pga_g);
-    axes::titled(axes::readable(Plot::new("ground")), ui, scales.time_label(), "a_h [g]")
+    let resp = axes::titled(axes::readable(Plot::new("ground")), ui, scales.time_label(), "a_h [g]")
         .include_x(0.0)
         .include_x(t1)
         .include_y(-pga)
@@ -134,4 +134,5 @@ pub(crate) fn ground_plot(
                     .width(1.5),
             );
         });
+    axes::record(ui, "ground", &resp.transform);
 }

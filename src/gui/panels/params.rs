@@ -229,6 +229,13 @@ pub fn show(
                                     // Keys the resolved scene does not
                                     // repeat (a target PGA, t end): as stated.
                                     Some(serde_json::Value::Null) | None => stated.clone().unwrap_or_default(),
+                                    // A resolved number (A_h of a scene
+                                    // stated in g) to the slider's four
+                                    // digits: all seventeen do not fit
+                                    // the field.
+                                    Some(serde_json::Value::Number(n)) => {
+                                        n.as_f64().map_or_else(|| n.to_string(), slider_text)
+                                    }
                                     Some(v) => v.to_string(),
                                 }
                             };
@@ -384,6 +391,17 @@ fn text_field(
     };
     // Sized exactly: beside a slider in a grid cell, a field that may
     // shrink to what the cell had last frame would stay too narrow to read.
+    // A text (a record's path) widens to show all of it: the panel takes
+    // the width its rows need.
+    // A number's field holds the slider's four digits and a sign ("−0.9324")
+    // in the panel's font, whatever the presentation scale made of it.
+    let sample = match k.kind {
+        Kind::Text => text.clone(),
+        _ => "−0.0000".to_owned(),
+    };
+    let font = egui::TextStyle::Body.resolve(ui.style());
+    let need = ui.painter().layout_no_wrap(sample, font, egui::Color32::WHITE).size().x;
+    let width = width.max(need + 2.0 * ui.spacing().button_padding.x + 4.0);
     let height = ui.spacing().interact_size.y;
     let r = ui
         .add_sized(

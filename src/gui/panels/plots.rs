@@ -291,7 +291,20 @@ fn section_selector(ui: &mut egui::Ui, view: &mut PoincareView) -> Option<f64> {
     let mut chosen = view.section;
     let mut new_phase = None;
     ui.horizontal_wrapped(|ui| {
-        ui.label("Section");
+        // "Section" before the two choices where all three fit on a row; a
+        // narrow column keeps the row for the plot (the hovers say what
+        // each choice is).
+        let word = |ui: &egui::Ui, t: &str| {
+            egui::WidgetText::from(t)
+                .into_galley(ui, Some(egui::TextWrapMode::Extend), f32::INFINITY, egui::TextStyle::Body)
+                .size()
+                .x
+        };
+        let pad = 2.0 * ui.spacing().button_padding.x + ui.spacing().item_spacing.x;
+        let row = word(ui, "Section") + word(ui, "stroboscopic") + word(ui, "at impacts") + 3.0 * pad;
+        if ui.available_width() >= row {
+            ui.label("Section");
+        }
         ui.selectable_value(&mut chosen, SectionKind::Stroboscopic, "stroboscopic")
             .on_hover_text("(Θ, Θ') once a forcing period, at τ_k = (2πk + φ)/Ω_h");
         ui.selectable_value(&mut chosen, SectionKind::Impact, "at impacts")

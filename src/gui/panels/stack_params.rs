@@ -43,13 +43,13 @@ const HELP: [&str; 3] = [
 const FLOOR: [(&str, &str, &str, &str); 2] = [
     (
         "stack[0].static",
-        "μ_s floor",
+        "μ_s",
         "Static friction between the bottom block and the floor (stack[0].static; inf: the stack never slides). The stack slides on the floor when the friction it needs reaches it.",
         "friction.static",
     ),
     (
         "stack[0].kinetic",
-        "μ_k floor",
+        "μ_k",
         "Kinetic friction while the stack slides on the floor (stack[0].kinetic; <= the static one, < 4/3).",
         "friction.kinetic",
     ),
@@ -70,52 +70,57 @@ pub fn show(ui: &mut egui::Ui, cfg: &Scenario, edits: &mut Edits) -> Option<Comm
     let blocks = cfg.stack.as_ref()?;
     let mut commit = None;
     egui::CollapsingHeader::new("Stack").default_open(true).show(ui, |ui| {
-        egui::Grid::new("stack")
-            .num_columns(3)
-            .spacing([6.0, 3.0])
-            .show(ui, |ui| {
-                for (i, b) in blocks.iter().enumerate().take(MAX_BLOCKS).rev() {
-                    ui.label(egui::RichText::new(body_name(i, blocks.len())).strong());
-                    ui.end_row();
-                    // The bottom block's offset is 0 by definition.
-                    let n = if i == 0 { 2 } else { 3 };
-                    for (c, value) in [b.width, b.height, b.offset].into_iter().enumerate().take(n) {
-                        let k = Key {
-                            key: KEYS[i][c],
-                            label: LABELS[i][c],
-                            unit: "m",
-                            help: HELP[c],
-                            kind: Kind::Number,
-                        };
-                        let range = if c == 2 {
-                            Some(OFFSET_SPAN)
-                        } else {
-                            slider_range(if c == 0 { "block.width" } else { "block.height" })
-                        };
-                        if let Some(got) = slider_row(ui, &k, &format!("{value}"), range, edits) {
-                            commit = Some(got);
-                        }
-                        ui.end_row();
-                    }
-                }
-                ui.label(egui::RichText::new("floor").strong());
-                ui.end_row();
-                let bottom = blocks[0];
-                let values = [bottom.mu_s, bottom.mu_k.unwrap_or(bottom.mu_s)];
-                for ((key, label, help, like), value) in FLOOR.into_iter().zip(values) {
+        // A grid per block, its name above it: a name in the grid's first
+        // column would widen every row's label by "bottom block".
+        let grid = |ui: &mut egui::Ui, id: usize, rows: &mut dyn FnMut(&mut egui::Ui)| {
+            egui::Grid::new(("stack", id))
+                .num_columns(3)
+                .spacing([6.0, 3.0])
+                .show(ui, |ui| rows(ui));
+        };
+        for (i, b) in blocks.iter().enumerate().take(MAX_BLOCKS).rev() {
+            ui.label(egui::RichText::new(body_name(i, blocks.len())).strong());
+            grid(ui, i, &mut |ui| {
+                // The bottom block's offset is 0 by definition.
+                let n = if i == 0 { 2 } else { 3 };
+                for (c, value) in [b.width, b.height, b.offset].into_iter().enumerate().take(n) {
                     let k = Key {
-                        key,
-                        label,
-                        unit: "",
-                        help,
+                        key: KEYS[i][c],
+                        label: LABELS[i][c],
+                        unit: "m",
+                        help: HELP[c],
                         kind: Kind::Number,
                     };
-                    if let Some(got) = slider_row(ui, &k, &format!("{value}"), slider_range(like), edits) {
+                    let range = if c == 2 {
+                        Some(OFFSET_SPAN)
+                    } else {
+                        slider_range(if c == 0 { "block.width" } else { "block.height" })
+                    };
+                    if let Some(got) = slider_row(ui, &k, &format!("{value}"), range, edits) {
                         commit = Some(got);
                     }
                     ui.end_row();
                 }
             });
+        }
+        ui.label(egui::RichText::new("floor friction").strong());
+        let bottom = blocks[0];
+        let values = [bottom.mu_s, bottom.mu_k.unwrap_or(bottom.mu_s)];
+        grid(ui, MAX_BLOCKS, &mut |ui| {
+            for ((key, label, help, like), value) in FLOOR.into_iter().zip(values) {
+                let k = Key {
+                    key,
+                    label,
+                    unit: "",
+                    help,
+                    kind: Kind::Number,
+                };
+                if let Some(got) = slider_row(ui, &k, &format!("{value}"), slider_range(like), edits) {
+                    commit = Some(got);
+                }
+                ui.end_row();
+            }
+        });
     });
     commit
 }
