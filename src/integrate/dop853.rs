@@ -48,6 +48,9 @@ pub struct Dop853Dense<const N: usize> {
     cont: [[f64; N]; 3 + N_DENSE_ROWS],
     /// The extra stages and `cont` have been computed for the last step.
     ready: bool,
+    /// The extra stages are in place (a still step's zeros): `cont` needs
+    /// no evaluation of `f`.
+    extra: bool,
 }
 
 impl<const N: usize> Pair<N, N_STAGES_EXTENDED> for Dop853Pair {
@@ -66,12 +69,14 @@ impl<const N: usize> Pair<N, N_STAGES_EXTENDED> for Dop853Pair {
         Dop853Dense {
             cont: [[0.0; N]; 3 + N_DENSE_ROWS],
             ready: false,
+            extra: false,
         }
     }
 
     #[inline]
     fn invalidate(dense: &mut Dop853Dense<N>) {
         dense.ready = false;
+        dense.extra = false;
     }
 
     #[inline]
@@ -83,6 +88,13 @@ impl<const N: usize> Pair<N, N_STAGES_EXTENDED> for Dop853Pair {
         y_new: &mut [f64; N],
     ) -> Result<f64, StepError> {
         rk.attempt(f, h, t_new, y_new)
+    }
+
+    /// The extra stages of a still step are zero, as its others are: its
+    /// dense output, if asked for, is built from them without `f`.
+    #[inline]
+    fn still_dense(rk: &mut Dop853<N>) {
+        rk.dense.extra = true;
     }
 
     /// 7th-order dense output. The first call after a step evaluates the
@@ -157,10 +169,18 @@ impl<const N: usize> Dop853<N> {
         let h = self.h_used;
         let mut ys = [0.0; N];
         let read = N - F::QUADRATURES.min(N);
-        for s in FSAL + 1..N_STAGES_EXTENDED {
-            combine_leading(&self.y_old, h, &A[s][..s], &self.k[..s], &mut ys, read);
-            self.eval(f, self.t_old + C[s] * h, &ys, s);
+        if !self.dense.extra {
+            for s in FSAL + 1..N_STAGES_EXTENDED {
+                combine_leading(&self.y_old, h, &A[s][..s], &self.k[..s], &mut ys, read);
+                self.eval(f, self.t_old + C[s] * h, &ys, s);
+            }
         }
+        self.fill_cont();
+    }
+
+    /// The dense coefficients from the stages, extra ones included.
+    fn fill_cont(&mut self) {
+        let h = self.h_used;
         let (f_old, f_new) = (self.k[0], self.k[FSAL]);
         for n in 0..N {
             let dy = self.y[n] - self.y_old[n];

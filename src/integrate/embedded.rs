@@ -63,6 +63,14 @@ pub trait Pair<const N: usize, const S: usize>: Sized {
         y_new: &mut [f64; N],
     ) -> Result<f64, StepError>;
 
+    /// Readies the dense data of a step taken by
+    /// [`step_still`](Stepper::step_still), whose stages are all zero,
+    /// without evaluating `f`: what the first dense call would compute from
+    /// zero stages. Nothing by default (a dense output from the stages
+    /// alone needs nothing more).
+    #[inline]
+    fn still_dense(_rk: &mut EmbeddedRk<Self, N, S>) {}
+
     /// The dense output at `theta = (t - t_prev) / h` strictly inside the
     /// last step, the leading `count` components (the rest of `out` is left
     /// as it was). May evaluate `f` (extra stages).
@@ -133,48 +141,12 @@ impl<P: Pair<N, S>, const N: usize, const S: usize> EmbeddedRk<P, N, S> {
         f.eval(t, y, &mut self.k[i]);
         self.stats.rhs_evals += 1;
     }
-}
 
-impl<P: Pair<N, S>, const N: usize, const S: usize> Stepper<N> for EmbeddedRk<P, N, S> {
-    fn name(&self) -> &'static str {
-        P::NAME
-    }
-
-    /// Starts at `(t, y)`: evaluates `f(t, y)` (discarding FSAL and dense
-    /// data) and, on the very first restart only, estimates the initial step
-    /// with Hairer's `hinit` (one more evaluation). Later restarts keep the
-    /// last step-size estimate: they follow impacts, where the time scale
-    /// has not changed.
-    fn restart<F: Rhs<N>>(&mut self, f: &F, t: f64, y: &[f64; N]) {
-        self.t = t;
-        self.t_old = t;
-        self.y = *y;
-        self.y_old = *y;
-        self.eval(f, t, y, 0);
-        self.fsal_pending = false;
-        P::invalidate(&mut self.dense);
-        self.has_step = false;
-        self.started = true;
-        self.h_used = 0.0;
-        // A reset (an impact, a stick–slip switch) starts a new solution.
-        // The proposal carried over may have grown on a step whose error
-        // estimate saw the smooth continuation of the old mode across the
-        // event, which says nothing about the new one: start no larger than
-        // the last step that passed. At loose tolerances this removes about
-        // one rejected step per impact (see docs/performance.md).
-        if self.h_trusted > 0.0 {
-            self.h_next = self.h_next.min(self.h_trusted);
-        }
-        self.ctrl.reset();
-        if self.h_next <= 0.0 {
-            let (y0, f0) = (self.y, self.k[0]);
-            if let Some(h) = hinit(f, t, &y0, &f0, P::ORDER, &self.tol, &mut self.stats.rhs_evals) {
-                self.h_next = h;
-            }
-        }
-    }
-
-    fn step<F: Rhs<N>>(&mut self, f: &F, t_stop: f64) -> Result<(), StepError> {
+    /// One step of Hairer's loop; `still`: `f` is zero along it (see
+    /// [`Stepper::step_still`]), so the attempt is written down instead of
+    /// evaluated, with the values the stages would give bit for bit: zero
+    /// stages, `y + h·0`, error 0.
+    fn step_either<F: Rhs<N>>(&mut self, f: &F, t_stop: f64, still: bool) -> Result<(), StepError> {
         if t_stop.is_nan() || t_stop <= self.t {
             return Err(StepError::StepSizeUnderflow {
                 t: self.t,
@@ -222,7 +194,17 @@ impl<P: Pair<N, S>, const N: usize, const S: usize> Stepper<N> for EmbeddedRk<P,
             // falls to zero just beyond the state) is a step too large, as
             // Hairer's codes treat a NaN error: cut it hard and retry. Only
             // when that does not help is the state reported non-finite.
-            let err = match P::attempt(self, f, h_try, t_new, &mut y_new) {
+            let attempt = if still {
+                self.k[1..].iter_mut().for_each(|k| *k = [0.0; N]);
+                for (n, yn) in y_new.iter_mut().zip(&self.y) {
+                    // (`combine` adds h times a sum from +0: -0 becomes +0.)
+                    *n = yn + 0.0;
+                }
+                Ok(0.0)
+            } else {
+                P::attempt(self, f, h_try, t_new, &mut y_new)
+            };
+            let err = match attempt {
                 Ok(err) => err,
                 Err(e @ StepError::NonFinite { .. }) if P::RETRY_NON_FINITE => {
                     if rejections + 1 >= MAX_REJECTIONS || h_try * self.ctrl.fac_min() < h_min(self.t) {
@@ -234,7 +216,7 @@ impl<P: Pair<N, S>, const N: usize, const S: usize> Stepper<N> for EmbeddedRk<P,
             };
             let d = self.ctrl.decide(err, h_try, after_reject);
             if d.accept {
-                if P::FSAL_AFTER_TEST {
+                if P::FSAL_AFTER_TEST && !still {
                     // The FSAL stage is needed only by an accepted step
                     // (Hairer evaluates it after the error test too).
                     self.eval(f, t_new, &y_new, P::FSAL);
@@ -250,6 +232,9 @@ impl<P: Pair<N, S>, const N: usize, const S: usize> Stepper<N> for EmbeddedRk<P,
                 self.fsal_pending = true;
                 self.has_step = true;
                 self.stats.accepted += 1;
+                if still {
+                    P::still_dense(self);
+                }
                 return Ok(());
             }
             self.stats.rejected += 1;
@@ -260,6 +245,54 @@ impl<P: Pair<N, S>, const N: usize, const S: usize> Stepper<N> for EmbeddedRk<P,
             after_reject = true;
             h = d.h_new;
         }
+    }
+}
+
+impl<P: Pair<N, S>, const N: usize, const S: usize> Stepper<N> for EmbeddedRk<P, N, S> {
+    fn name(&self) -> &'static str {
+        P::NAME
+    }
+
+    /// Starts at `(t, y)`: evaluates `f(t, y)` (discarding FSAL and dense
+    /// data) and, on the very first restart only, estimates the initial step
+    /// with Hairer's `hinit` (one more evaluation). Later restarts keep the
+    /// last step-size estimate: they follow impacts, where the time scale
+    /// has not changed.
+    fn restart<F: Rhs<N>>(&mut self, f: &F, t: f64, y: &[f64; N]) {
+        self.t = t;
+        self.t_old = t;
+        self.y = *y;
+        self.y_old = *y;
+        self.eval(f, t, y, 0);
+        self.fsal_pending = false;
+        P::invalidate(&mut self.dense);
+        self.has_step = false;
+        self.started = true;
+        self.h_used = 0.0;
+        // A reset (an impact, a stick–slip switch) starts a new solution.
+        // The proposal carried over may have grown on a step whose error
+        // estimate saw the smooth continuation of the old mode across the
+        // event, which says nothing about the new one: start no larger than
+        // the last step that passed. At loose tolerances this removes about
+        // one rejected step per impact (see docs/performance.md).
+        if self.h_trusted > 0.0 {
+            self.h_next = self.h_next.min(self.h_trusted);
+        }
+        self.ctrl.reset();
+        if self.h_next <= 0.0 {
+            let (y0, f0) = (self.y, self.k[0]);
+            if let Some(h) = hinit(f, t, &y0, &f0, P::ORDER, &self.tol, &mut self.stats.rhs_evals) {
+                self.h_next = h;
+            }
+        }
+    }
+
+    fn step<F: Rhs<N>>(&mut self, f: &F, t_stop: f64) -> Result<(), StepError> {
+        self.step_either(f, t_stop, false)
+    }
+
+    fn step_still<F: Rhs<N>>(&mut self, f: &F, t_stop: f64) -> Result<(), StepError> {
+        self.step_either(f, t_stop, true)
     }
 
     step_ends!();

@@ -145,6 +145,14 @@ pub trait Stepper<const N: usize> {
     /// exactly on `t_stop` (bit for bit) when the step would pass it.
     fn step<F: Rhs<N>>(&mut self, f: &F, t_stop: f64) -> Result<(), StepError>;
 
+    /// [`step`](Stepper::step) where `f` is known to be exactly zero
+    /// along the step ([`HybridSystem::is_still`](super::hybrid::HybridSystem::is_still)):
+    /// the same step, state, step-size control and dense output bit for
+    /// bit, without evaluating `f`. By default, `step`.
+    fn step_still<F: Rhs<N>>(&mut self, f: &F, t_stop: f64) -> Result<(), StepError> {
+        self.step(f, t_stop)
+    }
+
     /// Time at the end of the last step (the current time).
     fn t(&self) -> f64;
     /// State at the end of the last step.

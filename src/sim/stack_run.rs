@@ -181,7 +181,12 @@ fn run_with<S: Stepper<NS>>(stepper: S, system: StackSystem, opts: &RunOptions) 
     let mut keep = Keep {
         k,
         events: Vec::new(),
-        history: Vec::new(),
+        // Room for the whole history at once (up to 65,536 samples, 10 MB):
+        // growing it by doubling copied it about twice over.
+        history: Vec::with_capacity(
+            opts.output_dt
+                .map_or(0, |dt| ((opts.tau_end / dt).ceil() + 2.0).clamp(0.0, 65_536.0) as usize),
+        ),
         keep_history: opts.output_dt.is_some(),
         section: Vec::new(),
         rest_since: mode0.at_rest(k).then_some(0.0),

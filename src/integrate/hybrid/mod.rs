@@ -197,6 +197,16 @@ pub trait HybridSystem<const N: usize> {
         f64::INFINITY
     }
 
+    /// Whether the vector field of `mode` is exactly zero (every component,
+    /// at every time) from the state `y`: a body at rest on its base, whose
+    /// guards move with the forcing alone. The driver then steps without
+    /// evaluating it ([`Stepper::step_still`]), with the same steps, state
+    /// and outputs bit for bit. It must never hold where `rhs` would give a
+    /// non-zero component (debug builds check it). `false` by default.
+    fn is_still(&self, _mode: Self::Mode, _y: &[f64; N]) -> bool {
+        false
+    }
+
     /// Longest step in `mode`; infinite by default. A mode whose guards
     /// depend on time alone while its state does not move (a block at rest:
     /// the error control sees nothing, whatever the forcing does) must cap

@@ -812,6 +812,15 @@ impl HybridSystem<NS> for StackSystem {
         dy[WORK_S] = power / self.energy_unit();
     }
 
+    /// At rest with the base: every face closed, the base face stuck and
+    /// no rate left (each closed face's rate and the slip's are zero), so
+    /// `rhs` writes zeros: the accelerations of a stack without a free
+    /// coordinate, and no power, as nothing moves relative to the base.
+    fn is_still(&self, mode: StackMode, y: &[f64; NS]) -> bool {
+        let k = self.geo.k;
+        mode.at_rest(k) && y[SLIDE_RATE] == 0.0 && y[MAX_BLOCKS..MAX_BLOCKS + k].iter().all(|&v| v == 0.0)
+    }
+
     fn guards(&self, mode: StackMode, t: f64, y: &[f64; NS], g: &mut [f64; MAX_GUARDS]) -> usize {
         if mode.end.is_some() {
             return 0;
