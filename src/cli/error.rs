@@ -10,3 +10,10 @@ pub enum BatchError {
     /// The run itself failed: exit 1.
     Run(anyhow::Error),
 }
+
+impl BatchError {
+    /// `error`, as bad input (exit 2) if `input`, else as a failed run.
+    pub fn of(error: anyhow::Error, input: bool) -> Self {
+        if input { Self::Input(error) } else { Self::Run(error) }
+    }
+}

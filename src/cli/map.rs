@@ -193,11 +193,7 @@ pub(crate) fn run_with(args: &MapArgs, lyapunov: Option<&LyapunovFn<'_>>) -> Res
         .install(|| compute_map(&spec, plan, &progress_fn(&bar)))
         .map_err(|e| {
             let message = anyhow!("{} = {}, {} = {}: {}", x.key, e.x, y.key, e.y, e.error.render(&Flags));
-            if e.error.is_input() {
-                BatchError::Input(message)
-            } else {
-                BatchError::Run(message)
-            }
+            BatchError::of(message, e.error.is_input())
         })?;
     bar.finish_and_clear();
     let wall = start.elapsed().as_secs_f64();

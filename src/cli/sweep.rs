@@ -302,11 +302,7 @@ pub(crate) fn run_with(args: &SweepArgs, lyapunov: Option<&LyapunovFn<'_>>) -> R
         .install(|| block_sweep(&spec, &plan, &progress_fn(&bar)))
         .map_err(|e| {
             let message = anyhow::anyhow!("{} = {}: {}", meta.param.key(), e.value, e.error.render(&Flags));
-            if e.error.is_input() {
-                BatchError::Input(message)
-            } else {
-                BatchError::Run(message)
-            }
+            BatchError::of(message, e.error.is_input())
         })?;
     bar.finish_and_clear();
     let wall = start.elapsed().as_secs_f64();

@@ -73,6 +73,30 @@ pub struct EnergyAudit {
     pub relative_residual: f64,
 }
 
+impl EnergyAudit {
+    /// The audit of a run from energy `initial` to `r#final` with the base's
+    /// work and the two losses: the residual, and it relative to the
+    /// largest term.
+    pub fn new(initial: f64, r#final: f64, work_base: f64, loss_friction: f64, loss_impact: f64) -> Self {
+        let residual = (r#final - initial) - (work_base - loss_friction - loss_impact);
+        let scale = initial
+            .abs()
+            .max(r#final.abs())
+            .max(work_base.abs())
+            .max(loss_friction.abs())
+            .max(loss_impact.abs());
+        Self {
+            initial,
+            r#final,
+            work_base,
+            loss_friction,
+            loss_impact,
+            residual,
+            relative_residual: if scale > 0.0 { residual.abs() / scale } else { 0.0 },
+        }
+    }
+}
+
 /// Everything a run produces.
 #[derive(Clone, Debug)]
 pub struct RunResult {
@@ -367,22 +391,7 @@ fn run_with<S: Stepper<N>, R: Rocker>(
 
     let e_final = system.end_energy(final_mode, &y);
     let (work, friction, impact) = (y[WORK], y[FRICTION_LOSS], tally.impact_loss);
-    let residual = (e_final - e0) - (work - friction - impact);
-    let scale = e0
-        .abs()
-        .max(e_final.abs())
-        .max(work.abs())
-        .max(friction.abs())
-        .max(impact.abs());
-    let energy = EnergyAudit {
-        initial: e0,
-        r#final: e_final,
-        work_base: work,
-        loss_friction: friction,
-        loss_impact: impact,
-        residual,
-        relative_residual: if scale > 0.0 { residual.abs() / scale } else { 0.0 },
-    };
+    let energy = EnergyAudit::new(e0, e_final, work, friction, impact);
     let max_abs_theta = tallies.max_abs_theta.max(tally.max_abs_theta).max(y[0].abs());
     let final_sliding = geometry.sliding(y[0], y[X]);
     let max_abs_sliding = tallies.max_abs_sliding.max(final_sliding.abs());

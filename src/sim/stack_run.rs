@@ -222,22 +222,7 @@ fn run_with<S: Stepper<NS>>(stepper: S, system: StackSystem, opts: &RunOptions) 
     let e_final = system.energy(&mode, &y);
     tally.max_slide = tally.max_slide.max(y[crate::model::stack::SLIDE].abs());
     let (work, impact, friction) = (y[WORK_S], tally.impact_loss, y[FRICTION_S]);
-    let residual = (e_final - e0) - (work - impact - friction);
-    let scale = e0
-        .abs()
-        .max(e_final.abs())
-        .max(work.abs())
-        .max(impact.abs())
-        .max(friction);
-    let energy = EnergyAudit {
-        initial: e0,
-        r#final: e_final,
-        work_base: work,
-        loss_friction: friction,
-        loss_impact: impact,
-        residual,
-        relative_residual: if scale > 0.0 { residual.abs() / scale } else { 0.0 },
-    };
+    let energy = EnergyAudit::new(e0, e_final, work, friction, impact);
     let end = mode.end.map(|e| (e, keep.events.last().map_or(t, |ev| ev.tau)));
     let outcome = match mode.end {
         Some(StackEnd::Overturned(_)) => Outcome::Tumbled,

@@ -340,10 +340,10 @@ fn cases(k: usize) -> Vec<(Vec<Contact>, Vec<f64>, Vec<f64>)> {
     out
 }
 
-#[test]
-fn every_contact_combination_accelerates_as_a_generic_newton_euler_solve_says() {
-    let mut worst: f64 = 0.0;
-    let mut checked = 0;
+/// Every test shape at three effective gravities (m per τ²: the base
+/// still, and shaken either way with a vertical part), with every contact
+/// combination and state of [`cases`].
+fn each_case(mut check: impl FnMut(&StackGeometry, V2, &[Contact], &[f64], &[f64])) {
     for blocks in shapes() {
         let geo = StackGeometry::new(&blocks).unwrap();
         let g_unit = 4.0 * geo.r1 / 3.0;
@@ -353,58 +353,68 @@ fn every_contact_combination_accelerates_as_a_generic_newton_euler_solve_says() 
             [-0.8 * g_unit, -0.6 * g_unit],
         ] {
             for (cs, q, qd) in cases(geo.k) {
-                let contacts = contacts_of(&cs);
-                let y = state(&q, &qd);
-                let pose = Pose::new(&geo, &contacts, &y);
-                let acc = accelerations(&geo, &contacts, None, &pose, g_e);
-                let generic = newton_euler(&geo, &cs, &q, &qd, g_e, None);
-                let w = world(&geo, &cs, &q, &qd);
-                let scale = g_unit;
-                for j in 0..geo.k {
-                    for d in 0..2 {
-                        assert!((pose.centre[j][d] - w.centre[j][d]).abs() < 1e-13, "{cs:?} centre {j}");
-                        worst = worst.max((acc.centre_acc[j][d] - generic.accel[j].0[d]).abs() / scale);
-                    }
-                    worst = worst.max((acc.alpha[j] - generic.accel[j].1).abs() * geo.r1 / scale);
-                }
-                for i in 0..geo.k {
-                    let load = interface_load(&geo, &pose, &acc, g_e, g_unit, i);
-                    let weight = geo.mass_above(i) * g_unit;
-                    let n = if i == 0 {
-                        [0.0, 1.0]
-                    } else {
-                        rot(pose.phi[i - 1], [0.0, 1.0])
-                    };
-                    let t = if i == 0 {
-                        [1.0, 0.0]
-                    } else {
-                        rot(pose.phi[i - 1], [1.0, 0.0])
-                    };
-                    let f = generic.force[i];
-                    worst = worst.max((load.normal - (f[0] * n[0] + f[1] * n[1]) / weight).abs());
-                    worst = worst.max((load.tangential - (f[0] * t[0] + f[1] * t[1]) / weight).abs());
-                    if cs[i] == Contact::Closed {
-                        // About the left corner: the couple alone (the force
-                        // acts there); about the right one, the force's arm too.
-                        let right = if i == 0 { geo.corners[0][1] } else { w.left[i] };
-                        let right = if i == 0 {
-                            right
-                        } else {
-                            let span = rot(pose.phi[i - 1], [geo.span(i), 0.0]);
-                            [w.left[i][0] + span[0], w.left[i][1] + span[1]]
-                        };
-                        let lever = [w.left[i][0] - right[0], w.left[i][1] - right[1]];
-                        let about_right = generic.couple[i] + f[0] * lever[1] - f[1] * lever[0];
-                        worst = worst.max((load.about_left - generic.couple[i] / weight).abs() / geo.r1);
-                        worst = worst.max((load.about_right - about_right / weight).abs() / geo.r1);
-                        // A test of the test: the generic couple is the clockwise moment.
-                        let _ = moment_cw;
-                    }
-                }
-                checked += 1;
+                check(&geo, g_e, &cs, &q, &qd);
             }
         }
     }
+}
+
+#[test]
+fn every_contact_combination_accelerates_as_a_generic_newton_euler_solve_says() {
+    let mut worst: f64 = 0.0;
+    let mut checked = 0;
+    each_case(|geo, g_e, cs, q, qd| {
+        let g_unit = 4.0 * geo.r1 / 3.0;
+        let contacts = contacts_of(cs);
+        let y = state(q, qd);
+        let pose = Pose::new(geo, &contacts, &y);
+        let acc = accelerations(geo, &contacts, None, &pose, g_e);
+        let generic = newton_euler(geo, cs, q, qd, g_e, None);
+        let w = world(geo, cs, q, qd);
+        let scale = g_unit;
+        for j in 0..geo.k {
+            for d in 0..2 {
+                assert!((pose.centre[j][d] - w.centre[j][d]).abs() < 1e-13, "{cs:?} centre {j}");
+                worst = worst.max((acc.centre_acc[j][d] - generic.accel[j].0[d]).abs() / scale);
+            }
+            worst = worst.max((acc.alpha[j] - generic.accel[j].1).abs() * geo.r1 / scale);
+        }
+        for i in 0..geo.k {
+            let load = interface_load(geo, &pose, &acc, g_e, g_unit, i);
+            let weight = geo.mass_above(i) * g_unit;
+            let n = if i == 0 {
+                [0.0, 1.0]
+            } else {
+                rot(pose.phi[i - 1], [0.0, 1.0])
+            };
+            let t = if i == 0 {
+                [1.0, 0.0]
+            } else {
+                rot(pose.phi[i - 1], [1.0, 0.0])
+            };
+            let f = generic.force[i];
+            worst = worst.max((load.normal - (f[0] * n[0] + f[1] * n[1]) / weight).abs());
+            worst = worst.max((load.tangential - (f[0] * t[0] + f[1] * t[1]) / weight).abs());
+            if cs[i] == Contact::Closed {
+                // About the left corner: the couple alone (the force
+                // acts there); about the right one, the force's arm too.
+                let right = if i == 0 { geo.corners[0][1] } else { w.left[i] };
+                let right = if i == 0 {
+                    right
+                } else {
+                    let span = rot(pose.phi[i - 1], [geo.span(i), 0.0]);
+                    [w.left[i][0] + span[0], w.left[i][1] + span[1]]
+                };
+                let lever = [w.left[i][0] - right[0], w.left[i][1] - right[1]];
+                let about_right = generic.couple[i] + f[0] * lever[1] - f[1] * lever[0];
+                worst = worst.max((load.about_left - generic.couple[i] / weight).abs() / geo.r1);
+                worst = worst.max((load.about_right - about_right / weight).abs() / geo.r1);
+                // A test of the test: the generic couple is the clockwise moment.
+                let _ = moment_cw;
+            }
+        }
+        checked += 1;
+    });
     assert!(checked > 300, "{checked}");
     assert!(worst < 1e-11, "largest difference {worst:e}");
 }
@@ -486,14 +496,20 @@ fn every_impact_matches_a_generic_impulse_solve() {
     assert!(worst < 1e-11, "largest difference {worst:e}");
 }
 
+/// Two blocks of width `b` and heights `h1` (bottom) and `h2`, glued: one
+/// block of height h1 + h2.
+fn glued_pair(b: f64, h1: f64, h2: f64) -> StackGeometry {
+    let mut blocks = vec![block(b, h1, 0.0), block(b, h2, 0.0)];
+    blocks[1].glued = true;
+    StackGeometry::new(&blocks).unwrap()
+}
+
 #[test]
 fn a_glued_stack_of_equal_widths_impacts_with_housners_coefficient() {
     // Two glued blocks of width B are one block of their summed height H:
     // r = 1 − (3/2) sin²α with tan α = B/H.
     let (b, h1, h2) = (0.4, 0.7, 1.1);
-    let mut blocks = vec![block(b, h1, 0.0), block(b, h2, 0.0)];
-    blocks[1].glued = true;
-    let geo = StackGeometry::new(&blocks).unwrap();
+    let geo = glued_pair(b, h1, h2);
     let before = contacts_of(&[Contact::Right, Contact::Closed]);
     let after = contacts_of(&[Contact::Left, Contact::Closed]);
     let y = state(&[0.0, 0.0], &[-0.6, 0.0]);
@@ -522,60 +538,51 @@ const SLIDES: [f64; 3] = [0.35, -0.6, 0.0];
 fn every_contact_combination_sliding_on_the_base_accelerates_as_a_generic_newton_euler_solve_says() {
     let mut worst: f64 = 0.0;
     let mut checked = 0;
-    for blocks in shapes() {
-        let geo = StackGeometry::new(&blocks).unwrap();
+    each_case(|geo, g_e, cs, q, qd| {
         let g_unit = 4.0 * geo.r1 / 3.0;
-        for g_e in [
-            [0.0, -g_unit],
-            [0.37 * g_unit, -1.2 * g_unit],
-            [-0.8 * g_unit, -0.6 * g_unit],
-        ] {
-            for (cs, q, qd) in cases(geo.k) {
-                for smu in SLIDES {
-                    let contacts = contacts_of(&cs);
-                    let mut y = state(&q, &qd);
-                    // The slip moves everything, and its rate nothing
-                    // that accelerates.
-                    y[SLIDE] = 0.07;
-                    y[SLIDE_RATE] = 0.2 * smu.signum();
-                    let pose = Pose::new(&geo, &contacts, &y);
-                    let acc = accelerations(&geo, &contacts, Some(smu), &pose, g_e);
-                    let generic = newton_euler(&geo, &cs, &q, &qd, g_e, Some(smu));
-                    let w = world(&geo, &cs, &q, &qd);
-                    for j in 0..geo.k {
-                        assert!((pose.centre[j][0] - 0.07 - w.centre[j][0]).abs() < 1e-13);
-                        for d in 0..2 {
-                            worst = worst.max((acc.centre_acc[j][d] - generic.accel[j].0[d]).abs() / g_unit);
-                        }
-                        worst = worst.max((acc.alpha[j] - generic.accel[j].1).abs() * geo.r1 / g_unit);
-                    }
-                    for i in 0..geo.k {
-                        let load = interface_load(&geo, &pose, &acc, g_e, g_unit, i);
-                        let weight = geo.mass_above(i) * g_unit;
-                        let f = generic.force[i];
-                        let n = if i == 0 {
-                            [0.0, 1.0]
-                        } else {
-                            rot(pose.phi[i - 1], [0.0, 1.0])
-                        };
-                        worst = worst.max((load.normal - (f[0] * n[0] + f[1] * n[1]) / weight).abs());
-                        if i == 0 {
-                            // Coulomb: the base's friction is −s μ_k N.
-                            worst = worst.max((load.tangential + smu * load.normal).abs());
-                            worst = worst.max((load.tangential - f[0] / weight).abs());
-                        }
-                    }
-                    // The slip's acceleration is the base contact point's.
-                    let p = w.force_point(&cs, 0);
-                    let arm = w.arm(0, p);
-                    let (a0, al0) = generic.accel[0];
-                    let point = a0[0] + al0 * arm[1] - w.omega[0] * w.omega[0] * arm[0];
-                    worst = worst.max((acc.slide_acc - point).abs() / g_unit);
-                    checked += 1;
+        for smu in SLIDES {
+            let contacts = contacts_of(cs);
+            let mut y = state(q, qd);
+            // The slip moves everything, and its rate nothing
+            // that accelerates.
+            y[SLIDE] = 0.07;
+            y[SLIDE_RATE] = 0.2 * smu.signum();
+            let pose = Pose::new(geo, &contacts, &y);
+            let acc = accelerations(geo, &contacts, Some(smu), &pose, g_e);
+            let generic = newton_euler(geo, cs, q, qd, g_e, Some(smu));
+            let w = world(geo, cs, q, qd);
+            for j in 0..geo.k {
+                assert!((pose.centre[j][0] - 0.07 - w.centre[j][0]).abs() < 1e-13);
+                for d in 0..2 {
+                    worst = worst.max((acc.centre_acc[j][d] - generic.accel[j].0[d]).abs() / g_unit);
+                }
+                worst = worst.max((acc.alpha[j] - generic.accel[j].1).abs() * geo.r1 / g_unit);
+            }
+            for i in 0..geo.k {
+                let load = interface_load(geo, &pose, &acc, g_e, g_unit, i);
+                let weight = geo.mass_above(i) * g_unit;
+                let f = generic.force[i];
+                let n = if i == 0 {
+                    [0.0, 1.0]
+                } else {
+                    rot(pose.phi[i - 1], [0.0, 1.0])
+                };
+                worst = worst.max((load.normal - (f[0] * n[0] + f[1] * n[1]) / weight).abs());
+                if i == 0 {
+                    // Coulomb: the base's friction is −s μ_k N.
+                    worst = worst.max((load.tangential + smu * load.normal).abs());
+                    worst = worst.max((load.tangential - f[0] / weight).abs());
                 }
             }
+            // The slip's acceleration is the base contact point's.
+            let p = w.force_point(cs, 0);
+            let arm = w.arm(0, p);
+            let (a0, al0) = generic.accel[0];
+            let point = a0[0] + al0 * arm[1] - w.omega[0] * w.omega[0] * arm[0];
+            worst = worst.max((acc.slide_acc - point).abs() / g_unit);
+            checked += 1;
         }
-    }
+    });
     assert!(checked > 900, "{checked}");
     assert!(worst < 1e-11, "largest difference {worst:e}");
 }
@@ -649,9 +656,7 @@ fn a_glued_stacks_painleve_ratio_is_the_single_blocks_denominator_over_its_frict
     // s the pivot's side and σ the slip's sense; the stack's ratio is
     // D over its value without friction.
     let (b, h1, h2) = (0.5, 0.9, 0.7);
-    let mut blocks = vec![block(b, h1, 0.0), block(b, h2, 0.0)];
-    blocks[1].glued = true;
-    let geo = StackGeometry::new(&blocks).unwrap();
+    let geo = glued_pair(b, h1, h2);
     let alpha = (b / (h1 + h2)).atan();
     let g_e = [0.1, -4.0 * geo.r1 / 3.0];
     let mut checked = 0;
