@@ -217,3 +217,21 @@ pub fn with_python_args(e: PyErr, args: &[(&str, &str)]) -> PyErr {
     });
     e
 }
+
+/// Why a run of a scene failed: bad input, or the run itself.
+pub enum Failure {
+    /// The CLI's exit 2, with the key at fault.
+    Input { key: String, message: String },
+    /// The CLI's exit 1.
+    Run(anyhow::Error),
+}
+
+impl Failure {
+    /// The Python exception.
+    pub fn into_py(self) -> PyErr {
+        match self {
+            Failure::Input { key, message } => key_error(&key, message),
+            Failure::Run(e) => run_error(&e),
+        }
+    }
+}

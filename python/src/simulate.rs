@@ -17,27 +17,9 @@ use rocking::sim::{self, HistoryRow, Keep, RunResult, Scenario, SectionRow, Sink
 use serde_json::Value as Json;
 
 use crate::convert::json_to_py;
-use crate::errors::{key_error, run_error};
+use crate::errors::{Failure, run_error};
 use crate::interrupt::{self, Cancel};
 use crate::scene::Scene;
-
-/// Why a run of a scene failed: bad input, or the run itself.
-pub enum Failure {
-    /// The CLI's exit 2, with the key at fault.
-    Input { key: String, message: String },
-    /// The CLI's exit 1.
-    Run(anyhow::Error),
-}
-
-impl Failure {
-    /// The Python exception.
-    pub fn into_py(self) -> PyErr {
-        match self {
-            Failure::Input { key, message } => key_error(&key, message),
-            Failure::Run(e) => run_error(&e),
-        }
-    }
-}
 
 /// The Lyapunov exponents of a configured run, as `rocking --batch` computes
 /// them for `analysis.lyapunov` (over the run's own `tau_end`).

@@ -12,7 +12,7 @@ use rocking::sim::stack_run::{StackRun, simulate_stack};
 use serde_json::Value as Json;
 
 use crate::convert::json_to_py;
-use crate::simulate::Failure;
+use crate::errors::Failure;
 
 /// A stack's run and its summary.json.
 pub struct StackSimulated {
