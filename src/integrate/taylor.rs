@@ -198,27 +198,10 @@ impl<const N: usize> Taylor<N> {
         self.eval_derivative(self.h_used, &mut f1);
         (self.coef[1], f1)
     }
-}
 
-impl<const N: usize> Stepper<N> for Taylor<N> {
-    fn name(&self) -> &'static str {
-        "taylor"
-    }
-
-    /// Starts at `(t, y)`. Evaluates nothing: the coefficients belong to the
-    /// step, and DOP853 is restarted only if a step needs it.
-    fn restart<F: Rhs<N>>(&mut self, _f: &F, t: f64, y: &[f64; N]) {
-        self.t = t;
-        self.t_old = t;
-        self.y = *y;
-        self.y_old = *y;
-        self.has_step = false;
-        self.on_fallback = false;
-        self.fallback_synced = false;
-        self.h_used = 0.0;
-    }
-
-    fn step<F: Rhs<N>>(&mut self, f: &F, t_stop: f64) -> Result<(), StepError> {
+    /// One step; `still` (see [`Stepper::step_still`]) passes on to the
+    /// fallback's step.
+    fn step_either<F: Rhs<N>>(&mut self, f: &F, t_stop: f64, still: bool) -> Result<(), StepError> {
         if t_stop.is_nan() || t_stop <= self.t {
             return Err(StepError::StepSizeUnderflow {
                 t: self.t,
@@ -265,7 +248,11 @@ impl<const N: usize> Stepper<N> for Taylor<N> {
             self.fallback_synced = true;
         }
         self.on_fallback = true;
-        self.fallback.step(f, t_stop)?;
+        if still {
+            self.fallback.step_still(f, t_stop)?;
+        } else {
+            self.fallback.step(f, t_stop)?;
+        }
         self.t_old = self.fallback.t_prev();
         self.y_old = self.y;
         self.t = self.fallback.t();
@@ -273,6 +260,36 @@ impl<const N: usize> Stepper<N> for Taylor<N> {
         self.h_used = self.t - self.t_old;
         self.has_step = true;
         Ok(())
+    }
+}
+
+impl<const N: usize> Stepper<N> for Taylor<N> {
+    fn name(&self) -> &'static str {
+        "taylor"
+    }
+
+    /// Starts at `(t, y)`. Evaluates nothing: the coefficients belong to the
+    /// step, and DOP853 is restarted only if a step needs it.
+    fn restart<F: Rhs<N>>(&mut self, _f: &F, t: f64, y: &[f64; N]) {
+        self.t = t;
+        self.t_old = t;
+        self.y = *y;
+        self.y_old = *y;
+        self.has_step = false;
+        self.on_fallback = false;
+        self.fallback_synced = false;
+        self.h_used = 0.0;
+    }
+
+    fn step<F: Rhs<N>>(&mut self, f: &F, t_stop: f64) -> Result<(), StepError> {
+        self.step_either(f, t_stop, false)
+    }
+
+    /// The series of a still field is its constant state, and costs one
+    /// forcing series; DOP853, where there is no series (a record), takes
+    /// its still step.
+    fn step_still<F: Rhs<N>>(&mut self, f: &F, t_stop: f64) -> Result<(), StepError> {
+        self.step_either(f, t_stop, true)
     }
 
     step_ends!();

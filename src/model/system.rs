@@ -36,7 +36,8 @@ use crate::integrate::hybrid::{DriverError, HybridSystem, Jump, MAX_GUARDS};
 /// The parts of [`HybridSystem`] the one-body models (the block, the
 /// frame) share: their mode, record and error types, their terminal modes,
 /// and the clock of the excitation in `self.model.excitation` (its
-/// breakpoints and time scale, and a step cap at rest).
+/// breakpoints and time scale, and a step cap at rest), and rest as the
+/// mode that stands still.
 macro_rules! one_body_system {
     () => {
         type Mode = $crate::model::mode::Mode;
@@ -53,6 +54,12 @@ macro_rules! one_body_system {
 
         fn time_scale(&self) -> f64 {
             self.model.excitation.time_scale()
+        }
+
+        /// At rest the field is zero whatever the state (`rhs` writes
+        /// zeros for `Rest`).
+        fn is_still(&self, mode: $crate::model::mode::Mode, _y: &[f64; $crate::model::system::N]) -> bool {
+            mode == $crate::model::mode::Mode::Rest
         }
 
         fn step_cap(&self, mode: $crate::model::mode::Mode) -> f64 {
