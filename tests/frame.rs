@@ -200,7 +200,7 @@ fn a_frame_config_is_refused_where_it_would_be_misread() {
         ),
         (
             format!("{frame}[analysis]\nlyapunov = true"),
-            "analysis.lyapunov: is not available for a [frame]",
+            "analysis.lyapunov_method: \"tangent\" needs tangent equations, which a [frame] does not have",
         ),
         (
             format!("{frame}[[stack]]\nwidth = 1.0\nheight = 2.0"),

@@ -7,8 +7,8 @@
 #![allow(clippy::needless_range_loop)]
 
 use rocking::analysis::lyapunov::{
-    Lyapunov, LyapunovError, LyapunovOptions, LyapunovResult, Method, NoExponent, Outcome, Request, Schedule, Square,
-    TangentSystem, exponents, lyapunov,
+    Lyapunov, LyapunovError, LyapunovOptions, LyapunovResult, Method, NoExponent, Outcome, Perturbable, Request,
+    Schedule, Square, TangentSystem, exponents, lyapunov,
 };
 use rocking::integrate::hybrid::{
     Advance, Driver, DriverError, HybridSystem, Jump, Limits, MAX_GUARDS, Observer, Outputs,
@@ -63,10 +63,19 @@ impl HybridSystem<2> for ForcedOscillator {
     }
 }
 
-impl TangentSystem<2, 2> for ForcedOscillator {
+impl Perturbable<2, 2> for ForcedOscillator {
     fn coords(&self, y: &[f64; 2]) -> [f64; 2] {
         *y
     }
+    fn tangent_dim(&self, _m: Only) -> usize {
+        2
+    }
+    fn displaced(&self, _m: Only, _t: f64, y: &[f64; 2], dz: &[f64; 2]) -> Option<[f64; 2]> {
+        Some([y[0] + dz[0], y[1] + dz[1]])
+    }
+}
+
+impl TangentSystem<2, 2> for ForcedOscillator {
     fn jacobian(&self, _m: Only, _t: f64, _y: &[f64; 2]) -> Square<2> {
         [[0.0, 1.0], [-1.0, -2.0 * self.zeta]]
     }
@@ -75,12 +84,6 @@ impl TangentSystem<2, 2> for ForcedOscillator {
     }
     fn reset_jacobian(&self, _b: Only, _i: usize, _y: &[f64; 2], _a: Only, _ya: &[f64; 2]) -> (Square<2>, usize) {
         ([[1.0, 0.0], [0.0, 1.0]], 2)
-    }
-    fn tangent_dim(&self, _m: Only) -> usize {
-        2
-    }
-    fn displaced(&self, _m: Only, _t: f64, y: &[f64; 2], dz: &[f64; 2]) -> Option<[f64; 2]> {
-        Some([y[0] + dz[0], y[1] + dz[1]])
     }
 }
 
@@ -122,10 +125,19 @@ impl HybridSystem<2> for Diagonal {
     }
 }
 
-impl TangentSystem<2, 2> for Diagonal {
+impl Perturbable<2, 2> for Diagonal {
     fn coords(&self, y: &[f64; 2]) -> [f64; 2] {
         *y
     }
+    fn tangent_dim(&self, _m: Only) -> usize {
+        2
+    }
+    fn displaced(&self, _m: Only, _t: f64, y: &[f64; 2], dz: &[f64; 2]) -> Option<[f64; 2]> {
+        Some([y[0] + dz[0], y[1] + dz[1]])
+    }
+}
+
+impl TangentSystem<2, 2> for Diagonal {
     fn jacobian(&self, _m: Only, _t: f64, _y: &[f64; 2]) -> Square<2> {
         [[self.a, 0.0], [0.0, self.b]]
     }
@@ -134,12 +146,6 @@ impl TangentSystem<2, 2> for Diagonal {
     }
     fn reset_jacobian(&self, _b: Only, _i: usize, _y: &[f64; 2], _a: Only, _ya: &[f64; 2]) -> (Square<2>, usize) {
         ([[1.0, 0.0], [0.0, 1.0]], 2)
-    }
-    fn tangent_dim(&self, _m: Only) -> usize {
-        2
-    }
-    fn displaced(&self, _m: Only, _t: f64, y: &[f64; 2], dz: &[f64; 2]) -> Option<[f64; 2]> {
-        Some([y[0] + dz[0], y[1] + dz[1]])
     }
 }
 
@@ -187,10 +193,20 @@ impl HybridSystem<2> for ImpactOscillator {
     }
 }
 
-impl TangentSystem<2, 2> for ImpactOscillator {
+impl Perturbable<2, 2> for ImpactOscillator {
     fn coords(&self, y: &[f64; 2]) -> [f64; 2] {
         *y
     }
+    fn tangent_dim(&self, _m: Only) -> usize {
+        2
+    }
+    fn displaced(&self, _m: Only, _t: f64, y: &[f64; 2], dz: &[f64; 2]) -> Option<[f64; 2]> {
+        let yp = [y[0] + dz[0], y[1] + dz[1]];
+        (yp[0] > 0.0).then_some(yp)
+    }
+}
+
+impl TangentSystem<2, 2> for ImpactOscillator {
     fn jacobian(&self, _m: Only, _t: f64, _y: &[f64; 2]) -> Square<2> {
         [[0.0, 1.0], [-1.0, 0.0]]
     }
@@ -199,13 +215,6 @@ impl TangentSystem<2, 2> for ImpactOscillator {
     }
     fn reset_jacobian(&self, _b: Only, _i: usize, _y: &[f64; 2], _a: Only, _ya: &[f64; 2]) -> (Square<2>, usize) {
         ([[1.0, 0.0], [0.0, -self.e]], 2)
-    }
-    fn tangent_dim(&self, _m: Only) -> usize {
-        2
-    }
-    fn displaced(&self, _m: Only, _t: f64, y: &[f64; 2], dz: &[f64; 2]) -> Option<[f64; 2]> {
-        let yp = [y[0] + dz[0], y[1] + dz[1]];
-        (yp[0] > 0.0).then_some(yp)
     }
 }
 

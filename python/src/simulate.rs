@@ -5,7 +5,7 @@ use anyhow::Context as _;
 use numpy::IntoPyArray as _;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use rocking::analysis::lyapunov::{self, Lyapunov, LyapunovError, LyapunovOptions, Method};
+use rocking::analysis::lyapunov::{self, Lyapunov, LyapunovOptions, Method};
 use rocking::analysis::spectrum::{SpectrumOptions, SpectrumWindow, theta_spectrum};
 use rocking::io::csv::Num;
 use rocking::io::output::{self, FRAME_EVENT_BODY, frame_body_cells, frame_history_header};
@@ -24,20 +24,14 @@ use crate::scene::Scene;
 /// The Lyapunov exponents of a configured run, as `rocking --batch` computes
 /// them for `analysis.lyapunov` (over the run's own `tau_end`).
 pub fn scenario_lyapunov(cfg: &Scenario, method: Method) -> Result<Lyapunov, Failure> {
-    let model = cfg.model().map_err(|e| Failure::Input {
-        key: e.key.clone(),
-        message: e.to_string(),
-    })?;
     let opts = LyapunovOptions::for_scenario(cfg, method);
-    lyapunov::lyapunov(&model, &cfg.initial, &opts).map_err(|e| match e {
-        LyapunovError::NotHarmonic
-        | LyapunovError::NoTangent
-        | LyapunovError::Option { .. }
-        | LyapunovError::TooShort { .. } => Failure::Input {
-            key: "analysis.lyapunov".to_string(),
-            message: format!("analysis.lyapunov: {e}"),
-        },
-        LyapunovError::Initial(_) | LyapunovError::Run(_) => {
+    lyapunov::of_scenario(cfg, &opts).map_err(|e| {
+        if e.is_input() {
+            Failure::Input {
+                key: "analysis.lyapunov".to_string(),
+                message: format!("analysis.lyapunov: {e}"),
+            }
+        } else {
             Failure::Run(anyhow::Error::new(e).context("lyapunov exponents failed"))
         }
     })

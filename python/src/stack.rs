@@ -35,7 +35,13 @@ pub fn run_stack(cfg: &Scenario) -> Result<StackSimulated, Failure> {
         Some(key) => input(&key, e.to_string()),
         None => Failure::Run(anyhow::Error::new(e).context("simulation failed")),
     })?;
-    let summary = stack_summary(cfg, &run);
+    let mut summary = stack_summary(cfg, &run);
+    if cfg.analyses.lyapunov {
+        let l = crate::simulate::scenario_lyapunov(cfg, crate::simulate::method_of(cfg.analyses.lyapunov_method))?;
+        if let Some(obj) = summary.as_object_mut() {
+            obj.insert("lyapunov".to_string(), l.summary());
+        }
+    }
     Ok(StackSimulated { run, summary })
 }
 

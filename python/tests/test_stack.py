@@ -130,3 +130,24 @@ def test_a_stack_fragility_runs_the_stack_as_given_without_blocks(cli, tmp_path:
         rocking.fragility([(KOBE, "m/s2")], [0.5], base=rocking.Scene("tombstone"), im="pga-tan-alpha", progress=False)
     with pytest.raises(rocking.ConfigError, match="blocks: give at least one block"):
         rocking.fragility([(KOBE, "m/s2")], [0.5], progress=False)
+
+
+def test_a_stacks_largest_exponent_is_the_clis(cli, tmp_path: Path) -> None:
+    sets = ["run.tau_end=400", "analysis.lyapunov=true", "analysis.lyapunov_method=benettin"]
+    cli.ok("--batch", "--preset", "stack-patterns", *[a for s in sets for a in ("--set", s)], "--out", str(tmp_path / "o"), "-q")
+    expected = read_json(tmp_path / "o" / "summary.json")["lyapunov"]
+    lyap = rocking.lyapunov(rocking.Scene("stack-patterns", tau_end=400), method="benettin")
+    assert lyap.summary == expected
+    assert lyap.method == "benettin" and lyap.largest_per_tau < 0
+    # Two trajectories give the largest exponent only.
+    assert lyap.spectrum.shape == (0,)
+    run = rocking.simulate(rocking.Scene("stack-patterns", tau_end=400, analysis={"lyapunov": True, "lyapunov_method": "benettin"}))
+    assert run.summary["lyapunov"] == expected
+
+
+def test_a_stack_asked_for_tangent_exponents_is_refused_like_the_cli(cli, tmp_path: Path) -> None:
+    expected = cli.error("--batch", "--preset", "stack-patterns", "--set", "analysis.lyapunov=true", "--out", str(tmp_path))
+    assert "\"benettin\"" in expected
+    with pytest.raises(rocking.ConfigError) as e:
+        rocking.lyapunov(rocking.Scene("stack-patterns"))
+    assert str(e.value) == expected

@@ -64,8 +64,10 @@
 mod batch;
 mod benettin;
 mod block;
+mod frame;
 mod qr;
 mod run;
+mod stack;
 mod tangent;
 
 use serde::Serialize;
@@ -73,16 +75,20 @@ use serde_json::{Value as Json, json};
 
 pub use batch::{Accumulator, CONVERGENCE_POINTS, Estimate, standard_error};
 pub use qr::{Square, qr};
-pub use run::{Outcome, Request, Schedule, exponents};
-pub use tangent::{Augmented, TangentError, TangentSystem};
+pub use run::{Outcome, Request, Schedule, exponents, two_trajectories};
+pub use tangent::{Augmented, Perturbable, TangentError, TangentSystem};
 
 use crate::integrate::Tolerances;
 use crate::integrate::hybrid::Limits;
+use crate::model::excitation::Excitation;
+use crate::model::stack::{NS, StackEnd, StackError, StackGeometry, StackMode, StackSystem};
 use crate::model::system::{ModelError, N};
 use crate::model::variational::{self, DIM};
-use crate::model::{BlockSystem, Mode, Model};
+use crate::model::{BlockSystem, FrameSystem, Mode, Model};
 use crate::sim::Scenario;
 use crate::sim::{self, InitialState, SimError};
+use frame::FRAME_DIM;
+use stack::STACK_DIM;
 
 /// Which way to compute the exponents.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
@@ -248,6 +254,9 @@ pub struct LyapunovResult {
     pub renormalisations: u64,
     /// Batches behind the error estimates.
     pub batches: usize,
+    /// The neutral direction left out of the exponents (exponent exactly
+    /// 0): the block's or the frame's X, a stack's slip u.
+    pub neutral: &'static str,
     /// [`Method::Both`] only: the two-trajectory estimate on the same
     /// fiducial trajectory and its paired difference from the tangent one.
     pub check: Option<Agreement>,
@@ -299,8 +308,8 @@ impl NoExponent {
 #[derive(Clone, Debug, PartialEq, Serialize)]
 #[serde(untagged)]
 pub enum Lyapunov {
-    /// Finite exponents.
-    Exponents(LyapunovResult),
+    /// Finite exponents (boxed: the answer without them is a few words).
+    Exponents(Box<LyapunovResult>),
     /// None, and why.
     None {
         /// The method that was asked for.
@@ -336,7 +345,7 @@ impl Lyapunov {
                 "spectrum": r.spectrum,
                 "spectrum_stderr": r.spectrum_stderr,
                 "collapsed": r.collapsed,
-                "neutral": "X (exponent 0, not listed)",
+                "neutral": format!("{} (exponent 0, not listed)", r.neutral),
                 "units": "per unit tau, natural log; per_cycle = per_tau * 2pi/omega_h",
                 "tau_start": r.tau_start,
                 "tau_end": r.tau_end,
@@ -376,58 +385,120 @@ pub enum LyapunovError {
         /// The forcing period, τ.
         period: f64,
     },
-    /// The model has no tangent equations (a rocking frame).
-    #[error("lyapunov exponents are not available for a [frame] yet (its tangent equations are not written)")]
-    NoTangent,
+    /// The model has no tangent equations (a rocking frame, a stack): only
+    /// the two-trajectory method gives its largest exponent.
+    #[error(
+        "analysis.lyapunov_method = \"{asked}\" needs tangent equations, which a {body} does not have (yet): \"benettin\" gives its largest exponent by two trajectories"
+    )]
+    NoTangent {
+        /// The body: `[frame]` or `[[stack]]`.
+        body: &'static str,
+        /// The method asked for.
+        asked: &'static str,
+    },
+    /// The scenario has no model of the kind asked for.
+    #[error("{0}")]
+    Scene(#[from] crate::sim::ScenarioError),
     /// The initial state is not admissible.
     #[error(transparent)]
     Initial(#[from] SimError),
     /// The integration failed.
     #[error("lyapunov run failed: {0}")]
     Run(#[from] TangentError<ModelError>),
+    /// A stack's integration failed.
+    #[error("lyapunov run failed: {0}")]
+    StackRun(#[from] TangentError<StackError>),
 }
 
-/// The Lyapunov exponents of `model` started from `init` (see the module
-/// docs for the phase space, units and typed non-results).
-pub fn lyapunov(model: &Model, init: &InitialState, opts: &LyapunovOptions) -> Result<Lyapunov, LyapunovError> {
-    opts.validate()?;
-    if model.frame.is_some() {
-        return Err(LyapunovError::NoTangent);
+impl LyapunovError {
+    /// Whether the input is at fault (a one-line error naming the key, exit
+    /// code 2), not the run.
+    pub fn is_input(&self) -> bool {
+        match self {
+            LyapunovError::NotHarmonic
+            | LyapunovError::Option { .. }
+            | LyapunovError::TooShort { .. }
+            | LyapunovError::NoTangent { .. }
+            | LyapunovError::Scene(_) => true,
+            LyapunovError::StackRun(TangentError::System(e)) => e.is_input(),
+            LyapunovError::Initial(_) | LyapunovError::Run(_) | LyapunovError::StackRun(_) => false,
+        }
     }
-    let period = model.excitation.forcing_period().ok_or(LyapunovError::NotHarmonic)?;
-    if variational::forcing_rate(&model.excitation, 0.0).is_none() {
-        return Err(LyapunovError::NotHarmonic);
+}
+
+/// The method a body's exponents are best computed by where none is asked
+/// for (the app): tangent dynamics (the whole spectrum) for the single
+/// block, two trajectories (the largest exponent) for a frame or a stack,
+/// whose tangent equations are not written.
+pub fn method_for(cfg: &Scenario) -> Method {
+    if cfg.stack.is_some() || cfg.frame.is_some() {
+        Method::Benettin
+    } else {
+        Method::Tangent
     }
-    let (mode0, mut y0) = sim::initial_mode(model, init)?;
-    let mut sys = BlockSystem::new(model.clone());
-    let mode0 = sys.settle(mode0, 0.0, &mut y0);
+}
+
+/// The Lyapunov exponents of the scene `cfg` (its block, frame or stack)
+/// from its initial state, with `opts`: what `analysis.lyapunov`, the app
+/// and Python's `lyapunov` compute.
+pub fn of_scenario(cfg: &Scenario, opts: &LyapunovOptions) -> Result<Lyapunov, LyapunovError> {
+    if cfg.stack.is_some() {
+        let geo = cfg
+            .stack_geometry()
+            .ok_or_else(|| crate::sim::ScenarioError::new("stack", "is not a valid stack"))?;
+        return stack_lyapunov(geo, cfg.excitation()?, cfg.run.zeno_eps, opts);
+    }
+    lyapunov(&cfg.model()?, &cfg.initial, opts)
+}
+
+/// The grid a run of `opts` renormalises on, for forcing period `period`.
+fn schedule(opts: &LyapunovOptions, period: f64) -> Result<Schedule, LyapunovError> {
     let transient = (opts.transient_tau / period).ceil() as u64;
     let total = (opts.total_tau / period).floor() as u64;
     if total < transient + 2 {
         return Err(LyapunovError::TooShort { period });
     }
-    let schedule = Schedule {
+    Ok(Schedule {
         period,
         transient,
         total,
         batches: opts.batches,
-    };
-    let tol = Tolerances {
+    })
+}
+
+fn tolerances(opts: &LyapunovOptions) -> Tolerances {
+    Tolerances {
         rtol: opts.rtol,
         atol: opts.atol,
         ..Tolerances::default()
-    };
+    }
+}
+
+/// How a body's run ended, for [`answer`].
+struct Ending {
+    /// Why a terminal mode has no exponent.
+    terminal: NoExponent,
+    /// Whether the final mode is rest (else flat phases) when fewer than
+    /// two directions stayed alive.
+    at_rest: bool,
+}
+
+/// The answer of an [`Outcome`] of `D` tangent coordinates: `ending` says
+/// what the body's modes mean, `neutral` names the direction left out.
+fn answer<M: Copy, const D: usize>(
+    outcome: Outcome<M, D>,
+    opts: &LyapunovOptions,
+    schedule: &Schedule,
+    ending: impl Fn(M) -> Ending,
+    neutral: &'static str,
+) -> Result<Lyapunov, LyapunovError> {
     let method = opts.method;
-    let request = Request {
-        tangent: matches!(method, Method::Tangent | Method::Both),
-        separation: matches!(method, Method::Benettin | Method::Both).then_some(opts.separation),
-    };
+    let period = schedule.period;
     let none = |no_exponent, tau| Lyapunov::None {
         method,
         no_exponent,
         tau,
     };
-    let outcome = exponents::<_, N, DIM, { N + DIM * DIM }>(sys, mode0, y0, &schedule, tol, opts.limits, request)?;
     let (tangent, benettin, min_dim, final_mode) = match outcome {
         Outcome::Estimate {
             tangent,
@@ -435,27 +506,20 @@ pub fn lyapunov(model: &Model, init: &InitialState, opts: &LyapunovOptions) -> R
             min_dim,
             final_mode,
         } => (tangent, benettin, min_dim, final_mode),
-        Outcome::Terminal { mode, t } => {
-            let reason = match mode {
-                Mode::Flight => NoExponent::Flight,
-                Mode::Tumbled | Mode::Rest | Mode::Slide { .. } | Mode::Rock { .. } | Mode::SlideRock { .. } => {
-                    NoExponent::Tumbled
-                }
-            };
-            return Ok(none(reason, t));
-        }
+        Outcome::Terminal { mode, t } => return Ok(none(ending(mode).terminal, t)),
         Outcome::Collapsed { t } => return Ok(none(NoExponent::FlatPhases, t)),
     };
-    // Fewer than the two directions of (Θ, Θ'): the response went flat.
+    // Fewer than the two directions of a rotation and its rate: the
+    // response went flat.
     if min_dim < 2 {
-        let reason = if final_mode == Mode::Rest {
+        let reason = if ending(final_mode).at_rest {
             NoExponent::Rest
         } else {
             NoExponent::FlatPhases
         };
-        return Ok(none(reason, opts.total_tau.min(total as f64 * period)));
+        return Ok(none(reason, opts.total_tau.min(schedule.total as f64 * period)));
     }
-    let finite = min_dim.min(DIM);
+    let finite = min_dim.min(D);
     let result = match (tangent, benettin) {
         (Some(t), b) => {
             let check = b.map(|b| {
@@ -481,13 +545,14 @@ pub fn lyapunov(model: &Model, init: &InitialState, opts: &LyapunovOptions) -> R
                 stderr_per_cycle: stderr * period,
                 spectrum: pairs.iter().map(|p| p.0).collect(),
                 spectrum_stderr: pairs.iter().map(|p| p.1).collect(),
-                collapsed: DIM - finite,
+                collapsed: D - finite,
                 convergence: t.convergence,
                 tau_start: t.t_start,
                 tau_end: t.t_end,
                 period,
                 renormalisations: t.renormalisations,
                 batches: t.batches,
+                neutral,
                 check,
             }
         }
@@ -510,6 +575,7 @@ pub fn lyapunov(model: &Model, init: &InitialState, opts: &LyapunovOptions) -> R
             period,
             renormalisations: b.renormalisations,
             batches: b.batches,
+            neutral,
             check: None,
         },
         (None, None) => {
@@ -519,14 +585,124 @@ pub fn lyapunov(model: &Model, init: &InitialState, opts: &LyapunovOptions) -> R
             });
         }
     };
-    Ok(Lyapunov::Exponents(result))
+    Ok(Lyapunov::Exponents(Box::new(result)))
 }
 
-/// The largest exponent per τ of a scenario by tangent dynamics (for
-/// outcome maps), with [`LyapunovOptions::for_scenario`]; `None` when the
-/// response has no finite exponent or the run fails.
+/// The block's (and the frame's) modes, for [`answer`].
+fn block_ending(mode: Mode) -> Ending {
+    Ending {
+        terminal: match mode {
+            Mode::Flight => NoExponent::Flight,
+            Mode::Tumbled | Mode::Rest | Mode::Slide { .. } | Mode::Rock { .. } | Mode::SlideRock { .. } => {
+                NoExponent::Tumbled
+            }
+        },
+        at_rest: mode == Mode::Rest,
+    }
+}
+
+/// The Lyapunov exponents of `model` started from `init` (see the module
+/// docs for the phase space, units and typed non-results). A frame has its
+/// largest exponent by two trajectories only.
+pub fn lyapunov(model: &Model, init: &InitialState, opts: &LyapunovOptions) -> Result<Lyapunov, LyapunovError> {
+    opts.validate()?;
+    let period = model.excitation.forcing_period().ok_or(LyapunovError::NotHarmonic)?;
+    if model.frame.is_some() {
+        return frame_lyapunov(model, init, opts, period);
+    }
+    if variational::forcing_rate(&model.excitation, 0.0).is_none() {
+        return Err(LyapunovError::NotHarmonic);
+    }
+    let (mode0, mut y0) = sim::initial_mode(model, init)?;
+    let mut sys = BlockSystem::new(model.clone());
+    let mode0 = sys.settle(mode0, 0.0, &mut y0);
+    let schedule = schedule(opts, period)?;
+    let method = opts.method;
+    let request = Request {
+        tangent: matches!(method, Method::Tangent | Method::Both),
+        separation: matches!(method, Method::Benettin | Method::Both).then_some(opts.separation),
+    };
+    let outcome =
+        exponents::<_, N, DIM, { N + DIM * DIM }>(sys, mode0, y0, &schedule, tolerances(opts), opts.limits, request)?;
+    answer(outcome, opts, &schedule, block_ending, "X")
+}
+
+/// The frame's largest exponent by two trajectories in its `(Θ, Θ')`.
+fn frame_lyapunov(
+    model: &Model,
+    init: &InitialState,
+    opts: &LyapunovOptions,
+    period: f64,
+) -> Result<Lyapunov, LyapunovError> {
+    if opts.method != Method::Benettin {
+        return Err(LyapunovError::NoTangent {
+            body: "[frame]",
+            asked: opts.method.name(),
+        });
+    }
+    let (mode0, mut y0) = sim::initial_mode(model, init)?;
+    let mut sys = FrameSystem::new(model.clone());
+    let mode0 = sys.settle(mode0, 0.0, &mut y0);
+    let schedule = schedule(opts, period)?;
+    let outcome = two_trajectories::<_, N, FRAME_DIM>(
+        sys,
+        mode0,
+        y0,
+        &schedule,
+        tolerances(opts),
+        opts.limits,
+        opts.separation,
+    )?;
+    answer(outcome, opts, &schedule, block_ending, "X")
+}
+
+/// The largest exponent of the stack `geo` under `excitation` (in its
+/// bottom block's τ), started at rest as every stack run is, by two
+/// trajectories in the tangent coordinates of `lyapunov/stack.rs`.
+pub fn stack_lyapunov(
+    geo: StackGeometry,
+    excitation: Excitation,
+    zeno_eps: f64,
+    opts: &LyapunovOptions,
+) -> Result<Lyapunov, LyapunovError> {
+    opts.validate()?;
+    if opts.method != Method::Benettin {
+        return Err(LyapunovError::NoTangent {
+            body: "[[stack]]",
+            asked: opts.method.name(),
+        });
+    }
+    let period = excitation.forcing_period().ok_or(LyapunovError::NotHarmonic)?;
+    let sys = StackSystem::new(geo, excitation, zeno_eps);
+    let mut y0 = [0.0; NS];
+    let mode0 = sys.settle(StackMode::REST, 0.0, &mut y0);
+    let schedule = schedule(opts, period)?;
+    let outcome = two_trajectories::<_, NS, STACK_DIM>(
+        sys,
+        mode0,
+        y0,
+        &schedule,
+        tolerances(opts),
+        opts.limits,
+        opts.separation,
+    )?;
+    let k = geo.k;
+    let ending = |mode: StackMode| Ending {
+        terminal: match mode.end {
+            Some(StackEnd::Flight(_)) => NoExponent::Flight,
+            Some(StackEnd::Overturned(_)) | None => NoExponent::Tumbled,
+        },
+        at_rest: mode.at_rest(k),
+    };
+    answer(outcome, opts, &schedule, ending, "u")
+}
+
+/// The largest exponent per τ of a scenario (for sweeps and outcome
+/// maps) by [`method_for`] it (tangent dynamics for the block, two
+/// trajectories for a frame or a stack), with
+/// [`LyapunovOptions::for_scenario`]; `None` when the response has no
+/// finite exponent or the run fails.
 pub fn largest_for_scenario(cfg: &Scenario) -> Option<f64> {
-    let model = cfg.model().ok()?;
-    let opts = LyapunovOptions::for_scenario(cfg, Method::Tangent);
-    lyapunov(&model, &cfg.initial, &opts).ok()?.largest_per_tau()
+    let opts = LyapunovOptions::for_scenario(cfg, method_for(cfg));
+    of_scenario(cfg, &opts).ok()?.largest_per_tau()
 }

@@ -4,11 +4,11 @@ use anyhow::Context as _;
 
 use super::Cli;
 use super::error::BatchError;
-use crate::analysis::lyapunov::{self, Lyapunov, LyapunovError, LyapunovOptions, Method};
+use super::exponents::{lyapunov_summary, say_lyapunov};
 use crate::io::csv::{self, Num, Row};
 use crate::io::output::{self, RunFiles};
 use crate::io::staging::Staging;
-use crate::sim::scenario::{LyapunovChoice, SpectrumRange};
+use crate::sim::scenario::SpectrumRange;
 use crate::sim::{self, Scenario};
 
 /// Bytes of one `history.csv` row, for the estimate printed before a large
@@ -132,47 +132,9 @@ pub fn run(cli: &Cli) -> Result<(), BatchError> {
             res.tallies.section,
             res.tallies.history
         );
-        match &exponents {
-            Some(Lyapunov::Exponents(r)) => crate::say!(
-                "lyapunov ({}): largest {:.4} ± {:.4} per tau, {:.4} per cycle; spectrum {:?}",
-                r.method.name(),
-                r.largest_per_tau,
-                r.stderr,
-                r.per_cycle,
-                r.spectrum
-            ),
-            Some(Lyapunov::None {
-                method, no_exponent, ..
-            }) => crate::say!("lyapunov ({}): no exponent ({})", method.name(), no_exponent.name()),
-            None => {}
-        }
+        say_lyapunov(exponents.as_ref());
     }
     Ok(())
-}
-
-/// The Lyapunov exponents of `cfg`'s run (`analysis.lyapunov`), over the
-/// run's own `tau_end` ([`LyapunovOptions::for_scenario`]). A run too
-/// short for them is bad input.
-fn lyapunov_summary(cfg: &Scenario) -> Result<Lyapunov, BatchError> {
-    let model = cfg.model().map_err(|e| BatchError::Input(e.into()))?;
-    for warning in cfg.warnings() {
-        eprintln!("{warning}");
-    }
-    let method = match cfg.analyses.lyapunov_method {
-        LyapunovChoice::Tangent => Method::Tangent,
-        LyapunovChoice::Benettin => Method::Benettin,
-        LyapunovChoice::Both => Method::Both,
-    };
-    let opts = LyapunovOptions::for_scenario(cfg, method);
-    lyapunov::lyapunov(&model, &cfg.initial, &opts).map_err(|e| match e {
-        LyapunovError::NotHarmonic
-        | LyapunovError::NoTangent
-        | LyapunovError::Option { .. }
-        | LyapunovError::TooShort { .. } => BatchError::Input(anyhow::anyhow!("analysis.lyapunov: {e}")),
-        LyapunovError::Initial(_) | LyapunovError::Run(_) => {
-            BatchError::Run(anyhow::Error::new(e).context("lyapunov exponents failed"))
-        }
-    })
 }
 
 /// The power spectrum of Θ(τ) from the run's history (`analysis.spectrum`):

@@ -19,6 +19,7 @@ pub mod bench;
 pub mod eng_args;
 pub(crate) mod eng_motion;
 pub mod error;
+mod exponents;
 pub mod flags;
 pub mod fragility;
 pub mod interrupt;

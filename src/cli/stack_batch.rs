@@ -32,7 +32,15 @@ pub fn run(cli: &Cli, cfg: &Scenario) -> Result<(), BatchError> {
             BatchError::Run(anyhow::Error::new(e).context("simulation failed"))
         }
     })?;
-    let summary = stack_summary(cfg, &run);
+    let mut summary = stack_summary(cfg, &run);
+    let exponents = if cfg.analyses.lyapunov {
+        Some(super::exponents::lyapunov_summary(cfg)?)
+    } else {
+        None
+    };
+    if let (Some(l), Some(obj)) = (&exponents, summary.as_object_mut()) {
+        obj.insert("lyapunov".to_string(), l.summary());
+    }
     let text = serde_json::to_string_pretty(&summary)
         .context("serialising summary.json")
         .map_err(BatchError::Run)?
@@ -60,6 +68,7 @@ pub fn run(cli: &Cli, cfg: &Scenario) -> Result<(), BatchError> {
             run.events.len(),
             run.history.len()
         );
+        super::exponents::say_lyapunov(exponents.as_ref());
     }
     Ok(())
 }

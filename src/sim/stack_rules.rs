@@ -2,7 +2,8 @@
 //! §18): each block's size, offset and friction, that every block rests on
 //! the one below, and what a stack does not run (the single block's
 //! impact laws and its fixed-step method, a tilted start, the analyses
-//! built on the block's angle).
+//! built on the block's angle, and Lyapunov exponents other than the
+//! two-trajectory estimate).
 
 use super::method::Method;
 use super::scenario::{LawKind, MIN_PSI, MU_K_LIMIT, Scenario, ScenarioError};
@@ -107,14 +108,12 @@ impl Scenario {
                 "a [[stack]] overturns where the blocks above an interface pass over its pivot (docs/model.md §18.6): remove run.tumble_theta",
             );
         }
-        if self.analyses.lyapunov || self.analyses.spectrum {
-            let key = if self.analyses.lyapunov {
-                "analysis.lyapunov"
-            } else {
-                "analysis.spectrum"
-            };
+        if self.analyses.lyapunov {
+            self.two_trajectories_only("[[stack]]")?;
+        }
+        if self.analyses.spectrum {
             return refuse(
-                key,
+                "analysis.spectrum",
                 "is the single block's (it reads the block's angle); not available for a [[stack]]",
             );
         }

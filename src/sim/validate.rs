@@ -5,8 +5,9 @@
 use super::catalogue::{self, KeySpec, Param};
 use super::method::Method;
 use super::scenario::{
-    ExcitationKind, LawKind, MAX_FLOOR_PARTICIPATION, MAX_FLOOR_PERIOD_S, MAX_HISTORY_ROWS, MIN_FLOOR_PERIOD_S,
-    MIN_PSI, MIN_SPECTRUM_SAMPLES, MU_K_LIMIT, PAPER_SPECTRUM_END, Scenario, ScenarioError, SpectrumRange,
+    ExcitationKind, LawKind, LyapunovChoice, MAX_FLOOR_PARTICIPATION, MAX_FLOOR_PERIOD_S, MAX_HISTORY_ROWS,
+    MIN_FLOOR_PERIOD_S, MIN_PSI, MIN_SPECTRUM_SAMPLES, MU_K_LIMIT, PAPER_SPECTRUM_END, Scenario, ScenarioError,
+    SpectrumRange,
 };
 use crate::model::excitation::pulse;
 
@@ -103,12 +104,25 @@ impl Scenario {
             ));
         }
         if self.analyses.lyapunov {
-            return Err(ScenarioError::new(
-                "analysis.lyapunov",
-                "is not available for a [frame] yet (its tangent equations are not written)",
-            ));
+            self.two_trajectories_only("[frame]")?;
         }
         Ok(())
+    }
+
+    /// A body without tangent equations (`body`: a frame, a stack) has its
+    /// largest Lyapunov exponent by two trajectories alone.
+    pub(super) fn two_trajectories_only(&self, body: &str) -> Result<(), ScenarioError> {
+        let method = self.analyses.lyapunov_method;
+        if method == LyapunovChoice::Benettin {
+            return Ok(());
+        }
+        Err(ScenarioError::new(
+            "analysis.lyapunov_method",
+            format!(
+                "\"{}\" needs tangent equations, which a {body} does not have (yet): \"benettin\" gives its largest exponent by two trajectories",
+                method.name()
+            ),
+        ))
     }
 
     fn validate_floor(&self) -> Result<(), ScenarioError> {

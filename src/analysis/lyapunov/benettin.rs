@@ -22,7 +22,7 @@
 //! - If the two copies become identical after the transient, every
 //!   perturbation has died out in finite time (the caller reports it).
 
-use super::tangent::{Quiet, TangentError, TangentSystem};
+use super::tangent::{Perturbable, Quiet, TangentError};
 use crate::integrate::hybrid::{Advance, Driver, Limits, Outputs};
 use crate::integrate::{Dop853, Tolerances};
 
@@ -91,7 +91,7 @@ where
         seed: bool,
     ) -> Result<Step, TangentError<S::Error>>
     where
-        S: TangentSystem<N, D>,
+        S: Perturbable<N, D>,
     {
         let z = sys.coords(y);
         let mut step = Step::Growth { dt: 0.0, log: 0.0 };
@@ -131,7 +131,7 @@ where
     /// mode's domain); inactive if neither is admissible.
     fn place<const D: usize>(&mut self, sys: &S, t: f64, mode: S::Mode, y: &[f64; N], dz: &[f64; D])
     where
-        S: TangentSystem<N, D>,
+        S: Perturbable<N, D>,
     {
         let z = sys.coords(y);
         let neg = dz.map(|v| -v);

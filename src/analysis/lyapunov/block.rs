@@ -2,38 +2,15 @@
 //! and the analytic Jacobians of `model::variational`.
 
 use super::qr::Square;
-use super::tangent::TangentSystem;
+use super::tangent::{Perturbable, TangentSystem};
 use crate::model::dynamics::{Forcing, Tilt};
 use crate::model::system::{N, THETA, THETA_DOT, X_DOT};
 use crate::model::variational::{self, DIM};
 use crate::model::{BlockSystem, Mode};
 
-impl TangentSystem<N, DIM> for BlockSystem {
+impl Perturbable<N, DIM> for BlockSystem {
     fn coords(&self, y: &[f64; N]) -> [f64; DIM] {
         variational::coords(y)
-    }
-
-    fn jacobian(&self, mode: Mode, t: f64, y: &[f64; N]) -> Square<DIM> {
-        let fo = self.model.excitation.forcing(t);
-        variational::field_jacobian(&self.model, mode, fo, y)
-    }
-
-    fn guard_gradient(&self, mode: Mode, index: usize, t: f64, y: &[f64; N]) -> Option<([f64; DIM], f64)> {
-        let fo = self.model.excitation.forcing(t);
-        let rate: Forcing = variational::forcing_rate(&self.model.excitation, t)?;
-        variational::guard_gradient(&self.model, mode, index, fo, rate, y).map(|g| (g.state, g.time))
-    }
-
-    fn reset_jacobian(
-        &self,
-        before: Mode,
-        index: usize,
-        y_before: &[f64; N],
-        after: Mode,
-        y_after: &[f64; N],
-    ) -> (Square<DIM>, usize) {
-        let r = variational::reset_jacobian(&self.model, before, index, y_before, after, y_after);
-        (r.matrix, r.dim)
     }
 
     fn tangent_dim(&self, mode: Mode) -> usize {
@@ -75,5 +52,30 @@ impl TangentSystem<N, DIM> for BlockSystem {
             }
         }
         Some(yp)
+    }
+}
+
+impl TangentSystem<N, DIM> for BlockSystem {
+    fn jacobian(&self, mode: Mode, t: f64, y: &[f64; N]) -> Square<DIM> {
+        let fo = self.model.excitation.forcing(t);
+        variational::field_jacobian(&self.model, mode, fo, y)
+    }
+
+    fn guard_gradient(&self, mode: Mode, index: usize, t: f64, y: &[f64; N]) -> Option<([f64; DIM], f64)> {
+        let fo = self.model.excitation.forcing(t);
+        let rate: Forcing = variational::forcing_rate(&self.model.excitation, t)?;
+        variational::guard_gradient(&self.model, mode, index, fo, rate, y).map(|g| (g.state, g.time))
+    }
+
+    fn reset_jacobian(
+        &self,
+        before: Mode,
+        index: usize,
+        y_before: &[f64; N],
+        after: Mode,
+        y_after: &[f64; N],
+    ) -> (Square<DIM>, usize) {
+        let r = variational::reset_jacobian(&self.model, before, index, y_before, after, y_after);
+        (r.matrix, r.dim)
     }
 }

@@ -26,14 +26,29 @@
 use super::qr::{self, Matrix, Square, Vector};
 use crate::integrate::hybrid::{DriverError, HybridSystem, Jump, MAX_GUARDS, Observer};
 
-/// What the Lyapunov machinery needs beyond a [`HybridSystem`]: tangent
-/// coordinates (`D` of them), the Jacobians, guard gradients and reset
-/// Jacobians in those coordinates.
-pub trait TangentSystem<const N: usize, const D: usize>: HybridSystem<N> {
+/// What the two-trajectory estimate needs beyond a [`HybridSystem`]:
+/// tangent coordinates (`D` of them), how many of them a mode leaves free,
+/// and a way to displace a state along them. No Jacobian: a model whose
+/// tangent equations are not written (a stack, a frame) still has its
+/// largest exponent this way.
+pub trait Perturbable<const N: usize, const D: usize>: HybridSystem<N> {
     /// Tangent coordinates of a state, or of a rate of change of one (the
     /// map must be linear).
     fn coords(&self, y: &[f64; N]) -> [f64; D];
 
+    /// Number of free tangent directions in `mode` (fewer than `D` where
+    /// the mode constrains part of the state).
+    fn tangent_dim(&self, mode: Self::Mode) -> usize;
+
+    /// A state of `mode` displaced from `y` by about `dz` in tangent
+    /// coordinates and consistent with the mode's constraints, or `None`
+    /// if the displacement leaves the mode's domain (for the two-trajectory method).
+    fn displaced(&self, mode: Self::Mode, t: f64, y: &[f64; N], dz: &[f64; D]) -> Option<[f64; N]>;
+}
+
+/// What the tangent dynamics need beyond [`Perturbable`]: the Jacobians,
+/// guard gradients and reset Jacobians in tangent coordinates.
+pub trait TangentSystem<const N: usize, const D: usize>: Perturbable<N, D> {
     /// Jacobian of `mode`'s vector field in tangent coordinates.
     fn jacobian(&self, mode: Self::Mode, t: f64, y: &[f64; N]) -> Square<D>;
 
@@ -52,15 +67,6 @@ pub trait TangentSystem<const N: usize, const D: usize>: HybridSystem<N> {
         after: Self::Mode,
         y_after: &[f64; N],
     ) -> (Square<D>, usize);
-
-    /// Number of free tangent directions in `mode` (fewer than `D` where
-    /// the mode constrains part of the state).
-    fn tangent_dim(&self, mode: Self::Mode) -> usize;
-
-    /// A state of `mode` displaced from `y` by about `dz` in tangent
-    /// coordinates and consistent with the mode's constraints, or `None`
-    /// if the displacement leaves the mode's domain (for the two-trajectory method).
-    fn displaced(&self, mode: Self::Mode, t: f64, y: &[f64; N], dz: &[f64; D]) -> Option<[f64; N]>;
 }
 
 /// Errors of the tangent and two-trajectory computations.

@@ -6,6 +6,7 @@ use std::time::{Duration, Instant};
 use super::RockingApp;
 use super::frame_layout::BannerRects;
 use super::lecture::{self, BottomTab, PlotTab, SideTab};
+use crate::analysis::lyapunov;
 use crate::gui::panels::banner::{self, Verdict};
 use crate::gui::panels::ground;
 use crate::gui::panels::params;
@@ -25,9 +26,6 @@ const FLASH_S: f64 = 0.18;
 /// (over the ground or the fallen block it hid them; the status bar says
 /// why the model stops there).
 const FALL_NOTE: &str = "the fall after the tumble is drawn (not simulated)";
-
-/// What the block-only analyses say for a stack.
-pub(crate) const STACK_ANALYSES: &str = "The Lyapunov exponent takes one block or a frame: a stack's tangent dynamics are not derived (its bifurcation diagram and outcome map are: see their tabs).";
 
 impl RockingApp {
     fn params_panel(&mut self, ui: &mut egui::Ui) {
@@ -125,12 +123,6 @@ impl RockingApp {
             });
             ui.separator();
         }
-        if self.config.stack.is_some() && self.lecture.tab == SideTab::Lyapunov {
-            // The exponent runs one block's tangent equations; a stack's
-            // would be a wrong picture.
-            ui.label(STACK_ANALYSES);
-            return;
-        }
         match self.lecture.tab {
             SideTab::Plots => self.plots_panel(ui),
             SideTab::Bifurcation => {
@@ -138,7 +130,14 @@ impl RockingApp {
                 self.bifurcation.show(ui, &self.settings, &self.config);
             }
             SideTab::Lyapunov => {
-                ui.label("Largest Lyapunov exponent (from the initial state)");
+                ui.label(match lyapunov::method_for(&self.config) {
+                    lyapunov::Method::Benettin => {
+                        "Largest Lyapunov exponent (from the initial state, by two trajectories)"
+                    }
+                    lyapunov::Method::Tangent | lyapunov::Method::Both => {
+                        "Largest Lyapunov exponent (from the initial state)"
+                    }
+                });
                 self.lyapunov.show(ui, &self.config);
             }
             SideTab::Map => self.outcome_map_panel(ui),

@@ -3,10 +3,11 @@
 //!
 //! Contract:
 //! - The view does no analysis: a thread named `lyapunov` calls
-//!   [`crate::analysis::lyapunov::lyapunov`] (tangent dynamics with
-//!   saltation matrices) on the scene's configuration, from its initial
-//!   state, for windows ending at each of [`STAGES`] in turn, and sends each
-//!   answer as it is done. Each stage is a fresh run from τ = 0, so every
+//!   [`crate::analysis::lyapunov::of_scenario`] on the scene's
+//!   configuration, from its initial state, by the method the body has
+//!   ([`method_for`]: tangent dynamics with saltation matrices for the
+//!   block, two trajectories for a frame or a stack), for windows ending
+//!   at each of [`STAGES`] in turn, and sends each answer as it is done. Each stage is a fresh run from τ = 0, so every
 //!   number shown is a complete, reproducible estimate; the latest one is
 //!   the longest window.
 //! - The stages stop at the first answer without a finite exponent
@@ -23,7 +24,7 @@ use crate::gui::panels::axes;
 use egui::Color32;
 use egui_plot::{HLine, Line, Plot, PlotPoints};
 
-use crate::analysis::lyapunov::{Lyapunov, LyapunovOptions, Method, lyapunov};
+use crate::analysis::lyapunov::{Lyapunov, LyapunovOptions, Method, method_for, of_scenario};
 use crate::sim::Scenario;
 use crate::sim::job::{Job, Link, Waker};
 
@@ -61,31 +62,32 @@ fn start(cfg: Scenario, waker: Waker) -> Result<Worker, String> {
 /// Sends each stage of `cfg` as it is done, until one has no finite
 /// exponent or the job is cancelled.
 fn stages(cfg: &Scenario, link: &Link<Stage>) {
-    let model = match cfg.model() {
-        Ok(m) => m,
-        Err(e) => {
-            // Refused only when cancelled: nothing more to do either way.
-            let _ = link.send(Stage {
-                total_tau: STAGES[0],
-                answer: Err(e.to_string()),
-            });
-            return;
-        }
-    };
     for total_tau in STAGES {
         if link.cancelled() {
             return;
         }
         let opts = LyapunovOptions {
-            method: Method::Tangent,
+            method: method_for(cfg),
             transient_tau: TRANSIENT_TAU,
             total_tau,
             ..LyapunovOptions::default()
         };
-        let answer = lyapunov(&model, &cfg.initial, &opts).map_err(|e| e.to_string());
+        let answer = of_scenario(cfg, &opts).map_err(|e| e.to_string());
         let last = !matches!(answer, Ok(Lyapunov::Exponents(_)));
         if link.cancelled() || link.send(Stage { total_tau, answer }).is_err() || last {
             return;
+        }
+    }
+}
+
+/// What the hover over an estimate says of its method.
+fn method_note(method: Method) -> &'static str {
+    match method {
+        Method::Benettin => {
+            "Two trajectories renormalised once per forcing period (this body's tangent equations are not written, so the largest exponent only); ± is the standard error of batch means"
+        }
+        Method::Tangent | Method::Both => {
+            "Tangent dynamics with saltation matrices; ± is the standard error of batch means"
         }
     }
 }
@@ -203,7 +205,7 @@ impl LyapunovView {
                     r.per_cycle,
                     window(*total_tau)
                 ))
-                .on_hover_text("Tangent dynamics with saltation matrices; ± is the standard error of batch means");
+                .on_hover_text(method_note(r.method));
                 let stride = r.convergence.len().div_ceil(CURVE_POINTS).max(1);
                 let pts: Vec<[f64; 2]> = r.convergence.iter().step_by(stride).map(|&(t, l)| [t, l]).collect();
                 axes::titled(axes::readable(Plot::new("lyapunov")), ui, "τ", "λ₁ running, per τ")

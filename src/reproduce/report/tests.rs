@@ -24,6 +24,7 @@ fn exponents(per_tau: f64, stderr: f64, per_cycle: f64, stderr_per_cycle: f64) -
         period: 0.785,
         renormalisations: 890,
         batches: 10,
+        neutral: "X",
         check: None,
     }
 }
