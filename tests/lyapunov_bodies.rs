@@ -224,3 +224,46 @@ fn batch_adds_a_stacks_exponent_to_its_summary_and_its_report() {
     assert!(per_tau < 0.0, "stack-patterns settles onto a stable orbit: {per_tau}");
     std::fs::remove_dir_all(&out).ok();
 }
+
+/// A frame's sweep with `--lyapunov` used to leave the column empty without
+/// a word (the block's tangent method refused it and the hook read that as
+/// "no exponent"); it now holds the frame's two-trajectory exponent.
+#[test]
+fn a_frame_sweep_writes_each_values_exponent() {
+    let dir = std::env::temp_dir().join(format!("rocking-lyapunov-frame-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("dir");
+    let config = dir.join("frame.toml");
+    std::fs::write(
+        &config,
+        "[frame]\nwidth = 1.0\nheight = 4.0\nbeam_mass_ratio = 0.5\n[excitation]\nkind = \"harmonic\"\na_h = \"0.5 g\"\nomega_h = \"1.5 Hz\"\n",
+    )
+    .expect("config");
+    let out = dir.join("out");
+    let run = Command::new(env!("CARGO_BIN_EXE_rocking"))
+        .args(["sweep", "--config"])
+        .arg(&config)
+        .args(["--param", "excitation.a_h"])
+        .args(["--from", "1.5", "--to", "2.0", "--step", "0.5"])
+        .args(["--tau-end", "700", "--lyapunov", "--out"])
+        .arg(&out)
+        .output()
+        .expect("rocking");
+    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    let text = std::fs::read_to_string(out.join("classes.csv")).expect("classes.csv");
+    let rows: Vec<Vec<&str>> = text.lines().skip(1).map(|l| l.split(',').collect()).collect();
+    assert_eq!(rows.len(), 2);
+    for row in rows {
+        let value = row[0];
+        let written: f64 = row[4]
+            .parse()
+            .unwrap_or_else(|_| panic!("A_h {value}: no exponent written"));
+        let sets = [format!("excitation.a_h={value}"), "run.tau_end=700".to_string()];
+        let cfg = rocking::io::config::load(None, Some(&config), &sets).expect("scene");
+        let own = of_scenario(&cfg, &LyapunovOptions::for_scenario(&cfg, Method::Benettin))
+            .expect("lyapunov")
+            .largest_per_tau()
+            .expect("an exponent");
+        assert_eq!(own.to_bits(), written.to_bits(), "A_h {value}");
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}

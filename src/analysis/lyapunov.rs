@@ -60,6 +60,15 @@
 //! The generic machinery ([`TangentSystem`], [`exponents`] with a
 //! [`Request`]) works for any hybrid system that provides Jacobians and is
 //! tested on systems with known exponents.
+//!
+//! # A frame and a stack
+//!
+//! Their tangent equations are not written, so they have no spectrum: the
+//! two-trajectory method needs only [`Perturbable`] (coordinates, the free
+//! directions of a mode, a displaced state) and gives their largest
+//! exponent ([`two_trajectories`]; `frame.rs`, `stack.rs`).
+//! [`of_scenario`] runs whichever body a scene has; [`method_for`] is the
+//! method each body has (the app's choice).
 
 mod batch;
 mod benettin;

@@ -529,12 +529,10 @@ impl BlockSweep<'_> {
     /// too short is reported at once.
     pub fn scenarios(&self, plan: &Plan) -> Result<Vec<Scenario>, SweepError<SteadyError>> {
         let continued = plan.continuation != Continuation::None;
-        check_stack_study(self.base, &[self.param], continued, self.lyapunov.is_some()).map_err(|error| {
-            SweepError {
-                index: 0,
-                value: plan.grid.value(0),
-                error,
-            }
+        check_stack_study(self.base, &[self.param], continued).map_err(|error| SweepError {
+            index: 0,
+            value: plan.grid.value(0),
+            error,
         })?;
         plan.indices()
             .into_iter()

@@ -189,7 +189,7 @@ impl BlockMap<'_> {
     ) -> Result<CellResponse, SteadyError> {
         let cfg = self.scenario(x, y)?;
         if cfg.stack.is_some() {
-            return stack_cell(&cfg, &self.window, &self.classify);
+            return stack_cell(&cfg, &self.window, &self.classify, self.lyapunov);
         }
         cell_response(&cfg, &self.window, &self.classify, self.lyapunov, early, known, basins)
     }
@@ -217,13 +217,11 @@ impl BlockMap<'_> {
 
     /// Makes and checks every cell's scenario before anything runs.
     pub fn check(&self) -> Result<(), MapError<SteadyError>> {
-        check_stack_study(self.base, &[self.x_param, self.y_param], false, self.lyapunov.is_some()).map_err(
-            |error| MapError {
-                x: self.x.value(0),
-                y: self.y.value(0),
-                error,
-            },
-        )?;
+        check_stack_study(self.base, &[self.x_param, self.y_param], false).map_err(|error| MapError {
+            x: self.x.value(0),
+            y: self.y.value(0),
+            error,
+        })?;
         for yv in self.y.values() {
             for xv in self.x.values() {
                 let cfg = self

@@ -313,8 +313,8 @@ pub fn steady_response(
     lyapunov: Option<&LyapunovFn<'_>>,
 ) -> Result<Steady, SteadyError> {
     if scenario.stack.is_some() {
-        check_stack_study(scenario, &[], false, lyapunov.is_some())?;
-        return stack_steady(scenario, window, opts);
+        check_stack_study(scenario, &[], false)?;
+        return stack_steady(scenario, window, opts, lyapunov);
     }
     let (cfg, model, period, run) = section_run(scenario, window)?;
     let res = simulate(model, &cfg.initial, &run)?;

@@ -15,14 +15,18 @@
 //!   rate: the body an owner of a statue or a tombstone watches, whose
 //!   rotation carries every interface below it. `x` and `x_dot` are the
 //!   slip u on the floor and its rate, per the bottom block's R₁.
-//! - **No seed and no exponent.** A stack starts at rest on its base, so a
-//!   continuation sweep cannot start it where the previous value ended, and
-//!   its tangent dynamics are not derived, so it has no Lyapunov exponent;
-//!   both are refused before anything runs ([`check_stack_study`]).
+//! - **No seed.** A stack starts at rest on its base, so a continuation
+//!   sweep cannot start it where the previous value ended; it is refused
+//!   before anything runs ([`check_stack_study`]).
+//! - **Its exponent by two trajectories.** Asked for Lyapunov exponents,
+//!   a stack's moving response gets its largest one from the hook, as the
+//!   block's does (`largest_for_scenario` computes a stack's by two
+//!   trajectories: its tangent equations are not written), and an
+//!   aperiodic response is classified with it.
 //! - **No early stop.** Every run goes over its whole window: the map's
 //!   early stop ([`settle`](crate::analysis::settle)) watches the block's section.
 
-use super::{Steady, SteadyError, Window};
+use super::{LyapunovFn, Steady, SteadyError, Window, exponent_of};
 use crate::analysis::classify::{ClassifyOptions, Response, classify_points};
 use crate::analysis::settle::CellResponse;
 use crate::model::stack::{Contact, MAX_BLOCKS, Pose, SLIDE, SLIDE_RATE, StackGeometry};
@@ -35,14 +39,9 @@ const D: usize = 2 * MAX_BLOCKS + 1;
 
 /// Refuses, before anything runs, what a study cannot do with the stack of
 /// `base`: a swept key the stack does not read (its blocks' sizes and
-/// friction are the `[[stack]]` tables'; it starts at rest), a
-/// continuation (`continued`) and Lyapunov exponents (`lyapunov`).
-pub fn check_stack_study(
-    base: &Scenario,
-    params: &[Param],
-    continued: bool,
-    lyapunov: bool,
-) -> Result<(), SteadyError> {
+/// friction are the `[[stack]]` tables'; it starts at rest) and a
+/// continuation (`continued`).
+pub fn check_stack_study(base: &Scenario, params: &[Param], continued: bool) -> Result<(), SteadyError> {
     if base.stack.is_none() {
         return Ok(());
     }
@@ -59,12 +58,6 @@ pub fn check_stack_study(
         return refuse(
             "stack",
             "a [[stack]] starts at rest on its base, so a sweep cannot continue from the previous value's state: sweep without continuation",
-        );
-    }
-    if lyapunov {
-        return refuse(
-            "stack",
-            "a [[stack]] has no Lyapunov exponents (its tangent dynamics are not derived): leave them out, or study a [block] or a [frame]",
         );
     }
     Ok(())
@@ -128,6 +121,7 @@ fn classify_stack(
     run: &StackRun,
     period: f64,
     transient: f64,
+    exponent: Option<f64>,
     opts: &ClassifyOptions,
 ) -> Result<Response, SteadyError> {
     use crate::sim::Outcome;
@@ -148,14 +142,19 @@ fn classify_stack(
         .filter(|s| s.at.tau >= transient)
         .map(|s| coordinates(&run.geo, s))
         .collect();
-    Ok(classify_points(&points, None, opts)?)
+    Ok(classify_points(&points, exponent, opts)?)
 }
 
 /// Runs the stack of `scenario` over `window` and classifies its steady
-/// response (module docs). The scenario must have a `[[stack]]` and
-/// harmonic excitation.
-pub fn stack_steady(scenario: &Scenario, window: &Window, opts: &ClassifyOptions) -> Result<Steady, SteadyError> {
-    Ok(run_and_classify(scenario, window, opts)?.0)
+/// response (module docs), with its largest exponent from `lyapunov` if
+/// given. The scenario must have a `[[stack]]` and harmonic excitation.
+pub fn stack_steady(
+    scenario: &Scenario,
+    window: &Window,
+    opts: &ClassifyOptions,
+    lyapunov: Option<&LyapunovFn<'_>>,
+) -> Result<Steady, SteadyError> {
+    Ok(run_and_classify(scenario, window, opts, lyapunov)?.0)
 }
 
 /// A map cell of a stack: [`stack_steady`]'s run, whole (module docs), as
@@ -164,8 +163,9 @@ pub(crate) fn stack_cell(
     scenario: &Scenario,
     window: &Window,
     opts: &ClassifyOptions,
+    lyapunov: Option<&LyapunovFn<'_>>,
 ) -> Result<CellResponse, SteadyError> {
-    let (steady, tau_end) = run_and_classify(scenario, window, opts)?;
+    let (steady, tau_end) = run_and_classify(scenario, window, opts, lyapunov)?;
     let cycle = match steady.response {
         Response::Periodic { period } => steady.points[steady.points.len() - period as usize..]
             .iter()
@@ -176,7 +176,7 @@ pub(crate) fn stack_cell(
     Ok(CellResponse {
         response: steady.response,
         max_abs_theta: steady.max_abs_theta,
-        lyapunov: None,
+        lyapunov: steady.lyapunov,
         cycle,
         stopped_at: None,
         reached_known: false,
@@ -189,6 +189,7 @@ fn run_and_classify(
     scenario: &Scenario,
     window: &Window,
     opts: &ClassifyOptions,
+    lyapunov: Option<&LyapunovFn<'_>>,
 ) -> Result<(Steady, f64), SteadyError> {
     let mut cfg = scenario.clone();
     cfg.run.tau_end = window.tau_end;
@@ -203,7 +204,11 @@ fn run_and_classify(
     opts_run.output_dt = None;
     opts_run.section = true;
     let run = simulate_stack(geo, excitation, cfg.run.zeno_eps, &opts_run)?;
-    let response = classify_stack(&run, period, window.transient, opts)?;
+    let mut response = classify_stack(&run, period, window.transient, None, opts)?;
+    let exponent = exponent_of(lyapunov, response, &cfg)?;
+    if exponent.is_some() {
+        response = classify_stack(&run, period, window.transient, exponent, opts)?;
+    }
     let points = if response.is_terminal() {
         Vec::new()
     } else {
@@ -217,7 +222,7 @@ fn run_and_classify(
     let steady = Steady {
         response,
         max_abs_theta: run.tally.max_phi[top] / top_alpha(&geo),
-        lyapunov: None,
+        lyapunov: exponent,
         points,
         seed: None,
     };
