@@ -112,7 +112,7 @@ fn a_glued_stack_of_one_width_maps_as_the_single_block_of_its_height() {
     let mut classes = Vec::new();
     for x in axis.values() {
         let (cs, cb) = (
-            ms.cell(x, 0.0, true, &[], None).expect("stack"),
+            ms.cell(x, 0.0, false, &[], None).expect("stack"),
             mb.cell(x, 0.0, false, &[], None).expect("block"),
         );
         assert_eq!(cs.response, cb.response, "phase {x}");
@@ -121,7 +121,19 @@ fn a_glued_stack_of_one_width_maps_as_the_single_block_of_its_height() {
         for (a, b) in cs.cycle.iter().zip(&cb.cycle) {
             assert!((a[0] * alpha - b[0] * psi).abs() < 1e-9, "cycle {a:?} against {b:?}");
         }
-        assert_eq!(cs.stopped_at, None, "a stack's cell runs its whole window");
+        assert_eq!(cs.stopped_at, None, "asked for the whole window");
+        // Stopped as soon as it is certain: the same class, and a periodic
+        // cycle converged to a hundredth of the classifier's tolerance.
+        let early = ms.cell(x, 0.0, true, &[], None).expect("stack");
+        assert_eq!(early.response, cs.response, "phase {x}");
+        assert_eq!(early.stopped_at.is_some(), cs.response.period().is_some(), "phase {x}");
+        assert_eq!(early.cycle.len(), cs.cycle.len());
+        for (a, b) in early.cycle.iter().zip(&cs.cycle) {
+            assert!(
+                (a[0] - b[0]).abs() < 1e-6 * b[0].abs().max(1.0),
+                "cycle {a:?} against {b:?}"
+            );
+        }
         classes.push(cs.response);
     }
     assert!(
@@ -329,5 +341,58 @@ fn a_stack_whose_friction_cannot_hold_stops_a_sweep_as_bad_input() {
         "{err}"
     );
     assert!(!out.exists());
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+/// A stack's map stopped cell by cell as soon as each is certain gives
+/// every cell the class `--full` gives it, over a corner of stack-patterns'
+/// map that holds rest, periods 1, 5 and 6, chaos and overturning, and
+/// cells that rest at every section time while lifting and chattering in
+/// between (about 100 impacts a period) until they overturn at τ ≈ 330:
+/// those must run their whole window, as `--full` does.
+#[test]
+fn a_stacks_map_stopped_early_classifies_every_cell_as_the_full_map() {
+    let d = tmpdir("early");
+    let map = |out: &str, full: bool| {
+        let out = d.join(out);
+        let mut args = vec!["map", "--preset", "stack-patterns", "--tau-end", "800"];
+        args.extend(["--x", "excitation.a_h", "0.6", "1.5", "10"]);
+        args.extend(["--y", "excitation.omega_h", "3.5", "4.0", "6"]);
+        if full {
+            args.push("--full");
+        }
+        let out_s = out.to_str().expect("utf-8 path");
+        args.extend(["--out", out_s]);
+        run_ok(&args);
+        let summary: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(out.join("map.json")).expect("map.json")).expect("json");
+        (
+            csv_rows(&out.join("map.csv")),
+            summary["cells_stopped_early"].as_u64().expect("count"),
+        )
+    };
+    let (early, stopped) = map("early", false);
+    let (full, none) = map("full", true);
+    assert_eq!(none, 0);
+    assert!(stopped >= 20, "{stopped} of 60 cells stopped early");
+    assert_eq!(early.len(), 60);
+    let class = |r: &CsvRow| format!("{} {}", r["outcome"], r["period"]);
+    let mut seen: Vec<String> = Vec::new();
+    for (a, b) in early.iter().zip(&full) {
+        assert_eq!((&a["x"], &a["y"]), (&b["x"], &b["y"]));
+        assert_eq!(class(a), class(b), "A_h {}, Ω_h {}", a["x"], a["y"]);
+        if !seen.contains(&class(b)) {
+            seen.push(class(b));
+        }
+    }
+    for c in ["rest ", "periodic 1", "periodic 5", "chaotic ", "tumbled "] {
+        assert!(seen.iter().any(|s| s == c), "{c:?} among {seen:?}");
+    }
+    // The chattering cells that rest at their section times ran out.
+    let chatter = full
+        .iter()
+        .position(|r| r["x"] == "0.7" && r["y"] == "3.9")
+        .expect("cell");
+    assert_eq!(class(&full[chatter]), "tumbled ");
     let _ = std::fs::remove_dir_all(&d);
 }

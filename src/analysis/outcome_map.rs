@@ -189,7 +189,7 @@ impl BlockMap<'_> {
     ) -> Result<CellResponse, SteadyError> {
         let cfg = self.scenario(x, y)?;
         if cfg.stack.is_some() {
-            return stack_cell(&cfg, &self.window, &self.classify, self.lyapunov);
+            return stack_cell(&cfg, &self.window, &self.classify, self.lyapunov, early);
         }
         cell_response(&cfg, &self.window, &self.classify, self.lyapunov, early, known, basins)
     }

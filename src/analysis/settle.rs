@@ -256,45 +256,7 @@ impl<'a> Settle<'a> {
     /// The smallest period k whose last `2k + CONFIRM` recurrences hold to
     /// [`SETTLE_FRACTION`] of the tolerance, if any.
     fn converged_period(&self) -> Option<usize> {
-        let n = self.recent.len();
-        let newest = self.recent.back()?;
-        // A quick rejection first: the newest pair against the tolerance of
-        // the largest amplitude seen so far. That bounds the amplitude of
-        // any range tested below, so a pair outside this looser tolerance
-        // fails the exact test too, and most periods k fail here after
-        // three comparisons instead of a pass over up to 3k + 8 points.
-        let bound = self.bound;
-        let loose: [f64; 3] =
-            std::array::from_fn(|d| SETTLE_FRACTION * (self.opts.rel_tol * bound[d] + self.opts.abs_tol));
-        (1..=self.opts.k_max as usize).find(|&k| {
-            let pairs = 2 * k + CONFIRM;
-            if n < pairs + k {
-                return false;
-            }
-            let before = &self.recent[n - 1 - k];
-            if newest
-                .iter()
-                .zip(before)
-                .zip(&loose)
-                .any(|((x, y), t)| (y - x).abs() > *t)
-            {
-                return false;
-            }
-            let first = n - pairs - k;
-            let mut amplitude = [0.0_f64; 3];
-            for p in self.recent.range(first..) {
-                for (a, x) in amplitude.iter_mut().zip(p) {
-                    *a = a.max(x.abs());
-                }
-            }
-            let tol: [f64; 3] =
-                std::array::from_fn(|d| SETTLE_FRACTION * (self.opts.rel_tol * amplitude[d] + self.opts.abs_tol));
-            // Newest pair first: a run that has not converged fails at once.
-            (first..n - k).rev().all(|j| {
-                let (a, b) = (&self.recent[j], &self.recent[j + k]);
-                a.iter().zip(b).zip(&tol).all(|((x, y), t)| (y - x).abs() <= *t)
-            })
-        })
+        converged_period(&self.recent, &self.bound, &self.opts)
     }
 }
 
@@ -381,6 +343,53 @@ impl Sink for Settle<'_> {
     fn settled(&self) -> bool {
         self.verdict.is_some()
     }
+}
+
+/// The smallest period k whose last `2k + CONFIRM` recurrences among
+/// `recent` (newest last; `bound` at least the largest |coordinate| among
+/// them) hold to [`SETTLE_FRACTION`] of `opts`' tolerance, if any: the
+/// periodic criterion of the module docs, for points of any dimension.
+pub(crate) fn converged_period<const D: usize>(
+    recent: &VecDeque<[f64; D]>,
+    bound: &[f64; D],
+    opts: &ClassifyOptions,
+) -> Option<usize> {
+    let n = recent.len();
+    let newest = recent.back()?;
+    // A quick rejection first: the newest pair against the tolerance of
+    // the largest amplitude seen so far. That bounds the amplitude of
+    // any range tested below, so a pair outside this looser tolerance
+    // fails the exact test too, and most periods k fail here after
+    // three comparisons instead of a pass over up to 3k + 8 points.
+    let loose: [f64; D] = std::array::from_fn(|d| SETTLE_FRACTION * (opts.rel_tol * bound[d] + opts.abs_tol));
+    (1..=opts.k_max as usize).find(|&k| {
+        let pairs = 2 * k + CONFIRM;
+        if n < pairs + k {
+            return false;
+        }
+        let before = &recent[n - 1 - k];
+        if newest
+            .iter()
+            .zip(before)
+            .zip(&loose)
+            .any(|((x, y), t)| (y - x).abs() > *t)
+        {
+            return false;
+        }
+        let first = n - pairs - k;
+        let mut amplitude = [0.0_f64; D];
+        for p in recent.range(first..) {
+            for (a, x) in amplitude.iter_mut().zip(p) {
+                *a = a.max(x.abs());
+            }
+        }
+        let tol: [f64; D] = std::array::from_fn(|d| SETTLE_FRACTION * (opts.rel_tol * amplitude[d] + opts.abs_tol));
+        // Newest pair first: a run that has not converged fails at once.
+        (first..n - k).rev().all(|j| {
+            let (a, b) = (&recent[j], &recent[j + k]);
+            a.iter().zip(b).zip(&tol).all(|((x, y), t)| (y - x).abs() <= *t)
+        })
+    })
 }
 
 /// Whether a scenario's forcing has the section's period 2π/Ω_h exactly

@@ -24,6 +24,7 @@ use crate::sim::scenario::ExcitationKind;
 use crate::sim::stack_run::StackError;
 
 mod stack;
+mod stack_settle;
 use crate::sim::{InitialState, RunOptions, Scenario, ScenarioError, SectionRow, SimError, simulate};
 pub(crate) use stack::stack_cell;
 pub use stack::{check_stack_study, stack_steady};

@@ -9,7 +9,7 @@
 use std::time::Instant;
 
 use super::run::{EnergyAudit, Outcome, RunOptions};
-use crate::integrate::hybrid::{Driver, Observer, Outputs};
+use crate::integrate::hybrid::{Advance, Driver, Observer, Outputs};
 use crate::integrate::{Dop853, Dopri5, StepStats, Stepper};
 use crate::model::excitation::Excitation;
 use crate::model::stack::{
@@ -155,14 +155,38 @@ pub fn simulate_stack(
     zeno_eps: f64,
     opts: &RunOptions,
 ) -> Result<StackRun, StackError> {
+    simulate_stack_watched(geo, excitation, zeno_eps, opts, None)
+}
+
+/// What watches a stack's run at each section time: called with the
+/// section points and the events so far, it says whether the run may stop
+/// there (its class is certain: `analysis::steady`'s early stop).
+pub type StackWatch<'a> = &'a mut dyn FnMut(&[StackSection], &[StackEvent]) -> bool;
+
+/// [`simulate_stack`], asking `watch` (if any) after each forcing period
+/// whether to stop. The legs end on the section times with the run's end
+/// as their horizon, so a watched run takes the steps of an unwatched one,
+/// and one that is never stopped is the same run bit for bit.
+pub fn simulate_stack_watched(
+    geo: StackGeometry,
+    excitation: Excitation,
+    zeno_eps: f64,
+    opts: &RunOptions,
+    watch: Option<StackWatch<'_>>,
+) -> Result<StackRun, StackError> {
     let system = StackSystem::new(geo, excitation, zeno_eps);
     match opts.method {
-        super::Method::Dopri5 => run_with(Dopri5::new(opts.tol), system, opts),
-        _ => run_with(Dop853::new(opts.tol), system, opts),
+        super::Method::Dopri5 => run_with(Dopri5::new(opts.tol), system, opts, watch),
+        _ => run_with(Dop853::new(opts.tol), system, opts, watch),
     }
 }
 
-fn run_with<S: Stepper<NS>>(stepper: S, system: StackSystem, opts: &RunOptions) -> Result<StackRun, StackError> {
+fn run_with<S: Stepper<NS>>(
+    stepper: S,
+    system: StackSystem,
+    opts: &RunOptions,
+    watch: Option<StackWatch<'_>>,
+) -> Result<StackRun, StackError> {
     let start = Instant::now();
     let k = system.geo.k;
     let geo = system.geo;
@@ -195,10 +219,22 @@ fn run_with<S: Stepper<NS>>(stepper: S, system: StackSystem, opts: &RunOptions) 
         kind: kind_of(&mode0, k),
         since: 0.0,
     };
+    let period = outputs.section_period;
     match opts.rest_after {
-        None => {
-            driver.advance(opts.tau_end, &mut keep)?;
-        }
+        None => match (watch, period) {
+            (Some(watch), Some(period)) => {
+                while driver.t() < opts.tau_end {
+                    let next = ((driver.t() / period).floor() + 1.0) * period;
+                    let leg = driver.advance_past(next.min(opts.tau_end), opts.tau_end, &mut keep)?;
+                    if leg == Advance::Terminal || watch(&keep.section, &keep.events) {
+                        break;
+                    }
+                }
+            }
+            _ => {
+                driver.advance(opts.tau_end, &mut keep)?;
+            }
+        },
         Some(rest_after) => {
             driver.advance(rest_after.min(opts.tau_end), &mut keep)?;
             // After the record the ground is still: stop at the first leg

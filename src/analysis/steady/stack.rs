@@ -23,15 +23,21 @@
 //!   block's does (`largest_for_scenario` computes a stack's by two
 //!   trajectories: its tangent equations are not written), and an
 //!   aperiodic response is classified with it.
-//! - **No early stop.** Every run goes over its whole window: the map's
-//!   early stop ([`settle`](crate::analysis::settle)) watches the block's section.
+//! - **Its own early stop.** A map cell stops as soon as it is at rest for
+//!   a whole period or has converged onto a periodic orbit, by the block's
+//!   criteria on the stack's section points (`stack_settle.rs`); a
+//!   sweep's points run their whole window, as the block's do.
 
+use super::stack_settle::{StackSettle, StackVerdict};
 use super::{LyapunovFn, Steady, SteadyError, Window, exponent_of};
 use crate::analysis::classify::{ClassifyOptions, Response, classify_points};
+use crate::analysis::section::points_in_window;
 use crate::analysis::settle::CellResponse;
+use crate::analysis::settle::forcing_is_periodic;
+use crate::model::stack::StackEvent;
 use crate::model::stack::{Contact, MAX_BLOCKS, Pose, SLIDE, SLIDE_RATE, StackGeometry};
-use crate::sim::stack_run::{StackRun, StackSection, simulate_stack};
-use crate::sim::{Param, Scenario, ScenarioError, SectionRow};
+use crate::sim::stack_run::{StackRun, StackSection, simulate_stack, simulate_stack_watched};
+use crate::sim::{Param, RunOptions, Scenario, ScenarioError, SectionRow};
 
 /// The stack's classified coordinates: q_1 … q_K, q_1' … q_K' (padded),
 /// u'.
@@ -157,40 +163,121 @@ pub fn stack_steady(
     Ok(run_and_classify(scenario, window, opts, lyapunov)?.0)
 }
 
-/// A map cell of a stack: [`stack_steady`]'s run, whole (module docs), as
-/// the map keeps it; its cycle is the top block's last `period` points.
+/// A map cell of a stack: [`stack_steady`]'s run, as the map keeps it (its
+/// cycle is the top block's last `period` points), stopped as soon as its
+/// class is certain when `early` is set and the forcing has the section's
+/// period (module docs); otherwise run out, with the same class.
 pub(crate) fn stack_cell(
     scenario: &Scenario,
     window: &Window,
     opts: &ClassifyOptions,
     lyapunov: Option<&LyapunovFn<'_>>,
+    early: bool,
 ) -> Result<CellResponse, SteadyError> {
-    let (steady, tau_end) = run_and_classify(scenario, window, opts, lyapunov)?;
-    let cycle = match steady.response {
-        Response::Periodic { period } => steady.points[steady.points.len() - period as usize..]
+    if !(early && forcing_is_periodic(scenario)) {
+        let (steady, tau_end) = run_and_classify(scenario, window, opts, lyapunov)?;
+        return Ok(CellResponse {
+            cycle: top_cycle(&steady.response, &steady.points),
+            response: steady.response,
+            max_abs_theta: steady.max_abs_theta,
+            lyapunov: steady.lyapunov,
+            stopped_at: None,
+            reached_known: false,
+            settled_at: tau_end,
+        });
+    }
+    let (cfg, geo, period, excitation, opts_run) = stack_window(scenario, window)?;
+    let point = |s: &StackSection| {
+        let row = top_row(&geo, s);
+        (coordinates(&geo, s), [row.theta, row.theta_dot, row.x_dot])
+    };
+    let mut settle = StackSettle::new(period, geo.k, *opts, &point);
+    let mut watch = |sections: &[StackSection], events: &[StackEvent]| settle.watch(sections, events);
+    let run = simulate_stack_watched(geo, excitation, cfg.run.zeno_eps, &opts_run, Some(&mut watch))?;
+    let max_abs_theta = run.tally.max_phi[geo.k - 1] / top_alpha(&geo);
+    let (response, cycle, stopped_at) = match settle.verdict() {
+        Some(StackVerdict::Rest { tau }) => (Response::Rest, Vec::new(), Some(*tau)),
+        Some(StackVerdict::Periodic { tau, cycle, top }) => {
+            // The window's points as the full run would have them (as the
+            // block's cell builds them): those taken after the transient,
+            // then the converged cycle repeated.
+            let n = points_in_window(period, window.transient, window.tau_end) as usize;
+            let taken: Vec<&StackSection> = run.section.iter().filter(|s| s.at.tau >= window.transient).collect();
+            let mut points: Vec<[f64; D]> = taken.iter().map(|s| coordinates(&geo, s)).collect();
+            let mut tops: Vec<[f64; 3]> = taken.iter().map(|s| point(s).1).collect();
+            let k = cycle.len();
+            for j in 0..n.max(opts.min_points()).saturating_sub(points.len()) {
+                points.push(cycle[j % k]);
+                tops.push(top[j % k]);
+            }
+            let response = classify_points(&points, None, opts)?;
+            let cycle = match response {
+                Response::Periodic { period } => tops[tops.len() - period as usize..].to_vec(),
+                _ => Vec::new(),
+            };
+            (response, cycle, Some(*tau))
+        }
+        None => {
+            let mut response = classify_stack(&run, period, window.transient, None, opts)?;
+            let exponent = exponent_of(lyapunov, response, &cfg)?;
+            if exponent.is_some() {
+                response = classify_stack(&run, period, window.transient, exponent, opts)?;
+            }
+            let points: Vec<SectionRow> = run
+                .section
+                .iter()
+                .filter(|s| s.at.tau >= window.transient)
+                .map(|s| top_row(&geo, s))
+                .collect();
+            return Ok(CellResponse {
+                cycle: top_cycle(&response, &points),
+                response,
+                max_abs_theta,
+                lyapunov: exponent,
+                stopped_at: None,
+                reached_known: false,
+                settled_at: run.tau_end,
+            });
+        }
+    };
+    Ok(CellResponse {
+        lyapunov: exponent_of(lyapunov, response, &cfg)?,
+        response,
+        max_abs_theta,
+        cycle,
+        stopped_at,
+        reached_known: false,
+        settled_at: stopped_at.unwrap_or(run.tau_end),
+    })
+}
+
+/// A periodic response's cycle: the top block's last `period` points.
+fn top_cycle(response: &Response, points: &[SectionRow]) -> Vec<[f64; 3]> {
+    match *response {
+        Response::Periodic { period } => points[points.len() - period as usize..]
             .iter()
             .map(|r| [r.theta, r.theta_dot, r.x_dot])
             .collect(),
         _ => Vec::new(),
-    };
-    Ok(CellResponse {
-        response: steady.response,
-        max_abs_theta: steady.max_abs_theta,
-        lyapunov: steady.lyapunov,
-        cycle,
-        stopped_at: None,
-        reached_known: false,
-        settled_at: tau_end,
-    })
+    }
 }
 
-/// The steady response and the τ at which the run ended.
-fn run_and_classify(
+/// A stack's run over `window`: the scenario with the window's end, its
+/// shape, the forcing period, the excitation and the run's options (section
+/// points, no history).
+fn stack_window(
     scenario: &Scenario,
     window: &Window,
-    opts: &ClassifyOptions,
-    lyapunov: Option<&LyapunovFn<'_>>,
-) -> Result<(Steady, f64), SteadyError> {
+) -> Result<
+    (
+        Scenario,
+        StackGeometry,
+        f64,
+        crate::model::excitation::Excitation,
+        RunOptions,
+    ),
+    SteadyError,
+> {
     let mut cfg = scenario.clone();
     cfg.run.tau_end = window.tau_end;
     let geo = cfg
@@ -203,6 +290,17 @@ fn run_and_classify(
     let mut opts_run = cfg.run_options();
     opts_run.output_dt = None;
     opts_run.section = true;
+    Ok((cfg, geo, period, excitation, opts_run))
+}
+
+/// The steady response and the τ at which the run ended.
+fn run_and_classify(
+    scenario: &Scenario,
+    window: &Window,
+    opts: &ClassifyOptions,
+    lyapunov: Option<&LyapunovFn<'_>>,
+) -> Result<(Steady, f64), SteadyError> {
+    let (cfg, geo, period, excitation, opts_run) = stack_window(scenario, window)?;
     let run = simulate_stack(geo, excitation, cfg.run.zeno_eps, &opts_run)?;
     let mut response = classify_stack(&run, period, window.transient, None, opts)?;
     let exponent = exponent_of(lyapunov, response, &cfg)?;
