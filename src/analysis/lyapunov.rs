@@ -636,6 +636,33 @@ pub fn lyapunov(model: &Model, init: &InitialState, opts: &LyapunovOptions) -> R
     answer(outcome, opts, &schedule, block_ending, "X")
 }
 
+/// The outcome of the two-trajectory method on `sys`, a body without
+/// tangent equations (`body` names it where another method is refused),
+/// started in `mode0` at `y0`, with its schedule.
+fn two_trajectory_outcome<S, const N: usize, const D: usize>(
+    sys: S,
+    mode0: S::Mode,
+    y0: [f64; N],
+    opts: &LyapunovOptions,
+    period: f64,
+    body: &'static str,
+) -> Result<(Outcome<S::Mode, D>, Schedule), LyapunovError>
+where
+    S: Perturbable<N, D> + Clone,
+    LyapunovError: From<TangentError<S::Error>>,
+{
+    if opts.method != Method::Benettin {
+        return Err(LyapunovError::NoTangent {
+            body,
+            asked: opts.method.name(),
+        });
+    }
+    let schedule = schedule(opts, period)?;
+    let tol = tolerances(opts);
+    let outcome = two_trajectories::<_, N, D>(sys, mode0, y0, &schedule, tol, opts.limits, opts.separation)?;
+    Ok((outcome, schedule))
+}
+
 /// The frame's largest exponent by two trajectories in its `(Θ, Θ')`.
 fn frame_lyapunov(
     model: &Model,
@@ -643,25 +670,10 @@ fn frame_lyapunov(
     opts: &LyapunovOptions,
     period: f64,
 ) -> Result<Lyapunov, LyapunovError> {
-    if opts.method != Method::Benettin {
-        return Err(LyapunovError::NoTangent {
-            body: "[frame]",
-            asked: opts.method.name(),
-        });
-    }
     let (mode0, mut y0) = sim::initial_mode(model, init)?;
     let mut sys = FrameSystem::new(model.clone());
     let mode0 = sys.settle(mode0, 0.0, &mut y0);
-    let schedule = schedule(opts, period)?;
-    let outcome = two_trajectories::<_, N, FRAME_DIM>(
-        sys,
-        mode0,
-        y0,
-        &schedule,
-        tolerances(opts),
-        opts.limits,
-        opts.separation,
-    )?;
+    let (outcome, schedule) = two_trajectory_outcome::<_, N, FRAME_DIM>(sys, mode0, y0, opts, period, "[frame]")?;
     answer(outcome, opts, &schedule, block_ending, "X")
 }
 
@@ -675,26 +687,11 @@ pub fn stack_lyapunov(
     opts: &LyapunovOptions,
 ) -> Result<Lyapunov, LyapunovError> {
     opts.validate()?;
-    if opts.method != Method::Benettin {
-        return Err(LyapunovError::NoTangent {
-            body: "[[stack]]",
-            asked: opts.method.name(),
-        });
-    }
     let period = excitation.forcing_period().ok_or(LyapunovError::NotHarmonic)?;
     let sys = StackSystem::new(geo, excitation, zeno_eps);
     let mut y0 = [0.0; NS];
     let mode0 = sys.settle(StackMode::REST, 0.0, &mut y0);
-    let schedule = schedule(opts, period)?;
-    let outcome = two_trajectories::<_, NS, STACK_DIM>(
-        sys,
-        mode0,
-        y0,
-        &schedule,
-        tolerances(opts),
-        opts.limits,
-        opts.separation,
-    )?;
+    let (outcome, schedule) = two_trajectory_outcome::<_, NS, STACK_DIM>(sys, mode0, y0, opts, period, "[[stack]]")?;
     let k = geo.k;
     let ending = |mode: StackMode| Ending {
         terminal: match mode.end {
