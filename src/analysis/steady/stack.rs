@@ -34,9 +34,10 @@ use crate::analysis::classify::{ClassifyOptions, Response, classify_points};
 use crate::analysis::section::points_in_window;
 use crate::analysis::settle::CellResponse;
 use crate::analysis::settle::forcing_is_periodic;
+use crate::model::excitation::Excitation;
 use crate::model::stack::StackEvent;
 use crate::model::stack::{Contact, MAX_BLOCKS, Pose, SLIDE, SLIDE_RATE, StackGeometry};
-use crate::sim::stack_run::{StackRun, StackSection, simulate_stack, simulate_stack_watched};
+use crate::sim::stack_run::{StackRun, StackSection, StackWatch, simulate_stack, simulate_stack_watched};
 use crate::sim::{Param, RunOptions, Scenario, ScenarioError, SectionRow};
 
 /// The stack's classified coordinates: q_1 … q_K, q_1' … q_K' (padded),
@@ -174,36 +175,24 @@ pub(crate) fn stack_cell(
     lyapunov: Option<&LyapunovFn<'_>>,
     early: bool,
 ) -> Result<CellResponse, SteadyError> {
-    if !(early && forcing_is_periodic(scenario)) {
-        let (steady, tau_end) = run_and_classify(scenario, window, opts, lyapunov)?;
-        return Ok(CellResponse {
-            cycle: top_cycle(&steady.response, &steady.points),
-            response: steady.response,
-            max_abs_theta: steady.max_abs_theta,
-            lyapunov: steady.lyapunov,
-            stopped_at: None,
-            reached_known: false,
-            settled_at: tau_end,
-        });
-    }
-    let (cfg, geo, period, excitation, opts_run) = stack_window(scenario, window)?;
+    let w = StackWindow::new(scenario, window)?;
     let point = |s: &StackSection| {
-        let row = top_row(&geo, s);
-        (coordinates(&geo, s), [row.theta, row.theta_dot, row.x_dot])
+        let row = top_row(&w.geo, s);
+        (coordinates(&w.geo, s), [row.theta, row.theta_dot, row.x_dot])
     };
-    let mut settle = StackSettle::new(period, geo.k, *opts, &point);
+    let mut settle = StackSettle::new(w.period, w.geo.k, *opts, &point);
     let mut watch = |sections: &[StackSection], events: &[StackEvent]| settle.watch(sections, events);
-    let run = simulate_stack_watched(geo, excitation, cfg.run.zeno_eps, &opts_run, Some(&mut watch))?;
-    let max_abs_theta = run.tally.max_phi[geo.k - 1] / top_alpha(&geo);
+    let watch: Option<StackWatch<'_>> = (early && forcing_is_periodic(scenario)).then_some(&mut watch);
+    let run = simulate_stack_watched(w.geo, w.excitation.clone(), w.cfg.run.zeno_eps, &w.run, watch)?;
     let (response, cycle, stopped_at) = match settle.verdict() {
         Some(StackVerdict::Rest { tau }) => (Response::Rest, Vec::new(), Some(*tau)),
         Some(StackVerdict::Periodic { tau, cycle, top }) => {
             // The window's points as the full run would have them (as the
             // block's cell builds them): those taken after the transient,
             // then the converged cycle repeated.
-            let n = points_in_window(period, window.transient, window.tau_end) as usize;
+            let n = points_in_window(w.period, window.transient, window.tau_end) as usize;
             let taken: Vec<&StackSection> = run.section.iter().filter(|s| s.at.tau >= window.transient).collect();
-            let mut points: Vec<[f64; D]> = taken.iter().map(|s| coordinates(&geo, s)).collect();
+            let mut points: Vec<[f64; D]> = taken.iter().map(|s| coordinates(&w.geo, s)).collect();
             let mut tops: Vec<[f64; 3]> = taken.iter().map(|s| point(s).1).collect();
             let k = cycle.len();
             for j in 0..n.max(opts.min_points()).saturating_sub(points.len()) {
@@ -218,22 +207,13 @@ pub(crate) fn stack_cell(
             (response, cycle, Some(*tau))
         }
         None => {
-            let mut response = classify_stack(&run, period, window.transient, None, opts)?;
-            let exponent = exponent_of(lyapunov, response, &cfg)?;
-            if exponent.is_some() {
-                response = classify_stack(&run, period, window.transient, exponent, opts)?;
-            }
-            let points: Vec<SectionRow> = run
-                .section
-                .iter()
-                .filter(|s| s.at.tau >= window.transient)
-                .map(|s| top_row(&geo, s))
-                .collect();
+            // Run out: classified as a sweep's point is.
+            let steady = w.steady(&run, window, opts, lyapunov)?;
             return Ok(CellResponse {
-                cycle: top_cycle(&response, &points),
-                response,
-                max_abs_theta,
-                lyapunov: exponent,
+                cycle: top_cycle(&steady.response, &steady.points),
+                response: steady.response,
+                max_abs_theta: steady.max_abs_theta,
+                lyapunov: steady.lyapunov,
                 stopped_at: None,
                 reached_known: false,
                 settled_at: run.tau_end,
@@ -241,9 +221,9 @@ pub(crate) fn stack_cell(
         }
     };
     Ok(CellResponse {
-        lyapunov: exponent_of(lyapunov, response, &cfg)?,
+        lyapunov: exponent_of(lyapunov, response, &w.cfg)?,
         response,
-        max_abs_theta,
+        max_abs_theta: run.tally.max_phi[w.geo.k - 1] / top_alpha(&w.geo),
         cycle,
         stopped_at,
         reached_known: false,
@@ -262,35 +242,71 @@ fn top_cycle(response: &Response, points: &[SectionRow]) -> Vec<[f64; 3]> {
     }
 }
 
-/// A stack's run over `window`: the scenario with the window's end, its
-/// shape, the forcing period, the excitation and the run's options (section
+/// A stack's run over a window: the scenario with the window's end, its
+/// shape, forcing period and excitation, and the run's options (section
 /// points, no history).
-fn stack_window(
-    scenario: &Scenario,
-    window: &Window,
-) -> Result<
-    (
-        Scenario,
-        StackGeometry,
-        f64,
-        crate::model::excitation::Excitation,
-        RunOptions,
-    ),
-    SteadyError,
-> {
-    let mut cfg = scenario.clone();
-    cfg.run.tau_end = window.tau_end;
-    let geo = cfg
-        .stack_geometry()
-        .ok_or_else(|| SteadyError::Scenario(ScenarioError::new("stack", "its blocks do not stand on each other")))?;
-    let excitation = cfg.excitation()?;
-    let Some(period) = excitation.forcing_period() else {
-        return Err(SteadyError::NotHarmonic);
-    };
-    let mut opts_run = cfg.run_options();
-    opts_run.output_dt = None;
-    opts_run.section = true;
-    Ok((cfg, geo, period, excitation, opts_run))
+struct StackWindow {
+    cfg: Scenario,
+    geo: StackGeometry,
+    period: f64,
+    excitation: Excitation,
+    run: RunOptions,
+}
+
+impl StackWindow {
+    fn new(scenario: &Scenario, window: &Window) -> Result<Self, SteadyError> {
+        let mut cfg = scenario.clone();
+        cfg.run.tau_end = window.tau_end;
+        let geo = cfg.stack_geometry().ok_or_else(|| {
+            SteadyError::Scenario(ScenarioError::new("stack", "its blocks do not stand on each other"))
+        })?;
+        let excitation = cfg.excitation()?;
+        let Some(period) = excitation.forcing_period() else {
+            return Err(SteadyError::NotHarmonic);
+        };
+        let mut run = cfg.run_options();
+        run.output_dt = None;
+        run.section = true;
+        Ok(Self {
+            cfg,
+            geo,
+            period,
+            excitation,
+            run,
+        })
+    }
+
+    /// The steady response of `run`, a whole run over `window`, with its
+    /// exponent from `lyapunov` if given.
+    fn steady(
+        &self,
+        run: &StackRun,
+        window: &Window,
+        opts: &ClassifyOptions,
+        lyapunov: Option<&LyapunovFn<'_>>,
+    ) -> Result<Steady, SteadyError> {
+        let mut response = classify_stack(run, self.period, window.transient, None, opts)?;
+        let exponent = exponent_of(lyapunov, response, &self.cfg)?;
+        if exponent.is_some() {
+            response = classify_stack(run, self.period, window.transient, exponent, opts)?;
+        }
+        let points = if response.is_terminal() {
+            Vec::new()
+        } else {
+            run.section
+                .iter()
+                .filter(|s| s.at.tau >= window.transient)
+                .map(|s| top_row(&self.geo, s))
+                .collect()
+        };
+        Ok(Steady {
+            response,
+            max_abs_theta: run.tally.max_phi[self.geo.k - 1] / top_alpha(&self.geo),
+            lyapunov: exponent,
+            points,
+            seed: None,
+        })
+    }
 }
 
 /// The steady response and the τ at which the run ended.
@@ -300,29 +316,7 @@ fn run_and_classify(
     opts: &ClassifyOptions,
     lyapunov: Option<&LyapunovFn<'_>>,
 ) -> Result<(Steady, f64), SteadyError> {
-    let (cfg, geo, period, excitation, opts_run) = stack_window(scenario, window)?;
-    let run = simulate_stack(geo, excitation, cfg.run.zeno_eps, &opts_run)?;
-    let mut response = classify_stack(&run, period, window.transient, None, opts)?;
-    let exponent = exponent_of(lyapunov, response, &cfg)?;
-    if exponent.is_some() {
-        response = classify_stack(&run, period, window.transient, exponent, opts)?;
-    }
-    let points = if response.is_terminal() {
-        Vec::new()
-    } else {
-        run.section
-            .iter()
-            .filter(|s| s.at.tau >= window.transient)
-            .map(|s| top_row(&geo, s))
-            .collect()
-    };
-    let top = geo.k - 1;
-    let steady = Steady {
-        response,
-        max_abs_theta: run.tally.max_phi[top] / top_alpha(&geo),
-        lyapunov: exponent,
-        points,
-        seed: None,
-    };
-    Ok((steady, run.tau_end))
+    let w = StackWindow::new(scenario, window)?;
+    let run = simulate_stack(w.geo, w.excitation.clone(), w.cfg.run.zeno_eps, &w.run)?;
+    Ok((w.steady(&run, window, opts, lyapunov)?, run.tau_end))
 }
