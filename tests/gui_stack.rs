@@ -457,3 +457,38 @@ fn a_perturbed_restart_of_a_stack_says_it_is_for_one_block_and_the_stack_plays_o
     );
     assert!(h.state().end().is_none());
 }
+
+#[test]
+fn the_lyapunov_tab_of_a_harmonic_frame_estimates_its_largest_exponent() {
+    // The bridge bent under harmonic shaking: a frame has no tangent
+    // equations, so the tab runs two trajectories and says so.
+    let sets = [
+        "excitation.kind=harmonic",
+        "excitation.a_h=\"0.5 g\"",
+        "excitation.omega_h=\"1.5 Hz\"",
+    ];
+    let mut h = live_with("rocking-frame", &sets, Speed::RealTime(1.0));
+    h.state_mut().show.lyapunov = true;
+    assert!(
+        pump(&mut h, Duration::from_secs(60), |a| a.lyapunov().value().is_some()),
+        "an estimate: {:?}",
+        h.state().lyapunov().latest()
+    );
+    h.step();
+    assert!(
+        h.query_by_label_contains("by two trajectories").is_some(),
+        "the method is named"
+    );
+    assert!(h.query_by_label_contains("λ₁ = ").is_some(), "the estimate is shown");
+    // The number shown is the library's for the scene and the tab's window.
+    let cfg = h.state().config().clone();
+    let stage = h.state().lyapunov().latest().expect("a stage").clone();
+    let opts = rocking::analysis::lyapunov::LyapunovOptions {
+        method: rocking::analysis::lyapunov::Method::Benettin,
+        transient_tau: rocking::gui::panels::lyapunov::TRANSIENT_TAU,
+        total_tau: stage.total_tau,
+        ..Default::default()
+    };
+    let own = rocking::analysis::lyapunov::of_scenario(&cfg, &opts).expect("lyapunov");
+    assert_eq!(Ok(own), stage.answer);
+}
