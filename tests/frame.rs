@@ -199,7 +199,7 @@ fn a_frame_config_is_refused_where_it_would_be_misread() {
             "impact.law: \"impulse\" is the single block's law",
         ),
         (
-            format!("{frame}[analysis]\nlyapunov = true"),
+            format!("{frame}[analysis]\nlyapunov = true\nlyapunov_method = \"tangent\""),
             "analysis.lyapunov_method: \"tangent\" needs tangent equations, which a [frame] does not have",
         ),
         (

@@ -146,8 +146,11 @@ def test_a_stacks_largest_exponent_is_the_clis(cli, tmp_path: Path) -> None:
 
 
 def test_a_stack_asked_for_tangent_exponents_is_refused_like_the_cli(cli, tmp_path: Path) -> None:
-    expected = cli.error("--batch", "--preset", "stack-patterns", "--set", "analysis.lyapunov=true", "--out", str(tmp_path))
+    sets = ["--set", "analysis.lyapunov=true", "--set", "analysis.lyapunov_method=tangent"]
+    expected = cli.error("--batch", "--preset", "stack-patterns", *sets, "--out", str(tmp_path))
     assert "\"benettin\"" in expected
     with pytest.raises(rocking.ConfigError) as e:
-        rocking.lyapunov(rocking.Scene("stack-patterns"))
+        rocking.lyapunov(rocking.Scene("stack-patterns"), method="tangent")
     assert str(e.value) == expected
+    # Unasked, a stack's method is the one it has.
+    assert rocking.lyapunov(rocking.Scene("stack-patterns", tau_end=400)).method == "benettin"

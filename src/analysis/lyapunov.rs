@@ -435,10 +435,10 @@ impl LyapunovError {
     }
 }
 
-/// The method a body's exponents are best computed by where none is asked
-/// for (the app): tangent dynamics (the whole spectrum) for the single
-/// block, two trajectories (the largest exponent) for a frame or a stack,
-/// whose tangent equations are not written.
+/// The method a body's exponents are best computed by (the app's, and the
+/// default of `analysis.lyapunov_method`): tangent dynamics (the whole
+/// spectrum) for the single block, two trajectories (the largest exponent)
+/// for a frame or a stack, whose tangent equations are not written.
 pub fn method_for(cfg: &Scenario) -> Method {
     if cfg.stack.is_some() || cfg.frame.is_some() {
         Method::Benettin

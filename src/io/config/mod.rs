@@ -32,7 +32,7 @@ use crate::io::record::{self, RecordError, RecordSpec};
 use crate::io::shipped;
 use crate::model::units::AccelUnit;
 use crate::model::{FlightPolicy, Frame, Geometry};
-use crate::sim::scenario::{Analyses, Block, ExcitationSpec, Impact, Record, RunSpec};
+use crate::sim::scenario::{Analyses, Block, ExcitationSpec, Impact, LyapunovChoice, Record, RunSpec};
 use crate::sim::{InitialState, Param, Scenario, catalogue};
 use quantity::{Dimension, Quantity};
 use raw::{Coefficient, Count, Finite, RawConfig};
@@ -666,7 +666,13 @@ fn resolve(table: &Table, source: &Source, records: [RecordFrom<'_>; 2]) -> Resu
     let (a, da) = (&raw.analysis, &d.analyses);
     let analyses = Analyses {
         lyapunov: a.lyapunov.unwrap_or(da.lyapunov),
-        lyapunov_method: a.lyapunov_method.unwrap_or(da.lyapunov_method),
+        // A stack's and a frame's tangent equations are not written: their
+        // default is the method they have.
+        lyapunov_method: a.lyapunov_method.unwrap_or(if stack.is_some() || frame.is_some() {
+            LyapunovChoice::Benettin
+        } else {
+            da.lyapunov_method
+        }),
         spectrum: a.spectrum.unwrap_or(da.spectrum),
         spectrum_window: a.spectrum_window.unwrap_or(da.spectrum_window),
     };
