@@ -110,7 +110,7 @@ impl Scales {
     /// ψ, its τ the bottom block's), titled with the block's name.
     /// `alpha` is the block's own slenderness atan(B/H), rad: where its
     /// ±α lines go.
-    pub fn with_body(self, name: &'static str, alpha: f64) -> Self {
+    pub(crate) fn with_body(self, name: &'static str, alpha: f64) -> Self {
         Self {
             body: Some(name),
             tip: alpha / self.geo.psi,

@@ -127,7 +127,12 @@ pub fn history_csv(run: &StackRun, p: f64) -> String {
 }
 
 /// Writes a stack's three files into `staging`.
-pub fn write_stack(staging: &mut Staging, cfg: &Scenario, run: &StackRun, summary: &str) -> Result<(), OutputError> {
+pub(crate) fn write_stack(
+    staging: &mut Staging,
+    cfg: &Scenario,
+    run: &StackRun,
+    summary: &str,
+) -> Result<(), OutputError> {
     let p = cfg.geometry().p;
     let (events, history) = (events_csv(run, p), history_csv(run, p));
     // Never a NaN in an output: refused, as the block's files refuse it.

@@ -9,7 +9,7 @@ use super::geometry::Geometry;
 /// side `side` (+1 right, −1 left) at rotation Θ, per R:
 /// `side · sin(ψ(1 − |Θ|))` (docs/model.md §1.4: X_p = X + s·sin(ψ(1 − |Θ|))
 /// for the corner the block pivots on, `side = sign Θ`).
-pub fn corner_offset(geo: &Geometry, side: f64, theta: f64) -> f64 {
+pub(crate) fn corner_offset(geo: &Geometry, side: f64, theta: f64) -> f64 {
     side * (geo.psi * (1.0 - theta.abs())).sin()
 }
 

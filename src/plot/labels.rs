@@ -75,7 +75,7 @@ pub(crate) fn param_symbol(param: Param) -> String {
 /// What a section point's Θ is, as an axis label: the block's θ/ψ, or a
 /// stack's top block's rotation over its own α
 /// ([`stack_steady`](crate::analysis::steady::stack_steady)).
-pub fn section_theta(cfg: &Scenario) -> &'static str {
+pub(crate) fn section_theta(cfg: &Scenario) -> &'static str {
     if cfg.stack.is_some() {
         "Θ = φ/α of the top block at τ_k = 2πk/Ω_h"
     } else {
@@ -85,7 +85,7 @@ pub fn section_theta(cfg: &Scenario) -> &'static str {
 
 /// What a sweep's or a map's `theta` and `theta_dot` are, for its JSON's
 /// `units` line.
-pub fn section_units(cfg: &Scenario) -> &'static str {
+pub(crate) fn section_units(cfg: &Scenario) -> &'static str {
     if cfg.stack.is_some() {
         "theta = φ/α of the top block (its rotation φ = q_1 + … + q_K over its own α = atan(B/H)), theta_dot = dΘ/dτ, τ the bottom block's; max_abs_theta the top block's; x, x_dot the stack's slip on its floor and its rate per the bottom block's R"
     } else {

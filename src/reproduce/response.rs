@@ -461,7 +461,7 @@ pub struct ResponseVariant {
 /// the printed eq. 20 (r = 0.830) for every figure, and the paper's
 /// impact law with friction (eqs. 17–27) where the block can slide
 /// (without sliding it is Housner's law).
-pub fn response_variants(cfg: &Scenario) -> Vec<Variant> {
+pub(crate) fn response_variants(cfg: &Scenario) -> Vec<Variant> {
     if cfg.block.mu_s.is_finite() {
         vec![Variant::Housner, Variant::ImpulseLaw, Variant::PrintedEq20]
     } else {

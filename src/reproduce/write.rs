@@ -431,7 +431,11 @@ fn reproduction_json(rep: &Reproduction) -> Json {
 /// Writes every file of `rep` into `sink`, `report.md` last. `wall_s` is
 /// the wall time to state in the report (the caller's measurement).
 /// Returns the names written.
-pub fn write_all(rep: &Reproduction, sink: &mut dyn Sink, threads: usize) -> Result<Vec<String>, ReproduceError> {
+pub(crate) fn write_all(
+    rep: &Reproduction,
+    sink: &mut dyn Sink,
+    threads: usize,
+) -> Result<Vec<String>, ReproduceError> {
     let mut names = Vec::new();
     for d in &rep.diagrams {
         write_diagram(sink, d, &mut names)?;

@@ -192,7 +192,7 @@ impl StackFrame {
     /// its lower face: closed as rest (glued faces too), open as rocking on
     /// that corner, sliding on the floor as the block's slide or
     /// slide-rock, or the run's end.
-    pub fn body_row(&self, j: usize, geo: &Geometry) -> HistoryRow {
+    pub(crate) fn body_row(&self, j: usize, geo: &Geometry) -> HistoryRow {
         let psi = geo.psi;
         let (phi, omega) = self.body(j);
         let mode = match self.mode.end {
@@ -228,7 +228,7 @@ impl StackFrame {
 /// is drawn and plotted as: closed as rest, rocking on a corner as the
 /// block's rocking on that corner, and a sliding base face as the block's
 /// slide or slide-rock.
-pub fn face_mode(c: Contact, slip: Slip) -> Mode {
+pub(crate) fn face_mode(c: Contact, slip: Slip) -> Mode {
     let sign = |s: f64| if s > 0.0 { Sign::Pos } else { Sign::Neg };
     match (c, slip) {
         (Contact::Closed, Slip::Stuck) => Mode::Rest,
@@ -243,7 +243,7 @@ pub fn face_mode(c: Contact, slip: Slip) -> Mode {
 
 /// Block `j`'s lower face's slip in `mode`: the base face's for the
 /// bottom block; upper faces do not slide.
-pub fn face_slip(mode: &StackMode, j: usize) -> Slip {
+pub(crate) fn face_slip(mode: &StackMode, j: usize) -> Slip {
     if j == 0 { mode.slip } else { Slip::Stuck }
 }
 

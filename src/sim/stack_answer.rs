@@ -10,7 +10,7 @@ use crate::model::stack::StackEnd;
 
 /// What the outputs call block `j` of a stack of `k`: `bottom block`,
 /// `middle block` (of three), `block 2` …, `top block`.
-pub fn body_name(j: usize, k: usize) -> &'static str {
+pub(crate) fn body_name(j: usize, k: usize) -> &'static str {
     const MIDDLE: [&str; 3] = ["block 2", "block 3", "block 4"];
     match (j, k) {
         (0, _) => "bottom block",

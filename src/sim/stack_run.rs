@@ -84,7 +84,7 @@ impl StackRun {
     /// `max_rotation_over_alpha`, a spectrum's `peak_theta_over_alpha`):
     /// one number that reads as the block's does, 1 being a block's own
     /// overturning angle.
-    pub fn most_turned(&self) -> (usize, f64, f64) {
+    pub(crate) fn most_turned(&self) -> (usize, f64, f64) {
         let (j, phi) = (0..self.geo.k)
             .map(|j| (j, self.tally.max_phi[j]))
             .fold((0, 0.0), |a, b| if b.1 > a.1 { b } else { a });
@@ -161,13 +161,13 @@ pub fn simulate_stack(
 /// What watches a stack's run at each section time: called with the
 /// section points and the events so far, it says whether the run may stop
 /// there (its class is certain: `analysis::steady`'s early stop).
-pub type StackWatch<'a> = &'a mut dyn FnMut(&[StackSection], &[StackEvent]) -> bool;
+pub(crate) type StackWatch<'a> = &'a mut dyn FnMut(&[StackSection], &[StackEvent]) -> bool;
 
 /// [`simulate_stack`], asking `watch` (if any) after each forcing period
 /// whether to stop. The legs end on the section times with the run's end
 /// as their horizon, so a watched run takes the steps of an unwatched one,
 /// and one that is never stopped is the same run bit for bit.
-pub fn simulate_stack_watched(
+pub(crate) fn simulate_stack_watched(
     geo: StackGeometry,
     excitation: Excitation,
     zeno_eps: f64,

@@ -21,7 +21,7 @@ use crate::model::oscillator::pseudo_acceleration;
 use crate::sim::{Scenario, ScenarioError};
 
 /// Most runs (blocks × levels × records) of one fragility study.
-pub const MAX_RUNS: usize = 10_000_000;
+pub(crate) const MAX_RUNS: usize = 10_000_000;
 
 /// The intensity measure the records are scaled to.
 ///
@@ -56,7 +56,7 @@ pub enum Intensity {
 /// convention of design spectra and ground-motion models, so that a
 /// fragility in Sa(T, 5 %) reads against a hazard curve in the same
 /// measure.
-pub const SA_DAMPING: f64 = 0.05;
+pub(crate) const SA_DAMPING: f64 = 0.05;
 
 impl Intensity {
     /// Name with unit, as in the outputs' columns: `pga_g`, `pgv_m_s`,
@@ -103,7 +103,7 @@ impl Intensity {
     /// PGA in g, its PGV in m/s, or its Sa(T, 5 %) in g at the period
     /// `sa_period_s` (s; `None` for Sa without a period, or a period the
     /// oscillator refuses). `series` is the (horizontal) record.
-    pub fn record_value(self, series: &Series, sa_period_s: Option<f64>) -> Option<f64> {
+    pub(crate) fn record_value(self, series: &Series, sa_period_s: Option<f64>) -> Option<f64> {
         match self {
             Intensity::Pga | Intensity::PgaTanAlpha => Some(series.peak_abs_g()),
             Intensity::Pgv | Intensity::PgvPTanAlpha => Some(series.peaks(1.0).pgv_m_s),
@@ -124,7 +124,7 @@ impl Intensity {
     }
 
     /// Whether the measure depends on the block (the dimensionless ones).
-    pub fn per_block(self) -> bool {
+    pub(crate) fn per_block(self) -> bool {
         matches!(self, Intensity::PgaTanAlpha | Intensity::PgvPTanAlpha)
     }
 }
@@ -189,7 +189,7 @@ impl FragilitySpec<'_> {
 
     /// The scale factor that brings record `record` to `level` for block
     /// `block`.
-    pub fn scale_of(&self, block: usize, level: f64, record: usize) -> f64 {
+    pub(crate) fn scale_of(&self, block: usize, level: f64, record: usize) -> f64 {
         level / (self.records[record].intensity * self.im.block_factor(self.blocks[block]))
     }
 

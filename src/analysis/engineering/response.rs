@@ -88,7 +88,7 @@ impl Drive {
 /// The time, s, of a run's end event (`t_end_event_s`) when the run
 /// ended as `which`, else `None`: the outputs give each kind of end its
 /// own column (`t_overturn_s`, `t_flight_s`).
-pub fn end_time_as(end: EndState, t_end_event_s: Option<f64>, which: EndState) -> Option<f64> {
+pub(crate) fn end_time_as(end: EndState, t_end_event_s: Option<f64>, which: EndState) -> Option<f64> {
     if end == which { t_end_event_s } else { None }
 }
 

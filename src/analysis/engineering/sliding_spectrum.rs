@@ -45,7 +45,7 @@ use crate::sim::{Scenario, ScenarioError, simulate};
 /// B/H of the slide-only block: tan α = 1000, far above any ground motion
 /// (the strongest recorded PGAs are 3–4 g) and any friction coefficient,
 /// so that neither uplift nor tipping can happen (see the module docs).
-pub const SLIDE_ONLY_B_OVER_H: f64 = 1000.0;
+pub(crate) const SLIDE_ONLY_B_OVER_H: f64 = 1000.0;
 
 /// Most friction coefficients of one spectrum.
 pub(crate) const MAX_MU: usize = 100_000;

@@ -12,7 +12,7 @@ use crate::model::state::{N, THETA, THETA_DOT, X_DOT};
 use crate::model::{FrameSystem, Mode};
 
 /// Number of tangent coordinates of a frame.
-pub const FRAME_DIM: usize = 2;
+pub(crate) const FRAME_DIM: usize = 2;
 
 impl Perturbable<N, FRAME_DIM> for FrameSystem {
     fn coords(&self, y: &[f64; N]) -> [f64; FRAME_DIM] {

@@ -13,7 +13,7 @@ use super::tangent::Perturbable;
 use crate::model::stack::{Contact, MAX_BLOCKS, NS, SLIDE_RATE, StackMode, StackSystem};
 
 /// Number of tangent coordinates of a stack.
-pub const STACK_DIM: usize = 2 * MAX_BLOCKS + 1;
+pub(crate) const STACK_DIM: usize = 2 * MAX_BLOCKS + 1;
 
 impl Perturbable<NS, STACK_DIM> for StackSystem {
     fn coords(&self, y: &[f64; NS]) -> [f64; STACK_DIM] {

@@ -180,7 +180,7 @@ impl Lines {
     /// While a record plays under a stack: the clock, and block `name`'s
     /// rotation (the sample's Θ is that block's φ over the bottom block's
     /// ψ, `geo` the bottom block's).
-    pub fn playing_body(sample: &Sample, geo: Geometry, name: &str, subtitle: Option<String>) -> Self {
+    pub(crate) fn playing_body(sample: &Sample, geo: Geometry, name: &str, subtitle: Option<String>) -> Self {
         let si = Scales::new(Units::Physical, geo);
         Self {
             headline: format!("t = {:.2} s", si.seconds(sample.tau)),

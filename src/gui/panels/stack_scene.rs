@@ -86,7 +86,7 @@ fn body_color(frame: &StackFrame, ended: Option<StackEnd>, j: usize) -> Color32 
 /// The half-diagonal of the stack's bounding box at rest, m: the camera
 /// frames a body this size as it frames one block (2.5 of it high), so
 /// the whole stack is in view, tilted or not.
-pub fn framing_radius(geo: &StackGeometry) -> f64 {
+pub(crate) fn framing_radius(geo: &StackGeometry) -> f64 {
     let height: f64 = (0..geo.k).map(|j| geo.size[j][1]).sum();
     let (mut left, mut right) = (f64::INFINITY, f64::NEG_INFINITY);
     for j in 0..geo.k {

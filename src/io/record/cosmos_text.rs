@@ -58,7 +58,7 @@ impl Fortran {
     }
 
     /// The same, with no zero before the point (`-.105433`), as CSMIP writes.
-    pub const fn without_leading_zero(self) -> Self {
+    pub(crate) const fn without_leading_zero(self) -> Self {
         Self {
             leading_zero: false,
             ..self

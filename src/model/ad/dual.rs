@@ -25,7 +25,7 @@ impl<const D: usize> Dual<D> {
 
     /// Independent variable `i` at value `v` (∂/∂x_i = 1, the others 0).
     #[inline]
-    pub fn variable(v: f64, i: usize) -> Self {
+    pub(crate) fn variable(v: f64, i: usize) -> Self {
         let mut d = [0.0; D];
         if let Some(di) = d.get_mut(i) {
             *di = 1.0;
@@ -36,7 +36,7 @@ impl<const D: usize> Dual<D> {
     /// A value with given partials (an input whose derivatives are known,
     /// such as a forcing's rate of change).
     #[inline]
-    pub fn with_partials(v: f64, d: [f64; D]) -> Self {
+    pub(crate) fn with_partials(v: f64, d: [f64; D]) -> Self {
         Self { v, d }
     }
 

@@ -77,7 +77,7 @@ impl<const L: usize> Tape<L> {
 
     /// An unknown of the expansion: its coefficient `k` is `coeff` in pass
     /// `k` (the lower ones are those given in the earlier passes).
-    pub fn variable(&self, coeff: f64) -> Jet<'_, L> {
+    pub(crate) fn variable(&self, coeff: f64) -> Jet<'_, L> {
         self.make(|_, _, _| coeff)
     }
 
@@ -97,7 +97,7 @@ impl<const L: usize> Tape<L> {
     }
 
     /// Coefficient `k` of `jet` (zero for a coefficient not computed yet).
-    pub fn coeff(&self, jet: Jet<'_, L>, k: usize) -> f64 {
+    pub(crate) fn coeff(&self, jet: Jet<'_, L>, k: usize) -> f64 {
         self.nodes
             .borrow()
             .get(jet.id)
@@ -149,7 +149,7 @@ fn conv<const L: usize>(a: &[f64; L], b: &[f64; L], k: usize, lo: usize) -> f64 
 
 impl<'t, const L: usize> Jet<'t, L> {
     /// Coefficient `k` of this series (zero if not computed yet).
-    pub fn coeff(self, k: usize) -> f64 {
+    pub(crate) fn coeff(self, k: usize) -> f64 {
         self.tape.coeff(self, k)
     }
 

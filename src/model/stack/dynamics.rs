@@ -41,7 +41,7 @@ pub struct StackAccel {
 
 /// What the vector field needs: each interface's q_i'' and the slip's u''.
 #[derive(Clone, Copy, Debug)]
-pub struct Rates {
+pub(crate) struct Rates {
     /// Each interface's q_i'', rad per τ² (0 when closed or glued).
     pub q_ddot: [f64; MAX_BLOCKS],
     /// u'', m per τ² (0 when stuck).
@@ -71,12 +71,12 @@ pub struct InterfaceLoad {
 impl InterfaceLoad {
     /// How far a closed face is from opening on its right corner (≥ 0:
     /// the resultant is inside), per weight times m.
-    pub fn right_margin(&self) -> f64 {
+    pub(crate) fn right_margin(&self) -> f64 {
         self.about_right
     }
 
     /// How far a closed face is from opening on its left corner.
-    pub fn left_margin(&self) -> f64 {
+    pub(crate) fn left_margin(&self) -> f64 {
         -self.about_left
     }
 }
@@ -345,7 +345,7 @@ fn solve_slide(
 /// slip's u'': the part of [`accelerations`] that the vector field needs,
 /// the same numbers bit for bit without the blocks' accelerations.
 /// `friction` is s μ_k while the base face slides (s the sense of u').
-pub fn rotation_rates(
+pub(crate) fn rotation_rates(
     geo: &StackGeometry,
     contacts: &[Contact; MAX_BLOCKS],
     friction: Option<f64>,
@@ -444,7 +444,7 @@ pub fn accelerations(
 
 /// The load on interface `i` at `pose` with accelerations `acc`, per
 /// weight of the blocks above at gravity `g_unit` (g/p², m per τ²).
-pub fn interface_load(
+pub(crate) fn interface_load(
     geo: &StackGeometry,
     pose: &Pose,
     acc: &StackAccel,
@@ -495,7 +495,7 @@ pub fn interface_load(
 /// same positions with `after`'s pivots. With `friction` = s μ_k the base
 /// face goes on sliding through the impact, its friction impulse −s μ_k
 /// times the base's normal impulse (§18.7); otherwise it sticks (u'⁺ = 0).
-pub fn impact_rates(
+pub(crate) fn impact_rates(
     geo: &StackGeometry,
     after: &[Contact; MAX_BLOCKS],
     friction: Option<f64>,
@@ -553,7 +553,7 @@ pub fn kinetic(geo: &StackGeometry, pose: &Pose) -> f64 {
 }
 
 /// Potential energy of `pose` at gravity `g_unit`, relative to rest.
-pub fn potential(geo: &StackGeometry, pose: &Pose, g_unit: f64) -> f64 {
+pub(crate) fn potential(geo: &StackGeometry, pose: &Pose, g_unit: f64) -> f64 {
     (0..geo.k)
         .map(|j| geo.mass[j] * g_unit * (pose.centre[j][1] - geo.centre[j][1]))
         .sum()

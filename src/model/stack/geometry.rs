@@ -106,12 +106,12 @@ impl StackGeometry {
     }
 
     /// The mass of blocks `i..K` (what interface `i` carries).
-    pub fn mass_above(&self, i: usize) -> f64 {
+    pub(crate) fn mass_above(&self, i: usize) -> f64 {
         self.mass[i..self.k].iter().sum()
     }
 
     /// Whether the base face can slide (finite friction, not glued).
-    pub fn base_slides(&self) -> bool {
+    pub(crate) fn base_slides(&self) -> bool {
         self.mu_s[0].is_finite() && !self.glued[0]
     }
 

@@ -13,7 +13,7 @@
 use super::{Contact, MAX_BLOCKS, NS, SLIDE, SLIDE_RATE, StackGeometry};
 
 /// A vector in the base frame, m (or m per τ).
-pub type V2 = [f64; 2];
+pub(crate) type V2 = [f64; 2];
 
 /// The clockwise quarter turn J: d/dφ Rot(φ) = J Rot(φ).
 #[inline]
@@ -85,7 +85,7 @@ impl Pose {
     /// the first K entries of each array are written, the rest left as
     /// they are (a pose of the same stack keeps them 0). The vector field
     /// refills one pose rather than building and copying a new one.
-    pub fn fill(&mut self, geo: &StackGeometry, contacts: &[Contact; MAX_BLOCKS], y: &[f64; NS]) {
+    pub(crate) fn fill(&mut self, geo: &StackGeometry, contacts: &[Contact; MAX_BLOCKS], y: &[f64; NS]) {
         let k = geo.blocks();
         self.k = k;
         self.slide = y[SLIDE];

@@ -111,7 +111,7 @@ impl Param {
     /// and initial state, Ralston's step and the tumble angle are the
     /// single block's (a stack has its own tables, impulse law and
     /// overturning, and starts at rest).
-    pub fn applies_to_stack(self) -> bool {
+    pub(crate) fn applies_to_stack(self) -> bool {
         matches!(
             self,
             Param::Ah
