@@ -199,10 +199,6 @@ fn a_frame_config_is_refused_where_it_would_be_misread() {
             "impact.law: \"impulse\" is the single block's law",
         ),
         (
-            format!("{frame}[analysis]\nlyapunov = true\nlyapunov_method = \"tangent\""),
-            "analysis.lyapunov_method: \"tangent\" needs tangent equations, which a [frame] does not have",
-        ),
-        (
             format!("{frame}[[stack]]\nwidth = 1.0\nheight = 2.0"),
             "frame: a config has one of [block], [[stack]] and [frame]",
         ),

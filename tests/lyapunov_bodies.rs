@@ -1,6 +1,8 @@
-//! The largest Lyapunov exponent of the bodies whose tangent equations are
-//! not written (a `[[stack]]`, a `[frame]`), by two trajectories, against
-//! two independent answers computed here:
+//! The Lyapunov exponents of the bodies beyond the single block: a
+//! `[[stack]]`'s largest by two trajectories (its tangent equations are not
+//! written), a `[frame]`'s whole spectrum by the tangent dynamics its
+//! equations generate and its largest by two trajectories, against
+//! independent answers computed here:
 //!
 //! - the single block each is equivalent to (a glued stack of one width is
 //!   the block of their height; a frame is Makris & Vassiliou's block),
@@ -13,6 +15,9 @@
 //!   `[[r, 0], [·, r]]`, of determinant r². Over a cycle the two exponents
 //!   then sum to 2 · ln r² = 4 ln r, and a complex pair shares it: each
 //!   is 2 ln r per cycle.
+//! - on any orbit of a frame that rocks throughout, the sum of its two
+//!   exponents: the flow keeps area and each impact multiplies it by r²,
+//!   so λ₁ + λ₂ = Σ_impacts ln r² over the window's length.
 
 mod common;
 use std::process::Command;
@@ -105,7 +110,7 @@ fn a_glued_stacks_largest_exponent_is_its_single_blocks_and_housners() {
 }
 
 #[test]
-fn a_frames_largest_exponent_is_its_equivalent_blocks_and_its_restitutions() {
+fn a_frames_exponents_are_its_equivalent_blocks_and_its_restitutions() {
     let gamma: f64 = 0.5;
     let frame = scene(&format!(
         "[frame]\nwidth = 1.0\nheight = 4.0\nbeam_mass_ratio = {gamma:?}\n{SHAKING}"
@@ -120,8 +125,9 @@ fn a_frames_largest_exponent_is_its_equivalent_blocks_and_its_restitutions() {
         1.0 / kappa,
         4.0 / kappa
     ));
-    assert_eq!(method_for(&frame), Method::Benettin);
+    assert_eq!(method_for(&frame), Method::Tangent);
     let f = exponents(&frame, Method::Benettin);
+    let ft = exponents(&frame, Method::Tangent);
     let b = exponents(&block, Method::Tangent);
     assert!(agree(
         (b.spectrum[0], b.spectrum_stderr[0]),
@@ -147,6 +153,66 @@ fn a_frames_largest_exponent_is_its_equivalent_blocks_and_its_restitutions() {
     ));
     assert!(agree((f.per_cycle, f.stderr_per_cycle), (exact, 0.0)));
     assert_eq!(f.neutral, "X");
+    // The whole spectrum by the frame's generated tangent dynamics: each
+    // exponent per cycle is the equivalent block's and 2 ln r.
+    let per_cycle = |r: &LyapunovResult, i: usize| {
+        let k = r.per_cycle / r.largest_per_tau;
+        (r.spectrum[i] * k, r.spectrum_stderr[i] * k)
+    };
+    assert_eq!(ft.spectrum.len(), 2, "{:?}", ft.spectrum);
+    for i in 0..2 {
+        eprintln!(
+            "frame λ{} {:.5} ± {:.5}, block {:.5} ± {:.5} per cycle",
+            i + 1,
+            per_cycle(&ft, i).0,
+            per_cycle(&ft, i).1,
+            per_cycle(&b, i).0,
+            per_cycle(&b, i).1
+        );
+        assert!(agree(per_cycle(&ft, i), per_cycle(&b, i)), "λ{}", i + 1);
+        assert!(agree(per_cycle(&ft, i), (exact, 0.0)), "λ{}", i + 1);
+    }
+}
+
+/// On an orbit that rocks throughout, a frame's two exponents sum to the
+/// log of the area its impacts keep: the rocking flow's Jacobian has trace
+/// 0 (Θ'' reads Θ alone), and an impact's saltation matrix has determinant
+/// r² whatever the state, so λ₁ + λ₂ = n ln r² / (τ_end − τ_start) with n
+/// the impacts in the window. The scene (1 g at 2 Hz) is not a period-1
+/// orbit with two impacts a cycle: its exponents are not 2 ln r per cycle
+/// each, and only their sum is known.
+#[test]
+fn a_frames_two_exponents_sum_to_the_log_of_its_impacts_area() {
+    let gamma: f64 = 0.5;
+    let frame = scene(&format!(
+        "[frame]\nwidth = 1.0\nheight = 4.0\nbeam_mass_ratio = {gamma:?}\n[excitation]\nkind = \"harmonic\"\na_h = \"1 g\"\nomega_h = \"2 Hz\"\n[run]\nt_end = \"400 s\"\noutput_dt = 0\n"
+    ));
+    let f = exponents(&frame, Method::Tangent);
+    let alpha = (1.0f64 / 4.0).atan();
+    let r = (1.0 - 1.5 * alpha.sin().powi(2) + 3.0 * gamma * (2.0 * alpha).cos()) / (1.0 + 3.0 * gamma);
+    let res = rocking::sim::simulate(frame.model().expect("model"), &frame.initial, &frame.run_options()).expect("run");
+    assert!(
+        res.events.iter().all(|e| e.kind.name() != "rest"),
+        "it rocks throughout"
+    );
+    let n = res
+        .events
+        .iter()
+        .filter(|e| e.kind.name() == "impact" && e.tau >= f.tau_start && e.tau < f.tau_end)
+        .count();
+    let sum = n as f64 * 2.0 * r.ln() / (f.tau_end - f.tau_start);
+    let (l1, l2) = (f.spectrum[0], f.spectrum[1]);
+    eprintln!(
+        "λ₁ {l1:.6}, λ₂ {l2:.6}, sum {:.12} against {sum:.12} from {n} impacts",
+        l1 + l2
+    );
+    assert!(((l1 + l2) - sum).abs() <= 1e-9 * sum.abs(), "{} against {sum}", l1 + l2);
+    assert!(l1 >= l2, "ordered: {l1} {l2}");
+    assert!(
+        (f.per_cycle - 2.0 * r.ln()).abs() > 0.1,
+        "another orbit: {}",
+        f.per_cycle
+    );
 }
 
 #[test]
@@ -167,12 +233,9 @@ fn a_stack_that_never_lifts_has_no_exponent_and_says_it_rests() {
 }
 
 #[test]
-fn a_stack_or_a_frame_asked_for_tangent_exponents_is_told_the_method_it_has() {
-    let bodies = [
-        "[[stack]]\nwidth = 1.0\nheight = 2.0\n[[stack]]\nwidth = 0.6\nheight = 1.0\n",
-        "[frame]\nwidth = 1.0\nheight = 6.0\nbeam_mass_ratio = 1\n",
-    ];
-    for body in bodies {
+fn a_stack_asked_for_tangent_exponents_is_told_the_method_it_has() {
+    {
+        let body = "[[stack]]\nwidth = 1.0\nheight = 2.0\n[[stack]]\nwidth = 0.6\nheight = 1.0\n";
         for method in ["tangent", "both"] {
             let e = refusal(&format!(
                 "{body}{SHAKING}[analysis]\nlyapunov = true\nlyapunov_method = \"{method}\"\n"
@@ -222,9 +285,50 @@ fn batch_adds_a_stacks_exponent_to_its_summary_and_its_report() {
     std::fs::remove_dir_all(&out).ok();
 }
 
+/// `--batch` on a harmonic frame with no method named writes both of its
+/// exponents by tangent dynamics, the same as the library's.
+#[test]
+fn batch_writes_a_frames_spectrum_by_tangent_dynamics() {
+    let out = std::env::temp_dir().join(format!("rocking-lyapunov-frame-batch-{}", std::process::id()));
+    let run = Command::new(env!("CARGO_BIN_EXE_rocking"))
+        .args(["--batch", "--preset", "rocking-frame"])
+        .args(["--set", "excitation.kind=harmonic", "--set", "excitation.a_h=\"0.5 g\""])
+        .args(["--set", "excitation.omega_h=\"1.5 Hz\"", "--set", "run.t_end=\"300 s\""])
+        .args(["--set", "analysis.lyapunov=true", "--out"])
+        .arg(&out)
+        .output()
+        .expect("rocking");
+    let stdout = String::from_utf8_lossy(&run.stdout);
+    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    assert!(stdout.contains("lyapunov (tangent): largest -"), "{stdout}");
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).expect("summary")).expect("json");
+    let l = &summary["lyapunov"];
+    assert_eq!(l["method"], "tangent");
+    let spectrum: Vec<f64> = l["spectrum"]
+        .as_array()
+        .expect("a spectrum")
+        .iter()
+        .map(|v| v.as_f64().expect("a number"))
+        .collect();
+    assert_eq!(spectrum.len(), 2, "{spectrum:?}");
+    let sets = [
+        "excitation.kind=harmonic",
+        "excitation.a_h=\"0.5 g\"",
+        "excitation.omega_h=\"1.5 Hz\"",
+        "run.t_end=\"300 s\"",
+    ]
+    .map(String::from);
+    let cfg = rocking::io::config::load(Some("rocking-frame"), None, &sets).expect("scene");
+    let own = exponents(&cfg, Method::Tangent);
+    assert_eq!(own.spectrum, spectrum);
+    std::fs::remove_dir_all(&out).ok();
+}
+
 /// A frame's sweep with `--lyapunov` used to leave the column empty without
 /// a word (the block's tangent method refused it and the hook read that as
-/// "no exponent"); it now holds the frame's two-trajectory exponent.
+/// "no exponent"); it now holds the frame's exponent by the method a frame
+/// has (`method_for`).
 #[test]
 fn a_frame_sweep_writes_each_values_exponent() {
     let dir = std::env::temp_dir().join(format!("rocking-lyapunov-frame-{}", std::process::id()));
@@ -256,7 +360,7 @@ fn a_frame_sweep_writes_each_values_exponent() {
             .unwrap_or_else(|_| panic!("A_h {value}: no exponent written"));
         let sets = [format!("excitation.a_h={value}"), "run.tau_end=700".to_string()];
         let cfg = rocking::io::config::load(None, Some(&config), &sets).expect("scene");
-        let own = of_scenario(&cfg, &LyapunovOptions::for_scenario(&cfg, Method::Benettin))
+        let own = of_scenario(&cfg, &LyapunovOptions::for_scenario(&cfg, method_for(&cfg)))
             .expect("lyapunov")
             .largest_per_tau()
             .expect("an exponent");

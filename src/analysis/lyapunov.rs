@@ -63,10 +63,12 @@
 //!
 //! # A frame and a stack
 //!
-//! Their tangent equations are not written, so they have no spectrum: the
+//! The frame's tangent equations are generated from its equations
+//! (`model/frame/tangent.rs`), so it has its whole spectrum as the block
+//! has (`frame.rs`). A stack's are not written, so it has no spectrum: the
 //! two-trajectory method needs only [`Perturbable`] (coordinates, the free
-//! directions of a mode, a displaced state) and gives their largest
-//! exponent ([`two_trajectories`]; `frame.rs`, `stack.rs`).
+//! directions of a mode, a displaced state) and gives its largest exponent
+//! ([`two_trajectories`]; `stack.rs`).
 //! [`of_scenario`] runs whichever body a scene has; [`method_for`] is the
 //! method each body has (the app's choice).
 
@@ -93,10 +95,9 @@ use crate::model::excitation::Excitation;
 use crate::model::stack::{NS, StackEnd, StackError, StackGeometry, StackMode, StackSystem};
 use crate::model::system::{ModelError, N};
 use crate::model::variational::{self, DIM};
-use crate::model::{BlockSystem, FrameSystem, Mode, Model};
+use crate::model::{BlockSystem, FRAME_DIM, FrameSystem, Mode, Model, RockerCore};
 use crate::sim::Scenario;
 use crate::sim::{self, InitialState, SimError};
-use frame::FRAME_DIM;
 use stack::STACK_DIM;
 
 /// Which way to compute the exponents.
@@ -394,13 +395,13 @@ pub enum LyapunovError {
         /// The forcing period, τ.
         period: f64,
     },
-    /// The model has no tangent equations (a rocking frame, a stack): only
-    /// the two-trajectory method gives its largest exponent.
+    /// The model has no tangent equations (a stack): only the
+    /// two-trajectory method gives its largest exponent.
     #[error(
         "analysis.lyapunov_method = \"{asked}\" needs tangent equations, which a {body} does not have (yet): \"benettin\" gives its largest exponent by two trajectories"
     )]
     NoTangent {
-        /// The body: `[frame]` or `[[stack]]`.
+        /// The body: `[[stack]]`.
         body: &'static str,
         /// The method asked for.
         asked: &'static str,
@@ -437,10 +438,10 @@ impl LyapunovError {
 
 /// The method a body's exponents are best computed by (the app's, and the
 /// default of `analysis.lyapunov_method`): tangent dynamics (the whole
-/// spectrum) for the single block, two trajectories (the largest exponent)
-/// for a frame or a stack, whose tangent equations are not written.
+/// spectrum) for the single block and the frame, two trajectories (the
+/// largest exponent) for a stack, whose tangent equations are not written.
 pub fn method_for(cfg: &Scenario) -> Method {
-    if cfg.stack.is_some() || cfg.frame.is_some() {
+    if cfg.stack.is_some() {
         Method::Benettin
     } else {
         Method::Tangent
@@ -611,29 +612,52 @@ fn block_ending(mode: Mode) -> Ending {
 }
 
 /// The Lyapunov exponents of `model` started from `init` (see the module
-/// docs for the phase space, units and typed non-results). A frame has its
-/// largest exponent by two trajectories only.
+/// docs for the phase space, units and typed non-results): the block's,
+/// or the frame's when the model has one.
 pub fn lyapunov(model: &Model, init: &InitialState, opts: &LyapunovOptions) -> Result<Lyapunov, LyapunovError> {
     opts.validate()?;
     let period = model.excitation.forcing_period().ok_or(LyapunovError::NotHarmonic)?;
     if model.frame.is_some() {
-        return frame_lyapunov(model, init, opts, period);
+        let (outcome, schedule) = outcome_of::<_, FRAME_DIM, { N + FRAME_DIM * FRAME_DIM }>(
+            FrameSystem::new(model.clone()),
+            model,
+            init,
+            opts,
+            period,
+        )?;
+        return answer(outcome, opts, &schedule, block_ending, "X");
     }
     if variational::forcing_rate(&model.excitation, 0.0).is_none() {
         return Err(LyapunovError::NotHarmonic);
     }
+    let (outcome, schedule) =
+        outcome_of::<_, DIM, { N + DIM * DIM }>(BlockSystem::new(model.clone()), model, init, opts, period)?;
+    answer(outcome, opts, &schedule, block_ending, "X")
+}
+
+/// The outcome of `opts.method` on `sys`, the block's or the frame's
+/// system of `model`, started from `init`, with its schedule.
+fn outcome_of<S, const D: usize, const NA: usize>(
+    mut sys: S,
+    model: &Model,
+    init: &InitialState,
+    opts: &LyapunovOptions,
+    period: f64,
+) -> Result<(Outcome<Mode, D>, Schedule), LyapunovError>
+where
+    S: TangentSystem<N, D, Mode = Mode, Error = ModelError> + RockerCore + Clone,
+    nalgebra::Const<D>: nalgebra::DimMin<nalgebra::Const<D>, Output = nalgebra::Const<D>>,
+{
     let (mode0, mut y0) = sim::initial_mode(model, init)?;
-    let mut sys = BlockSystem::new(model.clone());
-    let mode0 = sys.settle(mode0, 0.0, &mut y0);
+    let mode0 = sys.settle_mode(mode0, 0.0, &mut y0);
     let schedule = schedule(opts, period)?;
     let method = opts.method;
     let request = Request {
         tangent: matches!(method, Method::Tangent | Method::Both),
         separation: matches!(method, Method::Benettin | Method::Both).then_some(opts.separation),
     };
-    let outcome =
-        exponents::<_, N, DIM, { N + DIM * DIM }>(sys, mode0, y0, &schedule, tolerances(opts), opts.limits, request)?;
-    answer(outcome, opts, &schedule, block_ending, "X")
+    let outcome = exponents::<_, N, D, NA>(sys, mode0, y0, &schedule, tolerances(opts), opts.limits, request)?;
+    Ok((outcome, schedule))
 }
 
 /// The outcome of the two-trajectory method on `sys`, a body without
@@ -661,20 +685,6 @@ where
     let tol = tolerances(opts);
     let outcome = two_trajectories::<_, N, D>(sys, mode0, y0, &schedule, tol, opts.limits, opts.separation)?;
     Ok((outcome, schedule))
-}
-
-/// The frame's largest exponent by two trajectories in its `(Θ, Θ')`.
-fn frame_lyapunov(
-    model: &Model,
-    init: &InitialState,
-    opts: &LyapunovOptions,
-    period: f64,
-) -> Result<Lyapunov, LyapunovError> {
-    let (mode0, mut y0) = sim::initial_mode(model, init)?;
-    let mut sys = FrameSystem::new(model.clone());
-    let mode0 = sys.settle(mode0, 0.0, &mut y0);
-    let (outcome, schedule) = two_trajectory_outcome::<_, N, FRAME_DIM>(sys, mode0, y0, opts, period, "[frame]")?;
-    answer(outcome, opts, &schedule, block_ending, "X")
 }
 
 /// The largest exponent of the stack `geo` under `excitation` (in its

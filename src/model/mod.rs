@@ -24,10 +24,10 @@ pub mod units;
 pub mod variational;
 
 pub use excitation::{Excitation, Harmonic};
-pub use frame::{Frame, FrameSystem};
+pub use frame::{FRAME_COORDS, FRAME_DIM, Frame, FrameSystem};
 pub use geometry::Geometry;
 pub use impact::ImpactLaw;
 pub use mode::{Mode, Sign};
 pub use params::{FlightPolicy, Model};
-pub use rocker::{Rocker, RockerVisitor, with_rocker};
+pub use rocker::{Rocker, RockerCore, RockerVisitor, with_rocker};
 pub use system::{BlockSystem, EventKind, EventRecord};

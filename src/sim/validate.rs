@@ -103,13 +103,10 @@ impl Scenario {
                 "\"impulse\" is the single block's law; a [frame] takes \"housner\" (its own coefficient, docs/model.md §16.3) or \"ratio\"",
             ));
         }
-        if self.analyses.lyapunov {
-            self.two_trajectories_only("[frame]")?;
-        }
         Ok(())
     }
 
-    /// A body without tangent equations (`body`: a frame, a stack) has its
+    /// A body without tangent equations (`body`: a stack) has its
     /// largest Lyapunov exponent by two trajectories alone.
     pub(super) fn two_trajectories_only(&self, body: &str) -> Result<(), ScenarioError> {
         let method = self.analyses.lyapunov_method;

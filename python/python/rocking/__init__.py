@@ -298,9 +298,9 @@ def lyapunov(scene: Scene | str, method: str | None = None) -> Lyapunov:
     """The Lyapunov exponents of `scene` over its run (discarding
     min(600, tau_end/2) of transient), as `analysis.lyapunov = true`
     computes them; `method` is "tangent", "benettin" or "both" (default:
-    the scene's analysis.lyapunov_method). A stack or a frame takes
-    "benettin" only: their tangent equations are not written, so two
-    trajectories give their largest exponent."""
+    the scene's analysis.lyapunov_method). A frame takes all three, as
+    the block does; a stack takes "benettin" only: its tangent equations
+    are not written, so two trajectories give its largest exponent."""
     s = _scene(scene)
     # Checked as `--set analysis.lyapunov=true` is: a scene without harmonic
     # excitation, or an unknown method, is refused with the CLI's message.

@@ -1,18 +1,14 @@
-//! The rocking frame as a [`Perturbable`] system, for its largest exponent
-//! by two trajectories. Its tangent equations are not written, so it has
-//! no spectrum.
-//!
-//! Tangent coordinates `z = (Θ, Θ')` of the columns (the frame has one
-//! degree of freedom: its columns rock together on stuck corners, so the
-//! columns' X' follows Θ' and X is neutral).
+//! The rocking frame as a [`TangentSystem`]: its tangent coordinates
+//! `z = (Θ, Θ')` and the Jacobians its equations generate
+//! (`model/frame/tangent.rs`), for its whole spectrum by tangent dynamics
+//! or its largest exponent by two trajectories.
 
-use super::tangent::Perturbable;
-use crate::model::dynamics::Tilt;
+use super::qr::Square;
+use super::tangent::{Perturbable, TangentSystem};
+use crate::model::dynamics::{Forcing, Tilt};
 use crate::model::state::{N, THETA, THETA_DOT, X_DOT};
-use crate::model::{FrameSystem, Mode};
-
-/// Number of tangent coordinates of a frame.
-pub(crate) const FRAME_DIM: usize = 2;
+use crate::model::variational::forcing_rate;
+use crate::model::{FRAME_DIM, FrameSystem, Mode};
 
 impl Perturbable<N, FRAME_DIM> for FrameSystem {
     fn coords(&self, y: &[f64; N]) -> [f64; FRAME_DIM] {
@@ -21,10 +17,7 @@ impl Perturbable<N, FRAME_DIM> for FrameSystem {
 
     /// Both while it rocks; none at rest or after it ended.
     fn tangent_dim(&self, mode: Mode) -> usize {
-        match mode {
-            Mode::Rock { .. } => 2,
-            Mode::Rest | Mode::Slide { .. } | Mode::SlideRock { .. } | Mode::Tumbled | Mode::Flight => 0,
-        }
+        FrameSystem::tangent_dim(mode)
     }
 
     /// Θ and Θ' displaced, the columns' X' put back on the stuck-corner
@@ -41,5 +34,29 @@ impl Perturbable<N, FRAME_DIM> for FrameSystem {
         let tilt = Tilt::new(geo, pivot, yp[THETA]);
         yp[X_DOT] = tilt.c * geo.psi * yp[THETA_DOT];
         (pivot.value() * yp[THETA] > 0.0).then_some(yp)
+    }
+}
+
+impl TangentSystem<N, FRAME_DIM> for FrameSystem {
+    fn jacobian(&self, mode: Mode, t: f64, y: &[f64; N]) -> Square<FRAME_DIM> {
+        self.field_jacobian(mode, self.model.excitation.forcing(t), y)
+    }
+
+    /// `None` under a motion without a closed-form rate (pulses, records),
+    /// as the block's: the tangent method needs the guards' time partials.
+    fn guard_gradient(&self, mode: Mode, index: usize, t: f64, y: &[f64; N]) -> Option<([f64; FRAME_DIM], f64)> {
+        let rate: Forcing = forcing_rate(&self.model.excitation, t)?;
+        FrameSystem::guard_gradient(self, mode, index, self.model.excitation.forcing(t), rate, y)
+    }
+
+    fn reset_jacobian(
+        &self,
+        before: Mode,
+        index: usize,
+        y_before: &[f64; N],
+        after: Mode,
+        _y_after: &[f64; N],
+    ) -> (Square<FRAME_DIM>, usize) {
+        FrameSystem::reset_jacobian(self, before, index, y_before, after)
     }
 }

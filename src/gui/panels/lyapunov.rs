@@ -6,7 +6,7 @@
 //!   [`crate::analysis::lyapunov::of_scenario`] on the scene's
 //!   configuration, from its initial state, by the method the body has
 //!   ([`method_for`]: tangent dynamics with saltation matrices for the
-//!   block, two trajectories for a frame or a stack), for windows ending
+//!   block and the frame, two trajectories for a stack), for windows ending
 //!   at each of [`STAGES`] in turn, and sends each answer as it is done. Each stage is a fresh run from τ = 0, so every
 //!   number shown is a complete, reproducible estimate; the latest one is
 //!   the longest window.

@@ -666,9 +666,9 @@ fn resolve(table: &Table, source: &Source, records: [RecordFrom<'_>; 2]) -> Resu
     let (a, da) = (&raw.analysis, &d.analyses);
     let analyses = Analyses {
         lyapunov: a.lyapunov.unwrap_or(da.lyapunov),
-        // A stack's and a frame's tangent equations are not written: their
-        // default is the method they have.
-        lyapunov_method: a.lyapunov_method.unwrap_or(if stack.is_some() || frame.is_some() {
+        // A stack's tangent equations are not written: its default is the
+        // method it has.
+        lyapunov_method: a.lyapunov_method.unwrap_or(if stack.is_some() {
             LyapunovChoice::Benettin
         } else {
             da.lyapunov_method

@@ -14,11 +14,14 @@
 //! not a key of a frame; `docs/model.md` §16 says why).
 
 mod system;
+mod tangent;
 #[cfg(test)]
 mod tests;
 
 pub use system::FrameSystem;
+pub use tangent::{FRAME_COORDS, FRAME_DIM};
 
+use super::ad::Scalar;
 use super::dynamics::{Forcing, Tilt};
 use super::geometry::{GAMMA, Geometry};
 use super::mode::Sign;
@@ -87,40 +90,45 @@ impl Frame {
     }
 }
 
-/// Accelerations and contact forces of a rocking frame at one state.
+/// Accelerations and contact forces of a rocking frame at one state (`S`:
+/// `f64`, or a dual number for the tangent dynamics, `tangent.rs`).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct FrameAccel {
+pub struct FrameAccel<S = f64> {
     /// ψΘ'': the columns' angular acceleration, per p².
-    pub wdd: f64,
+    pub wdd: S,
     /// X'': of a column's centre.
-    pub x_ddot: f64,
+    pub x_ddot: S,
     /// Normal force at a column's base, per column weight: its own share
     /// and its share of the beam (≤ 0: the frame flies).
-    pub base_normal: f64,
+    pub base_normal: S,
     /// Normal force between the columns and the beam, per beam weight
     /// (≤ 0: the beam lifts off the columns).
-    pub beam_normal: f64,
+    pub beam_normal: S,
 }
 
 /// The frame rocking about pivot side `pivot` with tilt `tilt` at
 /// ψΘ' = `w` under `fo` (docs/model.md §16.1–16.2):
 /// ψΘ'' = −κ (s b sin φ + a cos φ).
+///
+/// Written once over a generic [`Scalar`] (constants on the right, as
+/// `model::ad` asks): over `f64` these are the operations of a run, over
+/// dual numbers the frame's tangent dynamics.
 #[inline]
-pub fn rock(frame: &Frame, kappa: f64, pivot: Sign, tilt: Tilt, w: f64, fo: Forcing) -> FrameAccel {
+pub fn rock<S: Scalar>(frame: &Frame, kappa: f64, pivot: Sign, tilt: Tilt<S>, w: S, fo: Forcing<S>) -> FrameAccel<S> {
     let s = pivot.value();
     let Tilt { sn, c } = tilt;
     let b = fo.b();
-    let wdd = -kappa * (s * b * sn + fo.a * c);
+    let wdd = (b * s * sn + fo.a * c) * -kappa;
     let ww = w * w;
     // Y'' of a column's centre per p²R: (cos φ)'' = s sin φ ψΘ'' − cos φ w².
-    let y_ddot = s * sn * wdd - c * ww;
+    let y_ddot = sn * s * wdd - c * ww;
     // The beam's supports move on circles of twice the radius (2R), so the
     // beam's vertical acceleration is twice a column centre's.
-    let beam_normal = b + 2.0 * GAMMA * y_ddot;
+    let beam_normal = b + y_ddot * (2.0 * GAMMA);
     FrameAccel {
         wdd,
-        x_ddot: c * wdd + s * sn * ww,
-        base_normal: b + GAMMA * y_ddot + frame.beam_mass_ratio * beam_normal,
+        x_ddot: c * wdd + sn * s * ww,
+        base_normal: b + y_ddot * GAMMA + beam_normal * frame.beam_mass_ratio,
         beam_normal,
     }
 }

@@ -12,6 +12,7 @@
 
 use super::{Frame, FrameAccel, rock};
 use crate::integrate::hybrid::{HybridSystem, MAX_GUARDS};
+use crate::model::ad::Scalar;
 use crate::model::dynamics::{self, Forcing, Tilt};
 use crate::model::energy;
 use crate::model::geometry::GAMMA;
@@ -66,9 +67,88 @@ impl FrameSystem {
     /// Accelerations and forces of rocking about `pivot` at `y`.
     #[inline]
     fn rocking(&self, pivot: Sign, fo: Forcing, y: &[f64; N]) -> FrameAccel {
+        self.rocking_at(pivot, fo, y[THETA], y[THETA_DOT])
+    }
+
+    /// [`rocking`](Self::rocking) of a generic Θ and Θ'.
+    #[inline(always)]
+    fn rocking_at<S: Scalar>(&self, pivot: Sign, fo: Forcing<S>, theta: S, theta_dot: S) -> FrameAccel<S> {
         let geo = &self.model.geo;
-        let tilt = Tilt::new(geo, pivot, y[THETA]);
-        rock(&self.frame, self.kappa, pivot, tilt, geo.psi * y[THETA_DOT], fo)
+        let tilt = Tilt::of(geo, pivot, theta);
+        rock(&self.frame, self.kappa, pivot, tilt, theta_dot * geo.psi, fo)
+    }
+
+    /// The vector field of `mode` at forcing `fo` and state `y`, written
+    /// once over a generic [`Scalar`]: the run's right-hand side over
+    /// `f64`, its Jacobian over dual numbers (`tangent.rs`).
+    #[inline(always)]
+    pub(super) fn field<S: Scalar>(&self, mode: Mode, fo: Forcing<S>, y: &[S; N]) -> [S; N] {
+        let zero = y[THETA].constant(0.0);
+        match mode {
+            Mode::Rock { pivot } => {
+                let geo = &self.model.geo;
+                let acc = self.rocking_at(pivot, fo, y[THETA], y[THETA_DOT]);
+                let tilt = Tilt::of(geo, pivot, y[THETA]);
+                let y_dot = tilt.sn * pivot.value() * geo.psi * y[THETA_DOT];
+                [
+                    y[THETA_DOT],
+                    acc.wdd * geo.inv_psi,
+                    y[X_DOT],
+                    acc.x_ddot,
+                    // The base's pseudo-forces on the columns and the beam,
+                    // whose support moves twice as far (docs/model.md §16.2).
+                    (fo.a * y[X_DOT] + fo.av * y_dot) * -self.frame.lever(),
+                    zero,
+                ]
+            }
+            Mode::Rest | Mode::Slide { .. } | Mode::SlideRock { .. } | Mode::Tumbled | Mode::Flight => [zero; N],
+        }
+    }
+
+    /// The guards of `mode` (the table in the module docs) at forcing `fo`
+    /// and state `y` into `g`, and how many there are; generic as
+    /// [`field`](Self::field), for the guards' gradients.
+    #[inline(always)]
+    pub(super) fn guard_values<S: Scalar>(
+        &self,
+        mode: Mode,
+        fo: Forcing<S>,
+        y: &[S; N],
+        g: &mut [S; MAX_GUARDS],
+    ) -> usize {
+        let geo = &self.model.geo;
+        match mode {
+            Mode::Rest => {
+                g[0] = fo.b();
+                g[1] = dynamics::restoring(geo, Sign::Pos, fo);
+                g[2] = dynamics::restoring(geo, Sign::Neg, fo);
+                3
+            }
+            Mode::Rock { pivot } => {
+                let s = pivot.value();
+                let acc = self.rocking_at(pivot, fo, y[THETA], y[THETA_DOT]);
+                g[0] = y[THETA] * s;
+                g[1] = -(y[THETA] * s) + self.tumble_angle();
+                g[2] = acc.base_normal;
+                g[3] = y[THETA_DOT] * s;
+                g[4] = acc.beam_normal;
+                5
+            }
+            Mode::Slide { .. } | Mode::SlideRock { .. } | Mode::Tumbled | Mode::Flight => 0,
+        }
+    }
+
+    /// The impact ratio of the frame's law: the `ratio` law's r, or the
+    /// frame's own momentum balance ([`Frame::restitution`]).
+    pub(super) fn impact_ratio(&self) -> f64 {
+        match self.model.law {
+            ImpactLaw::Ratio { r } => r,
+            // The frame's own momentum balance; `impulse` is refused for a
+            // frame when the scenario is checked.
+            ImpactLaw::Housner | ImpactLaw::CornerMomentum | ImpactLaw::Impulse { .. } => {
+                self.frame.restitution(&self.model.geo)
+            }
+        }
     }
 
     /// The base's reactions on one column with its share of the beam, per
@@ -154,12 +234,7 @@ impl FrameSystem {
     fn impact(&mut self, before: Mode, pivot: Sign, t: f64, y: &[f64; N]) -> ModelJump {
         let geo = self.model.geo;
         let striking = pivot.flip();
-        let r = match self.model.law {
-            ImpactLaw::Ratio { r } => r,
-            // The frame's own momentum balance; `impulse` is refused for a
-            // frame when the scenario is checked.
-            ImpactLaw::Housner | ImpactLaw::CornerMomentum | ImpactLaw::Impulse { .. } => self.frame.restitution(&geo),
-        };
+        let r = self.impact_ratio();
         self.tally.impacts += 1;
         let w_before = geo.psi * y[THETA_DOT];
         let e_before = self.frame.kinetic(w_before);
@@ -228,50 +303,15 @@ impl HybridSystem<N> for FrameSystem {
 
     #[inline]
     fn rhs(&self, mode: Mode, t: f64, y: &[f64; N], dy: &mut [f64; N]) {
-        match mode {
-            Mode::Rock { pivot } => {
-                let fo = self.last_forcing.at(&self.model.excitation, t);
-                let geo = &self.model.geo;
-                let acc = self.rocking(pivot, fo, y);
-                let tilt = Tilt::new(geo, pivot, y[THETA]);
-                let y_dot = pivot.value() * tilt.sn * geo.psi * y[THETA_DOT];
-                *dy = [
-                    y[THETA_DOT],
-                    acc.wdd * geo.inv_psi,
-                    y[X_DOT],
-                    acc.x_ddot,
-                    // The base's pseudo-forces on the columns and the beam,
-                    // whose support moves twice as far (docs/model.md §16.2).
-                    -self.frame.lever() * (fo.a * y[X_DOT] + fo.av * y_dot),
-                    0.0,
-                ];
-            }
-            Mode::Rest | Mode::Slide { .. } | Mode::SlideRock { .. } | Mode::Tumbled | Mode::Flight => *dy = [0.0; N],
-        }
+        *dy = match mode {
+            Mode::Rock { .. } => self.field(mode, self.last_forcing.at(&self.model.excitation, t), y),
+            Mode::Rest | Mode::Slide { .. } | Mode::SlideRock { .. } | Mode::Tumbled | Mode::Flight => [0.0; N],
+        };
     }
 
     fn guards(&self, mode: Mode, t: f64, y: &[f64; N], g: &mut [f64; MAX_GUARDS]) -> usize {
         let fo = self.last_forcing.at(&self.model.excitation, t);
-        let geo = &self.model.geo;
-        match mode {
-            Mode::Rest => {
-                g[0] = fo.b();
-                g[1] = dynamics::restoring(geo, Sign::Pos, fo);
-                g[2] = dynamics::restoring(geo, Sign::Neg, fo);
-                3
-            }
-            Mode::Rock { pivot } => {
-                let s = pivot.value();
-                let acc = self.rocking(pivot, fo, y);
-                g[0] = s * y[THETA];
-                g[1] = self.tumble_angle() - s * y[THETA];
-                g[2] = acc.base_normal;
-                g[3] = s * y[THETA_DOT];
-                g[4] = acc.beam_normal;
-                5
-            }
-            Mode::Slide { .. } | Mode::SlideRock { .. } | Mode::Tumbled | Mode::Flight => 0,
-        }
+        self.guard_values(mode, fo, y, g)
     }
 
     #[inline]

@@ -852,7 +852,7 @@ pub const CATALOGUE: &[KeySpec] = &[
         value: Value::Choice(&["tangent", "benettin", "both"]),
         meaning: "how the Lyapunov exponents are computed",
         written: "\"tangent\", \"benettin\" or \"both\"",
-        doc: "tangent: tangent dynamics with saltation matrices, the whole spectrum (the default for a [block]: it needs no separation parameter); benettin: two trajectories on the stroboscopic map, the largest exponent (the default, and the only method, for a [[stack]] or a [frame], whose tangent equations are not written); both: both on one trajectory, with their paired difference.",
+        doc: "tangent: tangent dynamics with saltation matrices, the whole spectrum (the default for a [block] and a [frame]: it needs no separation parameter); benettin: two trajectories on the stroboscopic map, the largest exponent (the default, and the only method, for a [[stack]], whose tangent equations are not written); both: both on one trajectory, with their paired difference.",
         ..B
     },
     KeySpec {
