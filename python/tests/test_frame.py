@@ -38,3 +38,17 @@ def test_a_frame_from_its_section_and_the_blocks_width_keyword_stay_apart() -> N
     # `width=` is the block's, as it always was: with [frame] it is refused.
     with pytest.raises(rocking.ConfigError, match="one of \\[block\\] and \\[frame\\]"):
         rocking.Scene("rocking-frame", width=1.0)
+
+
+def test_a_frames_spectrum_is_the_clis(cli, tmp_path: Path) -> None:
+    # A frame's tangent dynamics are generated from its equations: both
+    # exponents, by default, as the CLI writes them.
+    shaking = {"kind": "harmonic", "a_h": "0.5 g", "omega_h": "1.5 Hz"}
+    sets = ["excitation.kind=harmonic", 'excitation.a_h="0.5 g"', 'excitation.omega_h="1.5 Hz"', "run.tau_end=400"]
+    sets += ["analysis.lyapunov=true"]
+    cli.ok("--batch", "--preset", "rocking-frame", *[a for s in sets for a in ("--set", s)], "--out", str(tmp_path / "o"), "-q")
+    expected = read_json(tmp_path / "o" / "summary.json")["lyapunov"]
+    lyap = rocking.lyapunov(rocking.Scene("rocking-frame", excitation=shaking, tau_end=400))
+    assert lyap.summary == expected
+    assert lyap.method == "tangent"
+    assert lyap.spectrum.shape == (2,) and lyap.spectrum[0] < 0
