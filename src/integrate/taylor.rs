@@ -34,14 +34,13 @@ const MIN_ORDER: usize = 8;
 /// (12), which is the optimum for an analytic solution stepped freely: the
 /// block's steps end at every impact (about every 0.4 τ in the paper's
 /// periodic scene), so a longer series buys fewer steps between impacts.
-/// On that scene at rtol 1e-10, orders 12, 14, 16, 18 and 20 took 13,493,
-/// 9,312, 7,193, 6,161 and 5,149 steps and 15.7, 12.6, 10.6, 10.1 and
-/// 9.3 ms with the first series code; once the expansions were fused
-/// (seventh session, docs/performance.md) orders 20 and 28 took the same
-/// time there (5,149 and 4,075 steps, 6.3–6.6 ms), and on the app's default
-/// scene order 28 took 95,000 steps to order 20's 139,000 and ran about
-/// 10 % faster, as did order 23 against 16 at rtol 1e-8. Higher orders
-/// (30–34) took no fewer steps than the events allow and ran slower.
+/// On that scene at rtol 1e-10, orders 12, 14, 16, 18 and 20 take 13,493,
+/// 9,312, 7,193, 6,161 and 5,149 steps; with the fused expansions of
+/// `model::series`, orders 20 and 28 take the same time there (5,149 and
+/// 4,075 steps), and on the app's default scene order 28 takes 95,000
+/// steps to order 20's 139,000 and runs about 10 % faster, as does order
+/// 23 against 16 at rtol 1e-8 (docs/performance.md). Higher orders (30–34)
+/// take no fewer steps than the events allow and run slower.
 pub fn order_for(rtol: f64) -> usize {
     let eps = rtol.clamp(1e-16, 1e-2);
     ((-1.2 * eps.ln()).ceil() as usize).clamp(MIN_ORDER, MAX_ORDER)
