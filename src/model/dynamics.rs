@@ -17,7 +17,7 @@
 //! Taylor series (`series`). Constants multiply on the right (`sn * s`
 //! for `s sin φ`), which has the bits of the left.
 
-use super::ad::Scalar;
+use super::ad::{Dual, Scalar};
 use super::geometry::{GAMMA, Geometry};
 use super::mode::{Mode, Sign};
 use super::state::{N, THETA, THETA_DOT, X_DOT};
@@ -36,6 +36,22 @@ impl<S: Scalar> Forcing<S> {
     #[inline]
     pub fn b(&self) -> S {
         self.av + 1.0
+    }
+}
+
+impl Forcing {
+    /// This forcing as dual numbers of `D` directions whose last is time
+    /// (τ), with `rate` (dτ of a/g and a_v/g) as its partials there: what a
+    /// guard's time partial reads.
+    #[inline]
+    pub(crate) fn timed<const D: usize>(self, rate: Forcing) -> Forcing<Dual<D>> {
+        let (mut a, mut av) = ([0.0; D], [0.0; D]);
+        a[D - 1] = rate.a;
+        av[D - 1] = rate.av;
+        Forcing {
+            a: Dual::with_partials(self.a, a),
+            av: Dual::with_partials(self.av, av),
+        }
     }
 }
 

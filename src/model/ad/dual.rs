@@ -33,6 +33,18 @@ impl<const D: usize> Dual<D> {
         Self { v, d }
     }
 
+    /// The state `y` as constants but for its components `coords`, the
+    /// `j`-th of which is independent variable `j` (a model's tangent
+    /// coordinates seeded for its Jacobian).
+    #[inline]
+    pub(crate) fn seeded<const N: usize>(y: &[f64; N], coords: &[usize]) -> [Self; N] {
+        let mut out = y.map(Self::constant);
+        for (j, &i) in coords.iter().enumerate() {
+            out[i] = Self::variable(y[i], j);
+        }
+        out
+    }
+
     /// A value with given partials (an input whose derivatives are known,
     /// such as a forcing's rate of change).
     #[inline]

@@ -23,17 +23,6 @@ pub const FRAME_DIM: usize = 2;
 /// Indices of `z = (Θ, Θ')` in the state `[Θ, Θ', X, X', W, D]`.
 pub const FRAME_COORDS: [usize; FRAME_DIM] = [THETA, THETA_DOT];
 
-/// The state with `z` seeded as the first two independent variables of a
-/// `D`-direction dual number.
-#[inline]
-fn seeded<const D: usize>(y: &[f64; N]) -> [Dual<D>; N] {
-    let mut out = y.map(Dual::constant);
-    for (j, &i) in FRAME_COORDS.iter().enumerate() {
-        out[i] = Dual::variable(y[i], j);
-    }
-    out
-}
-
 impl FrameSystem {
     /// Free directions of `z` in `mode`: both while the frame rocks.
     pub fn tangent_dim(mode: Mode) -> usize {
@@ -51,7 +40,7 @@ impl FrameSystem {
             a: Dual::<FRAME_DIM>::constant(fo.a),
             av: Dual::constant(fo.av),
         };
-        let dy = self.field(mode, fo, &seeded(y));
+        let dy = self.field(mode, fo, &Dual::seeded(y, &FRAME_COORDS));
         FRAME_COORDS.map(|i| dy[i].d)
     }
 
@@ -68,15 +57,9 @@ impl FrameSystem {
     ) -> Option<([f64; FRAME_DIM], f64)> {
         // Directions: Θ, Θ', then τ.
         const T: usize = FRAME_DIM;
-        let (mut a, mut av) = ([0.0; FRAME_DIM + 1], [0.0; FRAME_DIM + 1]);
-        a[T] = rate.a;
-        av[T] = rate.av;
-        let fo = Forcing {
-            a: Dual::with_partials(fo.a, a),
-            av: Dual::with_partials(fo.av, av),
-        };
+        let fo = fo.timed::<{ FRAME_DIM + 1 }>(rate);
         let mut g = [Dual::constant(0.0); MAX_GUARDS];
-        let n = self.guard_values(mode, fo, &seeded::<{ FRAME_DIM + 1 }>(y), &mut g);
+        let n = self.guard_values(mode, fo, &Dual::seeded(y, &FRAME_COORDS), &mut g);
         let d = g.get(index).filter(|_| index < n)?.d;
         Some(([d[0], d[1]], d[T]))
     }

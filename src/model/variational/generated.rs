@@ -13,17 +13,6 @@ use crate::model::params::Model;
 use crate::model::state::N;
 use crate::model::system::{guard_values, tumble_angle};
 
-/// The state with its tangent coordinates seeded as the first `DIM`
-/// independent variables of a `D`-direction dual number.
-#[inline]
-fn seeded<const D: usize>(y: &[f64; N]) -> [Dual<D>; N] {
-    let mut out = y.map(Dual::constant);
-    for (j, &i) in COORDS.iter().enumerate() {
-        out[i] = Dual::variable(y[i], j);
-    }
-    out
-}
-
 /// `∂(Θ', Θ'', X'')/∂(Θ, Θ', X')` of `mode`'s vector field
 /// (`dynamics::field`) at forcing `fo` and state `y`.
 #[inline]
@@ -32,7 +21,7 @@ pub fn field_jacobian(model: &Model, mode: Mode, fo: Forcing, y: &[f64; N]) -> [
         a: Dual::<DIM>::constant(fo.a),
         av: Dual::constant(fo.av),
     };
-    let dy = dynamics::field(&model.geo, model.mu_k, mode, fo, &seeded(y));
+    let dy = dynamics::field(&model.geo, model.mu_k, mode, fo, &Dual::seeded(y, &COORDS));
     COORDS.map(|i| dy[i].d)
 }
 
@@ -49,16 +38,9 @@ pub fn guard_gradient(
 ) -> Option<GuardGradient> {
     // Directions: Θ, Θ', X' (COORDS), then τ.
     const T: usize = DIM;
-    let mut a = [0.0; DIM + 1];
-    let mut av = [0.0; DIM + 1];
-    a[T] = rate.a;
-    av[T] = rate.av;
-    let fo = Forcing {
-        a: Dual::with_partials(fo.a, a),
-        av: Dual::with_partials(fo.av, av),
-    };
+    let fo = fo.timed::<{ DIM + 1 }>(rate);
     let mut g = [Dual::constant(0.0); MAX_GUARDS];
-    let n = guard_values(model, tumble_angle(model), mode, fo, &seeded::<{ DIM + 1 }>(y), &mut g);
+    let n = guard_values(model, tumble_angle(model), mode, fo, &Dual::seeded(y, &COORDS), &mut g);
     let d = g.get(index).filter(|_| index < n)?.d;
     Some(GuardGradient {
         state: [d[0], d[1], d[2]],
