@@ -5,7 +5,7 @@
 //! The run is integrated in *chunks* whose ends lie on a fixed τ grid (the
 //! forcing period, split so that no chunk exceeds [`MAX_CHUNK`]). A chunk
 //! ends with the step that reaches its end, taken whole
-//! ([`Driver::advance_past`]), and steps end on the batch run's end at the
+//! ([`Driver::advance_past`](crate::integrate::hybrid::Driver::advance_past)), and steps end on the batch run's end at the
 //! latest, as the batch run's do, so chunk ends put no stops in the step
 //! sequence: a live run with the same scenario follows the batch trajectory
 //! bit for bit to the batch run's end, whatever the playback speed or
@@ -22,7 +22,7 @@
 //! as the batch run does, bit for bit. At any other φ the driver takes no
 //! section points: the chunk grid is shifted by φ/Ω_h so that every period
 //! boundary is a section time, each chunk is advanced *onto* its end
-//! ([`Driver::advance`]), and the state there is the section point. Those
+//! ([`Driver::advance`](crate::integrate::hybrid::Driver::advance)), and the state there is the section point. Those
 //! runs stop their steps on chunk ends (one extra stop per chunk, at most
 //! one per τ), so they agree with a batch run to the tolerance rather than
 //! bit for bit; the section points are the integrator's own states, not
@@ -32,162 +32,28 @@ use std::collections::VecDeque;
 
 pub use super::playhead::LIVE_SAMPLE_DT;
 use super::playhead::{Playhead, release_upto};
-use crate::integrate::Stepper;
-use crate::integrate::hybrid::{Advance, Driver, Limits, Observer, Outputs};
-use crate::model::rocker::RockerCore;
-use crate::model::system::{EventRecord, ModelError, N, THETA, THETA_DOT, X, X_DOT};
-use crate::model::{Mode, Model, Rocker, RockerVisitor, with_rocker};
+use crate::integrate::hybrid::{Advance, Observer, Outputs};
+use crate::model::Mode;
+use crate::model::system::{EventRecord, N, THETA, THETA_DOT, X, X_DOT};
 use crate::sim::Scenario;
-use crate::sim::method::{StepperVisitor, with_stepper};
+use crate::sim::initial_mode;
 use crate::sim::protocol::{BaseMotion, Batch, GhostState, RunEnd, RunId, RunInfo, Sample};
 use crate::sim::{HistoryRow, SectionRow};
-use crate::sim::{InitialState, initial_mode};
+
+mod driver;
+mod ghosts;
+mod grid;
+mod start;
+
+use driver::{AnyDriver, DriverStart, LiveSystem, live_system};
+use ghosts::{Ghost, GhostSink};
+use grid::ChunkGrid;
+pub use grid::normalise_phase;
+pub use start::Start;
+use start::perturbed_state;
 
 /// Longest chunk, τ: bounds the data produced ahead of the playhead.
 pub const MAX_CHUNK: f64 = 1.0;
-
-/// The driver of a live run, whatever its method: a trait object, so the
-/// session and a hundred ghosts hold one pointer each. Dispatch is per
-/// chunk and per output, not per step: the stepping inside
-/// [`Driver::advance_past`] stays monomorphised.
-trait LiveDriver: Send {
-    fn t(&self) -> f64;
-    fn y(&self) -> [f64; N];
-    fn mode(&self) -> Mode;
-    /// To `t_end` or past it, by whole steps that end on `horizon` at the
-    /// latest ([`Driver::advance_past`]).
-    fn advance(
-        &mut self,
-        t_end: f64,
-        horizon: f64,
-        obs: &mut dyn Observer<Mode, EventRecord, N>,
-    ) -> Result<Advance, ModelError>;
-    /// Exactly onto `t_end` ([`Driver::advance`]).
-    fn advance_onto(&mut self, t_end: f64, obs: &mut dyn Observer<Mode, EventRecord, N>)
-    -> Result<Advance, ModelError>;
-    /// Largest |Θ| the model found at its rocking peaks (between samples).
-    fn peak_theta(&self) -> f64;
-}
-
-/// An observer behind a `dyn` pointer, for the generic driver.
-struct Forward<'a>(&'a mut dyn Observer<Mode, EventRecord, N>);
-
-impl Observer<Mode, EventRecord, N> for Forward<'_> {
-    fn sample(&mut self, t: f64, mode: Mode, y: &[f64; N]) {
-        self.0.sample(t, mode, y);
-    }
-    fn section(&mut self, k: u64, t: f64, mode: Mode, y: &[f64; N]) {
-        self.0.section(k, t, mode, y);
-    }
-    fn event(&mut self, t: f64, before: Mode, y_before: &[f64; N], record: EventRecord) {
-        self.0.event(t, before, y_before, record);
-    }
-}
-
-impl<S: Stepper<N> + Send, R: Rocker> LiveDriver for Driver<S, R, N> {
-    fn t(&self) -> f64 {
-        Driver::t(self)
-    }
-    fn y(&self) -> [f64; N] {
-        *Driver::y(self)
-    }
-    fn mode(&self) -> Mode {
-        Driver::mode(self)
-    }
-    fn advance(
-        &mut self,
-        t_end: f64,
-        horizon: f64,
-        obs: &mut dyn Observer<Mode, EventRecord, N>,
-    ) -> Result<Advance, ModelError> {
-        self.advance_past(t_end, horizon, &mut Forward(obs))
-    }
-    fn advance_onto(
-        &mut self,
-        t_end: f64,
-        obs: &mut dyn Observer<Mode, EventRecord, N>,
-    ) -> Result<Advance, ModelError> {
-        Driver::advance(self, t_end, &mut Forward(obs))
-    }
-    fn peak_theta(&self) -> f64 {
-        self.system().tallied().max_abs_theta
-    }
-}
-
-type AnyDriver = Box<dyn LiveDriver>;
-
-/// The model's system behind a pointer (the block's or a frame's): what
-/// the session asks of it between chunks ([`RockerCore`]), a copy, and the
-/// driver it starts. The stepping itself stays monomorphised inside the
-/// driver.
-trait LiveSystem: RockerCore {
-    /// A copy.
-    fn boxed_clone(&self) -> Box<dyn LiveSystem>;
-    /// A driver of `scenario`'s method for this system from `from`.
-    fn into_driver(self: Box<Self>, scenario: &Scenario, from: DriverStart, outputs: Outputs) -> AnyDriver;
-}
-
-/// Where a driver starts: the mode, τ and the state there.
-#[derive(Clone, Copy, Debug)]
-struct DriverStart {
-    mode: Mode,
-    t0: f64,
-    y0: [f64; N],
-}
-
-impl<R: Rocker> LiveSystem for R {
-    fn boxed_clone(&self) -> Box<dyn LiveSystem> {
-        Box::new(self.clone())
-    }
-    fn into_driver(self: Box<Self>, scenario: &Scenario, from: DriverStart, outputs: Outputs) -> AnyDriver {
-        live_driver(scenario, *self, from, outputs)
-    }
-}
-
-/// The system `model` describes, behind a pointer.
-fn live_system(model: Model) -> Box<dyn LiveSystem> {
-    struct Boxed;
-    impl RockerVisitor for Boxed {
-        type Output = Box<dyn LiveSystem>;
-        fn visit<R: Rocker>(self, system: R) -> Self::Output {
-            Box::new(system)
-        }
-    }
-    with_rocker(model, Boxed)
-}
-
-/// A live driver of `scenario`'s method.
-fn live_driver<R: Rocker>(scenario: &Scenario, system: R, from: DriverStart, outputs: Outputs) -> AnyDriver {
-    /// The driver, waiting for its stepper.
-    struct Make<R> {
-        system: R,
-        from: DriverStart,
-        limits: Limits,
-        outputs: Outputs,
-    }
-    impl<R: Rocker> StepperVisitor for Make<R> {
-        type Output = AnyDriver;
-        fn visit<S: Stepper<N> + Send + 'static>(self, stepper: S) -> AnyDriver {
-            Box::new(Driver::new(
-                stepper,
-                self.system,
-                self.from.mode,
-                self.from.t0,
-                self.from.y0,
-                self.limits,
-                self.outputs,
-            ))
-        }
-    }
-    let opts = scenario.run_options();
-    let make = Make {
-        system,
-        from,
-        limits: opts.limits,
-        outputs,
-    };
-    with_stepper(opts.method, opts.tol, make)
-}
 
 /// Output produced ahead of the playhead.
 #[derive(Default)]
@@ -257,157 +123,6 @@ impl Observer<Mode, EventRecord, N> for MainSink<'_> {
         self.peaks.see(&self.probe.params().geo, y_before);
         self.queue.events.push_back(record);
     }
-}
-
-/// A ghost copy: its own driver, and its states on the sample grid.
-struct Ghost {
-    driver: AnyDriver,
-    states: VecDeque<(f64, GhostState)>,
-    /// Last released state.
-    latest: GhostState,
-    done: bool,
-}
-
-struct GhostSink<'a>(&'a mut VecDeque<(f64, GhostState)>);
-
-impl Observer<Mode, EventRecord, N> for GhostSink<'_> {
-    fn sample(&mut self, t: f64, mode: Mode, y: &[f64; N]) {
-        self.0.push_back((
-            t,
-            GhostState {
-                theta: y[THETA],
-                theta_dot: y[THETA_DOT],
-                x: y[X],
-                mode,
-            },
-        ));
-    }
-    fn section(&mut self, _k: u64, _t: f64, _mode: Mode, _y: &[f64; N]) {}
-    fn event(&mut self, _t: f64, _before: Mode, _y_before: &[f64; N], _record: EventRecord) {}
-}
-
-/// Keeps the first sample that is not at rest (where a block at rest
-/// starts to move).
-struct FirstMove(Option<(f64, Mode, [f64; N])>);
-
-impl Observer<Mode, EventRecord, N> for FirstMove {
-    fn sample(&mut self, t: f64, mode: Mode, y: &[f64; N]) {
-        if self.0.is_none() && mode != Mode::Rest {
-            self.0 = Some((t, mode, *y));
-        }
-    }
-    fn section(&mut self, _k: u64, _t: f64, _mode: Mode, _y: &[f64; N]) {}
-    fn event(&mut self, _t: f64, _before: Mode, _y_before: &[f64; N], _record: EventRecord) {}
-}
-
-/// The τ grid of chunk ends: each forcing period split into `parts`,
-/// the periods starting at the section times. With no phase offset,
-/// period boundaries are computed as `k · period`, exactly as the driver
-/// computes section times, so they coincide bit for bit; with an offset
-/// φ/Ω_h, as `offset + (k − 1) · period` (the first period, k = 0, starts
-/// before τ = 0, so that no chunk exceeds [`MAX_CHUNK`]).
-#[derive(Clone, Copy, Debug)]
-struct ChunkGrid {
-    period: f64,
-    parts: u64,
-    /// φ/Ω_h, in [0, period).
-    offset: f64,
-}
-
-impl ChunkGrid {
-    /// Start of the grid's `k`-th period.
-    fn period_start(&self, k: u64) -> f64 {
-        if self.offset == 0.0 {
-            k as f64 * self.period
-        } else {
-            self.offset + (k as f64 - 1.0) * self.period
-        }
-    }
-
-    /// The `j`-th chunk end.
-    fn end(&self, j: u64) -> f64 {
-        let (k, i) = (j / self.parts, j % self.parts);
-        let start = self.period_start(k);
-        if i == 0 {
-            start
-        } else {
-            start + i as f64 * (self.period / self.parts as f64)
-        }
-    }
-
-    /// The section index k of chunk end `j`, if it is a section time
-    /// (τ_k = offset + k · period).
-    fn section_index(&self, j: u64) -> Option<u64> {
-        let (k, i) = (j / self.parts, j % self.parts);
-        match (i, self.offset == 0.0) {
-            (0, true) => Some(k),
-            (0, false) => k.checked_sub(1),
-            _ => None,
-        }
-    }
-}
-
-/// `phase` taken into [0, 2π); non-finite phases are 0.
-pub fn normalise_phase(phase: f64) -> f64 {
-    let two_pi = std::f64::consts::TAU;
-    if !phase.is_finite() {
-        return 0.0;
-    }
-    let p = phase.rem_euclid(two_pi);
-    // rem_euclid can round up to 2π itself for tiny negative phases.
-    if p >= two_pi { 0.0 } else { p }
-}
-
-/// Where a run starts.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Start {
-    /// τ = 0 and the scenario's initial state.
-    Initial,
-    /// From the state `y` in `mode` at `tau`, with Θ increased by `eps`.
-    Perturbed {
-        /// τ to start at.
-        tau: f64,
-        /// State to start from.
-        y: [f64; N],
-        /// Its mode.
-        mode: Mode,
-        /// Added to Θ.
-        eps: f64,
-    },
-}
-
-/// The mode and state of a block restarted from `(mode, y)` with Θ + `eps`.
-///
-/// X' is kept where the contact slips, and recomputed as the no-slip value
-/// where the pivot sticks (a perturbed Θ changes it), so the perturbed state
-/// is admissible for the same contact.
-fn perturbed_state(
-    system: &mut dyn LiveSystem,
-    tau: f64,
-    mode: Mode,
-    y: &[f64; N],
-    eps: f64,
-) -> Result<(Mode, [f64; N]), String> {
-    let theta = y[THETA] + eps;
-    let tumble = system.overturn_angle();
-    if !theta.is_finite() || theta.abs() >= tumble {
-        return Err(format!(
-            "perturbed Θ = {theta} is not inside the tumble angle ±{tumble}"
-        ));
-    }
-    let keeps_slip = match mode {
-        Mode::Slide { .. } | Mode::SlideRock { .. } => true,
-        Mode::Rest | Mode::Rock { .. } | Mode::Tumbled | Mode::Flight => false,
-    };
-    let init = InitialState {
-        theta,
-        theta_dot: y[THETA_DOT],
-        x_dot: keeps_slip.then_some(y[X_DOT]),
-    };
-    let (m, mut y0) = initial_mode(system.params(), &init).map_err(|e| e.to_string())?;
-    y0[X] = y[X];
-    let m = system.settle_mode(m, tau, &mut y0);
-    Ok((m, y0))
 }
 
 /// One live run.
@@ -715,88 +430,6 @@ impl Session {
             }
         }
         self.play.move_to(upto, self.driver.t(), batch);
-    }
-
-    /// Replaces the ghosts with `count` copies started from the state shown
-    /// at the playhead (`last_sample`), Θ perturbed by `eps·(k+1)/count`.
-    pub fn set_ghosts(&mut self, count: usize, eps: f64, last_sample: Option<&Sample>) {
-        self.ghosts.clear();
-        if count == 0 {
-            return;
-        }
-        let shown = self.shown_state(last_sample);
-        // A tilt given to a block at rest settles back to rest (the base
-        // has not lifted it), and every copy would be the block itself:
-        // the ghosts start where the block lifts off, perturbed there.
-        let (tau, mode, y) = if shown.1 == Mode::Rest {
-            self.lift_off_after(shown).unwrap_or(shown)
-        } else {
-            shown
-        };
-        for k in 0..count {
-            let delta = eps * (k as f64 + 1.0) / count as f64;
-            let mut system = live_system(self.probe.params().clone());
-            let Ok((m, y0)) = perturbed_state(system.as_mut(), tau, mode, &y, delta) else {
-                continue;
-            };
-            let outputs = Outputs {
-                sample_dt: Some(LIVE_SAMPLE_DT),
-                section_period: None,
-            };
-            let mut driver =
-                system.into_driver(&self.play.info.scenario, DriverStart { mode: m, t0: tau, y0 }, outputs);
-            let mut states = VecDeque::new();
-            // Bring the ghost level with the main trajectory's computed τ.
-            let done = self.driver.t() > tau
-                && !matches!(
-                    driver.advance(
-                        self.driver.t(),
-                        self.batch_end.max(self.driver.t()),
-                        &mut GhostSink(&mut states),
-                    ),
-                    Ok(Advance::Reached)
-                );
-            // Until its own states come, a ghost is where the block is shown.
-            let (_, shown_mode, shown_y) = shown;
-            self.ghosts.push(Ghost {
-                latest: GhostState {
-                    theta: shown_y[THETA],
-                    theta_dot: shown_y[THETA_DOT],
-                    x: shown_y[X],
-                    mode: shown_mode,
-                },
-                driver,
-                states,
-                done,
-            });
-        }
-    }
-
-    /// The first sample at which the block, at rest in `from`, moves: the
-    /// same scenario run on from there until it leaves rest, within the
-    /// batch run's end. `None` if it never does (a base too weak to lift
-    /// it, or a still one).
-    fn lift_off_after(&self, from: (f64, Mode, [f64; N])) -> Option<(f64, Mode, [f64; N])> {
-        let (tau, mode, y) = from;
-        let outputs = Outputs {
-            sample_dt: Some(LIVE_SAMPLE_DT),
-            section_period: None,
-        };
-        let system = live_system(self.probe.params().clone());
-        let mut driver = system.into_driver(&self.play.info.scenario, DriverStart { mode, t0: tau, y0: y }, outputs);
-        let mut moved = FirstMove(None);
-        let mut t = tau;
-        while t < self.batch_end {
-            t = (t + MAX_CHUNK).min(self.batch_end);
-            let reached = driver.advance(t, self.batch_end, &mut moved);
-            if moved.0.is_some() {
-                return moved.0;
-            }
-            if !matches!(reached, Ok(Advance::Reached)) {
-                return None;
-            }
-        }
-        None
     }
 
     /// A new run of the same scenario from the state shown at the playhead,

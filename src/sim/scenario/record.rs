@@ -118,7 +118,7 @@ impl Scenario {
     /// For a record, the τ after which a block at rest stays at rest for
     /// ever: the record's end, or on a floor the later time at which the
     /// building's ringing down can no longer lift or slide the block
-    /// ([`FloorExcitation::quiet_after`] at min(B/H, μ_s) g, the vertical
+    /// ([`FloorExcitation::quiet_after`](crate::model::excitation::FloorExcitation::quiet_after) at min(B/H, μ_s) g, the vertical
     /// being at rest then). `None` for other kinds.
     pub(crate) fn rest_after_tau(&self) -> Option<f64> {
         let end = self.record_end_tau()?;
