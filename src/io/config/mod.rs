@@ -13,29 +13,30 @@
 
 use std::path::{Path, PathBuf};
 
-use serde_json::Value as Json;
 use toml::Table;
 
 mod echo;
 mod error;
+mod file;
 mod floor;
 mod quantity;
 mod raw;
+mod records;
 mod set;
 mod stack;
 
 pub use echo::to_json;
 pub use error::ConfigError;
+pub use file::parse_toml;
+pub(crate) use file::read_file;
 pub use set::{apply_sets, line_of, set_dotted, set_dotted_from};
 
-use crate::io::record::{self, RecordError, RecordSpec};
-use crate::io::shipped;
-use crate::model::units::AccelUnit;
 use crate::model::{FlightPolicy, Frame, Geometry};
 use crate::sim::scenario::{Analyses, Block, ExcitationSpec, Impact, LyapunovChoice, Record, RunSpec};
 use crate::sim::{InitialState, Param, Scenario, catalogue};
 use quantity::{Dimension, Quantity};
 use raw::{Coefficient, Count, Finite, RawConfig};
+use records::{RecordFrom, RecordKeys, given_or_read, record_scale};
 
 /// Every section and its keys, in the config file's order: the
 /// catalogue's ([`crate::sim::catalogue`]), where each key is declared.
@@ -76,326 +77,6 @@ pub fn preset_text(name: &str) -> Result<&'static str, ConfigError> {
             super::presets::names().join(", ")
         ))
     })
-}
-
-/// Parses TOML text, naming `file` and the line in errors.
-pub fn parse_toml(text: &str, file: &str) -> Result<Table, ConfigError> {
-    text.parse::<Table>().map_err(|e| {
-        let line = e.span().map_or(1, |s| line_of(text, s.start));
-        let msg = e.message().lines().next().unwrap_or("invalid TOML").to_string();
-        ConfigError::Syntax {
-            file: file.to_string(),
-            line,
-            message: msg,
-        }
-    })
-}
-
-/// Largest config file read, bytes: a config is a page of text; anything
-/// near this is not one.
-pub(crate) const MAX_CONFIG_BYTES: u64 = 1 << 20;
-
-/// Reads a config file: TOML, or a `summary.json` / JSON config (whose
-/// `config` object is used if present).
-pub(crate) fn read_file(path: &Path) -> Result<(Table, Source), ConfigError> {
-    let name = path.display().to_string();
-    if path.is_dir() {
-        return Err(file_error(&name, "is a directory, expected a config file"));
-    }
-    // Only a regular file of bounded size: `/dev/zero` would be read
-    // without end and a FIFO would block forever.
-    let meta = std::fs::metadata(path).map_err(|e| file_error(&name, e))?;
-    if !meta.is_file() {
-        return Err(file_error(&name, "not a regular file (a config is read from a file)"));
-    }
-    if meta.len() > MAX_CONFIG_BYTES {
-        return Err(file_error(
-            &name,
-            format!("{} bytes; a config file is at most 1 MB", meta.len()),
-        ));
-    }
-    let text = std::fs::read_to_string(path).map_err(|e| file_error(&name, e))?;
-    if text.trim().is_empty() {
-        return Err(file_error(&name, "empty file"));
-    }
-    let base_dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
-    let is_json = path.extension().is_some_and(|e| e.eq_ignore_ascii_case("json"));
-    let table = if is_json {
-        let v: Json = serde_json::from_str(&text).map_err(|e| ConfigError::Syntax {
-            file: name.clone(),
-            line: e.line(),
-            message: e.to_string(),
-        })?;
-        let v = v.get("config").cloned().unwrap_or(v);
-        json_to_table(&v).map_err(|m| file_error(&name, m))?
-    } else {
-        parse_toml(&text, &name)?
-    };
-    Ok((table, Source { base_dir }))
-}
-
-fn json_to_table(v: &Json) -> Result<Table, String> {
-    let Json::Object(map) = v else {
-        return Err("expected a JSON object".into());
-    };
-    let mut t = Table::new();
-    for (k, v) in map {
-        let tv = match v {
-            Json::Object(_) => toml::Value::Table(json_to_table(v)?),
-            Json::String(s) => toml::Value::String(s.clone()),
-            Json::Bool(b) => toml::Value::Boolean(*b),
-            Json::Number(n) => match n.as_i64() {
-                Some(i) => toml::Value::Integer(i),
-                None => toml::Value::Float(n.as_f64().unwrap_or(f64::NAN)),
-            },
-            // `null` means "absent / default".
-            Json::Null => continue,
-            // A list of tables (`[[stack]]`, `[[floor.mode]]`).
-            Json::Array(items) => toml::Value::Array(
-                items
-                    .iter()
-                    .map(|item| match item {
-                        Json::Object(_) => json_to_table(item).map(toml::Value::Table),
-                        _ => Err(format!("{k}: a list here must hold tables")),
-                    })
-                    .collect::<Result<_, _>>()?,
-            ),
-        };
-        t.insert(k.clone(), tv);
-    }
-    Ok(t)
-}
-
-fn file_error(file: &str, message: impl std::fmt::Display) -> ConfigError {
-    ConfigError::File {
-        file: file.to_string(),
-        message: message.to_string(),
-    }
-}
-
-/// One component's record keys: `file`, `unit`, `dt`, `crc32` and
-/// `channel`, named with their suffix (`_h` or `_v`).
-struct RecordKeys<'a> {
-    suffix: &'static str,
-    file: Option<&'a str>,
-    unit: Option<&'a str>,
-    dt: Option<Quantity>,
-    crc32: Option<&'a str>,
-    channel: Option<u64>,
-}
-
-impl RecordKeys<'_> {
-    fn key(&self, name: &str) -> String {
-        format!("excitation.{name}{}", self.suffix)
-    }
-}
-
-/// Reads the record file `keys.file` names in its stated unit (and time
-/// step), naming the key at fault in errors; `None` when no file is named.
-fn read_record(keys: &RecordKeys<'_>, source: &Source) -> Result<Option<Record>, ConfigError> {
-    let unit = match keys.unit {
-        None => None,
-        Some(text) => Some(AccelUnit::parse(text).ok_or_else(|| {
-            let case = AccelUnit::case_hint(text).map_or(String::new(), |h| {
-                format!(": units are case-sensitive, did you mean \"{h}\"?")
-            });
-            ConfigError::key(
-                &keys.key("unit"),
-                format!("unknown unit \"{text}\"{case} (known: g, m/s2, cm/s2)"),
-            )
-        })?),
-    };
-    let dt = keys
-        .dt
-        .map(|q| q.resolve(&keys.key("dt"), Dimension::Seconds, &Geometry::new(1.0, 1.0)))
-        .transpose()?;
-    // Channels are counted from 1, as COSMOS numbers them.
-    let channel = match keys.channel {
-        None => None,
-        Some(n) => Some(
-            usize::try_from(n)
-                .ok()
-                .filter(|&n| n >= 1)
-                .ok_or_else(|| ConfigError::key(&keys.key("channel"), format!("{n}: channels are counted from 1")))?,
-        ),
-    };
-    let Some(p) = keys.file else {
-        for (name, given) in [
-            ("unit", unit.is_some()),
-            ("dt", dt.is_some()),
-            ("crc32", keys.crc32.is_some()),
-            ("channel", channel.is_some()),
-        ] {
-            if given {
-                return Err(ConfigError::key(&keys.key(name), format!("needs {}", keys.key("file"))));
-            }
-        }
-        return Ok(None);
-    };
-    let spec = RecordSpec { unit, dt, channel };
-    let (path, loaded) = match shipped::name_of(p) {
-        Some(name) => {
-            let bytes = shipped::get(name).ok_or_else(|| {
-                ConfigError::key(
-                    &keys.key("file"),
-                    format!(
-                        "{p}: no such shipped record (shipped: {})",
-                        shipped::references().join(", ")
-                    ),
-                )
-            })?;
-            (PathBuf::from(p), record::read_record_bytes(p, bytes, &spec))
-        }
-        None => {
-            let p = PathBuf::from(p);
-            let path = if p.is_absolute() { p } else { source.base_dir.join(p) };
-            let loaded = record::read_record_as(&path, &spec);
-            (path, loaded)
-        }
-    };
-    let loaded = loaded.map_err(|e| {
-        let key = match e {
-            RecordError::NoUnit { .. }
-            | RecordError::HeaderNoUnit { .. }
-            | RecordError::NoHeaderUnit { .. }
-            | RecordError::UnitConflict { .. } => keys.key("unit"),
-            RecordError::NoStep { .. } | RecordError::StatedStep { .. } | RecordError::Columns { expected: 1, .. } => {
-                keys.key("dt")
-            }
-            RecordError::Channels { .. } | RecordError::NoSuchChannel { .. } | RecordError::OneChannel { .. } => {
-                keys.key("channel")
-            }
-            _ => keys.key("file"),
-        };
-        ConfigError::Record {
-            key,
-            file: path.display().to_string(),
-            message: e.to_string(),
-        }
-    })?;
-    // A summary.json names the checksum of the file it ran: a file changed
-    // since is refused rather than silently giving another answer.
-    if let Some(expected) = keys.crc32 {
-        let found = format!("{:08x}", loaded.crc32);
-        if !expected.eq_ignore_ascii_case(&found) {
-            let what = if shipped::name_of(p).is_some() {
-                "is not the record this config was written with: this program ships other bytes under that name"
-            } else {
-                "has changed since this config was written"
-            };
-            return Err(ConfigError::key(
-                &keys.key("crc32"),
-                format!(
-                    "{} {what} (CRC-32 {found}, expected {expected}); remove {} to run the file as it is now",
-                    path.display(),
-                    keys.key("crc32")
-                ),
-            ));
-        }
-    }
-    // Absolute, so that summary.json repeats the run from any folder (a
-    // shipped record's name is the same from any folder).
-    let path = if shipped::name_of(p).is_some() {
-        path
-    } else {
-        path.canonicalize().unwrap_or(path)
-    };
-    Ok(Some(Record {
-        path,
-        series: loaded.series,
-        unit: loaded.unit,
-        dt,
-        crc32: loaded.crc32,
-        channel,
-    }))
-}
-
-/// Where a resolution takes one record from.
-#[derive(Clone, Copy)]
-enum RecordFrom<'a> {
-    /// The file the keys name, if any.
-    Read,
-    /// Given as samples ([`from_table_with`]): a file's keys beside it are
-    /// an error.
-    Given(&'a Record),
-    /// Already read from the file the keys name ([`from_table_keeping`]).
-    Kept(&'a Record),
-}
-
-impl<'a> RecordFrom<'a> {
-    fn given(record: Option<&'a Record>) -> Self {
-        record.map_or(Self::Read, Self::Given)
-    }
-
-    fn kept(record: Option<&'a Record>) -> Self {
-        record.map_or(Self::Read, Self::Kept)
-    }
-}
-
-/// The record given as samples, or kept from an earlier read of the same
-/// keys, or else the file the keys name.
-fn given_or_read(keys: &RecordKeys<'_>, source: &Source, from: RecordFrom<'_>) -> Result<Option<Record>, ConfigError> {
-    let given = match from {
-        RecordFrom::Read => return read_record(keys, source),
-        // A clone shares the samples: no file is read, nothing copied.
-        RecordFrom::Kept(kept) if keys.file.is_some() => return Ok(Some(kept.clone())),
-        RecordFrom::Kept(_) => return read_record(keys, source),
-        RecordFrom::Given(given) => given,
-    };
-    let named = [
-        ("file", keys.file.is_some()),
-        ("unit", keys.unit.is_some()),
-        ("dt", keys.dt.is_some()),
-        ("crc32", keys.crc32.is_some()),
-        ("channel", keys.channel.is_some()),
-    ];
-    if let Some((name, _)) = named.iter().find(|(_, set)| *set) {
-        return Err(ConfigError::key(
-            &keys.key(name),
-            "the record is given as samples; a file's keys do not apply to it",
-        ));
-    }
-    Ok(Some(given.clone()))
-}
-
-/// The scale factor on a record: `excitation.scale_*`, or the one that
-/// makes its PGA `excitation.pga_*`; both at once is an error.
-fn record_scale(
-    keys: &RecordKeys<'_>,
-    record: Option<&Record>,
-    scale: Option<Finite>,
-    pga: Option<Quantity>,
-    geo: &Geometry,
-    default: f64,
-) -> Result<f64, ConfigError> {
-    let Some(pga) = pga else {
-        return Ok(scale.map_or(default, |s| s.0));
-    };
-    let key = keys.key("pga");
-    if scale.is_some() {
-        return Err(ConfigError::key(
-            &key,
-            format!("give either {} or {key}, not both", keys.key("scale")),
-        ));
-    }
-    let Some(record) = record else {
-        return Err(ConfigError::key(&key, format!("needs {}", keys.key("file"))));
-    };
-    let target = pga.resolve(&key, Dimension::Pga, geo)?;
-    if target.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
-        return Err(ConfigError::key(&key, format!("must be > 0, got {target} g")));
-    }
-    let peak = record.series.peak_abs_g();
-    if peak == 0.0 {
-        return Err(ConfigError::key(
-            &key,
-            format!(
-                "{} has no motion (PGA 0), it cannot be scaled to a PGA",
-                record.path.display()
-            ),
-        ));
-    }
-    Ok(target / peak)
 }
 
 /// The first key or section of `table` that the config does not know, as
