@@ -17,11 +17,17 @@
 //! and writes exactly the files one run writes (the fits are computed from
 //! the joined rows, whose numbers round-trip bit for bit).
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::time::Instant;
 
-use anyhow::{Context as _, anyhow, bail};
+use anyhow::{Context as _, anyhow};
 use serde_json::{Value as Json, json};
+
+mod shards;
+mod write;
+
+pub(crate) use shards::{are_fragility_shards, merge};
+use write::write_whole;
 
 use super::eng_args::{
     BaseArgs, Owns, RecordUnitArgs, RunArgs, VerticalArg, block, flag_error, input, positive_list, read_record, show,
@@ -29,22 +35,18 @@ use super::eng_args::{
 use super::eng_motion::flagged;
 use super::error::BatchError;
 use super::flags::Flags;
-use super::merge::MergeArgs;
 use super::suite::{SuiteEntry, suite};
 use super::sweep::{progress_bar, progress_fn, thread_pool};
 use crate::analysis::engineering::fragility::{
-    FragilityCheckError, FragilitySpec, Intensity, LevelSummary, SuiteRecord, fit_block, run_fragility, summarise,
+    FragilityCheckError, FragilitySpec, Intensity, SuiteRecord, run_fragility,
 };
-use crate::analysis::engineering::lognormal::{FitError, LognormalFit};
 use crate::analysis::engineering::request;
 use crate::analysis::engineering::{BlockSize, Drive, EndState};
 use crate::analysis::orbit_diagram::Shard;
 use crate::io::config::to_json;
 use crate::io::csv::{self, Num};
-use crate::io::engineering_files::{FractionRow, FragilityRunRow, IncrementalRow};
+use crate::io::engineering_files::FragilityRunRow;
 use crate::io::output;
-use crate::plot::fragility::{FragilityCurve, FragilityFigure, FragilityPanel};
-use crate::plot::incremental::{IncrementalCurve, IncrementalFigure, IncrementalPanel};
 use crate::plot::labels::{friction_text, num};
 use crate::sim::scenario::{IMPLAUSIBLE_PGA_G, IMPLAUSIBLY_SMALL_PGA_G, Record, readable_g};
 
@@ -65,9 +67,6 @@ pub enum ImArg {
     /// period --sa-period, exact for the piecewise-linear record.
     Sa,
 }
-
-/// Points of the fitted curve in `fragility.json` and the figure.
-const BAND_POINTS: usize = 60;
 
 /// Arguments of `rocking fragility`.
 #[derive(Debug, Clone, clap::Args)]
@@ -542,398 +541,4 @@ fn vertical_choice(flag: Option<VerticalArg>, entries: &[SuiteEntry]) -> Result<
             at(e)
         ))),
     }
-}
-
-/// Fit or error as JSON, with the band on a fine grid.
-fn fit_json(fit: &Result<LognormalFit, FitError>, grid: &[f64]) -> Json {
-    match fit {
-        Ok(f) => {
-            let mut j = serde_json::to_value(f).unwrap_or(Json::Null);
-            j["band"] = json!(grid.iter().map(|&x| f.at(x)).collect::<Vec<_>>());
-            j
-        }
-        Err(e) => json!({ "error": e.to_string() }),
-    }
-}
-
-/// One-line text of a fit.
-fn fit_text(fit: &Result<LognormalFit, FitError>, unit: &str) -> String {
-    match fit {
-        Ok(f) => format!(
-            "median {:.4} {unit} (95 %: {:.4}–{:.4}), β {:.3} ({:.3}–{:.3})",
-            f.median, f.median_ci95[0], f.median_ci95[1], f.beta, f.beta_ci95[0], f.beta_ci95[1]
-        ),
-        Err(e) => format!("no fit: {e}"),
-    }
-}
-
-/// The whole study's files from all its rows (in run order), written into
-/// `out`; returns the summary lines. `common` is `fragility.json` without
-/// fits (shard null).
-fn write_whole(
-    out: &Path,
-    common: Json,
-    layout: &Layout,
-    rows: Vec<FragilityRunRow>,
-) -> Result<Vec<String>, BatchError> {
-    let (nl, nr) = (layout.levels.len(), layout.records);
-    let counts: Vec<Vec<LevelSummary>> = summarise(
-        layout.blocks.len(),
-        nl,
-        layout.threshold,
-        rows.iter().map(|r| {
-            let i = r.run as usize;
-            let end = EndState::from_name(&r.end).unwrap_or(EndState::Moving);
-            (i / (nl * nr), (i / nr) % nl, end, r.peak_theta_over_alpha.0)
-        }),
-    );
-    let x_max = layout.levels.iter().copied().fold(0.0, f64::max);
-    let grid: Vec<f64> = (1..=BAND_POINTS)
-        .map(|k| 1.1 * x_max * k as f64 / BAND_POINTS as f64)
-        .collect();
-    let unit = layout.im.unit();
-    let mut fraction_rows = Vec::new();
-    let mut fits_json = Vec::new();
-    let mut lines = Vec::new();
-    let mut over_curves = Vec::new();
-    let mut exceed_curves = Vec::new();
-    for (b, (block, c)) in layout.blocks.iter().zip(&counts).enumerate() {
-        let fits = fit_block(&layout.levels, c);
-        for (&level, s) in layout.levels.iter().zip(c) {
-            let over = fits.overturn.as_ref().ok().map(|f| f.at(level));
-            let exceed = fits.exceed.as_ref().ok().map(|f| f.at(level));
-            fraction_rows.push(FractionRow {
-                block: b as u64,
-                width_m: Num(block.width_m),
-                height_m: Num(block.height_m),
-                im: layout.im.column().to_string(),
-                level: Num(level),
-                runs: s.runs,
-                overturned: s.overturned,
-                flight: s.flight,
-                exceeded: s.exceeded,
-                fraction_overturned: s.fraction_overturned().map(Num),
-                fraction_exceeded: s.fraction_exceeded().map(Num),
-                fit_overturned: over.map(|p| Num(p.p)),
-                fit_overturned_lo: over.map(|p| Num(p.lo)),
-                fit_overturned_hi: over.map(|p| Num(p.hi)),
-                fit_exceeded: exceed.map(|p| Num(p.p)),
-                fit_exceeded_lo: exceed.map(|p| Num(p.lo)),
-                fit_exceeded_hi: exceed.map(|p| Num(p.hi)),
-            });
-        }
-        let name = layout.block_name(block);
-        fits_json.push(json!({
-            "block": b,
-            "width_m": block.width_m,
-            "height_m": block.height_m,
-            "r_m": block.half_diagonal_m(),
-            "alpha_rad": block.alpha(),
-            "p_per_s": block.p_per_s(),
-            "overturning": fit_json(&fits.overturn, &grid),
-            "exceedance": fit_json(&fits.exceed, &grid),
-        }));
-        lines.push(format!("{name}: overturning {}", fit_text(&fits.overturn, unit)));
-        lines.push(format!(
-            "{name}: θ/α ≥ {} {}",
-            num(layout.threshold),
-            fit_text(&fits.exceed, unit)
-        ));
-        let observed = |f: fn(&LevelSummary) -> Option<f64>| -> Vec<(f64, f64)> {
-            layout
-                .levels
-                .iter()
-                .zip(c)
-                .filter_map(|(&x, s)| f(s).map(|y| (x, y)))
-                .collect()
-        };
-        let curve = |fit: &Result<LognormalFit, FitError>| match fit {
-            Ok(f) => grid.iter().map(|&x| f.at(x)).collect(),
-            Err(_) => Vec::new(),
-        };
-        over_curves.push(FragilityCurve {
-            label: match &fits.overturn {
-                Ok(f) => format!("{name}: median {:.3} {unit}, β {:.2}", f.median, f.beta),
-                Err(_) => format!("{name}: no fit"),
-            },
-            observed: observed(LevelSummary::fraction_overturned),
-            fitted: curve(&fits.overturn),
-        });
-        exceed_curves.push(FragilityCurve {
-            label: match &fits.exceed {
-                Ok(f) => format!("{name}: median {:.3} {unit}, β {:.2}", f.median, f.beta),
-                Err(_) => format!("{name}: no fit"),
-            },
-            observed: observed(LevelSummary::fraction_exceeded),
-            fitted: curve(&fits.exceed),
-        });
-    }
-    let mut meta = common;
-    meta["fits"] = Json::Array(fits_json);
-    let fig = FragilityFigure {
-        title: format!(
-            "Fragility of free-standing blocks: {} records × {} levels",
-            layout.records,
-            layout.levels.len()
-        ),
-        subtitle: format!(
-            "{}; markers: fraction of records, lines: lognormal MLE, shaded: 95 % band (Fisher information, delta method)",
-            layout.conditions()
-        ),
-        x_label: layout.im.label_at(layout.sa_period),
-        x_max: 1.1 * x_max,
-        panels: vec![
-            FragilityPanel {
-                caption: "P(overturning)".into(),
-                curves: over_curves,
-            },
-            FragilityPanel {
-                caption: format!("P(peak θ/α ≥ {} or overturning)", num(layout.threshold)),
-                curves: exceed_curves,
-            },
-        ],
-    };
-    let (incremental_rows, incremental_fig) = incremental(layout, &rows, layout.overturn_at);
-    super::write::staged(out, |staging| {
-        staging.text("runs.csv", &csv::to_string(rows))?;
-        staging.text("fractions.csv", &csv::to_string(fraction_rows))?;
-        staging.text("incremental.csv", &csv::to_string(incremental_rows))?;
-        super::write::figure(staging, "incremental", &incremental_fig)?;
-        staging.text("fragility.json", &(serde_json::to_string_pretty(&meta)? + "\n"))?;
-        super::write::figure(staging, "fragility", &fig)?;
-        Ok(())
-    })?;
-    Ok(lines)
-}
-
-/// Each record's incremental curve for each block (its runs in increasing
-/// level) from the study's rows (in run order: block, level, record), as
-/// rows of `incremental.csv` and the figure; overturned runs are drawn at
-/// `overturn_at` (θ/α).
-fn incremental(
-    layout: &Layout,
-    rows: &[FragilityRunRow],
-    overturn_at: f64,
-) -> (Vec<IncrementalRow>, IncrementalFigure) {
-    let (nl, nr) = (layout.levels.len(), layout.records);
-    let at = |b: usize, l: usize, r: usize| rows.get((b * nl + l) * nr + r);
-    let mut out = Vec::with_capacity(rows.len());
-    let mut panels = Vec::with_capacity(layout.blocks.len());
-    for (b, block) in layout.blocks.iter().enumerate() {
-        let mut curves = Vec::with_capacity(nr);
-        for r in 0..nr {
-            let mut points = Vec::with_capacity(nl);
-            let mut label = String::new();
-            for l in 0..nl {
-                let Some(row) = at(b, l, r) else { continue };
-                label.clone_from(&row.record);
-                let end = EndState::from_name(&row.end).unwrap_or(EndState::Moving);
-                points.push((row.level.0, row.peak_theta_over_alpha.0, end));
-                out.push(IncrementalRow {
-                    block: b as u64,
-                    width_m: row.width_m,
-                    height_m: row.height_m,
-                    record: row.record.clone(),
-                    im: row.im.clone(),
-                    level: row.level,
-                    peak_theta_over_alpha: row.peak_theta_over_alpha,
-                    end: row.end.clone(),
-                });
-            }
-            curves.push(IncrementalCurve { label, points });
-        }
-        panels.push(IncrementalPanel {
-            caption: layout.block_name(block),
-            curves,
-        });
-    }
-    let fig = IncrementalFigure {
-        title: format!(
-            "Incremental curves: peak rotation of each block under each of {} records",
-            layout.records
-        ),
-        subtitle: format!(
-            "{}; one line per record; cross: overturned (drawn at θ/α = {}), triangle: flight",
-            layout.conditions(),
-            num(overturn_at)
-        ),
-        y_label: layout.im.label_at(layout.sa_period),
-        y_max: layout.levels.iter().copied().fold(0.0, f64::max),
-        overturn_at,
-        panels,
-    };
-    (out, fig)
-}
-
-/// Whether `dirs` are fragility shards (the first holds a
-/// `fragility.json`): `rocking merge` then joins them with [`merge`].
-pub(crate) fn are_fragility_shards(dirs: &[PathBuf]) -> bool {
-    dirs.first().is_some_and(|d| d.join("fragility.json").is_file())
-}
-
-/// One shard read back.
-struct ShardDir {
-    dir: PathBuf,
-    shard: Shard,
-    /// `fragility.json` without its `shard` (left null) and `files`.
-    common: Json,
-    rows: Vec<(u64, FragilityRunRow)>,
-    /// `fragility.json`'s `files`: the rows and CRC-32 of `runs.csv`.
-    files: Json,
-}
-
-fn read_shard(dir: &Path) -> anyhow::Result<ShardDir> {
-    let (path, mut common, shard) =
-        super::merge::shard_json(dir, "fragility.json", "rocking fragility", "it is a whole study")?;
-    if shard.count == 0 || shard.index >= shard.count {
-        bail!(
-            "{}: shard {}/{} is out of range",
-            path.display(),
-            shard.index,
-            shard.count
-        );
-    }
-    // Shards of versions before these checks have none: their runs cannot
-    // be told from edited ones, so they are not merged.
-    let files = common.as_object_mut().and_then(|o| o.remove("files")).ok_or_else(|| {
-        anyhow!(
-            "{}: no \"files\" entry (rows and CRC-32 of runs.csv), so an edited runs.csv cannot be noticed; recompute the shard with this version",
-            path.display()
-        )
-    })?;
-    Ok(ShardDir {
-        dir: dir.to_path_buf(),
-        shard,
-        common,
-        rows: csv::read(&dir.join("runs.csv"))?,
-        files,
-    })
-}
-
-/// The layout recorded in a shard's `fragility.json`.
-fn layout_of(common: &Json, path: &Path) -> anyhow::Result<Layout> {
-    let field = |k: &str| {
-        common
-            .get(k)
-            .ok_or_else(|| anyhow!("{}: missing \"{k}\"", path.display()))
-    };
-    let im: Intensity =
-        serde_json::from_value(field("im")?.clone()).with_context(|| format!("{}: im", path.display()))?;
-    let levels: Vec<f64> =
-        serde_json::from_value(field("levels")?.clone()).with_context(|| format!("{}: levels", path.display()))?;
-    let blocks: Vec<BlockSize> = field("blocks")?
-        .as_array()
-        .ok_or_else(|| anyhow!("{}: blocks is not a list", path.display()))?
-        .iter()
-        .map(|b| {
-            Some(BlockSize {
-                width_m: b.get("width_m")?.as_f64()?,
-                height_m: b.get("height_m")?.as_f64()?,
-            })
-        })
-        .collect::<Option<_>>()
-        .ok_or_else(|| anyhow!("{}: bad blocks", path.display()))?;
-    let records = field("records")?
-        .as_array()
-        .ok_or_else(|| anyhow!("{}: records is not a list", path.display()))?
-        .len();
-    let threshold = field("threshold_theta_over_alpha")?
-        .as_f64()
-        .ok_or_else(|| anyhow!("{}: bad threshold_theta_over_alpha", path.display()))?;
-    let friction = field("friction")?.as_str().unwrap_or_default().to_string();
-    let overturn_at = field("config")?
-        .pointer("/run/tumble_theta")
-        .and_then(Json::as_f64)
-        .ok_or_else(|| anyhow!("{}: config has no run.tumble_theta", path.display()))?;
-    let sa_period = common.get("sa_period_s").and_then(Json::as_f64);
-    let vertical = common.get("vertical").and_then(Json::as_str) == Some("record");
-    let stack = field("config")?.get("stack").and_then(Json::as_array).map(Vec::len);
-    let layout = Layout {
-        im,
-        levels,
-        blocks,
-        records,
-        threshold,
-        friction,
-        overturn_at,
-        sa_period,
-        vertical,
-        stack,
-    };
-    if field("runs")?.as_u64() != Some(layout.runs() as u64) {
-        bail!("{}: runs disagrees with blocks × levels × records", path.display());
-    }
-    Ok(layout)
-}
-
-/// `rocking merge` of fragility shards: checks that they are the shards
-/// 0 … N−1 of one study, each once, with exactly their runs, and writes
-/// the files one run writes.
-pub fn merge(args: &MergeArgs) -> Result<(), BatchError> {
-    let shards = super::merge::read_shards(args, read_shard)?;
-    let by_index = super::merge::in_index_order(
-        &shards,
-        |s| (&s.dir, s.shard, &s.common),
-        |s, first| {
-            format!(
-                "{}: not the same study as {} (fragility.json differs)",
-                s.dir.display(),
-                first.dir.display()
-            )
-        },
-    )?;
-    let (first, n) = (&shards[0], shards[0].shard.count);
-    let layout = layout_of(&first.common, &first.dir.join("fragility.json")).map_err(input)?;
-    let total = layout.runs();
-    let mut rows: Vec<FragilityRunRow> = Vec::with_capacity(total);
-    let mut pos = vec![0usize; n];
-    for i in 0..total {
-        let k = i % n;
-        let Some(s) = by_index[k] else {
-            return Err(input(anyhow!("shard {k}/{n} is missing")));
-        };
-        let path = s.dir.join("runs.csv");
-        let Some((line, row)) = s.rows.get(pos[k]) else {
-            return Err(input(anyhow!("{}: ends before run {i}", path.display())));
-        };
-        if row.run != i as u64 {
-            return Err(input(anyhow!(
-                "{}:{line}: run {} where the shard has run {i}",
-                path.display(),
-                row.run
-            )));
-        }
-        if EndState::from_name(&row.end).is_none() {
-            return Err(input(anyhow!("{}:{line}: unknown end {:?}", path.display(), row.end)));
-        }
-        pos[k] += 1;
-        rows.push(row.clone());
-    }
-    for s in &shards {
-        if let Some((line, _)) = s.rows.get(pos[s.shard.index]) {
-            return Err(input(anyhow!(
-                "{}:{line}: a row beyond the shard's runs",
-                s.dir.join("runs.csv").display()
-            )));
-        }
-    }
-    // After the rows (a wrong row is named by its line): the count and
-    // checksum, which catch a well-formed row edited by hand.
-    for s in &shards {
-        super::merge::check_file(&s.dir, "runs.csv", &s.files, &s.dir.join("fragility.json")).map_err(input)?;
-    }
-    output::check_writable(&args.out)
-        .context("--out: cannot write the output directory")
-        .map_err(input)?;
-    let mut common = first.common.clone();
-    common["shard"] = Json::Null;
-    let lines = write_whole(&args.out, common, &layout, rows)?;
-    if !args.quiet {
-        crate::say!("merged {n} fragility shards: {total} runs");
-        for l in lines {
-            crate::say!("  {l}");
-        }
-        crate::say!("wrote {}", args.out.display());
-    }
-    Ok(())
 }
