@@ -352,7 +352,7 @@ where
 /// The largest exponent of the stack `geo` under `excitation` (in its
 /// bottom block's τ), started at rest as every stack run is, by two
 /// trajectories in the tangent coordinates of `lyapunov/stack.rs`.
-pub fn stack_lyapunov(
+pub(crate) fn stack_lyapunov(
     geo: StackGeometry,
     excitation: Excitation,
     zeno_eps: f64,

@@ -77,7 +77,7 @@ pub enum StartFrom {
 
 /// Commands to the simulation thread.
 #[derive(Clone, Debug)]
-pub enum SimCommand {
+pub(crate) enum SimCommand {
     /// Start a new run with this configuration, from τ = 0 and its initial
     /// state or from the state shown now (`from`). The run's `run.tau_end`
     /// is ignored: a live run goes on until it reaches a terminal mode or

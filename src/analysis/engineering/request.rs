@@ -135,7 +135,7 @@ impl Scaling {
 
 /// An analytic pulse in physical units, as asked.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct PulseRequest {
+pub(crate) struct PulseRequest {
     /// Shape.
     pub shape: ShapeKind,
     /// Main cycles n of a type-C pulse (default 1: the simplest pulse).
@@ -189,7 +189,7 @@ impl PulseRequest {
 
 /// The values a search tries, `step, 2·step, …` up to `max`
 /// ([`ladder`]), with errors naming `step_field` and `max_field`.
-pub fn search_ladder(
+pub(crate) fn search_ladder(
     step_field: RequestField,
     step: f64,
     max_field: RequestField,

@@ -316,7 +316,7 @@ impl StackSystem {
     }
 
     /// M G R₁, the energy unit.
-    pub fn energy_unit(&self) -> f64 {
+    pub(crate) fn energy_unit(&self) -> f64 {
         self.geo.total_mass * self.g_unit * self.geo.r1
     }
 

@@ -116,7 +116,7 @@ impl SpectrumRequest {
 
     /// The size range alone: `count` distinct log-spaced sizes (a surface
     /// that parses its ratios itself checks the sizes first with this).
-    pub fn size_range(&self) -> Result<SizeRange, RequestError> {
+    pub(crate) fn size_range(&self) -> Result<SizeRange, RequestError> {
         let (from, to, count) = (self.from_m, self.to_m, self.count);
         if from == to && count > 1 {
             return Err(RequestError::IdenticalSizes { from, count });
